@@ -1,0 +1,57 @@
+// Shared by every tool's main(): the exit-code table, reading inputs,
+// writing outputs atomically, color policy and diagnostic printing.  This
+// is the only layer that looks at the terminal and the environment.
+#pragma once
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "core/diagnostic.hpp"
+#include "core/writer.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace rscene::cli {
+
+// The same table in every man page.
+enum ExitCode : int {
+  kSuccess = 0,      // nothing to report
+  kFindings = 1,     // lint errors, needs formatting, differences, image mismatch
+  kTrouble = 2,      // usage, I/O or parse error
+  kInterrupted = 130,
+};
+
+struct Input {
+  std::string display;  // name in messages: the path, or --stdin-filename, or <stdin>
+  std::string path;     // file to resolve assets against (may be empty for stdin)
+  bool isStdin = false;
+  std::string text;
+};
+
+// Reads `operand` ("-" = stdin).  On failure prints `tool: error: ...`.
+bool readInput(const std::string& operand, const std::string& stdinName, Input& in);
+
+// Writes `produce`'s output to `path` ("-" = stdout) atomically.
+bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce);
+
+// Color on stderr/stdout: only on a terminal, never with NO_COLOR.
+bool colorFor(int fd);
+
+// Prints diagnostics of one input to stderr in the shared format.
+void printDiagnostics(const Diagnostics& ds, const Input& in, bool color);
+
+// `tool: error: message` on stderr.
+void error(std::string_view message);
+void warning(std::string_view message);
+
+// Sets the tool name, --version and the common help footer.
+void setup(CLI::App& app, const char* tool);
+const std::string& toolName();
+
+// Runs app.parse(); on --help/--version prints and returns kSuccess, on a
+// usage error prints it and returns kTrouble; -1 when the tool should go on.
+int parseArgs(CLI::App& app, int argc, char** argv);
+
+}  // namespace rscene::cli

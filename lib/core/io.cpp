@@ -1,0 +1,208 @@
+#include "core/io.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "core/text.hpp"
+
+namespace rscene {
+namespace {
+
+class FdSink : public Sink {
+ public:
+  explicit FdSink(int fd) : fd_(fd) {}
+  void write(std::string_view chunk) override {
+    while (ok_ && !chunk.empty()) {
+      ssize_t n = ::write(fd_, chunk.data(), chunk.size());
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        ok_ = false;
+        errno_ = errno;
+        return;
+      }
+      chunk.remove_prefix(static_cast<std::size_t>(n));
+    }
+  }
+  bool ok() const { return ok_; }
+  int error() const { return errno_; }
+
+ private:
+  int fd_;
+  bool ok_ = true;
+  int errno_ = 0;
+};
+
+ValueType fieldType(const Record& r, const Document& doc, const Field& f, std::uint32_t positionalIndex) {
+  if (!r.kind) return ValueType::Text;
+  if (f.isKey()) {
+    const FieldDef* def = r.kind->key(doc.text(f.key));
+    return def ? def->type : ValueType::Text;
+  }
+  const Layout* layout = r.kind->layoutFor(r.positionalCount);
+  if (!layout || positionalIndex >= layout->tokens.size()) return ValueType::Text;
+  const FieldDef& def = layout->fields[static_cast<std::size_t>(layout->tokens[positionalIndex].first)];
+  return def.width > 1 ? ValueType::Number : def.type;
+}
+
+}  // namespace
+
+bool readFile(const std::string& path, std::string& out, std::string* error) {
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (error) *error = std::strerror(errno);
+    return false;
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    if (error) *error = std::strerror(EISDIR);
+    return false;
+  }
+  out.clear();
+  if (st.st_size > 0) out.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      if (error) *error = std::strerror(errno);
+      ::close(fd);
+      return false;
+    }
+    if (n == 0) break;
+    out.append(buf, static_cast<std::size_t>(n));
+    if (out.size() > kMaxInputBytes + 1) break;  // the loader reports it
+  }
+  ::close(fd);
+  return true;
+}
+
+bool writeFileAtomic(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error) {
+  std::string dir = ".";
+  if (std::size_t slash = path.rfind('/'); slash != std::string::npos) dir = slash ? path.substr(0, slash) : "/";
+  std::string base = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
+  std::string tmp = dir + "/." + base + ".tmpXXXXXX";
+  int fd = ::mkstemp(tmp.data());
+  if (fd < 0) {
+    if (error) *error = std::string("cannot create temporary file in ") + dir + ": " + std::strerror(errno);
+    return false;
+  }
+  struct stat st {};
+  mode_t mode = 0666;
+  if (::stat(path.c_str(), &st) == 0) {
+    mode = st.st_mode & 07777;
+  } else {
+    mode_t mask = ::umask(0);
+    ::umask(mask);
+    mode = 0666 & ~mask;
+  }
+  ::fchmod(fd, mode);
+  FdSink sink(fd);
+  bool produced = produce(sink);
+  bool ok = produced && sink.ok();
+  int err = sink.ok() ? 0 : sink.error();
+  if (ok && ::fsync(fd) != 0) {
+    ok = false;
+    err = errno;
+  }
+  if (::close(fd) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
+  if (ok && ::rename(tmp.c_str(), path.c_str()) != 0) {
+    ok = false;
+    err = errno;
+  }
+  if (!ok) {
+    ::unlink(tmp.c_str());
+    if (error && err) *error = std::strerror(err);
+    else if (error && error->empty()) *error = "write cancelled";
+  }
+  return ok;
+}
+
+std::string firstError(const Diagnostics& diagnostics) {
+  for (const Diagnostic& d : diagnostics)
+    if (d.severity == Severity::Error) return "line " + std::to_string(d.line) + ": " + d.message;
+  return {};
+}
+
+bool loadString(std::string text, Document& doc, std::string* error) {
+  LoadResult r = parse(std::move(text));
+  if (!r.ok()) {
+    if (error) *error = firstError(r.diagnostics);
+    return false;
+  }
+  doc = std::move(r.document);
+  return true;
+}
+
+bool loadFile(const std::string& path, Document& doc, std::string* error) {
+  std::string text, err;
+  if (!readFile(path, text, &err)) {
+    if (error) *error = path + ": " + err;
+    return false;
+  }
+  return loadString(std::move(text), doc, error);
+}
+
+std::string saveString(const Document& doc) { return canonicalText(doc); }
+
+bool saveFile(const Document& doc, const std::string& path, std::string* error) {
+  return writeFileAtomic(path, [&](Sink& s) { writeCanonical(doc, s); return true; }, error);
+}
+
+bool sameDocument(const Document& a, const Document& b, std::string* why) {
+  auto fail = [&](const Record& r, const std::string& what) {
+    if (why) *why = "record at line " + std::to_string(r.line) + " (" + std::string(a.tag(r)) + "): " + what;
+    return false;
+  };
+  if (a.version != b.version) {
+    if (why) *why = "versions differ";
+    return false;
+  }
+  std::vector<std::uint32_t> oa = canonicalOrder(a), ob = canonicalOrder(b);
+  if (oa.size() != ob.size()) {
+    if (why) *why = "record counts differ: " + std::to_string(oa.size()) + " vs " + std::to_string(ob.size());
+    return false;
+  }
+  for (std::size_t i = 0; i < oa.size(); ++i) {
+    const Record& ra = a.records[oa[i]];
+    const Record& rb = b.records[ob[i]];
+    if (a.tag(ra) != b.tag(rb)) return fail(ra, "tag differs from " + std::string(b.tag(rb)));
+    if (ra.fieldCount != rb.fieldCount || ra.positionalCount != rb.positionalCount)
+      return fail(ra, "field counts differ");
+    if (ra.commentCount != rb.commentCount) return fail(ra, "comments differ");
+    for (std::uint32_t c = 0; c < ra.commentCount; ++c)
+      if (a.commentText(ra.firstComment + c) != b.commentText(rb.firstComment + c)) return fail(ra, "comment differs");
+    // Positionals compare by index, keys in written order.
+    std::uint32_t pa = 0;
+    for (std::uint32_t j = 0, pb = 0; j < ra.fieldCount; ++j) {
+      const Field& fa = a.field(ra, j);
+      const Field& fb = b.field(rb, j);
+      if (fa.isKey() != fb.isKey()) return fail(ra, "field " + std::to_string(j + 1) + " changed kind");
+      if (fa.isKey() && a.text(fa.key) != b.text(fb.key))
+        return fail(ra, "key " + std::string(a.text(fa.key)) + " became " + std::string(b.text(fb.key)));
+      ValueType t = fieldType(ra, a, fa, pa);
+      if (!fa.isKey()) ++pa, ++pb;
+      if (!sameValue(a.text(fa.value), b.text(fb.value), t)) {
+        // An unknown key keeps `key=` and `key=-` apart only in spelling.
+        return fail(ra, "value of field " + std::to_string(j + 1) + " differs: '" +
+                            std::string(a.text(fa.value).substr(0, 60)) + "' vs '" +
+                            std::string(b.text(fb.value).substr(0, 60)) + "'");
+      }
+    }
+  }
+  if (a.trailingCommentCount != b.trailingCommentCount) {
+    if (why) *why = "trailing comments differ";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rscene

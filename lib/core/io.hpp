@@ -1,0 +1,36 @@
+// Whole-file entry points in the style of Engine 2's RSceneIO.hpp:
+// errors come back as "line N: message".  File reading and atomic writing
+// live here so every tool shares them; nothing here prints.
+#pragma once
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "core/document.hpp"
+#include "core/loader.hpp"
+#include "core/writer.hpp"
+
+namespace rscene {
+
+bool loadString(std::string text, Document& doc, std::string* error = nullptr);
+bool loadFile(const std::string& path, Document& doc, std::string* error = nullptr);
+std::string saveString(const Document& doc);
+bool saveFile(const Document& doc, const std::string& path, std::string* error = nullptr);
+
+// Reads a whole file; `error` gets strerror-style text.
+bool readFile(const std::string& path, std::string& out, std::string* error);
+
+// Writes `path` atomically: produce() writes into a temporary file in the
+// same directory, which replaces `path` only when produce() returns true
+// and everything was flushed.  An existing file's permissions are kept.
+bool writeFileAtomic(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error);
+
+// "line N: message" for the first error of a load.
+std::string firstError(const Diagnostics& diagnostics);
+
+// Whether two documents hold the same scene record for record, in writer
+// order (the invariant `parse(fmt(x)) == parse(x)`).  On a difference,
+// `why` says where.
+bool sameDocument(const Document& a, const Document& b, std::string* why = nullptr);
+
+}  // namespace rscene

@@ -1,0 +1,297 @@
+#include "core/text.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+namespace rscene {
+namespace {
+
+int hexValue(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+bool isSeparator(char c) { return c == ',' || c == ';'; }
+
+bool needsEscape(unsigned char c, int version) {
+  return c < 0x20 || c == 0x7f || c == ' ' || c == '%' || c == '=' || (version >= 2 && c == ';');
+}
+
+// Calls f(item, separatorOrZero) for each item of a `,`/`;` list.
+template <class F>
+void forEachItem(std::string_view s, F&& f) {
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= s.size(); ++i) {
+    if (i == s.size() || isSeparator(s[i])) {
+      f(s.substr(start, i - start), i == s.size() ? '\0' : s[i]);
+      start = i + 1;
+    }
+  }
+}
+
+void appendEscaped(std::string& out, unsigned char c) {
+  static const char* hex = "0123456789ABCDEF";
+  out.push_back('%');
+  out.push_back(hex[c >> 4]);
+  out.push_back(hex[c & 15]);
+}
+
+// Encodes without the empty/dash rules (used inside lists).
+void encodeBytes(std::string_view value, int version, std::string& out) {
+  for (char ch : value) {
+    unsigned char c = static_cast<unsigned char>(ch);
+    if (needsEscape(c, version))
+      appendEscaped(out, c);
+    else
+      out.push_back(ch);
+  }
+}
+
+void appendCanonicalNumberItem(std::string& out, std::string_view item, bool integer) {
+  if (integer) {
+    if (auto v = parseInteger(item)) return appendInteger(out, *v);
+  } else if (auto v = parseNumber(item)) {
+    return appendNumber(out, *v);
+  }
+  encodeBytes(item, 1, out);  // not a number: keep as written, validate reports it
+}
+
+bool sameItem(std::string_view a, std::string_view b) {
+  auto x = parseNumber(a), y = parseNumber(b);
+  if (x && y) return std::memcmp(&*x, &*y, sizeof(double)) == 0;
+  if (x || y) {
+    // An integer beyond double precision parses on both sides identically.
+    return false;
+  }
+  return a == b;
+}
+
+}  // namespace
+
+std::vector<std::string_view> splitWords(std::string_view s) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && s[i] == ' ') ++i;
+    std::size_t start = i;
+    while (i < s.size() && s[i] != ' ') ++i;
+    if (i > start) words.push_back(s.substr(start, i - start));
+  }
+  return words;
+}
+
+std::size_t findBadEscape(std::string_view token) {
+  for (std::size_t i = token.find('%'); i != std::string_view::npos; i = token.find('%', i + 1)) {
+    if (i + 2 >= token.size()) return i;
+    if (hexValue(token[i + 1]) < 0 || hexValue(token[i + 2]) < 0) return i;
+    i += 2;
+  }
+  return std::string_view::npos;
+}
+
+void percentDecode(std::string_view token, std::string& out) {
+  if (token == "-") return;
+  std::size_t i = 0;
+  while (i < token.size()) {
+    std::size_t pct = token.find('%', i);
+    if (pct == std::string_view::npos) {
+      out.append(token.substr(i));
+      return;
+    }
+    out.append(token.substr(i, pct - i));
+    if (pct + 2 >= token.size()) {  // truncated escape: keep as is
+      out.append(token.substr(pct));
+      return;
+    }
+    int hi = hexValue(token[pct + 1]), lo = hexValue(token[pct + 2]);
+    if (hi < 0 || lo < 0) {
+      out.push_back('%');
+      i = pct + 1;
+      continue;
+    }
+    out.push_back(static_cast<char>(hi * 16 + lo));
+    i = pct + 3;
+  }
+}
+
+std::string percentDecode(std::string_view token) {
+  std::string out;
+  percentDecode(token, out);
+  return out;
+}
+
+void percentEncode(std::string_view value, int version, std::string& out) {
+  if (value.empty()) {
+    out.push_back('-');
+  } else if (value == "-") {
+    // A bare `-` would read back as empty; `%2D` keeps the dash in both
+    // versions (version-1 writers lose it, we do not).
+    out.append("%2D");
+  } else {
+    encodeBytes(value, version, out);
+  }
+}
+
+std::optional<double> parseNumber(std::string_view s) {
+  double v = 0;
+  const char* end = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), end, v);
+  if (ec != std::errc() || p != end || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<std::int64_t> parseInteger(std::string_view s) {
+  std::int64_t v = 0;
+  const char* end = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), end, v);
+  if (ec != std::errc() || p != end) return std::nullopt;
+  return v;
+}
+
+std::optional<std::uint64_t> parseGroup(std::string_view s) {
+  std::uint64_t v = 0;
+  const char* end = s.data() + s.size();
+  if (s.empty() || s[0] == '-') return std::nullopt;
+  auto [p, ec] = std::from_chars(s.data(), end, v);
+  if (ec != std::errc() || p != end) return std::nullopt;
+  return v;
+}
+
+std::optional<bool> parseFlag(std::string_view s) {
+  if (s == "true" || s == "1" || s == "yes" || s == "on") return true;
+  if (s == "false" || s == "0" || s == "no" || s == "off") return false;
+  return std::nullopt;
+}
+
+bool parseNumberList(std::string_view s, std::vector<double>& out) {
+  if (s.empty()) return true;
+  bool ok = true;
+  forEachItem(s, [&](std::string_view item, char) {
+    auto v = parseNumber(item);
+    if (!v) ok = false;
+    else out.push_back(*v);
+  });
+  return ok;
+}
+
+std::vector<std::string> parseStringList(std::string_view raw) {
+  std::vector<std::string> out;
+  if (raw.empty() || raw == "-") return out;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= raw.size(); ++i) {
+    if (i == raw.size() || raw[i] == ';') {
+      std::string_view item = raw.substr(start, i - start);
+      std::string decoded;
+      if (item != "-") percentDecode(item, decoded);
+      out.push_back(std::move(decoded));
+      start = i + 1;
+    }
+  }
+  return out;
+}
+
+void appendNumber(std::string& out, double v) {
+  char buf[32];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, p);
+}
+
+void appendInteger(std::string& out, std::int64_t v) {
+  char buf[24];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, p);
+}
+
+void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version) {
+  std::string decodedStorage;
+  std::string_view value = raw;
+  if (raw.find('%') != std::string_view::npos || raw == "-") {
+    percentDecode(raw, decodedStorage);
+    value = decodedStorage;
+  }
+  switch (type) {
+    case ValueType::Number:
+      if (auto v = parseNumber(value)) return appendNumber(out, *v);
+      break;
+    case ValueType::Integer:
+      if (auto v = parseInteger(value)) return appendInteger(out, *v);
+      break;
+    case ValueType::Flag:
+      if (auto v = parseFlag(value)) {
+        out.append(*v ? "true" : "false");
+        return;
+      }
+      break;
+    case ValueType::StringList: {
+      // Elements are encoded one by one; `;` between them stays literal.
+      if (value.empty()) return;
+      std::size_t start = 0;
+      for (std::size_t i = 0; i <= raw.size(); ++i) {
+        if (i == raw.size() || raw[i] == ';') {
+          std::string_view item = raw.substr(start, i - start);
+          if (start) out.push_back(';');
+          std::string decoded = percentDecode(item);
+          encodeBytes(decoded, version, out);
+          start = i + 1;
+        }
+      }
+      return;
+    }
+    default:
+      if (isNumericList(type)) {
+        if (value.empty()) return;
+        bool integer = type == ValueType::IntegerList;
+        forEachItem(value, [&](std::string_view item, char sep) {
+          appendCanonicalNumberItem(out, item, integer);
+          if (sep) out.push_back(sep);
+        });
+        return;
+      }
+      break;
+  }
+  percentEncode(value, version, out);
+}
+
+bool sameValue(std::string_view a, std::string_view b, ValueType type) {
+  std::string da = percentDecode(a), db = percentDecode(b);
+  switch (type) {
+    case ValueType::Number:
+      return sameItem(da, db);
+    case ValueType::Integer: {
+      auto x = parseInteger(da), y = parseInteger(db);
+      if (x && y) return *x == *y;
+      return da == db;
+    }
+    case ValueType::Flag: {
+      auto x = parseFlag(da), y = parseFlag(db);
+      if (x && y) return *x == *y;
+      return da == db;
+    }
+    case ValueType::StringList:
+      return parseStringList(a) == parseStringList(b);
+    default:
+      break;
+  }
+  if (isNumericList(type)) {
+    std::vector<std::string_view> ia, ib;
+    std::vector<char> sa, sb;
+    forEachItem(da, [&](std::string_view s, char c) { ia.push_back(s); sa.push_back(c); });
+    forEachItem(db, [&](std::string_view s, char c) { ib.push_back(s); sb.push_back(c); });
+    if (ia.size() != ib.size() || sa != sb) return false;
+    for (std::size_t i = 0; i < ia.size(); ++i) {
+      if (type == ValueType::IntegerList) {
+        auto x = parseInteger(ia[i]), y = parseInteger(ib[i]);
+        if (x && y ? *x != *y : ia[i] != ib[i]) return false;
+      } else if (!sameItem(ia[i], ib[i])) {
+        return false;
+      }
+    }
+    return true;
+  }
+  return da == db;
+}
+
+}  // namespace rscene

@@ -1,0 +1,54 @@
+// Text codec of the format: percent-encoding, numbers, flags, lists, and
+// the canonical spelling of one value of a given type.  Pure functions over
+// string_views; nothing here allocates unless it appends to `out`.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/schema.hpp"
+
+namespace rscene {
+
+// Words of `s` separated by spaces (used for the schema table only).
+std::vector<std::string_view> splitWords(std::string_view s);
+
+// Offset of the first malformed `%` escape in `token`, or npos.
+std::size_t findBadEscape(std::string_view token);
+// Decodes `%XX` (either case) and a bare `-` to the empty string.
+// `token` must have no bad escape.
+void percentDecode(std::string_view token, std::string& out);
+std::string percentDecode(std::string_view token);
+// Encodes `value` as one token for the file `version` (1 or 2): control
+// bytes, space, `%`, `=` always; `;` and a lone `-` in version 2; the empty
+// string as `-`.
+void percentEncode(std::string_view value, int version, std::string& out);
+
+// Typed parses of decoded text.  Numbers must be finite and use the whole
+// text (C locale, std::from_chars); flags are true/1/yes/on, false/0/no/off.
+std::optional<double> parseNumber(std::string_view s);
+std::optional<std::int64_t> parseInteger(std::string_view s);
+std::optional<std::uint64_t> parseGroup(std::string_view s);
+std::optional<bool> parseFlag(std::string_view s);
+// Numbers of a list type; `,` and `;` both separate.  False on an item that
+// is not a finite number (an empty text is an empty list).
+bool parseNumberList(std::string_view s, std::vector<double>& out);
+// Elements of a string list, decoded.
+std::vector<std::string> parseStringList(std::string_view raw);
+
+// Shortest text that reads back as `v` (std::to_chars).
+void appendNumber(std::string& out, double v);
+void appendInteger(std::string& out, std::int64_t v);
+
+// Appends the canonical spelling of the raw token `raw` of type `type`
+// (see DESIGN.md, canonical form).  Text that does not parse as its type is
+// kept, only re-encoded, so formatting never loses what a user wrote.
+void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version);
+
+// Whether two raw tokens hold the same value of `type`: numbers compare by
+// their bits after parsing, text after decoding.
+bool sameValue(std::string_view a, std::string_view b, ValueType type);
+
+}  // namespace rscene

@@ -1,0 +1,35 @@
+#!/bin/sh
+# Installs exactly the Debian 12 packages the project needs (build, tests,
+# docs, fuzzing, benchmarks).  Idempotent: when every package is already
+# present it only runs dpkg-query and exits, so `make test` stays fast.
+set -eu
+
+PACKAGES="
+build-essential cmake pkg-config git
+libcli11-dev nlohmann-json3-dev libeigen3-dev
+libgtest-dev libgmock-dev bats
+clang libclang-rt-14-dev libfuzzer-14-dev
+mandoc jq time parallel libdtl-dev
+libbullet-dev libbullet-extras-dev libassimp-dev
+libpng-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+"
+
+missing=""
+for p in $PACKAGES; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $p"
+  fi
+done
+
+[ -z "$missing" ] && exit 0
+
+if [ "$(id -u)" -ne 0 ]; then
+  SUDO=sudo
+else
+  SUDO=
+fi
+echo "install-deps: installing:$missing" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
