@@ -1,0 +1,47 @@
+#include "core/assets.hpp"
+
+#include <sys/stat.h>
+
+#include "core/text.hpp"
+
+namespace rscene {
+namespace {
+
+std::string join(const std::string& dir, const std::string& path) {
+  if (dir.empty() || dir == ".") return path;
+  if (dir.back() == '/') return dir + path;
+  return dir + "/" + path;
+}
+
+}  // namespace
+
+bool fileExistsOnDisk(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+std::string directoryOf(std::string_view scenePath) {
+  std::size_t slash = scenePath.rfind('/');
+  if (slash == std::string_view::npos) return ".";
+  if (slash == 0) return "/";
+  return std::string(scenePath.substr(0, slash));
+}
+
+std::string resolveAsset(const std::string& sceneDir, const std::string& assetRoot, const std::string& path,
+                         const FileExists& exists) {
+  if (path.empty() || path.front() == '/') return path;
+  std::string direct = join(sceneDir, path);
+  if (exists(direct)) return direct;
+  std::string root = assetRoot.empty() ? "." : assetRoot;
+  std::string base = root.front() == '/' ? root : join(sceneDir, root);
+  return join(base, path);
+}
+
+std::string assetRootOf(const Document& doc) {
+  std::string root = ".";
+  for (const Record& r : doc.records)
+    if (r.kind && r.kind->tag == "asset_root" && r.positionalCount > 0) root = percentDecode(doc.positionalText(r, 0));
+  return root.empty() ? "." : root;
+}
+
+}  // namespace rscene
