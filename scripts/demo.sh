@@ -1,0 +1,42 @@
+#!/bin/sh
+# The demo behind `make demo`: runs the tools on copies of examples/ in
+# out/demo/ and says where the results are.  Each step is one `step` line;
+# a step whose tool has not been built is skipped, so later tools only add
+# a line here.
+set -eu
+
+ROOT=$(CDPATH= cd -- "$(dirname -- "$0")/.." && pwd)
+BIN=${RSCENE_BIN:-$ROOT/build/bin}
+OUT=${RSCENE_DEMO_OUT:-$ROOT/out/demo}
+
+rm -rf "$OUT"
+mkdir -p "$OUT"
+cp "$ROOT"/examples/*.rscene "$OUT"/
+cd "$OUT"
+
+# step TOOL TITLE 'COMMAND' : runs the shell COMMAND (with $BIN first on
+# PATH) unless $BIN/TOOL is missing.  Findings (exit 1) are part of a demo;
+# trouble (exit 2 and up) stops it.
+step() {
+  tool=$1 title=$2 cmd=$3
+  if [ ! -x "$BIN/$tool" ]; then
+    printf '\n== %s: skipped (%s not built)\n' "$title" "$tool"
+    return 0
+  fi
+  printf '\n== %s\n$ %s\n' "$title" "$cmd"
+  rc=0
+  PATH="$BIN:$PATH" sh -c "$cmd" || rc=$?
+  if [ "$rc" -gt 1 ]; then
+    printf 'demo: error: step failed with exit status %s\n' "$rc" >&2
+    exit "$rc"
+  fi
+}
+
+step rscene-fmt "what rscene-fmt would change" 'rscene-fmt --diff *.rscene'
+step rscene-fmt "files that are not canonical" 'rscene-fmt --check *.rscene'
+step rscene-fmt "format in place" 'rscene-fmt -i *.rscene'
+step rscene-fmt "all canonical now (exit 0)" 'rscene-fmt --check *.rscene && echo "all canonical"'
+# Later tools add their steps here, for example:
+# step rscene-validate "lint" 'rscene-validate *.rscene'
+
+printf '\nresults: %s\n' "$OUT"
