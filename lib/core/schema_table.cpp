@@ -6,7 +6,8 @@
 // Field syntax:  name:type[@arg][=default]
 //   types  num int u64 flag text path id ref name vec2 vec3 quat color
 //          nums ints vec3s colors xforms strs
-//   rgb/rgba (positional only) are colors spread over 3/4 tokens;
+//   rgb/rgba (positional only) are colors spread over 3/4 tokens; csv3 is
+//   a vec3 written as one CSV token in a positional slot;
 //   vec3/quat positionals span 3/4 tokens.
 //   @arg   for name: the enumeration; for ref: what it refers to
 //          (node material contact asset resource texslot terrain body)
@@ -226,7 +227,7 @@ const KindRow kKinds[] = {
  "doNotCollideWithParent:flag convexifyCollisionMeshes:flag collisionGroup:u64 collisionMask:u64 "
  "generalizedCoordinate:nums generalizedVelocity:nums semanticClass:text"},
 {"articulated_ik", 26, Role::Child, "", "articulated",
- "articulated:ref@node frame:text target:vec3",
+ "articulated:ref@node frame:text target:csv3",
  "enabled:flag=true useOrientation:flag orientation:quat maxIterations:int positionTolerance:num "
  "orientationTolerance:num orientationWeight:num damping:num stepSize:num maxStep:num svdTolerance:num "
  "finiteDifferenceStep:num applyBestOnFailure:flag enforceJointLimits:flag inverseMethod:name transposeGain:num"},

@@ -1,1 +1,132 @@
 #include <gtest/gtest.h>
+
+#include "core/text.hpp"
+
+using namespace rscene;
+
+namespace {
+std::string canon(std::string_view raw, ValueType t, int version = 1) {
+  std::string out;
+  appendCanonical(out, raw, t, version);
+  return out;
+}
+}  // namespace
+
+TEST(PercentCodec, DecodesEitherCaseAndDashAsEmpty) {
+  EXPECT_EQ(percentDecode("A%20label%20with%20spaces"), "A label with spaces");
+  EXPECT_EQ(percentDecode("a%3db%3Dc"), "a=b=c");
+  EXPECT_EQ(percentDecode("-"), "");
+  EXPECT_EQ(percentDecode("%2D"), "-");
+  EXPECT_EQ(percentDecode("--"), "--");
+}
+
+TEST(PercentCodec, FindsMalformedEscapes) {
+  EXPECT_EQ(findBadEscape("ok%41"), std::string_view::npos);
+  EXPECT_EQ(findBadEscape("%G1"), 0u);
+  EXPECT_EQ(findBadEscape("abc%4"), 3u);
+  EXPECT_EQ(findBadEscape("abc%"), 3u);
+}
+
+TEST(PercentCodec, EncodesPerVersion) {
+  std::string v1, v2;
+  percentEncode("a b;c=d%", 1, v1);
+  percentEncode("a b;c=d%", 2, v2);
+  EXPECT_EQ(v1, "a%20b;c%3Dd%25");
+  EXPECT_EQ(v2, "a%20b%3Bc%3Dd%25");
+  std::string empty, dash;
+  percentEncode("", 2, empty);
+  percentEncode("-", 2, dash);
+  EXPECT_EQ(empty, "-");
+  EXPECT_EQ(dash, "%2D");
+  std::string ctl;
+  percentEncode(std::string("a\tb\x7f", 4), 1, ctl);
+  EXPECT_EQ(ctl, "a%09b%7F");
+}
+
+TEST(Numbers, ParseIsStrict) {
+  EXPECT_EQ(parseNumber("1e-07"), 1e-07);
+  EXPECT_EQ(parseNumber("-0.5"), -0.5);
+  EXPECT_FALSE(parseNumber("nan"));
+  EXPECT_FALSE(parseNumber("inf"));
+  EXPECT_FALSE(parseNumber("1.5x"));
+  EXPECT_FALSE(parseNumber(""));
+  EXPECT_FALSE(parseNumber("1e999"));
+  EXPECT_EQ(parseInteger("-12"), -12);
+  EXPECT_FALSE(parseInteger("1.0"));
+  EXPECT_EQ(parseGroup("18446744073709551615"), UINT64_MAX);
+  EXPECT_FALSE(parseGroup("18446744073709551616"));
+  EXPECT_FALSE(parseGroup("-1"));
+}
+
+TEST(Numbers, FlagsAcceptTheDocumentedSpellingsOnly) {
+  for (const char* t : {"true", "1", "yes", "on"}) EXPECT_EQ(parseFlag(t), true) << t;
+  for (const char* f : {"false", "0", "no", "off"}) EXPECT_EQ(parseFlag(f), false) << f;
+  EXPECT_FALSE(parseFlag("TRUE"));
+  EXPECT_FALSE(parseFlag("2"));
+}
+
+TEST(Numbers, ListsSplitOnCommaAndSemicolon) {
+  std::vector<double> v;
+  EXPECT_TRUE(parseNumberList("1,2;3", v));
+  EXPECT_EQ(v, (std::vector<double>{1, 2, 3}));
+  v.clear();
+  EXPECT_TRUE(parseNumberList("", v));
+  EXPECT_TRUE(v.empty());
+  EXPECT_FALSE(parseNumberList("1,,2", v));
+  EXPECT_FALSE(parseNumberList("1,2,", v));
+}
+
+TEST(Canonical, NumbersAreShortestRoundTrip) {
+  EXPECT_EQ(canon("0.10", ValueType::Number), "0.1");
+  EXPECT_EQ(canon("0.0", ValueType::Number), "0");
+  EXPECT_EQ(canon("-0.0", ValueType::Number), "-0");
+  EXPECT_EQ(canon("29.999999999999996", ValueType::Number), "29.999999999999996");
+  EXPECT_EQ(canon("1e-7", ValueType::Number), "1e-07");
+  EXPECT_EQ(canon("1000000", ValueType::Number), "1e+06");
+  EXPECT_EQ(canon("2.0", ValueType::Number), "2");
+  // Text that is not a number is kept (the validator reports it).
+  EXPECT_EQ(canon("nan", ValueType::Number), "nan");
+  EXPECT_EQ(canon("1.5x", ValueType::Number), "1.5x");
+}
+
+TEST(Canonical, IntegersGroupsAndFlags) {
+  EXPECT_EQ(canon("007", ValueType::Integer), "7");
+  EXPECT_EQ(canon("200000", ValueType::Integer), "200000");
+  EXPECT_EQ(canon("18446744073709551615", ValueType::Group), "18446744073709551615");
+  EXPECT_EQ(canon("yes", ValueType::Flag), "true");
+  EXPECT_EQ(canon("off", ValueType::Flag), "false");
+  EXPECT_EQ(canon("maybe", ValueType::Flag), "maybe");
+}
+
+TEST(Canonical, ListsKeepTheirSeparators) {
+  EXPECT_EQ(canon("1.0,0.50,-0.0", ValueType::Vec3), "1,0.5,-0");
+  EXPECT_EQ(canon("1.0,0,0,1,0,0,0,1,1,1;2.50,0,0,1,0,0,0,1,1,1", ValueType::TransformList),
+            "1,0,0,1,0,0,0,1,1,1;2.5,0,0,1,0,0,0,1,1,1");
+  EXPECT_EQ(canon("0,3,1000000", ValueType::IntegerList), "0,3,1000000");
+  EXPECT_EQ(canon("", ValueType::NumberList), "");
+}
+
+TEST(Canonical, TextAndStringListsReEncodeForTheVersion) {
+  EXPECT_EQ(canon("a%3bb", ValueType::Text, 1), "a;b");
+  EXPECT_EQ(canon("a%3bb", ValueType::Text, 2), "a%3Bb");
+  EXPECT_EQ(canon("%2D", ValueType::Text, 2), "%2D");
+  EXPECT_EQ(canon("%2d", ValueType::Text, 1), "%2D");
+  EXPECT_EQ(canon("-", ValueType::Path, 2), "-");
+  EXPECT_EQ(canon("", ValueType::Path, 1), "-");
+  EXPECT_EQ(canon("object;light;camera", ValueType::StringList, 2), "object;light;camera");
+  EXPECT_EQ(canon("a%3Bb;c", ValueType::StringList, 2), "a%3Bb;c");
+  EXPECT_EQ(canon("", ValueType::StringList, 1), "");
+  EXPECT_EQ(canon("%41%62", ValueType::Name, 1), "Ab");
+}
+
+TEST(SameValue, ComparesTypedValues) {
+  EXPECT_TRUE(sameValue("0.10", "0.1", ValueType::Number));
+  EXPECT_FALSE(sameValue("0", "-0", ValueType::Number));
+  EXPECT_FALSE(sameValue("0.1", "0.2", ValueType::Number));
+  EXPECT_TRUE(sameValue("yes", "true", ValueType::Flag));
+  EXPECT_TRUE(sameValue("-", "", ValueType::Text));
+  EXPECT_FALSE(sameValue("-", "%2D", ValueType::Text));
+  EXPECT_TRUE(sameValue("1.0,2", "1,2.0", ValueType::Vec2));
+  EXPECT_FALSE(sameValue("1,2", "1;2", ValueType::Vec2));
+  EXPECT_TRUE(sameValue("a;b", "%61;b", ValueType::StringList));
+}

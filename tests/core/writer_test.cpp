@@ -1,1 +1,97 @@
 #include <gtest/gtest.h>
+
+#include "core/io.hpp"
+#include "test_util.hpp"
+
+using namespace rscene;
+using rscene::test::fmt;
+
+TEST(Writer, OrdersRecordsBySectionAndKeepsChildrenWithParents) {
+  std::string in =
+      "raisim_engine_scene 1\n"
+      "object /World/A box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default\n"
+      "compound /World/C 0 0 0 1 0 0 0 1 1 1 1 dynamic true true\n"
+      "light /World/L 0 0 -1 1\n"
+      "compound_child /World/C box 0 0 0 1 0 0 0 1 1 1\n"
+      "gravity 0 0 -9.81\n"
+      "time_step 0.01\n";
+  EXPECT_EQ(fmt(in),
+            "raisim_engine_scene 1\n"
+            "time_step 0.01\n"
+            "gravity 0 0 -9.81\n"
+            "light /World/L 0 0 -1 1\n"
+            "object /World/A box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default\n"
+            "compound /World/C 0 0 0 1 0 0 0 1 1 1 1 dynamic true true\n"
+            "compound_child /World/C box 0 0 0 1 0 0 0 1 1 1\n");
+}
+
+TEST(Writer, UnknownTagsAndCommentsTravelWithTheirRecords) {
+  std::string in =
+      "# header comment\n"
+      "raisim_engine_scene 1\n"
+      "# about the light\n"
+      "light /World/L 0 0 -1 1\n"
+      "future_thing a b=c\n"
+      "time_step 0.01\n"
+      "# the end\n";
+  EXPECT_EQ(fmt(in),
+            "# header comment\n"
+            "raisim_engine_scene 1\n"
+            "time_step 0.01\n"
+            "# about the light\n"
+            "light /World/L 0 0 -1 1\n"
+            "future_thing a b=c\n"
+            "# the end\n");
+}
+
+TEST(Writer, CanonicalTokensKeepKeyOrderAndUint64Digits) {
+  std::string in =
+      "raisim_engine_scene 1\n"
+      "object  /World/A\tbox 0 0 0.50 1.0 0 0 0 1 1 1 0.5 1 1 default engine_default no yes off - movable on 1 "
+      "18446744073709551615 zeta=1 id=a castShadow=on futureKey=0.50 emptyKey= dashKey=-\n";
+  EXPECT_EQ(fmt(in),
+            "raisim_engine_scene 1\n"
+            "object /World/A box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - movable "
+            "true 1 18446744073709551615 zeta=1 id=a castShadow=true futureKey=0.50 emptyKey= dashKey=-\n");
+}
+
+TEST(Writer, VersionTwoEscapingIsKept) {
+  std::string in = "raisim_engine_scene 2\nasset a%3Bb mesh %2D id=x%3by importWarnings=w1%3Bx;w2\n";
+  EXPECT_EQ(fmt(in), "raisim_engine_scene 2\nasset a%3Bb mesh %2D id=x%3By importWarnings=w1%3Bx;w2\n");
+  // Version 1 has no `;` escape: the decoded value is written literally.
+  EXPECT_EQ(fmt("raisim_engine_scene 1\nasset a%3Bb mesh p\n"), "raisim_engine_scene 1\nasset a;b mesh p\n");
+}
+
+TEST(Writer, IsIdempotentAndKeepsTheParse) {
+  std::string in =
+      "raisim_engine_scene 1\r\n"
+      "instanced_visual /World/I sphere instances=1.0,0,0,1,0,0,0,1,1,1;2.0,0,0,1,0,0,0,1,1,1 colorWeights=0.50,1\n"
+      "gravity 0 0 -9.810\n"
+      "editor_ux selectionFilterKinds=\n";
+  std::string once = fmt(in);
+  EXPECT_EQ(fmt(once), once);
+  LoadResult a = parse(in), b = parse(once);
+  std::string why;
+  EXPECT_TRUE(sameDocument(a.document, b.document, &why)) << why;
+}
+
+TEST(Writer, SameDocumentNoticesRealChanges) {
+  LoadResult a = parse("raisim_engine_scene 1\ngravity 0 0 -9.81\n");
+  LoadResult b = parse("raisim_engine_scene 1\ngravity 0 0 -9.8\n");
+  LoadResult c = parse("raisim_engine_scene 1\n# note\ngravity 0 0 -9.81\n");
+  std::string why;
+  EXPECT_FALSE(sameDocument(a.document, b.document, &why));
+  EXPECT_NE(why.find("differs"), std::string::npos);
+  EXPECT_FALSE(sameDocument(a.document, c.document, &why));
+}
+
+TEST(Writer, EditsAppendToTheBufferAndKeepOtherFields) {
+  LoadResult r = parse("raisim_engine_scene 1\nlight /World/L 0 0 -1 1 id=l\ngravity 0 0 -9.81\n");
+  ASSERT_TRUE(r.ok());
+  Document& d = r.document;
+  d.setValue(d.records[1].firstField + 4, "2.5");
+  d.setKey(1, "color", "1,0,0");
+  d.setKey(1, "id", "l2");
+  EXPECT_EQ(canonicalText(d),
+            "raisim_engine_scene 1\ngravity 0 0 -9.81\nlight /World/L 0 0 -1 2.5 id=l2 color=1,0,0\n");
+}
