@@ -77,8 +77,8 @@ bool colorFor(int fd) {
   return ::isatty(fd) == 1;
 }
 
-void printDiagnostics(const Diagnostics& ds, const Input& in, bool color) {
-  for (const Diagnostic& d : ds) std::cerr << formatDiagnostic(d, in.display, lineOf(in.text, d.line), color);
+void printDiagnostics(const Diagnostics& ds, std::string_view display, std::string_view text, bool color) {
+  for (const Diagnostic& d : ds) std::cerr << formatDiagnostic(d, display, lineOf(text, d.line), color);
 }
 
 void setup(CLI::App& app, const char* tool) {

@@ -40,7 +40,7 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
 bool colorFor(int fd);
 
 // Prints diagnostics of one input to stderr in the shared format.
-void printDiagnostics(const Diagnostics& ds, const Input& in, bool color);
+void printDiagnostics(const Diagnostics& ds, std::string_view display, std::string_view text, bool color);
 
 // `tool: error: message` on stderr.
 void error(std::string_view message);

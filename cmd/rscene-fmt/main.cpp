@@ -41,29 +41,31 @@ struct Options {
 int formatOne(const std::string& operand, const Options& opt, bool color) {
   cli::Input in;
   if (!cli::readInput(operand, opt.stdinName, in)) return cli::kTrouble;
-  std::string original = in.text;  // the loader takes the text over
+  // The document takes the text over; the original bytes stay at the start
+  // of its buffer, so nothing is copied.
+  const std::size_t size = in.text.size();
   LoadResult loaded = parse(std::move(in.text));
-  in.text = original;
-  cli::printDiagnostics(loaded.diagnostics, in, color);
-  if (!loaded.ok()) return cli::kTrouble;
   const Document& doc = loaded.document;
+  const std::string_view original = std::string_view(doc.buffer()).substr(0, size);
+  cli::printDiagnostics(loaded.diagnostics, in.display, original, color);
+  if (!loaded.ok()) return cli::kTrouble;
+
+  auto produce = [&](Sink& s) {
+    writeCanonical(doc, s);
+    return true;
+  };
+  if (!opt.check && !opt.diff && !opt.inPlace) return cli::writeOutput(opt.output, produce) ? cli::kSuccess : cli::kTrouble;
 
   CompareSink compare(original);
   writeCanonical(doc, compare);
-  bool changed = !compare.same();
-
-  if (opt.check || opt.diff) {
-    if (changed && opt.diff) std::cout << fmt::unifiedDiff(original, canonicalText(doc), in.display);
-    else if (changed) std::cout << in.display << '\n';
-    return changed && opt.check ? cli::kFindings : cli::kSuccess;
-  }
+  const bool changed = !compare.same();
   if (opt.inPlace) {
     if (!changed) return cli::kSuccess;  // leave the file (and its mtime) alone
-    return cli::writeOutput(in.path, [&](Sink& s) { writeCanonical(doc, s); return true; }) ? cli::kSuccess
-                                                                                             : cli::kTrouble;
+    return cli::writeOutput(in.path, produce) ? cli::kSuccess : cli::kTrouble;
   }
-  return cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; }) ? cli::kSuccess
-                                                                                             : cli::kTrouble;
+  if (changed && opt.diff) std::cout << fmt::unifiedDiff(original, canonicalText(doc), in.display);
+  else if (changed) std::cout << in.display << '\n';
+  return changed && opt.check ? cli::kFindings : cli::kSuccess;
 }
 
 }  // namespace
