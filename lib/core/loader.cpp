@@ -43,6 +43,15 @@ std::string expectedCounts(const KindDef& k) {
   return s;
 }
 
+// Bytes that need a closer look in a token: `%`, control bytes, non-ASCII.
+struct ByteClasses {
+  bool special[256] = {};
+  ByteClasses() {
+    for (int c = 0; c < 256; ++c) special[c] = c == '%' || c < 0x20 || c >= 0x7f;
+  }
+};
+const ByteClasses kBytes;
+
 class Loader {
  public:
   explicit Loader(LoadResult& out) : out_(out), doc_(out.document) {}
@@ -103,6 +112,7 @@ class Loader {
     const auto* s = reinterpret_cast<const unsigned char*>(doc_.buffer().data());
     for (std::size_t i = start; i < end; ++i) {
       unsigned char c = s[i];
+      if (!kBytes.special[c]) continue;
       auto col = static_cast<std::uint32_t>(i - lineStart + 1);
       if (c == '%' && !comment) {
         if (i + 2 >= end || !std::isxdigit(s[i + 1]) || !std::isxdigit(s[i + 2])) {

@@ -50,7 +50,61 @@ void encodeBytes(std::string_view value, int version, std::string& out) {
   }
 }
 
+// Whether `s` is already what std::to_chars writes for its value, decided
+// from the text alone.  A decimal with at most 15 significant digits reads
+// back from a double digit for digit (DBL_DIG), so no shorter spelling of
+// the same value exists; what remains is to_chars' choice between fixed and
+// scientific notation (the shorter one, fixed on a tie).  This skips
+// from_chars/to_chars for most numbers Engine 2 wrote.
+bool isShortestNumber(std::string_view s) {
+  std::size_t i = 0, n = s.size();
+  bool neg = i < n && s[i] == '-';
+  if (neg) ++i;
+  std::size_t intStart = i;
+  while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
+  std::size_t intLen = i - intStart;
+  if (intLen == 0 || (intLen > 1 && s[intStart] == '0')) return false;
+  std::size_t fracLen = 0, fracStart = 0;
+  if (i < n && s[i] == '.') {
+    fracStart = ++i;
+    while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
+    fracLen = i - fracStart;
+    if (fracLen == 0 || s[i - 1] == '0') return false;
+  }
+  if (i != n) return false;
+  // Significant digits and the decimal exponent of the first one.
+  int exponent;
+  std::size_t sig;
+  if (s[intStart] != '0') {
+    std::size_t intDigits = intLen;
+    if (fracLen == 0)
+      while (intDigits > 1 && s[intStart + intDigits - 1] == '0') --intDigits;
+    sig = intDigits + fracLen;
+    exponent = static_cast<int>(intLen) - 1;
+  } else {
+    if (fracLen == 0) return true;  // "0" or "-0"
+    std::size_t zeros = 0;
+    while (s[fracStart + zeros] == '0') ++zeros;
+    sig = fracLen - zeros;
+    exponent = -static_cast<int>(zeros) - 1;
+  }
+  if (sig > 15) return false;
+  int absExp = exponent < 0 ? -exponent : exponent;
+  std::size_t sciLen = (neg ? 1 : 0) + sig + (sig > 1 ? 1 : 0) + 2 + (absExp >= 100 ? 3 : 2);
+  return n <= sciLen;
+}
+
+bool isCanonicalInteger(std::string_view s) {
+  std::size_t i = s.size() && s[0] == '-' ? 1 : 0;
+  if (i == s.size() || s.size() > 18) return false;
+  if (s[i] == '0') return s.size() == 1;  // "0"; "-0" and "007" are not
+  for (; i < s.size(); ++i)
+    if (s[i] < '0' || s[i] > '9') return false;
+  return true;
+}
+
 void appendCanonicalNumberItem(std::string& out, std::string_view item, bool integer) {
+  if (integer ? isCanonicalInteger(item) : isShortestNumber(item)) return out.append(item), void();
   if (integer) {
     if (auto v = parseInteger(item)) return appendInteger(out, *v);
   } else if (auto v = parseNumber(item)) {
@@ -214,9 +268,11 @@ void appendCanonical(std::string& out, std::string_view raw, ValueType type, int
   }
   switch (type) {
     case ValueType::Number:
+      if (isShortestNumber(value)) return out.append(value), void();
       if (auto v = parseNumber(value)) return appendNumber(out, *v);
       break;
     case ValueType::Integer:
+      if (isCanonicalInteger(value)) return out.append(value), void();
       if (auto v = parseInteger(value)) return appendInteger(out, *v);
       break;
     case ValueType::Flag:

@@ -130,3 +130,26 @@ TEST(SameValue, ComparesTypedValues) {
   EXPECT_FALSE(sameValue("1,2", "1;2", ValueType::Vec2));
   EXPECT_TRUE(sameValue("a;b", "%61;b", ValueType::StringList));
 }
+
+// The fast path that skips from_chars/to_chars must agree with them.
+TEST(Canonical, FastPathAgreesWithToChars) {
+  const char* samples[] = {"0", "-0", "1", "10", "100", "1000", "10000", "100000", "123456", "0.5", "0.05",
+                           "0.005", "0.0005", "0.00005", "1.5", "-2.25", "12345.678", "0.1", "0.001", "1e-07",
+                           "0.4117647058823529", "123456789012345", "1234567890123456", "0.000123", "3.14159",
+                           "-0.0001", "-1000000", "2500", "1.10", "01", "1.", ".5", "100.5", "0.30000000000000004",
+                           "99999", "999999", "1000001", "0.00012345678901234"};
+  for (const char* s : samples) {
+    std::string viaFast, viaSlow;
+    appendCanonical(viaFast, s, ValueType::Number, 1);
+    if (auto v = parseNumber(s)) appendNumber(viaSlow, *v);
+    else viaSlow = s;
+    EXPECT_EQ(viaFast, viaSlow) << s;
+  }
+  for (double v = -3e5; v < 3e5; v += 7.031) {
+    std::string t;
+    appendNumber(t, v);
+    std::string again;
+    appendCanonical(again, t, ValueType::Number, 1);
+    EXPECT_EQ(again, t);
+  }
+}
