@@ -1,0 +1,150 @@
+#!/usr/bin/env bash
+# bench/run.sh BIN_DIR - throughput and peak memory of the rscene tools on
+# synthetic scenes (bench/gen_scene.cpp), beside `cat` on the same file.
+#
+# Prints figures, never fails on a slow machine: the targets of issue 2
+# (rscene-fmt >= 150 MB/s on the 128 MB scene, peak RSS <= 3x the file
+# size, time linear in size) are marked PASS or MISS.  Quote the ratio to
+# `cat` from the same run; absolute MB/s move with the machine's load.
+#
+# Environment:
+#   BENCH_DIR     where the scenes go (default: a temporary directory, removed)
+#   BENCH_SIZES   sizes in MB (default: "1 16 128")
+#   BENCH_REPEAT  runs per measurement, best wall time kept (default: 3)
+#   BENCH_SEED    generator seed (default: 1)
+# Exit status: 0 when every tool ran cleanly, 1 when one failed, 2 on usage.
+set -euo pipefail
+
+if [[ $# -ne 1 || ! -d $1 ]]; then
+  echo "usage: bench/run.sh BIN_DIR" >&2
+  exit 2
+fi
+BIN=$(cd "$1" && pwd)
+SIZES=${BENCH_SIZES:-"1 16 128"}
+REPEAT=${BENCH_REPEAT:-3}
+SEED=${BENCH_SEED:-1}
+TIME=/usr/bin/time
+
+# The tools measured: "name|arguments", one line each.  {A} is the scene,
+# {B} a second scene holding the same content in canonical form (what a
+# diff driver typically compares).  A row whose binary is not built is
+# skipped.
+TOOLS=(
+  "rscene-fmt|{A}"
+  "rscene-validate|{A}"
+  "rscene-to-json|{A}"
+  "rscene-diff|{A} {B}"
+)
+
+for need in "$BIN/rscene-bench-gen" "$TIME"; do
+  if [[ ! -x $need ]]; then
+    echo "bench/run.sh: error: $need is missing (build it, or install GNU time)" >&2
+    exit 2
+  fi
+done
+
+if [[ -n ${BENCH_DIR:-} ]]; then
+  DIR=$BENCH_DIR
+  mkdir -p "$DIR"
+else
+  DIR=$(mktemp -d "${TMPDIR:-/tmp}/rscene-bench.XXXXXX")
+  trap 'rm -rf "$DIR"' EXIT
+fi
+
+now_ns() { date +%s%N; }
+
+# measure CMD...: runs the command REPEAT times with stdout to /dev/null;
+# sets BEST_NS (best wall time) and PEAK_KB (largest max RSS seen).
+measure() {
+  BEST_NS=0
+  PEAK_KB=0
+  local i t0 t1 ns kb
+  for ((i = 0; i < REPEAT; i++)); do
+    t0=$(now_ns)
+    if ! "$TIME" -f %M -o "$DIR/rss" "$@" > /dev/null 2> "$DIR/stderr"; then
+      echo "bench/run.sh: error: '$*' failed:" >&2
+      sed -n '1,5p' "$DIR/stderr" >&2
+      return 1
+    fi
+    t1=$(now_ns)
+    ns=$((t1 - t0))
+    kb=$(tail -n 1 "$DIR/rss")
+    if ((BEST_NS == 0 || ns < BEST_NS)); then BEST_NS=$ns; fi
+    if ((kb > PEAK_KB)); then PEAK_KB=$kb; fi
+  done
+}
+
+# mbps BYTES NS -> MB/s with MB = 2^20 bytes
+mbps() { awk -v b="$1" -v ns="$2" 'BEGIN { printf "%.1f", (b / 1048576) / (ns / 1e9) }'; }
+
+status=0
+declare -A RATE RSSX
+
+echo "rscene benchmark: $(uname -m), $(nproc) cores, best of $REPEAT runs, MB = 2^20 bytes"
+echo "scenes in $DIR (rscene-bench-gen --seed $SEED)"
+echo
+printf '%-8s %-16s %10s %10s %9s %11s %9s\n' size tool "MB/s" "cat MB/s" "tool/cat" "peak RSS" "RSS/size"
+
+for mb in $SIZES; do
+  A=$DIR/scene_${mb}M.rscene
+  B=$DIR/scene_${mb}M.canonical.rscene
+  if [[ ! -s $A ]]; then
+    "$BIN/rscene-bench-gen" --size "${mb}M" --seed "$SEED" > "$A.tmp"
+    mv "$A.tmp" "$A"
+  fi
+  if [[ ! -s $B ]]; then
+    if [[ -x $BIN/rscene-fmt ]]; then "$BIN/rscene-fmt" "$A" > "$B"; else cp "$A" "$B"; fi
+  fi
+  bytes=$(stat -c %s "$A")
+  cat "$A" > /dev/null  # page cache warm for every row
+  measure cat "$A"
+  cat_ns=$BEST_NS
+  cat_rate=$(mbps "$bytes" "$cat_ns")
+  printf '%-8s %-16s %10s %10s %9s %11s %9s\n' "${mb} MB" cat "$cat_rate" "$cat_rate" 1.00 \
+    "$((PEAK_KB / 1024)) MB" "$(awk -v k="$PEAK_KB" -v b="$bytes" 'BEGIN { printf "%.2fx", k * 1024 / b }')"
+  for entry in "${TOOLS[@]}"; do
+    tool=${entry%%|*}
+    [[ -x $BIN/$tool ]] || continue
+    read -r -a args <<< "${entry#*|}"
+    for i in "${!args[@]}"; do
+      args[i]=${args[i]//\{A\}/$A}
+      args[i]=${args[i]//\{B\}/$B}
+    done
+    if ! measure "$BIN/$tool" "${args[@]}"; then
+      status=1
+      continue
+    fi
+    rate=$(mbps "$bytes" "$BEST_NS")
+    ratio=$(awk -v t="$BEST_NS" -v c="$cat_ns" 'BEGIN { printf "%.3f", c / t }')
+    rssx=$(awk -v k="$PEAK_KB" -v b="$bytes" 'BEGIN { printf "%.2f", k * 1024 / b }')
+    RATE[$tool,$mb]=$rate
+    RSSX[$tool,$mb]=$rssx
+    printf '%-8s %-16s %10s %10s %9s %11s %9s\n' "${mb} MB" "$tool" "$rate" "$cat_rate" "$ratio" \
+      "$((PEAK_KB / 1024)) MB" "${rssx}x"
+  done
+done
+
+# verdict LABEL VALUE OP LIMIT: prints the line with PASS or MISS.
+verdict() {
+  local ok
+  ok=$(awk -v v="$2" -v l="$4" -v op="$3" 'BEGIN { print (op == ">=" ? v >= l : v <= l) ? "PASS" : "MISS" }')
+  printf '  %-52s %10s  (target %s %s)  %s\n' "$1" "$2" "$3" "$4" "$ok"
+}
+
+echo
+echo "targets (issue 2, rscene-fmt):"
+first=${SIZES%% *}
+last=${SIZES##* }
+if [[ -n ${RATE[rscene-fmt,$last]:-} ]]; then
+  verdict "throughput on the ${last} MB scene (MB/s)" "${RATE[rscene-fmt,$last]}" ">=" 150
+  # Small scenes are dominated by the process's fixed few MB, so the
+  # memory target is judged on the largest one.
+  verdict "peak RSS / file size on the ${last} MB scene" "${RSSX[rscene-fmt,$last]}" "<=" 3
+  if [[ $first != "$last" && -n ${RATE[rscene-fmt,$first]:-} ]]; then
+    lin=$(awk -v a="${RATE[rscene-fmt,$last]}" -v b="${RATE[rscene-fmt,$first]}" 'BEGIN { printf "%.2f", a / b }')
+    verdict "linearity: MB/s at ${last} MB / MB/s at ${first} MB" "$lin" ">=" 0.8
+  fi
+else
+  echo "  rscene-fmt was not measured"
+fi
+exit $status
