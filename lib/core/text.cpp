@@ -41,13 +41,15 @@ void appendEscaped(std::string& out, unsigned char c) {
 
 // Encodes without the empty/dash rules (used inside lists).
 void encodeBytes(std::string_view value, int version, std::string& out) {
-  for (char ch : value) {
-    unsigned char c = static_cast<unsigned char>(ch);
-    if (needsEscape(c, version))
-      appendEscaped(out, c);
-    else
-      out.push_back(ch);
+  std::size_t run = 0;  // start of the pending run of bytes that need no escape
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    unsigned char c = static_cast<unsigned char>(value[i]);
+    if (!needsEscape(c, version)) continue;
+    out.append(value.substr(run, i - run));
+    appendEscaped(out, c);
+    run = i + 1;
   }
+  out.append(value.substr(run));
 }
 
 // Whether `s` is already what std::to_chars writes for its value, decided
