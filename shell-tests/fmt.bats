@@ -1,0 +1,461 @@
+#!/usr/bin/env bats
+# End-to-end tests of rscene-fmt: every flag and exit status, exact
+# messages for bad input, and the formatter's invariants on real files.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+ROOT="$BATS_TEST_DIRNAME/.."
+DATA="$ROOT/tests/data"
+SHARED="$ROOT/../shared"
+FMT="$BIN/rscene-fmt"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$FMT" ] || skip "rscene-fmt not built in $BIN"
+  # A folder of its own: bats keeps files of its own in BATS_TEST_TMPDIR.
+  mkdir "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w"
+}
+
+# The canonical text of tests/data/fmt_messy.rscene.
+messy_formatted() {
+  cat <<'EOF'
+# A hand-edited scene: everything rscene-fmt normalises, in one file.
+raisim_engine_scene 1
+time_step 0.0025
+gravity 0 0 -9.81
+future_record alpha beta=1
+# the only material
+material mat_crate 1 0.42 0.05 1 0 0.6 0 0 0 0 false - - - - - - id=mat_crate
+group /World id=folder_world parentId=- visible=true
+compound_child /World/Cart box 0 0 0 1 0 0 0 1 1 1 size=1,1,1
+# objects before their materials
+object /World/Crate box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 2.5 default mat_crate false true false - dynamic true 1 18446744073709551615 id=object_crate futureKey=Keep%20Me
+compound /World/Cart 0 0 1 1 0 0 0 1 1 1 10 dynamic true true id=compound_cart
+compound_child /World/Cart sphere 0 0 0.5 1 0 0 0 1 1 1 radius=0.25
+EOF
+}
+
+# --- standard input and output ---------------------------------------------
+
+@test "stdin to stdout when there are no operands" {
+  run --separate-stderr "$FMT" < "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 0 ]
+  [ "$output" = "$(messy_formatted)" ]
+  [ -z "$stderr" ]
+}
+
+@test "- operand reads standard input" {
+  run --separate-stderr "$FMT" - < "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 0 ]
+  [ "$output" = "$(messy_formatted)" ]
+}
+
+@test "file operand to stdout ends in exactly one newline" {
+  "$FMT" "$DATA/fmt_messy.rscene" > out.rscene
+  [ "$(tail -c 1 out.rscene | od -An -c | tr -d ' ')" = '\n' ]
+  [ "$(tail -c 2 out.rscene | head -c 1)" != "" ]
+  ! grep -q '[[:space:]]$' out.rscene
+  ! grep -q '^$' out.rscene
+}
+
+@test "a canonical file is a fixed point" {
+  run --separate-stderr "$FMT" "$DATA/fmt_canonical.rscene"
+  [ "$status" -eq 0 ]
+  [ "$output" = "$(cat "$DATA/fmt_canonical.rscene")" ]
+  "$FMT" "$DATA/fmt_canonical.rscene" | cmp - "$DATA/fmt_canonical.rscene"
+}
+
+# --- -o / --output -----------------------------------------------------------
+
+@test "-o writes the canonical text to a file and nothing to stdout" {
+  run --separate-stderr "$FMT" -o out.rscene "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+  [ "$(cat out.rscene)" = "$(messy_formatted)" ]
+}
+
+@test "--output= long form" {
+  run "$FMT" --output=out.rscene "$DATA/fmt_canonical.rscene"
+  [ "$status" -eq 0 ]
+  cmp out.rscene "$DATA/fmt_canonical.rscene"
+}
+
+@test "-o does not create the output file on a parse error" {
+  printf 'time_step 1\n' > bad.rscene
+  run --separate-stderr "$FMT" -o out.rscene bad.rscene
+  [ "$status" -eq 2 ]
+  [ ! -e out.rscene ]
+  [ -z "$(ls -A | grep -v '^bad.rscene$')" ]  # no temporary file left behind
+}
+
+@test "-o leaves an existing output file alone on a parse error" {
+  printf 'keep me\n' > out.rscene
+  printf 'raisim_engine_scene 9\n' > bad.rscene
+  run "$FMT" -o out.rscene bad.rscene
+  [ "$status" -eq 2 ]
+  [ "$(cat out.rscene)" = "keep me" ]
+}
+
+@test "-o with two inputs is a usage error" {
+  run --separate-stderr "$FMT" -o out.rscene "$DATA/fmt_messy.rscene" "$DATA/fmt_canonical.rscene"
+  [ "$status" -eq 2 ]
+  [ "$stderr" = "rscene-fmt: error: --output takes a single input" ]
+  [ ! -e out.rscene ]
+}
+
+# --- -i / --in-place ---------------------------------------------------------
+
+@test "-i rewrites a non-canonical file and keeps its permissions" {
+  cp "$DATA/fmt_messy.rscene" s.rscene
+  chmod 640 s.rscene
+  run --separate-stderr "$FMT" -i s.rscene
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+  [ -z "$stderr" ]
+  [ "$(cat s.rscene)" = "$(messy_formatted)" ]
+  [ "$(stat -c %a s.rscene)" = "640" ]
+}
+
+@test "--in-place leaves a canonical file untouched (mtime kept)" {
+  cp "$DATA/fmt_canonical.rscene" c.rscene
+  touch -d '2001-02-03 04:05:06' c.rscene
+  before=$(stat -c %Y c.rscene)
+  run "$FMT" --in-place c.rscene
+  [ "$status" -eq 0 ]
+  [ "$(stat -c %Y c.rscene)" = "$before" ]
+  cmp c.rscene "$DATA/fmt_canonical.rscene"
+}
+
+@test "-i on a file that changes updates its mtime" {
+  cp "$DATA/fmt_messy.rscene" s.rscene
+  touch -d '2001-02-03 04:05:06' s.rscene
+  before=$(stat -c %Y s.rscene)
+  "$FMT" -i s.rscene
+  [ "$(stat -c %Y s.rscene)" != "$before" ]
+}
+
+@test "-i on a parse error leaves the file byte-identical and exits 2" {
+  printf 'raisim_engine_scene 1\ntime_step 0.50\nmaterial a%%G1 1 1 1 1 0 0.5 0 0 0 0 false - - - - - -\n' > bad.rscene
+  cp bad.rscene orig.rscene
+  run --separate-stderr "$FMT" -i bad.rscene
+  [ "$status" -eq 2 ]
+  cmp bad.rscene orig.rscene
+  [ "$(ls -A | sort | tr '\n' ' ')" = "bad.rscene orig.rscene " ]
+}
+
+@test "-i formats the good files even when another one fails" {
+  cp "$DATA/fmt_messy.rscene" good.rscene
+  printf 'time_step 1\n' > bad.rscene
+  run "$FMT" -i bad.rscene good.rscene
+  [ "$status" -eq 2 ]
+  [ "$(cat good.rscene)" = "$(messy_formatted)" ]
+  [ "$(cat bad.rscene)" = "time_step 1" ]
+}
+
+@test "-i refuses standard input" {
+  run --separate-stderr "$FMT" -i - < "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 2 ]
+  [ "$stderr" = "rscene-fmt: error: --in-place needs file operands, not standard input" ]
+  [ -z "$output" ]
+}
+
+@test "-i cannot be combined with --check" {
+  cp "$DATA/fmt_messy.rscene" s.rscene
+  run --separate-stderr "$FMT" -i --check s.rscene
+  [ "$status" -eq 2 ]
+  [ "$stderr" = "rscene-fmt: error: --in-place cannot be combined with --check, --diff or --output" ]
+  cmp s.rscene "$DATA/fmt_messy.rscene"
+}
+
+# --- --check -----------------------------------------------------------------
+
+@test "--check lists exactly the non-canonical files and exits 1" {
+  cp "$DATA/fmt_messy.rscene" a.rscene
+  cp "$DATA/fmt_canonical.rscene" b.rscene
+  cp "$DATA/fmt_crlf.rscene" c.rscene
+  run --separate-stderr "$FMT" --check a.rscene b.rscene c.rscene
+  [ "$status" -eq 1 ]
+  [ "$output" = "$(printf 'a.rscene\nc.rscene')" ]
+  [ -z "$stderr" ]
+  cmp a.rscene "$DATA/fmt_messy.rscene"  # nothing written
+}
+
+@test "--check exits 0 and prints nothing when all files are canonical" {
+  cp "$DATA/fmt_canonical.rscene" b.rscene
+  "$FMT" "$DATA/fmt_messy.rscene" > a.rscene
+  run --separate-stderr "$FMT" --check a.rscene b.rscene
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+  [ -z "$stderr" ]
+}
+
+@test "--check on standard input names it <stdin>" {
+  run --separate-stderr "$FMT" --check < "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 1 ]
+  [ "$output" = "<stdin>" ]
+}
+
+@test "--check with a parse error exits 2" {
+  printf 'time_step 1\n' > bad.rscene
+  cp "$DATA/fmt_messy.rscene" a.rscene
+  run --separate-stderr "$FMT" --check a.rscene bad.rscene
+  [ "$status" -eq 2 ]
+  [ "$output" = "a.rscene" ]
+  [ "${stderr%%$'\n'*}" = "bad.rscene:1:1: error: missing raisim_engine_scene header [RS1001]" ]
+}
+
+# --- --diff ------------------------------------------------------------------
+
+@test "--diff prints a unified diff and exits 0" {
+  printf 'raisim_engine_scene 1\ngravity 0 0 -9.81\ntime_step 0.50\n' > s.rscene
+  run --separate-stderr "$FMT" --diff s.rscene
+  [ "$status" -eq 0 ]
+  [ "${lines[0]}" = "--- s.rscene" ]
+  [ "${lines[1]}" = "+++ s.rscene (formatted)" ]
+  [[ "${lines[2]}" == "@@ -1,3 +1,3 @@" ]]
+  [[ "$output" == *$'\n-time_step 0.50'* ]]
+  [[ "$output" == *$'\n+time_step 0.5'* ]]
+  [[ "$output" == *$'\n gravity 0 0 -9.81'* || "$output" == *$'\n-gravity 0 0 -9.81'* ]]
+  [ -z "$stderr" ]
+  [ "$(cat s.rscene)" = "$(printf 'raisim_engine_scene 1\ngravity 0 0 -9.81\ntime_step 0.50')" ]
+}
+
+@test "--diff prints nothing for a canonical file" {
+  run --separate-stderr "$FMT" --diff "$DATA/fmt_canonical.rscene"
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+}
+
+@test "--diff applied with patch gives the formatted file" {
+  command -v patch >/dev/null || skip "patch not installed"
+  cp "$DATA/fmt_messy.rscene" s.rscene
+  "$FMT" --diff s.rscene > d.patch
+  patch -s s.rscene < d.patch
+  [ "$(cat s.rscene)" = "$(messy_formatted)" ]
+}
+
+@test "--check --diff prints the diff and exits 1" {
+  run --separate-stderr "$FMT" --check --diff "$DATA/fmt_crlf.rscene"
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == "--- "*"fmt_crlf.rscene" ]]
+}
+
+# --- --stdin-filename and messages -------------------------------------------
+
+@test "--stdin-filename names standard input in messages" {
+  run --separate-stderr "$FMT" --stdin-filename scenes/a.rscene < <(printf 'raisim_engine_scene 1\ntime_step 1\nobject /World/A box 0 0\n')
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [[ "${stderr%%$'\n'*}" == "scenes/a.rscene:3:"*": error: object has 4 positional fields, expected 25, 19 or 17 [RS1007]" ]]
+}
+
+@test "--stdin-filename=PATH form with --check" {
+  run --separate-stderr "$FMT" --check --stdin-filename=named.rscene < "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 1 ]
+  [ "$output" = "named.rscene" ]
+}
+
+@test "missing header: exact stderr" {
+  printf 'time_step 1\n' > nohdr.rscene
+  run --separate-stderr "$FMT" nohdr.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  expected='nohdr.rscene:1:1: error: missing raisim_engine_scene header [RS1001]
+  time_step 1
+  ^
+  hint: the first record must be `raisim_engine_scene 1` or `raisim_engine_scene 2`'
+  [ "$stderr" = "$expected" ]
+}
+
+@test "missing header after comments and blank lines is reported on its line" {
+  printf '# c\n\ngravity 0 0 -9.81\n' > nohdr.rscene
+  run --separate-stderr "$FMT" nohdr.rscene
+  [ "$status" -eq 2 ]
+  [ "${stderr%%$'\n'*}" = "nohdr.rscene:3:1: error: missing raisim_engine_scene header [RS1001]" ]
+}
+
+@test "empty input: missing header" {
+  run --separate-stderr "$FMT" --stdin-filename empty.rscene < /dev/null
+  [ "$status" -eq 2 ]
+  [ "${stderr%%$'\n'*}" = "empty.rscene:1:1: error: missing raisim_engine_scene header [RS1001]" ]
+}
+
+@test "unsupported version" {
+  printf 'raisim_engine_scene 3\n' > v3.rscene
+  run --separate-stderr "$FMT" v3.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "${stderr%%$'\n'*}" = "v3.rscene:1:21: error: unsupported rscene version '3' [RS1002]" ]
+}
+
+@test "invalid percent escape %G1" {
+  printf 'raisim_engine_scene 1\nmaterial a%%G1 1 1 1 1 0 0.5 0 0 0 0 false - - - - - -\n' > pct.rscene
+  run --separate-stderr "$FMT" pct.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "${stderr%%$'\n'*}" = "pct.rscene:2:11: error: invalid percent escape '%G1' [RS1003]" ]
+}
+
+@test "NUL byte" {
+  printf 'raisim_engine_scene 1\ntime_step 0\0001\n' > nul.rscene
+  run --separate-stderr "$FMT" nul.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "${stderr%%$'\n'*}" = "nul.rscene:2:12: error: NUL byte in scene text [RS1004]" ]
+}
+
+@test "invalid UTF-8" {
+  printf 'raisim_engine_scene 1\ngroup /World/\377\n' > utf.rscene
+  run --separate-stderr "$FMT" utf.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "${stderr%%$'\n'*}" = "utf.rscene:2:14: error: invalid UTF-8 byte 0xFF [RS1005]" ]
+}
+
+@test "truncated object line" {
+  printf 'raisim_engine_scene 1\nobject /World/A box 0 0 0 1 0' > trunc.rscene
+  run --separate-stderr "$FMT" trunc.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "${stderr%%$'\n'*}" = "trunc.rscene:2:30: error: object has 7 positional fields, expected 25, 19 or 17 [RS1007]" ]
+  [[ "$stderr" == *"hint: the line may be truncated"* ]]
+}
+
+@test "a file cut in the middle of the last record is an error, not a crash" {
+  size=$(wc -c < "$DATA/fmt_canonical.rscene")
+  head -c $((size - 110)) "$DATA/fmt_canonical.rscene" > cut.rscene
+  run --separate-stderr "$FMT" cut.rscene
+  [ "$status" -eq 2 ]
+  [[ "${stderr%%$'\n'*}" == "cut.rscene:11:"*": error: "*"[RS1007]" ]]
+}
+
+@test "an unreadable file: tool error and exit 2" {
+  run --separate-stderr "$FMT" does-not-exist.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [ "$stderr" = "rscene-fmt: error: cannot read 'does-not-exist.rscene': No such file or directory" ]
+}
+
+@test "no color codes in messages when NO_COLOR is set or stderr is not a terminal" {
+  printf 'time_step 1\n' > nohdr.rscene
+  NO_COLOR=1 run --separate-stderr "$FMT" nohdr.rscene
+  [ "$status" -eq 2 ]
+  [[ "$stderr" != *$'\e['* ]]
+}
+
+# --- content kept --------------------------------------------------------------
+
+@test "CRLF input becomes LF with the same records" {
+  run --separate-stderr "$FMT" "$DATA/fmt_crlf.rscene"
+  [ "$status" -eq 0 ]
+  [ "$output" = "$(tr -d '\r' < "$DATA/fmt_crlf.rscene")" ]
+  "$FMT" "$DATA/fmt_crlf.rscene" > out.rscene
+  ! grep -q $'\r' out.rscene
+}
+
+@test "version 2 stays version 2 with %3B and %2D kept" {
+  run --separate-stderr "$FMT" "$DATA/fmt_v2_escapes.rscene"
+  [ "$status" -eq 0 ]
+  [ "${lines[0]}" = "raisim_engine_scene 2" ]
+  [[ "$output" == *" semanticClass=a%3Bb "* ]]
+  [[ "$output" == *" instanceLabel=%2D "* ]]
+  [[ "$output" == *" emptyText=-" ]]
+  [[ "$output" == *"/World/A%20Box "* ]]
+}
+
+@test "18446744073709551615 survives digit for digit" {
+  run "$FMT" "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 0 ]
+  [[ "$output" == *" 1 18446744073709551615 id=object_crate "* ]]
+  printf 'raisim_engine_scene 1\nobject /W/A box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default m false true false - dynamic true 18446744073709551614 18446744073709551615\n' > g.rscene
+  run "$FMT" g.rscene
+  [ "$status" -eq 0 ]
+  [[ "$output" == *" true 18446744073709551614 18446744073709551615" ]]
+}
+
+@test "comments, unknown records and unknown keys are kept" {
+  run "$FMT" "$DATA/fmt_messy.rscene"
+  [ "$status" -eq 0 ]
+  [[ "$output" == *$'\n# the only material\nmaterial mat_crate '* ]]
+  [[ "$output" == *$'\n# objects before their materials\nobject /World/Crate '* ]]
+  [[ "$output" == *$'\nfuture_record alpha beta=1\n'* ]]
+  [[ "$output" == *" futureKey=Keep%20Me"* ]]
+}
+
+@test "the Engine 2 corpus file is a fixed point" {
+  f="$SHARED/corpus/rayrai_forest_head.rscene"
+  [ -f "$f" ] || skip "../shared/corpus not present"
+  "$FMT" "$f" | cmp - "$f"
+  run "$FMT" --check "$f"
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+}
+
+@test "idempotence: fmt(fmt(x)) = fmt(x) on every fixture and example" {
+  n=0
+  for f in "$DATA"/*.rscene "$ROOT"/examples/*.rscene "$SHARED"/corpus/*.rscene; do
+    [ -f "$f" ] || continue
+    rc=0
+    "$FMT" "$f" > once.rscene 2>/dev/null || rc=$?
+    case "$(basename "$f")" in
+      fmt_*) [ "$rc" -eq 0 ] ;;   # our own fixtures all parse
+    esac
+    [[ "$f" == "$ROOT/examples/"* ]] && [ "$rc" -eq 0 ]
+    [ "$rc" -eq 0 ] || continue   # other areas' fixtures may be invalid on purpose
+    "$FMT" once.rscene > twice.rscene
+    cmp once.rscene twice.rscene || { echo "not idempotent: $f"; return 1; }
+    "$FMT" --check once.rscene
+    n=$((n + 1))
+  done
+  [ "$n" -ge 8 ]
+}
+
+# --- the command line --------------------------------------------------------
+
+@test "--help exits 0 and lists every option" {
+  run --separate-stderr "$FMT" --help
+  [ "$status" -eq 0 ]
+  for o in --output --in-place --check --diff --stdin-filename --help --version; do
+    [[ "$output" == *"$o"* ]]
+  done
+  [[ "$output" == *"Usage: rscene-fmt"* ]]
+}
+
+@test "-h is --help" {
+  run "$FMT" -h
+  [ "$status" -eq 0 ]
+  [[ "$output" == *"--in-place"* ]]
+}
+
+@test "--version exits 0 and prints the name and version" {
+  run --separate-stderr "$FMT" --version
+  [ "$status" -eq 0 ]
+  [[ "$output" =~ ^rscene-fmt\ [0-9]+\.[0-9]+\.[0-9]+$ ]]
+}
+
+@test "an unknown flag is a usage error (exit 2)" {
+  run --separate-stderr "$FMT" --no-such-flag "$DATA/fmt_canonical.rscene"
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  [[ "$stderr" == "rscene-fmt: error: "*"--no-such-flag"* ]]
+}
+
+@test "-o without its argument is a usage error (exit 2)" {
+  run --separate-stderr "$FMT" -o
+  [ "$status" -eq 2 ]
+  [[ "$stderr" == "rscene-fmt: error: "* ]]
+}
+
+@test "bash completion offers the long options and .rscene files" {
+  cp "$DATA/fmt_canonical.rscene" scene.rscene
+  touch notes.txt
+  run bash -c "source '$ROOT/completions/bash/rscene-fmt'
+    COMP_WORDS=(rscene-fmt --); COMP_CWORD=1; _rscene_fmt; echo \"\${COMPREPLY[*]}\"
+    COMP_WORDS=(rscene-fmt ''); COMP_CWORD=1; _rscene_fmt; echo \"\${COMPREPLY[*]}\""
+  [ "$status" -eq 0 ]
+  for o in --help --version --output --in-place --check --diff --stdin-filename; do
+    [[ "${lines[0]}" == *"$o"* ]]
+  done
+  [ "${lines[1]}" = "scene.rscene" ]
+}
