@@ -1,0 +1,634 @@
+#include "core/scene.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "core/scene_reader.hpp"
+#include "core/text.hpp"
+
+namespace rscene {
+namespace {
+
+// Record kinds the view turns into structs; other node and child kinds are
+// listed in Scene::skipped.
+constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
+                                          "camera", "object",         "compound",            "compound_child",
+                                          "wire",   "instanced_visual", "point_cloud"};
+
+bool modelled(std::string_view tag) {
+  return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
+}
+
+Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
+
+Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
+  Pose p;
+  p.position = r.vec3(pos, Eigen::Vector3d::Zero());
+  p.orientation = toQuat(r.quat(rot));
+  return p;
+}
+
+class Builder {
+ public:
+  Builder(const Document& doc, const SceneOptions& opt, Scene& scene, Diagnostics& diags)
+      : doc_(doc), opt_(opt), s_(scene), diags_(diags) {}
+
+  void run() {
+    indexNodes();
+    for (std::size_t i = 1; i < doc_.records.size(); ++i) {
+      const Record& rec = doc_.records[i];
+      if (!rec.kind) continue;
+      const std::string& tag = rec.kind->tag;
+      RecordReader r(doc_, i, diags_);
+      int idx = static_cast<int>(i);
+      if (tag == "time_step") s_.timeStep = r.number("dt", 0.0025);
+      else if (tag == "gravity") s_.gravity = r.vec3("gravity", {0, 0, -9.81});
+      else if (tag == "solver") readSolver(r, idx);
+      else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms", true);
+      else if (tag == "environment") readEnvironment(r, idx);
+      else if (tag == "weather") readWeather(r, idx);
+      else if (tag == "material") readMaterial(r, idx);
+      else if (tag == "contact_material") readContact(r, idx);
+      else if (tag == "terrain_texture") readTerrainTexture(r, idx);
+      else if (tag == "group") readGroup(r, idx);
+      else if (tag == "light") readLight(r, idx);
+      else if (tag == "camera") readCamera(r, idx);
+      else if (tag == "object") readObject(r, idx);
+      else if (tag == "compound") readCompound(r, idx);
+      else if (tag == "compound_child") readCompoundChild(r, idx);
+      else if (tag == "terrain_region") readTerrain(r, idx);
+      else if (tag == "terrain_splat_layer") readSplat(r, idx);
+      else if (tag == "wire") readWire(r, idx);
+      else if (tag == "instanced_visual") readInstanced(r, idx);
+      else if (tag == "point_cloud") readPointCloud(r, idx);
+      else if ((rec.kind->role == Role::Node || rec.kind->role == Role::Child) && !modelled(tag))
+        s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
+    }
+    defaults();
+    resolveWorld();
+  }
+
+ private:
+  std::string asset(const std::string& path) const {
+    if (path.empty()) return path;
+    return resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, opt_.exists);
+  }
+
+  void indexNodes() {
+    s_.assetRoot = assetRootOf(doc_);
+    for (std::size_t i = 1; i < doc_.records.size(); ++i) {
+      const Record& rec = doc_.records[i];
+      if (!rec.kind || rec.kind->role != Role::Node) continue;
+      std::string id = nodeId(doc_, rec), path = nodePath(doc_, rec);
+      if (!id.empty()) byId_.emplace(id, i);
+      if (!path.empty()) byPath_.emplace(path, i);
+    }
+  }
+
+  // Record index of a node named by id or by path, or -1.
+  int lookup(const std::string& ref) const {
+    if (ref.empty()) return -1;
+    if (auto it = byId_.find(ref); it != byId_.end()) return static_cast<int>(it->second);
+    if (auto it = byPath_.find(ref); it != byPath_.end()) return static_cast<int>(it->second);
+    return -1;
+  }
+
+  void readSolver(const RecordReader& r, int idx) {
+    Solver& v = s_.solver;
+    v.recordIndex = idx;
+    v.iterations = static_cast<int>(r.integer("iterations", 80));
+    v.tolerance = r.number("tolerance", 1e-7);
+    v.erp = r.number("erp", 0.2);
+    v.mode = r.name("mode", "accurate");
+    v.erp2 = r.number("erp2", 0);
+    v.defaultFriction = r.number("defaultFriction", 0.8);
+    v.defaultRestitution = r.number("defaultRestitution", 0);
+    v.defaultRestitutionThreshold = r.number("defaultRestitutionThreshold", 0.001);
+    v.defaultStaticFriction = r.number("defaultStaticFriction", 0.8);
+    v.defaultStaticFrictionVelocityThreshold = r.number("defaultStaticFrictionVelocityThreshold", 0.001);
+    v.defaultRollingFriction = r.number("defaultRollingFriction", 0);
+    v.defaultSpinningFriction = r.number("defaultSpinningFriction", 0);
+    v.contactMaxIterations = static_cast<int>(r.integer("contactMaxIterations", 80));
+    v.maxContactsPerPair = static_cast<int>(r.integer("maxContactsPerPair", 8));
+    v.sweptCcdEnabled = r.flag("sweptCcdEnabled", false);
+    v.sweptCcdMinSpeed = r.number("sweptCcdMinSpeed", 0);
+    v.sweptCcdSpeculativeMargin = r.number("sweptCcdSpeculativeMargin", 1e-4);
+    v.sleepingEnabled = r.flag("sleepingEnabled", true);
+    v.sleepingLinearVelocityThreshold = r.number("sleepingLinearVelocityThreshold", 0.002);
+    v.sleepingAngularVelocityThreshold = r.number("sleepingAngularVelocityThreshold", 0.01);
+    v.sleepingQuietSteps = static_cast<int>(r.integer("sleepingQuietSteps", 5));
+    v.broadphaseType = r.name("broadphaseType", "sap3_axis");
+    v.broadphaseWorldMin = r.vec3("broadphaseWorldMin", {-100, -100, -100});
+    v.broadphaseWorldMax = r.vec3("broadphaseWorldMax", {100, 100, 100});
+    v.broadphaseUseWorldBounds = r.flag("broadphaseUseWorldBounds", false);
+    v.fixedContactSolverIterationOrder = r.flag("fixedContactSolverIterationOrder", false);
+    v.worldTime = r.number("worldTime", 0);
+  }
+
+  void readEnvironment(const RecordReader& r, int idx) {
+    Environment& e = s_.environment;
+    e = Environment{};
+    e.recordIndex = idx;
+    e.background = r.color("background", {0.38, 0.38, 0.38, 1}).head<3>();
+    e.ambient = r.color("ambient", {0.15, 0.16, 0.2, 1}).head<3>();
+    e.fogDensity = r.number("fogDensity", 0);
+    e.shadows = r.flag("shadows", true);
+    e.envMapPath = asset(r.str("envMapPath"));
+    Eigen::Vector4d bg(e.background.x(), e.background.y(), e.background.z(), 1);
+    e.fogColor = r.color("fogColor", bg);
+    e.exposure = r.number("exposure", 1);
+    e.gamma = r.number("gamma", 2.2);
+    e.backgroundMode = r.name("backgroundMode", "rayrai_sky");
+    e.colorMode = r.name("colorMode", "");
+    e.pbrEnvironmentIntensity = r.number("pbrEnvironmentIntensity", 1);
+    e.heightFogEnabled = r.flag("heightFogEnabled", false);
+    e.heightFogDensity = r.number("heightFogDensity", 0);
+    e.heightFogBaseHeight = r.number("heightFogBaseHeight", 0);
+    e.heightFogFalloff = r.number("heightFogFalloff", 0.35);
+  }
+
+  void readWeather(const RecordReader& r, int idx) {
+    Weather& w = s_.weather;
+    w.recordIndex = idx;
+    w.enabled = r.flag("enabled", true);
+    w.preset = r.name("preset", "clear");
+    w.timeOfDay = r.number("timeOfDay", 12);
+    w.useExplicitSunAngles = r.flag("useExplicitSunAngles", false);
+    w.sunAzimuthDegrees = r.number("sunAzimuthDegrees", 180);
+    w.sunElevationDegrees = r.number("sunElevationDegrees", 42);
+    w.fogDensity = r.number("fogDensity", 0);
+    w.cloudCoverage = r.number("cloudCoverage", 0);
+  }
+
+  void readMaterial(const RecordReader& r, int idx) {
+    Material m;
+    m.recordIndex = idx;
+    m.name = r.str("name");
+    m.id = nodeId(doc_, r.record());
+    m.color = r.color("color", m.color);
+    m.metallic = r.number("metallic", 0);
+    m.roughness = r.number("roughness", 0.55);
+    m.emissive = r.color("emissive", {0, 0, 0, 1}).head<3>();
+    m.emissiveStrength = r.number("emissiveStrength", 0);
+    m.doubleSided = r.flag("doubleSided", false);
+    m.alphaMode = r.name("alphaMode", "opaque");
+    m.alphaCutoff = r.number("alphaCutoff", 0.5);
+    m.albedoTexture = asset(r.str("albedoTexture"));
+    m.normalTexture = asset(r.str("normalTexture"));
+    m.metallicTexture = asset(r.str("metallicTexture"));
+    m.roughnessTexture = asset(r.str("roughnessTexture"));
+    m.aoTexture = asset(r.str("aoTexture"));
+    m.emissiveTexture = asset(r.str("emissiveTexture"));
+    s_.materials.push_back(std::move(m));
+  }
+
+  void readContact(const RecordReader& r, int idx) {
+    ContactMaterial c;
+    const Solver& sv = s_.solver;
+    c.recordIndex = idx;
+    c.materialA = r.str("materialA");
+    c.materialB = r.str("materialB");
+    c.friction = r.number("friction", sv.defaultFriction);
+    c.restitution = r.number("restitution", sv.defaultRestitution);
+    c.restitutionThreshold = r.number("restitutionThreshold", sv.defaultRestitutionThreshold);
+    c.staticFriction = r.number("staticFriction", sv.defaultStaticFriction);
+    c.staticFrictionVelocityThreshold =
+        r.number("staticFrictionVelocityThreshold", sv.defaultStaticFrictionVelocityThreshold);
+    c.rollingFriction = r.number("rollingFriction", sv.defaultRollingFriction);
+    c.spinningFriction = r.number("spinningFriction", sv.defaultSpinningFriction);
+    s_.contactMaterials.push_back(std::move(c));
+  }
+
+  void readTerrainTexture(const RecordReader& r, int idx) {
+    TerrainTexture t;
+    t.recordIndex = idx;
+    t.slot = static_cast<int>(r.integer("slot", 0));
+    t.id = r.str("id");
+    t.name = r.str("name");
+    t.color = r.color("color", t.color);
+    t.albedo = asset(r.str("albedo"));
+    t.normal = asset(r.str("normal"));
+    t.uvScale = r.number("uvScale", 1);
+    t.roughness = r.number("roughness", 1);
+    s_.terrainTextures.push_back(std::move(t));
+  }
+
+  void readGroup(const RecordReader& r, int idx) {
+    Group g;
+    g.recordIndex = idx;
+    g.path = nodePath(doc_, r.record());
+    g.id = nodeId(doc_, r.record());
+    g.parentId = r.str("parentId");
+    g.visible = r.flag("visible", true);
+    s_.groups.push_back(std::move(g));
+  }
+
+  void readLight(const RecordReader& r, int idx) {
+    Light l;
+    l.recordIndex = idx;
+    l.path = nodePath(doc_, r.record());
+    l.id = nodeId(doc_, r.record());
+    l.type = r.name("type", "directional");
+    Eigen::Vector3d d = r.vec3("direction", {0, 0, -1});
+    l.direction = d.norm() > 1e-12 ? d.normalized() : Eigen::Vector3d(0, 0, -1);
+    l.intensity = r.number("intensity", 1);
+    l.position = r.vec3("position", {0, 0, 3});
+    l.color = r.color("color", l.color);
+    l.attenuationConstant = r.number("attenuationConstant", 1);
+    l.attenuationLinear = r.number("attenuationLinear", 0.04);
+    l.attenuationQuadratic = r.number("attenuationQuadratic", 0.012);
+    l.range = r.number("range", 0);
+    l.coneAngle = r.number("coneAngle", 30);
+    l.innerConeAngle = r.number("innerConeAngle", 18);
+    l.radius = r.number("radius", 0);
+    l.areaSize = r.vec3("areaSize", Eigen::Vector3d::Zero());
+    l.shadows = r.flag("shadows", true);
+    parentOf_[idx] = r.str("parentGroupId");
+    s_.lights.push_back(std::move(l));
+  }
+
+  void readCamera(const RecordReader& r, int idx) {
+    Camera c;
+    c.recordIndex = idx;
+    c.path = nodePath(doc_, r.record());
+    c.id = nodeId(doc_, r.record());
+    c.local = readPose(r, "position", "orientation");
+    c.verticalFov = std::clamp(r.number("verticalFov", 60), 1.0, 175.0);
+    c.horizontalFov = r.number("horizontalFov", 0);
+    c.nearPlane = r.number("nearPlane", 0.05);
+    c.farPlane = r.number("farPlane", 1000);
+    c.width = static_cast<int>(r.integer("width", 640));
+    c.height = static_cast<int>(r.integer("height", 480));
+    c.renderMode = r.name("renderMode", "rgb");
+    c.projection = r.name("projection", "perspective");
+    c.orthoScale = r.number("orthoScale", 10);
+    c.enabled = r.flag("enabled", true);
+    parentOf_[idx] = r.str("parentGroupId");
+    s_.cameras.push_back(std::move(c));
+  }
+
+  void readObject(const RecordReader& r, int idx) {
+    Object o;
+    o.recordIndex = idx;
+    o.path = nodePath(doc_, r.record());
+    o.id = nodeId(doc_, r.record());
+    o.parentId = r.str("parentGroupId");
+    o.primitive = r.name("primitive", "box");
+    o.local = readPose(r, "position", "orientation");
+    o.positionToken = r.positionalToken("position");
+    o.scale = r.vec3("scale", {1, 1, 1});
+    o.radius = r.number("radius", 0.5);
+    o.height = r.number("height", 1);
+    o.mass = r.number("mass", 1);
+    o.contactMaterial = r.str("contactMaterial");
+    o.material = r.str("material");
+    o.collidable = r.flag("collidable", true);
+    o.collisionGroup = r.group("collisionGroup", 1);
+    o.collisionMask = r.group("collisionMask", ~std::uint64_t{0});
+    // Body mode: #21 when it names a known mode, else #17 visualOnly / #19
+    // locked (the 19-field layout: #18 fixed), else dynamic.
+    std::optional<std::string_view> mode;
+    if (std::optional<std::string> t = r.text("bodyMode"))
+      if (const EnumDef* e = Schema::get().enumDef("body_mode")) mode = e->canonical(*t);
+    if (mode) {
+      o.bodyMode = *mode == "static"      ? BodyMode::Static
+                   : *mode == "kinematic" ? BodyMode::Kinematic
+                   : *mode == "dynamic"   ? BodyMode::Dynamic
+                                          : BodyMode::VisualOnly;
+    } else if (r.flag("visualOnly", false)) {
+      o.bodyMode = BodyMode::VisualOnly;
+    } else if (r.flag("locked", false) || r.flag("fixed", false)) {
+      o.bodyMode = BodyMode::Static;
+    }
+    if (o.primitive == "ground" || o.primitive == "half_space")
+      if (o.bodyMode != BodyMode::VisualOnly) o.bodyMode = BodyMode::Static;
+    if (!o.collidable) o.bodyMode = BodyMode::VisualOnly;
+    o.visible = r.flag("visible", true);
+    std::string mesh = r.str("meshPath");
+    if (std::string render = r.str("renderMeshPath"); !render.empty()) mesh = render;
+    std::string collision = r.str("collisionMeshPath");
+    o.meshPath = asset(mesh);
+    o.collisionMeshPath = collision.empty() ? o.meshPath : asset(collision);
+    o.collisionMode = r.has("collisionMode") ? r.name("collisionMode", "convex_hull")
+                                             : r.name("meshCollision", "convex_hull");
+    parentOf_[idx] = o.parentId;
+    s_.objects.push_back(std::move(o));
+  }
+
+  void readCompound(const RecordReader& r, int idx) {
+    Compound c;
+    c.recordIndex = idx;
+    c.path = nodePath(doc_, r.record());
+    c.id = nodeId(doc_, r.record());
+    c.parentId = r.str("parentGroupId");
+    c.local = readPose(r, "position", "orientation");
+    c.positionToken = r.positionalToken("position");
+    c.scale = r.vec3("scale", {1, 1, 1});
+    c.mass = r.number("mass", 1);
+    std::string mode = r.name("bodyMode", "dynamic");
+    c.bodyMode = mode == "static"      ? BodyMode::Static
+                 : mode == "kinematic" ? BodyMode::Kinematic
+                 : mode == "dynamic"   ? BodyMode::Dynamic
+                                       : BodyMode::VisualOnly;
+    c.visible = r.flag("visible", true);
+    c.collidable = r.flag("collidable", true);
+    if (!c.collidable) c.bodyMode = BodyMode::VisualOnly;
+    c.hasCenterOfMass = r.has("centerOfMass");
+    c.centerOfMass = r.vec3("centerOfMass", Eigen::Vector3d::Zero());
+    c.hasInertia = r.has("inertiaDiagonal");
+    c.inertiaDiagonal = r.vec3("inertiaDiagonal", Eigen::Vector3d::Zero());
+    c.collisionGroup = r.group("collisionGroup", 1);
+    c.collisionMask = r.group("collisionMask", ~std::uint64_t{0});
+    c.contactMaterial = r.str("contactMaterial");
+    c.material = r.str("material");
+    parentOf_[idx] = c.parentId;
+    s_.compounds.push_back(std::move(c));
+  }
+
+  void readCompoundChild(const RecordReader& r, int idx) {
+    std::string ref = r.str("compound");
+    Compound* owner = nullptr;
+    for (Compound& c : s_.compounds)
+      if (c.id == ref || c.path == ref) owner = &c;
+    if (!owner) {
+      r.error("compound", scene_code::kUnknownRef, "compound_child names unknown compound '" + ref + "'");
+      return;
+    }
+    CompoundChild ch;
+    ch.recordIndex = idx;
+    ch.primitive = r.name("primitive", "box");
+    ch.local = readPose(r, "position", "orientation");
+    ch.scale = r.vec3("scale", {1, 1, 1});
+    ch.size = r.vec3("size", Eigen::Vector3d::Zero());
+    ch.radius = r.number("radius", 0);
+    ch.height = r.number("height", 0);
+    ch.contactMaterial = r.str("contactMaterial", owner->contactMaterial);
+    ch.material = r.str("material", owner->material);
+    ch.meshPath = asset(r.str("meshPath"));
+    owner->children.push_back(std::move(ch));
+  }
+
+  // Parses a per-sample list: empty, or exactly `per * samples` numbers.
+  bool sampleList(const RecordReader& r, std::string_view name, std::size_t samples, int per,
+                  std::vector<double>& out) {
+    if (!r.numbers(name, out)) return false;
+    if (out.empty() || out.size() == samples * per) return true;
+    r.error(name, scene_code::kBadTerrain,
+            std::string(name) + " has " + std::to_string(out.size() / per) + " entries, expected " +
+                std::to_string(samples) + " (one per sample) or none");
+    out.clear();
+    return false;
+  }
+
+  void readTerrain(const RecordReader& r, int idx) {
+    Terrain t;
+    t.recordIndex = idx;
+    t.path = nodePath(doc_, r.record());
+    t.id = nodeId(doc_, r.record());
+    t.parentId = r.str("parentGroupId");
+    std::int64_t xs = r.integer("xSamples", 2), ys = r.integer("ySamples", 2);
+    t.xSize = r.number("xSize", 1);
+    t.ySize = r.number("ySize", 1);
+    t.center = r.vec3("center", Eigen::Vector3d::Zero());
+    // Counts are checked before any list is parsed, so a hostile header
+    // cannot ask for an unbounded allocation.
+    if (xs < 2 || ys < 2 || xs > 16384 || ys > 16384 ||
+        static_cast<std::uint64_t>(xs) * static_cast<std::uint64_t>(ys) > kMaxTerrainSamples) {
+      r.error("xSamples", scene_code::kBadTerrain,
+              "terrain samples " + std::to_string(xs) + " x " + std::to_string(ys) +
+                  " out of range (2..16384 per axis, at most 64 Mi in total)");
+      return;
+    }
+    if (!(t.xSize > 0) || !(t.ySize > 0)) {
+      r.error("xSize", scene_code::kBadTerrain, "terrain size must be positive");
+      return;
+    }
+    t.xSamples = static_cast<int>(xs);
+    t.ySamples = static_cast<int>(ys);
+    std::size_t n = static_cast<std::size_t>(xs * ys);
+    if (!sampleList(r, "heights", n, 1, t.heights)) return;
+    if (t.heights.empty()) t.heights.assign(n, 0.0);
+    t.material = r.str("material");
+    t.contactMaterial = r.str("contactMaterial");
+    t.baseTexture = static_cast<int>(r.integer("baseTexture", 0));
+    t.visible = r.flag("visible", true);
+    t.collidable = r.flag("collidable", true);
+    t.castShadow = r.flag("castShadow", true);
+    t.receiveShadow = r.flag("receiveShadow", true);
+    t.sourceKind = r.name("sourceKind", "samples");
+    sampleList(r, "texturePrimary", n, 1, t.texturePrimary);
+    sampleList(r, "textureSecondary", n, 1, t.textureSecondary);
+    sampleList(r, "textureBlend", n, 1, t.textureBlend);
+    sampleList(r, "wetness", n, 1, t.wetness);
+    sampleList(r, "holes", n, 1, t.holes);
+    std::vector<double> colors;
+    if (r.numbers("vertexColors", colors) && !colors.empty()) {
+      int per = colors.size() == n * 4 ? 4 : colors.size() == n * 3 ? 3 : 0;
+      if (!per) {
+        r.error("vertexColors", scene_code::kBadTerrain, "vertexColors needs one color per sample or none");
+      } else {
+        t.vertexColors.reserve(n);
+        for (std::size_t i = 0; i < n; ++i)
+          t.vertexColors.emplace_back(colors[i * per], colors[i * per + 1], colors[i * per + 2],
+                                      per == 4 ? colors[i * per + 3] : 1.0);
+      }
+    }
+    parentOf_[idx] = t.parentId;
+    s_.terrains.push_back(std::move(t));
+  }
+
+  void readSplat(const RecordReader& r, int idx) {
+    std::string ref = r.str("terrain");
+    Terrain* owner = nullptr;
+    for (Terrain& t : s_.terrains)
+      if (t.id == ref || t.path == ref) owner = &t;
+    if (!owner) {
+      r.error("terrain", scene_code::kUnknownRef, "terrain_splat_layer names unknown terrain '" + ref + "'");
+      return;
+    }
+    TerrainSplatLayer l;
+    l.recordIndex = idx;
+    l.slot = static_cast<int>(r.integer("slot", 0));
+    l.enabled = r.flag("enabled", true);
+    l.strength = r.number("strength", 1);
+    sampleList(r, "weights", static_cast<std::size_t>(owner->xSamples) * owner->ySamples, 1, l.weights);
+    owner->splatLayers.push_back(std::move(l));
+  }
+
+  void readWire(const RecordReader& r, int idx) {
+    Wire w;
+    w.recordIndex = idx;
+    w.path = nodePath(doc_, r.record());
+    w.id = nodeId(doc_, r.record());
+    w.kind = r.name("kind", "stiff");
+    w.bodyA = r.str("bodyA");
+    w.bodyB = r.str("bodyB");
+    w.length = r.number("length", 1);
+    w.localIndexA = static_cast<int>(r.integer("localIndexA", 0));
+    w.localIndexB = static_cast<int>(r.integer("localIndexB", 0));
+    w.localPositionA = r.vec3("localPositionA", Eigen::Vector3d::Zero());
+    w.localPositionB = r.vec3("localPositionB", Eigen::Vector3d::Zero());
+    w.stiffness = r.number("stiffness", 1000);
+    w.damping = r.number("damping", 0);
+    w.compliance = r.number("compliance", 0);
+    w.enabled = r.flag("enabled", true);
+    s_.wires.push_back(std::move(w));
+  }
+
+  void readInstanced(const RecordReader& r, int idx) {
+    InstancedVisual v;
+    v.recordIndex = idx;
+    v.path = nodePath(doc_, r.record());
+    v.id = nodeId(doc_, r.record());
+    v.primitive = r.name("primitive", "box");
+    v.meshPath = asset(r.str("meshPath"));
+    v.size = r.vec3("size", {1, 1, 1});
+    v.colorA = r.color("colorA", v.colorA);
+    v.colorB = r.color("colorB", v.colorB);
+    std::vector<double> xs;
+    if (r.numbers("instances", xs)) {
+      if (xs.size() % 10) {
+        r.error("instances", scene_code::kBadValue, "instances holds " + std::to_string(xs.size()) +
+                                                        " numbers, not a multiple of 10");
+      } else {
+        v.instances.reserve(xs.size() / 10);
+        for (std::size_t i = 0; i < xs.size(); i += 10) {
+          Instance in;
+          in.position = {xs[i], xs[i + 1], xs[i + 2]};
+          Eigen::Quaterniond q(xs[i + 3], xs[i + 4], xs[i + 5], xs[i + 6]);
+          in.orientation = q.norm() > 1e-12 ? q.normalized() : Eigen::Quaterniond::Identity();
+          in.scale = xs[i + 7];  // uniform: x of the scale triple
+          v.instances.push_back(in);
+        }
+      }
+    }
+    r.numbers("colorWeights", v.colorWeights);
+    v.castShadows = r.flag("castShadows", true);
+    v.grassPatch = r.flag("grassPatch", false);
+    v.enabled = r.flag("enabled", true);
+    s_.instancedVisuals.push_back(std::move(v));
+  }
+
+  void readPointCloud(const RecordReader& r, int idx) {
+    PointCloud p;
+    p.recordIndex = idx;
+    p.path = nodePath(doc_, r.record());
+    p.id = nodeId(doc_, r.record());
+    std::vector<double> xs;
+    if (r.numbers("points", xs)) {
+      if (xs.size() % 3) {
+        r.error("points", scene_code::kBadValue, "points holds " + std::to_string(xs.size()) +
+                                                     " numbers, not a multiple of 3");
+      } else {
+        for (std::size_t i = 0; i < xs.size(); i += 3) p.points.emplace_back(xs[i], xs[i + 1], xs[i + 2]);
+      }
+    }
+    if (r.numbers("colors", xs) && !xs.empty() && !p.points.empty()) {
+      std::size_t per = xs.size() == p.points.size() * 4 ? 4 : xs.size() == p.points.size() * 3 ? 3 : 0;
+      if (per)
+        for (std::size_t i = 0; i < p.points.size(); ++i)
+          p.colors.emplace_back(xs[i * per], xs[i * per + 1], xs[i * per + 2], per == 4 ? xs[i * per + 3] : 1.0);
+      else
+        r.error("colors", scene_code::kBadValue, "colors needs one color per point or none");
+    }
+    p.pointSize = r.number("pointSize", 1);
+    p.enabled = r.flag("enabled", true);
+    s_.pointClouds.push_back(std::move(p));
+  }
+
+  void defaults() {
+    if (s_.materials.empty()) {
+      Material m;
+      m.id = m.name = "engine_default";
+      s_.materials.push_back(m);
+    }
+    if (s_.terrainTextures.empty()) {
+      TerrainTexture grass, rock;
+      grass.slot = 0;
+      grass.id = grass.name = "terrain_grass";
+      grass.color = {0.28, 0.43, 0.20, 1};
+      rock.slot = 1;
+      rock.id = rock.name = "terrain_rock";
+      rock.color = {0.42, 0.40, 0.36, 1};
+      s_.terrainTextures = {grass, rock};
+    }
+  }
+
+  // Local pose of a node that has one (object, compound, camera), or nullptr.
+  const Pose* localPose(int idx) const {
+    auto it = poses_.find(idx);
+    return it == poses_.end() ? nullptr : it->second;
+  }
+
+  // World pose of the frame a node's pose is written in.
+  Pose parentFrame(int idx, int depth) {
+    Pose identity;
+    if (!s_.inheritedTransforms || depth > 64) return identity;
+    auto it = parentOf_.find(idx);
+    if (it == parentOf_.end()) return identity;
+    int parent = lookup(it->second);
+    if (parent < 0 || parent == idx) return identity;
+    const Pose* p = localPose(parent);
+    if (!p) return identity;  // groups and pose-less nodes are folders in the world frame
+    return parentFrame(parent, depth + 1) * *p;
+  }
+
+  void resolveWorld() {
+    for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
+    for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
+    for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
+    for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex, 0) * o.local;
+    for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    for (Light& l : s_.lights) {
+      Pose f = parentFrame(l.recordIndex, 0);
+      l.position = f.position + f.orientation * l.position;
+      l.direction = f.orientation * l.direction;
+    }
+  }
+
+  const Document& doc_;
+  const SceneOptions& opt_;
+  Scene& s_;
+  Diagnostics& diags_;
+  std::unordered_map<std::string, std::size_t> byId_, byPath_;
+  std::unordered_map<int, std::string> parentOf_;
+  std::unordered_map<int, const Pose*> poses_;
+};
+
+}  // namespace
+
+const char* bodyModeName(BodyMode m) {
+  switch (m) {
+    case BodyMode::Static: return "static";
+    case BodyMode::Kinematic: return "kinematic";
+    case BodyMode::Dynamic: return "dynamic";
+    case BodyMode::VisualOnly: return "visual_only";
+  }
+  return "dynamic";
+}
+
+const Material* Scene::findMaterial(const std::string& id) const {
+  for (const Material& m : materials)
+    if (m.id == id || m.name == id) return &m;
+  return nullptr;
+}
+
+const ContactMaterial* Scene::findContact(const std::string& a, const std::string& b) const {
+  const ContactMaterial* found = nullptr;
+  for (const ContactMaterial& c : contactMaterials)
+    if ((c.materialA == a && c.materialB == b) || (c.materialA == b && c.materialB == a)) found = &c;
+  return found;  // the last record of a pair wins
+}
+
+bool buildScene(const Document& doc, const SceneOptions& options, Scene& scene, Diagnostics& diagnostics) {
+  std::size_t before = diagnostics.size();
+  Scene built;
+  Builder(doc, options, built, diagnostics).run();
+  scene = std::move(built);
+  for (std::size_t i = before; i < diagnostics.size(); ++i)
+    if (diagnostics[i].severity == Severity::Error) return false;
+  return true;
+}
+
+}  // namespace rscene

@@ -1,0 +1,376 @@
+// The typed scene view (DESIGN.md, "Typed scene view"): plain structs with
+// Eigen types for the records that the simulator and the renderer consume.
+//
+// - Every value is typed and every absent key holds the default of the
+//   schema table (FieldDef::defaultValue) or of compat-notes.md.
+// - Enumerations hold their canonical name (EnumDef::canonical), so
+//   `plane`, `fixed`, `sun` arrive as `ground`, `static`, `directional`.
+// - Poses are given twice: `local` as written in the file and `world`
+//   resolved (groups are folders in the world frame; a node parented to a
+//   non-group node inherits that node's world pose when
+//   scene_graph inheritedTransforms=true, the default).  Only position and
+//   orientation are inherited, never scale.
+// - Asset paths are resolved with the rule of assets.hpp.
+// - Every struct keeps `recordIndex` into Document::records, so a tool can
+//   write values back with Document::setValue on the positional tokens.
+//
+// The view is built in one pass and owns its data; it does not point into
+// the Document.  buildScene() never throws on bad input: values that do not
+// parse are reported as RS5001 errors and the default is used instead.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/assets.hpp"
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+
+namespace rscene {
+
+// Diagnostic codes of the scene view and of the simulator (RS5xxx).
+namespace scene_code {
+inline constexpr const char* kBadValue = "RS5001";      // value does not parse as its type, or is not finite
+inline constexpr const char* kBadMass = "RS5002";       // dynamic body with mass <= 0
+inline constexpr const char* kZeroSize = "RS5003";      // shape with a zero or negative size
+inline constexpr const char* kMissingFile = "RS5004";   // mesh file that does not exist (resolved path named)
+inline constexpr const char* kUnknownRef = "RS5005";    // reference to a body that does not exist
+inline constexpr const char* kBadTerrain = "RS5006";    // sample counts, sizes or per-sample list lengths
+inline constexpr const char* kBadMesh = "RS5007";       // mesh file that cannot be read
+inline constexpr const char* kUnsupported = "RS5010";   // records kept but not simulated (warning)
+}  // namespace scene_code
+
+struct Pose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // normalised
+
+  Pose operator*(const Pose& child) const {
+    return {position + orientation * child.position, (orientation * child.orientation).normalized()};
+  }
+  Pose inverse() const {
+    Eigen::Quaterniond q = orientation.conjugate();
+    return {q * -position, q};
+  }
+};
+
+struct SceneOptions {
+  std::string sceneDir = ".";  // directory of the scene file (assets resolve against it)
+  std::string baseDir;         // when set, replaces sceneDir (e.g. for stdin)
+  FileExists exists = fileExistsOnDisk;
+};
+
+enum class BodyMode { Static, Kinematic, Dynamic, VisualOnly };
+const char* bodyModeName(BodyMode m);  // canonical enum name
+
+// solver record (Engine 2 defaults from the schema table).
+struct Solver {
+  int recordIndex = -1;  // -1: absent, all defaults
+  int iterations = 80;
+  double tolerance = 1e-7;
+  double erp = 0.2;
+  std::string mode = "accurate";
+  double erp2 = 0;
+  double defaultFriction = 0.8;
+  double defaultRestitution = 0;
+  double defaultRestitutionThreshold = 0.001;
+  double defaultStaticFriction = 0.8;
+  double defaultStaticFrictionVelocityThreshold = 0.001;
+  double defaultRollingFriction = 0;
+  double defaultSpinningFriction = 0;
+  int contactMaxIterations = 80;
+  int maxContactsPerPair = 8;
+  bool sweptCcdEnabled = false;
+  double sweptCcdMinSpeed = 0;
+  double sweptCcdSpeculativeMargin = 1e-4;
+  bool sleepingEnabled = true;
+  double sleepingLinearVelocityThreshold = 0.002;
+  double sleepingAngularVelocityThreshold = 0.01;
+  int sleepingQuietSteps = 5;
+  std::string broadphaseType = "sap3_axis";
+  Eigen::Vector3d broadphaseWorldMin{-100, -100, -100};
+  Eigen::Vector3d broadphaseWorldMax{100, 100, 100};
+  bool broadphaseUseWorldBounds = false;
+  bool fixedContactSolverIterationOrder = false;
+  double worldTime = 0;
+};
+
+// environment record.
+struct Environment {
+  int recordIndex = -1;
+  Eigen::Vector3d background{0.38, 0.38, 0.38};
+  Eigen::Vector3d ambient{0.15, 0.16, 0.20};
+  double fogDensity = 0;
+  bool shadows = true;
+  std::string envMapPath;                  // resolved; empty = none
+  Eigen::Vector4d fogColor{0.38, 0.38, 0.38, 1};  // defaults to the background colour
+  double exposure = 1;
+  double gamma = 2.2;
+  std::string backgroundMode = "rayrai_sky";  // plain_color | hdr | rayrai_sky
+  std::string colorMode;                      // empty: renderer's choice
+  double pbrEnvironmentIntensity = 1;
+  bool heightFogEnabled = false;
+  double heightFogDensity = 0, heightFogBaseHeight = 0, heightFogFalloff = 0.35;
+};
+
+// weather record (only what a renderer needs for lighting and fog).
+struct Weather {
+  int recordIndex = -1;
+  bool enabled = true;
+  std::string preset = "clear";
+  double timeOfDay = 12;  // hours
+  bool useExplicitSunAngles = false;
+  double sunAzimuthDegrees = 180;
+  double sunElevationDegrees = 42;
+  double fogDensity = 0;
+  double cloudCoverage = 0;
+};
+
+struct Material {
+  int recordIndex = -1;  // -1: the implicit engine_default
+  std::string id;        // defaults to the name
+  std::string name;
+  Eigen::Vector4d color{0.55, 0.62, 0.72, 1};
+  double metallic = 0;
+  double roughness = 0.55;
+  Eigen::Vector3d emissive = Eigen::Vector3d::Zero();
+  double emissiveStrength = 0;
+  bool doubleSided = false;
+  std::string alphaMode = "opaque";  // opaque | mask | hash | blend
+  double alphaCutoff = 0.5;
+  // Resolved texture paths; empty = none.
+  std::string albedoTexture, normalTexture, metallicTexture, roughnessTexture, aoTexture, emissiveTexture;
+};
+
+// contact_material: properties of one pair of contact-material names.
+struct ContactMaterial {
+  int recordIndex = -1;
+  std::string materialA, materialB;
+  double friction = 0.8;
+  double restitution = 0;
+  double restitutionThreshold = 0.001;
+  double staticFriction = 0.8;
+  double staticFrictionVelocityThreshold = 0.001;
+  double rollingFriction = 0;
+  double spinningFriction = 0;
+};
+
+struct TerrainTexture {
+  int recordIndex = -1;  // -1: a default slot
+  int slot = 0;
+  std::string id, name;
+  Eigen::Vector4d color{1, 1, 1, 1};
+  std::string albedo, normal;  // resolved
+  double uvScale = 1;
+  double roughness = 1;
+};
+
+struct Group {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  bool visible = true;
+};
+
+struct Light {
+  int recordIndex = -1;
+  std::string path, id;
+  std::string type = "directional";  // directional | point | spot | area
+  Eigen::Vector3d direction{0, 0, -1};  // the way the light travels, world frame, normalised
+  double intensity = 1;
+  Eigen::Vector3d position{0, 0, 3};    // world frame
+  Eigen::Vector4d color{1, 1, 1, 1};
+  double attenuationConstant = 1, attenuationLinear = 0.04, attenuationQuadratic = 0.012;
+  double range = 0;            // 0: unlimited
+  double coneAngle = 30;       // degrees
+  double innerConeAngle = 18;  // degrees
+  double radius = 0;
+  Eigen::Vector3d areaSize = Eigen::Vector3d::Zero();
+  bool shadows = true;
+};
+
+struct Camera {
+  int recordIndex = -1;
+  std::string path, id;
+  Pose local, world;  // looks along local +x with local +z up
+  double verticalFov = 60;  // degrees, clamped to [1, 175]
+  double horizontalFov = 0; // > 0 overrides the aspect-derived one
+  double nearPlane = 0.05, farPlane = 1000;
+  int width = 640, height = 480;  // only the aspect ratio
+  std::string renderMode = "rgb";
+  std::string projection = "perspective";
+  double orthoScale = 10;
+  bool enabled = true;
+};
+
+struct Object {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::string primitive = "box";  // ground box sphere cylinder capsule mesh half_space
+  Pose local, world;
+  Eigen::Vector3d scale{1, 1, 1};
+  double radius = 0.5, height = 1;  // as written (#12, #13)
+  double mass = 1;                  // as written
+  std::string contactMaterial;      // contact-material name (may be empty / "default")
+  std::string material;             // visual material id
+  bool visible = true;
+  BodyMode bodyMode = BodyMode::Dynamic;  // resolved from #21, #17, #19, collidable
+  bool collidable = true;
+  std::uint64_t collisionGroup = 1;
+  std::uint64_t collisionMask = ~std::uint64_t{0};
+  std::string meshPath;           // resolved render mesh (renderMeshPath= overrides #20)
+  std::string collisionMeshPath;  // resolved collision mesh (collisionMeshPath= or the render mesh)
+  std::string collisionMode = "convex_hull";  // convex_hull | original_mesh | convexify
+  // Positional token of position.x in the record (orientation w follows at +3),
+  // for writing poses back.
+  int positionToken = 2;
+
+  // Physical sizes per compat-notes.md.
+  double physicsRadius() const { return radius * scale.x(); }
+  double physicsHeight() const { return height * scale.z(); }
+  double meshScale() const { return (scale.x() + scale.y() + scale.z()) / 3; }
+  // A dynamic body needs mass > 0; other modes treat mass <= 0 as 1 kg.
+  double effectiveMass() const { return bodyMode != BodyMode::Dynamic && mass <= 0 ? 1.0 : mass; }
+};
+
+struct CompoundChild {
+  int recordIndex = -1;
+  std::string primitive = "box";
+  Pose local;  // in the compound's frame
+  Eigen::Vector3d scale{1, 1, 1};
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box full side lengths (size x scale)
+  double radius = 0, height = 0;
+  std::string contactMaterial, material;
+  std::string meshPath;  // resolved
+};
+
+struct Compound {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  Pose local, world;
+  Eigen::Vector3d scale{1, 1, 1};
+  double mass = 1;
+  BodyMode bodyMode = BodyMode::Dynamic;
+  bool visible = true, collidable = true;
+  bool hasCenterOfMass = false, hasInertia = false;
+  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();  // compound frame
+  Eigen::Vector3d inertiaDiagonal = Eigen::Vector3d::Zero();
+  std::uint64_t collisionGroup = 1;
+  std::uint64_t collisionMask = ~std::uint64_t{0};
+  std::string contactMaterial, material;
+  std::vector<CompoundChild> children;
+  int positionToken = 1;
+};
+
+struct TerrainSplatLayer {
+  int recordIndex = -1;
+  int slot = 0;
+  bool enabled = true;
+  double strength = 1;
+  std::vector<double> weights;  // one per sample or empty
+};
+
+// terrain_region: sample (x, y) is heights[y * xSamples + x], located at
+// center.xy - size/2 + (x, y) * size / (samples - 1), height relative to center.z.
+struct Terrain {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  int xSamples = 2, ySamples = 2;
+  double xSize = 1, ySize = 1;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  std::vector<double> heights;  // xSamples*ySamples (zeros when the file has none)
+  std::string material, contactMaterial;
+  int baseTexture = 0;
+  bool visible = true, collidable = true, castShadow = true, receiveShadow = true;
+  std::string sourceKind = "samples";
+  std::vector<double> texturePrimary, textureSecondary, textureBlend, wetness, holes;  // per sample or empty
+  std::vector<Eigen::Vector4d> vertexColors;  // per sample or empty
+  std::vector<TerrainSplatLayer> splatLayers;
+
+  Eigen::Vector3d samplePosition(int x, int y) const {
+    return {center.x() - xSize / 2 + x * xSize / (xSamples - 1), center.y() - ySize / 2 + y * ySize / (ySamples - 1),
+            center.z() + heights[static_cast<std::size_t>(y) * xSamples + x]};
+  }
+};
+
+struct Wire {
+  int recordIndex = -1;
+  std::string path, id;
+  std::string kind = "stiff";  // stiff | compliant | custom
+  std::string bodyA, bodyB;    // as written (id or path), decoded
+  double length = 1;
+  int localIndexA = 0, localIndexB = 0;
+  Eigen::Vector3d localPositionA = Eigen::Vector3d::Zero(), localPositionB = Eigen::Vector3d::Zero();
+  double stiffness = 1000, damping = 0, compliance = 0;
+  bool enabled = true;
+};
+
+struct Instance {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  double scale = 1;  // the tenth number
+};
+
+struct InstancedVisual {
+  int recordIndex = -1;
+  std::string path, id;
+  std::string primitive = "box";
+  std::string meshPath;  // resolved
+  Eigen::Vector3d size{1, 1, 1};
+  Eigen::Vector4d colorA{1, 1, 1, 1}, colorB{1, 1, 1, 1};
+  std::vector<Instance> instances;
+  std::vector<double> colorWeights;  // one per instance or empty
+  bool castShadows = true, enabled = true, grassPatch = false;
+};
+
+struct PointCloud {
+  int recordIndex = -1;
+  std::string path, id;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector4d> colors;  // one per point or empty
+  double pointSize = 1;
+  bool enabled = true;
+};
+
+// A scene-content record the view does not model (articulated, deformable,
+// granular, sensor, decals, fog volumes, probes, foliage layers ...).
+struct SkippedRecord {
+  int recordIndex = -1;
+  std::string tag, path;
+};
+
+struct Scene {
+  double timeStep = 0.0025;
+  Eigen::Vector3d gravity{0, 0, -9.81};
+  Solver solver;
+  bool inheritedTransforms = true;
+  std::string assetRoot = ".";
+  Environment environment;
+  Weather weather;
+  std::vector<Material> materials;  // never empty: engine_default without material records
+  std::vector<ContactMaterial> contactMaterials;
+  std::vector<TerrainTexture> terrainTextures;  // never empty: slots 0/1 by default
+  std::vector<Group> groups;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  std::vector<Object> objects;
+  std::vector<Compound> compounds;
+  std::vector<Terrain> terrains;
+  std::vector<Wire> wires;
+  std::vector<InstancedVisual> instancedVisuals;
+  std::vector<PointCloud> pointClouds;
+  std::vector<SkippedRecord> skipped;
+
+  const Material* findMaterial(const std::string& id) const;
+  // The contact_material record of a pair of names (either order), or nullptr.
+  const ContactMaterial* findContact(const std::string& a, const std::string& b) const;
+};
+
+// Builds the view.  Returns false when an error diagnostic was added; the
+// scene is still filled as far as possible.
+bool buildScene(const Document& doc, const SceneOptions& options, Scene& scene, Diagnostics& diagnostics);
+
+// Most samples a terrain may hold (compat-notes.md: 64 Mi in total).
+inline constexpr std::uint64_t kMaxTerrainSamples = 64ull * 1024 * 1024;
+
+}  // namespace rscene

@@ -1,0 +1,201 @@
+#include "core/scene_reader.hpp"
+
+#include <cctype>
+
+#include "core/scene.hpp"
+#include "core/text.hpp"
+
+namespace rscene {
+
+RecordReader::RecordReader(const Document& doc, std::size_t recordIndex, Diagnostics& diagnostics)
+    : doc_(doc), rec_(doc.records[recordIndex]), diags_(diagnostics) {
+  if (rec_.kind) layout_ = rec_.kind->layoutFor(rec_.positionalCount);
+}
+
+RecordReader::Located RecordReader::locate(std::string_view name) const {
+  Located loc;
+  if (!rec_.kind) return loc;
+  if (layout_) {
+    for (std::size_t t = 0; t < layout_->tokens.size(); ++t) {
+      const FieldDef& f = layout_->fields[layout_->tokens[t].first];
+      if (f.name == name && layout_->tokens[t].second == 0) {
+        loc.def = &f;
+        loc.firstToken = static_cast<int>(t);
+        return loc;
+      }
+    }
+  }
+  loc.def = rec_.kind->key(name);
+  loc.key = doc_.find(rec_, name);
+  return loc;
+}
+
+bool RecordReader::has(std::string_view name) const {
+  Located l = locate(name);
+  return l.firstToken >= 0 || l.key;
+}
+
+int RecordReader::positionalToken(std::string_view name) const { return locate(name).firstToken; }
+
+std::optional<std::string> RecordReader::text(std::string_view name) const {
+  Located l = locate(name);
+  if (l.firstToken >= 0) {
+    std::string out;
+    for (int c = 0; c < l.def->width; ++c) {
+      if (c) out += ',';
+      out += percentDecode(doc_.positionalText(rec_, static_cast<std::uint32_t>(l.firstToken + c)));
+    }
+    return out;
+  }
+  if (l.key) return percentDecode(doc_.text(l.key->value));
+  if (l.def && l.def->defaultValue) return *l.def->defaultValue;
+  return std::nullopt;
+}
+
+std::string RecordReader::str(std::string_view name, std::string fallback) const {
+  std::optional<std::string> t = text(name);
+  return t ? *t : fallback;
+}
+
+std::uint32_t RecordReader::columnOf(std::string_view name) const {
+  Located l = locate(name);
+  if (l.firstToken >= 0) {
+    const Field* f = doc_.positional(rec_, static_cast<std::uint32_t>(l.firstToken));
+    return f ? doc_.column(rec_, f->value) : 0;
+  }
+  if (l.key) return doc_.column(rec_, l.key->key);
+  return 0;
+}
+
+void RecordReader::error(std::string_view name, const char* code, const std::string& message, std::string hint) const {
+  Diagnostic d;
+  d.code = code;
+  d.line = rec_.line;
+  d.column = name.empty() ? 1 : columnOf(name);
+  if (!d.column && rec_.line) d.column = 1;
+  d.message = message;
+  d.hint = std::move(hint);
+  d.tag = std::string(doc_.tag(rec_));
+  d.field = std::string(name);
+  diags_.push_back(std::move(d));
+}
+
+void RecordReader::bad(std::string_view name, std::string_view value, std::string_view expected) const {
+  std::string shown(value.substr(0, 60));
+  error(name, scene_code::kBadValue,
+        "invalid " + std::string(expected) + " '" + shown + "' for " + std::string(name) + " of " +
+            std::string(doc_.tag(rec_)));
+}
+
+double RecordReader::number(std::string_view name, double fallback) const {
+  std::optional<std::string> t = text(name);
+  if (!t || t->empty()) return fallback;
+  if (std::optional<double> v = parseNumber(*t)) return *v;
+  bad(name, *t, "number");
+  return fallback;
+}
+
+std::int64_t RecordReader::integer(std::string_view name, std::int64_t fallback) const {
+  std::optional<std::string> t = text(name);
+  if (!t || t->empty()) return fallback;
+  if (std::optional<std::int64_t> v = parseInteger(*t)) return *v;
+  bad(name, *t, "integer");
+  return fallback;
+}
+
+bool RecordReader::flag(std::string_view name, bool fallback) const {
+  std::optional<std::string> t = text(name);
+  if (!t || t->empty()) return fallback;
+  if (std::optional<bool> v = parseFlag(*t)) return *v;
+  bad(name, *t, "flag");
+  return fallback;
+}
+
+std::uint64_t RecordReader::group(std::string_view name, std::uint64_t fallback) const {
+  std::optional<std::string> t = text(name);
+  if (!t || t->empty()) return fallback;
+  if (std::optional<std::uint64_t> v = parseGroup(*t)) return *v;
+  bad(name, *t, "collision group");
+  return fallback;
+}
+
+std::string RecordReader::name(std::string_view field, std::string fallback) const {
+  std::optional<std::string> t = text(field);
+  if (!t || t->empty()) return fallback;
+  Located l = locate(field);
+  if (!l.def || !l.def->enumDef) return *t;
+  if (std::optional<std::string_view> c = l.def->enumDef->canonical(*t)) return std::string(*c);
+  if (l.def->enumDef->open) {
+    std::string lower = *t;
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return lower;
+  }
+  bad(field, *t, l.def->enumDef->name + " name");
+  return fallback;
+}
+
+bool RecordReader::components(std::string_view name, std::vector<double>& out) const {
+  out.clear();
+  Located l = locate(name);
+  if (l.firstToken >= 0 && l.def->width > 1) {  // point at the bad component itself
+    for (int c = 0; c < l.def->width; ++c) {
+      const Field* f = doc_.positional(rec_, static_cast<std::uint32_t>(l.firstToken + c));
+      std::string v = f ? percentDecode(doc_.text(f->value)) : std::string();
+      std::optional<double> x = parseNumber(v);
+      if (!x) {
+        bad(name, v, "number");
+        if (f) diags_.back().column = doc_.column(rec_, f->value);
+        out.clear();
+        return false;
+      }
+      out.push_back(*x);
+    }
+    return true;
+  }
+  std::optional<std::string> t = text(name);
+  if (!t || t->empty()) return true;
+  if (parseNumberList(*t, out)) return true;
+  out.clear();
+  bad(name, *t, "numbers");
+  return false;
+}
+
+Eigen::Vector3d RecordReader::vec3(std::string_view name, const Eigen::Vector3d& fallback) const {
+  std::vector<double> v;
+  if (!components(name, v) || v.empty()) return fallback;
+  if (v.size() != 3) {
+    bad(name, *text(name), "vector of 3 numbers");
+    return fallback;
+  }
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector4d RecordReader::color(std::string_view name, const Eigen::Vector4d& fallback) const {
+  std::vector<double> v;
+  if (!components(name, v) || v.empty()) return fallback;
+  if (v.size() != 3 && v.size() != 4) {
+    bad(name, *text(name), "color of 3 or 4 numbers");
+    return fallback;
+  }
+  return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
+}
+
+Eigen::Vector4d RecordReader::quat(std::string_view name) const {
+  std::vector<double> v;
+  Eigen::Vector4d identity(1, 0, 0, 0);
+  if (!components(name, v) || v.empty()) return identity;
+  if (v.size() != 4) {
+    bad(name, *text(name), "quaternion of 4 numbers");
+    return identity;
+  }
+  Eigen::Vector4d q(v[0], v[1], v[2], v[3]);
+  if (q.norm() < 1e-12) {
+    error(name, scene_code::kBadValue, "zero quaternion for " + std::string(name) + " of " + std::string(doc_.tag(rec_)));
+    return identity;
+  }
+  return q.normalized();
+}
+
+bool RecordReader::numbers(std::string_view name, std::vector<double>& out) const { return components(name, out); }
+
+}  // namespace rscene

@@ -1,0 +1,221 @@
+// The typed scene view: defaults from the schema, aliases resolved to
+// canonical names, world transforms, asset paths, bounded terrain parsing.
+#include "core/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "core/loader.hpp"
+#include "test_util.hpp"
+
+using namespace rscene;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Built {
+  Scene scene;
+  Diagnostics diags;
+  bool ok = false;
+};
+
+Built build(std::string text, SceneOptions opt = {}) {
+  Built b;
+  LoadResult r = parse(std::move(text));
+  EXPECT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].message);
+  b.ok = buildScene(r.document, opt, b.scene, b.diags);
+  return b;
+}
+
+std::string codes(const Diagnostics& ds) {
+  std::string out;
+  for (const Diagnostic& d : ds) out += d.code + " ";
+  return out;
+}
+
+}  // namespace
+
+TEST(Scene, EmptySceneHasEngineDefaults) {
+  Built b = build("raisim_engine_scene 1\n");
+  ASSERT_TRUE(b.ok);
+  EXPECT_DOUBLE_EQ(b.scene.timeStep, 0.0025);
+  EXPECT_EQ(b.scene.gravity, Eigen::Vector3d(0, 0, -9.81));
+  EXPECT_EQ(b.scene.solver.iterations, 80);
+  EXPECT_DOUBLE_EQ(b.scene.solver.defaultFriction, 0.8);
+  EXPECT_EQ(b.scene.solver.broadphaseType, "sap3_axis");
+  ASSERT_EQ(b.scene.materials.size(), 1u);
+  EXPECT_EQ(b.scene.materials[0].id, "engine_default");
+  EXPECT_DOUBLE_EQ(b.scene.materials[0].roughness, 0.55);
+  ASSERT_EQ(b.scene.terrainTextures.size(), 2u);
+  EXPECT_EQ(b.scene.terrainTextures[1].name, "terrain_rock");
+  EXPECT_EQ(b.scene.environment.backgroundMode, "rayrai_sky");
+}
+
+TEST(Scene, SolverKeysAndAliases) {
+  Built b = build(
+      "raisim_engine_scene 1\ntime_step 0.001\ngravity 0 0 -1.62\n"
+      "solver 40 1e-06 0.3 accurate defaultFriction=0.4 broadphaseType=MBP sleepingEnabled=off\n"
+      "environment 0.1 0.2 0.3 0 0 0 0 true true 10 - backgroundMode=Solid fogColor=1,0,0\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  EXPECT_DOUBLE_EQ(b.scene.timeStep, 0.001);
+  EXPECT_DOUBLE_EQ(b.scene.gravity.z(), -1.62);
+  EXPECT_EQ(b.scene.solver.iterations, 40);
+  EXPECT_DOUBLE_EQ(b.scene.solver.erp, 0.3);
+  EXPECT_DOUBLE_EQ(b.scene.solver.defaultFriction, 0.4);
+  EXPECT_EQ(b.scene.solver.broadphaseType, "multi_box_prune");
+  EXPECT_FALSE(b.scene.solver.sleepingEnabled);
+  EXPECT_EQ(b.scene.environment.backgroundMode, "plain_color");
+  EXPECT_EQ(b.scene.environment.fogColor, Eigen::Vector4d(1, 0, 0, 1));
+  EXPECT_DOUBLE_EQ(b.scene.environment.background.y(), 0.2);
+}
+
+TEST(Scene, ObjectLayoutsAndBodyModes) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "object /World/A cube 1 2 3 1 0 0 0 0.5 0.6 0.7 0.5 1 2 default engine_default false true false - movable true 4 "
+      "7\n"
+      "object /World/B box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default true false false - bogus true 1 1\n"
+      "object /World/C box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default true true\n"
+      "object /World/D sphere 0 0 0 1 0 0 0 2 1 1 0.25 1 3 default engine_default\n"
+      "object /World/E plane 0 0 -0.5 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - dynamic "
+      "true 1 1\n"
+      "object /World/F box 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic false 1 1\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  const auto& o = b.scene.objects;
+  ASSERT_EQ(o.size(), 6u);
+  EXPECT_EQ(o[0].primitive, "box");
+  EXPECT_EQ(o[0].bodyMode, BodyMode::Dynamic);
+  EXPECT_EQ(o[0].collisionGroup, 4u);
+  EXPECT_EQ(o[0].collisionMask, 7u);
+  EXPECT_EQ(o[0].world.position, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(o[0].id, "object_/World/A");
+  EXPECT_EQ(o[1].bodyMode, BodyMode::VisualOnly);  // unknown #21, #17 visualOnly=true
+  EXPECT_EQ(o[2].bodyMode, BodyMode::Static);      // 19 fields: fixed=true
+  EXPECT_EQ(o[3].bodyMode, BodyMode::Dynamic);     // 17 fields
+  EXPECT_DOUBLE_EQ(o[3].physicsRadius(), 0.5);
+  EXPECT_EQ(o[4].primitive, "ground");
+  EXPECT_EQ(o[4].bodyMode, BodyMode::Static);  // a ground is always static
+  EXPECT_EQ(o[5].bodyMode, BodyMode::VisualOnly);  // collidable=false
+  EXPECT_EQ(o[0].positionToken, 2);
+}
+
+TEST(Scene, ParentedToNonGroupInheritsTransform) {
+  std::string text =
+      "raisim_engine_scene 1\n"
+      "group /World id=folder_world parentId=-\n"
+      "object /World/Base box 1 0 0 0.7071067811865476 0 0 0.7071067811865476 1 1 1 0.5 1 1 default engine_default "
+      "false true false - static true 1 1 id=base parentGroupId=folder_world\n"
+      "object /World/Base/Top box 1 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic "
+      "true 1 1 parentGroupId=base\n";
+  Built b = build(text);
+  ASSERT_TRUE(b.ok);
+  const Object& top = b.scene.objects[1];
+  EXPECT_NEAR(top.world.position.x(), 1, 1e-12);  // base yaws 90 degrees: +x becomes +y
+  EXPECT_NEAR(top.world.position.y(), 1, 1e-12);
+  EXPECT_EQ(top.local.position, Eigen::Vector3d(1, 0, 0));
+  Built flat = build(text + "scene_graph inheritedTransforms=false\n");
+  EXPECT_EQ(flat.scene.objects[1].world.position, Eigen::Vector3d(1, 0, 0));
+}
+
+TEST(Scene, AssetPathsResolveAgainstSceneDirThenAssetRoot) {
+  SceneOptions opt;
+  opt.sceneDir = "/scenes";
+  opt.exists = [](const std::string& p) { return p == "/scenes/near.obj"; };
+  Built b = build(
+      "raisim_engine_scene 2\nasset_root assets\n"
+      "object /World/A mesh 0 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false near.obj static "
+      "true 1 1 collisionMeshPath=far.stl\n",
+      opt);
+  ASSERT_TRUE(b.ok);
+  EXPECT_EQ(b.scene.objects[0].meshPath, "/scenes/near.obj");
+  EXPECT_EQ(b.scene.objects[0].collisionMeshPath, "/scenes/assets/far.stl");
+}
+
+TEST(Scene, BadNumbersAreErrorsWithLocation) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "object /World/A box 0 0 zz 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1\n");
+  EXPECT_FALSE(b.ok);
+  ASSERT_EQ(b.diags.size(), 1u);
+  EXPECT_EQ(b.diags[0].code, "RS5001");
+  EXPECT_EQ(b.diags[0].line, 2u);
+  EXPECT_EQ(b.diags[0].column, 25u);
+}
+
+TEST(Scene, TerrainSamplesAndLayers) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "terrain_region /World/T 3 2 4 2 1 1 0.5 heights=0,1,2,3,4,5 texturePrimary=0,0,0,1,1,1\n"
+      "terrain_splat_layer /World/T slot=1 weights=1,1,1,0,0,0\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  const Terrain& t = b.scene.terrains.at(0);
+  EXPECT_EQ(t.samplePosition(2, 1), Eigen::Vector3d(3, 2, 5.5));
+  EXPECT_EQ(t.samplePosition(0, 0), Eigen::Vector3d(-1, 0, 0.5));
+  ASSERT_EQ(t.splatLayers.size(), 1u);
+  EXPECT_EQ(t.splatLayers[0].weights.size(), 6u);
+}
+
+TEST(Scene, HugeTerrainIsRefusedBeforeParsing) {
+  Built b = build("raisim_engine_scene 1\nterrain_region /World/T 16384 16384 4 2 0 0 0 heights=1\n");
+  EXPECT_FALSE(b.ok);
+  EXPECT_EQ(codes(b.diags), "RS5006 ");
+  EXPECT_TRUE(b.scene.terrains.empty());
+  Built wrong = build("raisim_engine_scene 1\nterrain_region /World/T 2 2 4 2 0 0 0 heights=1,2,3\n");
+  EXPECT_EQ(codes(wrong.diags), "RS5006 ");
+}
+
+TEST(Scene, CompoundsWiresAndSkippedRecords) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "compound /World/C 0 0 1 1 0 0 0 1 1 1 2 dynamic true true id=c1 centerOfMass=0,0,0.1\n"
+      "compound_child c1 box 0 0 0 1 0 0 0 1 1 1 size=1,1,1\n"
+      "compound_child /World/C sphere 0 0 1 1 0 0 0 1 1 1 radius=0.2\n"
+      "wire /World/W soft c1 /World/C 2 stiffness=50\n"
+      "sensor /World/S imu - 0 0 0 1 0 0 0\n"
+      "granular /World/G sand 0 0 0 1 0 0 0 1 1 1\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  ASSERT_EQ(b.scene.compounds.size(), 1u);
+  EXPECT_EQ(b.scene.compounds[0].children.size(), 2u);
+  EXPECT_TRUE(b.scene.compounds[0].hasCenterOfMass);
+  EXPECT_DOUBLE_EQ(b.scene.compounds[0].children[1].radius, 0.2);
+  ASSERT_EQ(b.scene.wires.size(), 1u);
+  EXPECT_EQ(b.scene.wires[0].kind, "compliant");
+  EXPECT_DOUBLE_EQ(b.scene.wires[0].stiffness, 50);
+  ASSERT_EQ(b.scene.skipped.size(), 2u);
+  EXPECT_EQ(b.scene.skipped[0].tag, "sensor");
+  EXPECT_EQ(b.scene.skipped[1].recordIndex, 6);
+}
+
+TEST(Scene, LightsCamerasInstances) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "light /World/L 0 0 -2 3 type=sun\n"
+      "camera /World/Cam 1 2 3 1 0 0 0 200 0.1 100 640 480 rgb true\n"
+      "instanced_visual /World/I sphere instances=1,2,3,1,0,0,0,2,2,2;0,0,0,1,0,0,0,1,1,1\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  EXPECT_EQ(b.scene.lights[0].type, "directional");
+  EXPECT_EQ(b.scene.lights[0].direction, Eigen::Vector3d(0, 0, -1));
+  EXPECT_EQ(b.scene.lights[0].position, Eigen::Vector3d(0, 0, 3));
+  EXPECT_DOUBLE_EQ(b.scene.lights[0].coneAngle, 30);
+  EXPECT_DOUBLE_EQ(b.scene.cameras[0].verticalFov, 175);
+  ASSERT_EQ(b.scene.instancedVisuals[0].instances.size(), 2u);
+  EXPECT_DOUBLE_EQ(b.scene.instancedVisuals[0].instances[0].scale, 2);
+}
+
+TEST(Scene, CorpusScenesBuild) {
+  fs::path dir = fs::path(RSCENE_SHARED_DIR) / "corpus";
+  auto files = test::scenesIn(dir);
+  if (files.empty()) GTEST_SKIP() << "../shared/corpus is absent";
+  for (const fs::path& f : files) {
+    LoadResult r = parse(test::readAll(f));
+    ASSERT_TRUE(r.ok()) << f;
+    Scene s;
+    Diagnostics ds;
+    SceneOptions opt;
+    opt.sceneDir = f.parent_path().string();
+    EXPECT_TRUE(buildScene(r.document, opt, s, ds)) << f << ": " << (ds.empty() ? "" : ds[0].message);
+    EXPECT_FALSE(s.objects.empty() && s.materials.size() < 2 && s.lights.empty()) << f;
+  }
+}
