@@ -1,0 +1,141 @@
+// rscene-validate: lints scenes (syntax, types, references, sizes, files)
+// and reports the findings as text, JSON or SARIF.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <iostream>
+#include <set>
+
+#include "common/cli.hpp"
+#include "core/check.hpp"
+#include "rscene-validate/output.hpp"
+
+namespace {
+
+using namespace rscene;
+
+struct Options {
+  std::vector<std::string> files;
+  std::string format = "text";
+  std::string profile = "engine2";
+  std::string color = "auto";
+  std::vector<std::string> ignore, only;
+  std::size_t maxIssues = 0;  // 0 = all
+  bool strict = false;
+  bool listChecks = false;
+  bool checkFiles = false;
+  std::string baseDir;
+  std::string stdinName;
+};
+
+void listChecks() {
+  for (const CheckInfo& c : checkTable())
+    std::cout << c.code << "  " << (c.severity == Severity::Error ? "error  " : "warning") << "  " << c.summary
+              << '\n';
+}
+
+// Every code named by --ignore/--only must exist, so a typo is not silent.
+bool knownCodes(const std::vector<std::string>& codes, const char* flag) {
+  for (const std::string& c : codes)
+    if (!checkInfo(c)) {
+      cli::error(std::string("unknown code '") + c + "' in " + flag + " (see --list-checks)");
+      return false;
+    }
+  return true;
+}
+
+struct Run {
+  const Options& opt;
+  validate::Reporter& reporter;
+  std::set<std::string> ignore, only;
+  validate::Totals totals;
+  bool failed = false;  // findings at failing severity
+
+  bool wanted(const Diagnostic& d) const {
+    if (ignore.count(d.code)) return false;
+    return only.empty() || only.count(d.code);
+  }
+
+  // Checks one operand; false on an I/O error.
+  bool file(const std::string& operand) {
+    cli::Input in;
+    if (!cli::readInput(operand, opt.stdinName, in)) return false;
+    CheckOptions co;
+    co.profile = opt.profile == "raisim" ? Profile::RaiSim : Profile::Engine2;
+    co.checkFiles = opt.checkFiles;
+    co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
+    Document doc;
+    Diagnostics all = validateText(std::move(in.text), co, doc);
+    Diagnostics shown;
+    validate::FileCounts counts;
+    for (Diagnostic& d : all) {
+      if (!wanted(d)) continue;
+      bool error = d.severity == Severity::Error;
+      (error ? counts.errors : counts.warnings)++;
+      if (error || opt.strict) failed = true;
+      if (opt.maxIssues == 0 || totals.shown < opt.maxIssues) {
+        shown.push_back(std::move(d));
+        ++totals.shown;
+      }
+    }
+    totals.errors += counts.errors;
+    totals.warnings += counts.warnings;
+    ++totals.files;
+    reporter.file(in.display, doc.buffer(), shown, counts);
+    return true;
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Check .rscene scenes for syntax, type, reference, size and file errors."};
+  cli::setup(app, "rscene-validate");
+  Options opt;
+  app.add_option("files", opt.files, "Scene files; none or - reads standard input")->type_name("FILE");
+  app.add_option("--format", opt.format, "Output format: text, json or sarif")
+      ->check(CLI::IsMember({"text", "json", "sarif"}))
+      ->type_name("FORMAT");
+  app.add_flag("--strict", opt.strict, "Fail (exit 1) on warnings too");
+  app.add_option("--ignore", opt.ignore, "Do not report these codes")->delimiter(',')->type_name("CODE,...");
+  app.add_option("--only", opt.only, "Report only these codes")->delimiter(',')->type_name("CODE,...");
+  app.add_option("--max-issues", opt.maxIssues, "Show at most N findings (the summary counts all)")
+      ->type_name("N")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--list-checks", opt.listChecks, "List every code with its severity and meaning, then exit");
+  app.add_option("--profile", opt.profile, "engine2 (what Engine 2 loads) or raisim (also what RaiSim refuses)")
+      ->check(CLI::IsMember({"engine2", "raisim"}))
+      ->type_name("PROFILE");
+  app.add_flag("--check-files", opt.checkFiles, "Check that every referenced asset file exists");
+  app.add_option("--base-dir", opt.baseDir, "Resolve standard input's asset paths from DIR")->type_name("DIR");
+  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
+      ->type_name("PATH");
+  app.add_option("--color", opt.color, "Color the text output: auto, always or never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->type_name("WHEN");
+  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+
+  if (opt.listChecks) {
+    listChecks();
+    return cli::kSuccess;
+  }
+  if (!knownCodes(opt.ignore, "--ignore") || !knownCodes(opt.only, "--only")) return cli::kTrouble;
+  if (opt.files.empty()) opt.files.push_back("-");
+  if (std::count(opt.files.begin(), opt.files.end(), "-") > 1) {
+    cli::error("standard input can be read only once");
+    return cli::kTrouble;
+  }
+
+  bool color = opt.color == "always" || (opt.color == "auto" && cli::colorFor(1));
+  std::unique_ptr<validate::Reporter> reporter = opt.format == "json"    ? validate::jsonReporter()
+                                                 : opt.format == "sarif" ? validate::sarifReporter()
+                                                                         : validate::textReporter(color);
+  Run run{opt, *reporter, {opt.ignore.begin(), opt.ignore.end()}, {opt.only.begin(), opt.only.end()}, {}, false};
+  bool trouble = false;
+  for (const std::string& f : opt.files) trouble = !run.file(f) || trouble;
+  if (!reporter->finish(run.totals)) {
+    cli::error("cannot write standard output");
+    return cli::kTrouble;
+  }
+  if (trouble) return cli::kTrouble;
+  return run.failed ? cli::kFindings : cli::kSuccess;
+}

@@ -1,0 +1,45 @@
+#include <cstdio>
+#include <iostream>
+
+#include "core/report.hpp"
+#include "rscene-validate/output.hpp"
+
+namespace rscene::validate {
+namespace {
+
+std::string plural(std::size_t n, const char* word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+class TextReporter : public Reporter {
+ public:
+  explicit TextReporter(bool color) : color_(color) {}
+  void file(const std::string& name, std::string_view text, const Diagnostics& shown, const FileCounts&) override {
+    for (const Diagnostic& d : shown) std::cout << formatDiagnostic(d, name, lineOf(text, d.line), color_);
+  }
+  bool finish(const Totals& totals) override {
+    std::cout.flush();
+    std::cerr << summaryLine(totals) << '\n';
+    return static_cast<bool>(std::cout);
+  }
+
+ private:
+  bool color_;
+};
+
+}  // namespace
+
+std::string summaryLine(const Totals& t) {
+  std::string s;
+  if (t.errors == 0 && t.warnings == 0) s = "no issues";
+  else if (t.warnings == 0) s = plural(t.errors, "error");
+  else if (t.errors == 0) s = plural(t.warnings, "warning");
+  else s = plural(t.errors, "error") + ", " + plural(t.warnings, "warning");
+  s += " in " + plural(t.files, "file");
+  if (t.truncated()) s += " (" + std::to_string(t.errors + t.warnings - t.shown) + " not shown)";
+  return s;
+}
+
+std::unique_ptr<Reporter> textReporter(bool color) { return std::make_unique<TextReporter>(color); }
+
+}  // namespace rscene::validate

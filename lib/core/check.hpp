@@ -1,0 +1,44 @@
+// The validation pass: everything wrong with a scene, as Diagnostics with
+// stable codes (check_codes.cpp holds the table of every code).  Pure: file
+// existence is asked through a callback, nothing is printed.
+#pragma once
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "core/assets.hpp"
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+
+namespace rscene {
+
+enum class Profile {
+  Engine2,  // what Engine 2 loads
+  RaiSim,   // also what RaiSim 2.7.1's stricter reader refuses (RS6xxx)
+};
+
+struct CheckOptions {
+  Profile profile = Profile::Engine2;
+  bool checkFiles = false;     // RS5xxx: asset paths must name existing files
+  std::string sceneDir = ".";  // directory relative asset paths start from
+  FileExists fileExists = fileExistsOnDisk;
+};
+
+// Checks a loaded document.  Findings come in record order.
+Diagnostics check(const Document& doc, const CheckOptions& options);
+
+// Loads `text` and checks it: the loader's own errors (RS1xxx) are findings
+// too, and stop the check of that text.  `doc` receives the parsed scene
+// (its buffer holds the source lines for carets).
+Diagnostics validateText(std::string text, const CheckOptions& options, Document& doc);
+
+// One row of the code table: used by --list-checks, the man page and tests.
+struct CheckInfo {
+  std::string_view code;
+  Severity severity;
+  std::string_view summary;  // one line, lower-case, no final period
+};
+std::span<const CheckInfo> checkTable();
+const CheckInfo* checkInfo(std::string_view code);
+
+}  // namespace rscene

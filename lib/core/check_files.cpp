@@ -1,0 +1,23 @@
+// RS5001 (--check-files): every asset path names an existing file, found
+// by the rule of compat-notes.md ("Asset path resolution").
+#include "core/assets.hpp"
+#include "core/check_context.hpp"
+#include "core/text.hpp"
+
+namespace rscene::checks {
+
+void checkFiles(Context& ctx, const Record& r) {
+  // asset_root names a directory, and output paths are written, not read.
+  if (r.kind->tag == "asset_root") return;
+  forEachValue(ctx.doc, r, [&](const FieldDef& def, const Field& f) {
+    if (def.type != ValueType::Path || def.name.rfind("output", 0) == 0) return;
+    std::string path = percentDecode(ctx.doc.text(f.value));
+    if (path.empty()) return;
+    std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.index.assetRoot, path, ctx.opt.fileExists);
+    if (ctx.opt.fileExists(resolved)) return;
+    ctx.report("RS5001", r, f.value, def.name, "file '" + path + "' does not exist (resolved to '" + resolved + "')",
+               "paths resolve against the scene's directory, then against asset_root");
+  });
+}
+
+}  // namespace rscene::checks

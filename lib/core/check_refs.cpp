@@ -1,0 +1,192 @@
+// RS3003..RS3017: identity (paths, ids), references between records,
+// child records and repeated singletons.
+#include <algorithm>
+
+#include "core/assets.hpp"
+#include "core/check_context.hpp"
+#include "core/text.hpp"
+
+namespace rscene::checks {
+namespace {
+
+// Names that exist in every scene (compat-notes.md, "Identity and defaults").
+constexpr std::string_view kDefaultMaterial = "engine_default";
+constexpr std::string_view kDefaultContact = "default";
+constexpr std::int64_t kDefaultTextureSlots = 2;  // terrain_grass, terrain_rock
+
+bool isUnderWorld(std::string_view path) { return path == "/World" || path.rfind("/World/", 0) == 0; }
+
+std::string lineRef(const Document& doc, std::uint32_t index) {
+  return "line " + std::to_string(doc.records[index].line);
+}
+
+void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
+  const Document& doc = ctx.doc;
+  const Record& r = doc.records[i];
+  const auto& ix = ctx.index;
+  std::string_view raw = doc.text(f.value);
+  if (def.type == ValueType::Integer && def.arg == "texslot") {
+    auto slot = parseInteger(raw);
+    if (!slot || (*slot >= 0 && *slot < kDefaultTextureSlots)) return;
+    if (std::find(ix.textureSlots.begin(), ix.textureSlots.end(), *slot) != ix.textureSlots.end()) return;
+    ctx.report("RS3011", r, f.value, def.name, "terrain texture slot " + std::to_string(*slot) + " does not exist",
+               "slots 0 and 1 exist by default; add a terrain_texture record for others");
+    return;
+  }
+  if (def.type != ValueType::Ref) return;
+  std::string name = percentDecode(raw);
+  if (name.empty()) return;  // no reference
+  const std::string& what = def.arg;
+  auto missing = [&](std::string_view code, std::string_view noun, std::string hint = {}) {
+    ctx.report(code, r, f.value, def.name, std::string(noun) + " '" + name + "' does not exist", std::move(hint));
+  };
+  if (what == "material") {
+    if (name != kDefaultMaterial && !ix.materials.count(name))
+      missing("RS3008", "material", "engine_default always exists; other names need a material record");
+  } else if (what == "contact") {
+    if (name != kDefaultContact && !ix.contacts.count(name))
+      missing("RS3009", "contact material",
+              "the default contact properties apply; name it in a contact_material record to set its own");
+  } else if (what == "resource") {
+    if (!ix.resources.count(name)) missing("RS3010", "articulated resource");
+  } else if (what == "terrain") {
+    if (!ix.terrains.count(name)) missing("RS3013", "terrain");
+  } else if (what == "body") {
+    if (!ctx.node(name)) missing("RS3012", "body", "name a node by its id or path");
+  } else if (what == "node") {
+    const Record* target = ctx.node(name);
+    bool parentField = def.name == "parentGroupId" || def.name == "parentId";
+    if (parentField) {
+      if (!target) {
+        missing("RS3006", "parent", "name a group by its id or path");
+        return;
+      }
+      auto targetIndex = static_cast<std::uint32_t>(target - doc.records.data());
+      ctx.index.parentOf[i] = targetIndex;
+      if (target->kind->tag != "group" && ix.inheritedTransforms) {
+        std::string msg = "parent '" + name + "' is a " + target->kind->tag + ", not a group";
+        if (ctx.raisim())
+          ctx.report("RS6004", r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
+                     "parent the node to a group, or set scene_graph inheritedTransforms=false");
+        else
+          ctx.report("RS3007", r, f.value, def.name, msg + "; the node inherits its transform",
+                     "parent the node to a group if it should stay in the world frame");
+      }
+      return;
+    }
+    // A child names its parent record kind (compound_child -> compound ...).
+    const std::string& want = r.kind->parentTag;
+    if (!target || (!want.empty() && target->kind->tag != want))
+      missing("RS3014", want.empty() ? "node" : want);
+  }
+}
+
+}  // namespace
+
+void buildIndex(Context& ctx) {
+  const Document& doc = ctx.doc;
+  auto& ix = ctx.index;
+  ix.parentOf.assign(doc.records.size(), Context::kNoRecord);
+  ix.assetRoot = assetRootOf(doc);
+  for (std::size_t i = 0; i < doc.records.size(); ++i) {
+    const Record& r = doc.records[i];
+    if (!r.kind) continue;
+    auto index = static_cast<std::uint32_t>(i);
+    const std::string& tag = r.kind->tag;
+    if (r.kind->isNode()) {
+      std::string path = nodePath(doc, r);
+      std::string id = nodeId(doc, r);
+      ix.nodeByPath.emplace(path, index);
+      if (!id.empty()) ix.nodeById.emplace(id, index);
+      if (tag == "terrain_region") {
+        ix.terrains.emplace(path, index);
+        if (!id.empty()) ix.terrains.emplace(id, index);
+      }
+    } else if (tag == "material") {
+      ix.materials.emplace(nodeId(doc, r), index);
+      ix.materials.emplace(ctx.text(r, "name"), index);
+    } else if (tag == "contact_material") {
+      for (std::string_view k : {"materialA", "materialB", "id"}) ix.contacts.emplace(ctx.text(r, k), true);
+    } else if (tag == "articulated_resource") {
+      ix.resources.emplace(ctx.text(r, "id"), index);
+      ix.resources.emplace(ctx.text(r, "name"), index);
+    } else if (tag == "terrain_texture") {
+      if (auto slot = ctx.integer(r, "slot")) ix.textureSlots.push_back(*slot);
+    } else if (tag == "scene_graph") {
+      if (auto inherited = ctx.flag(r, "inheritedTransforms")) ix.inheritedTransforms = *inherited;
+      else if (!ctx.get(r, "inheritedTransforms")) ix.inheritedTransforms = true;
+    }
+  }
+}
+
+void checkRefs(Context& ctx, std::size_t i) {
+  const Document& doc = ctx.doc;
+  const Record& r = doc.records[i];
+  const KindDef& kind = *r.kind;
+  auto& ix = ctx.index;
+  auto index = static_cast<std::uint32_t>(i);
+
+  if (kind.isNode()) {
+    std::string path = nodePath(doc, r);
+    Span at = doc.positional(r, 0)->value;
+    if (!isUnderWorld(path))
+      ctx.report("RS3005", r, at, "path", "path '" + path + "' is not under /World", "node paths start with /World/");
+    if (auto it = ix.nodeByPath.find(path); it != ix.nodeByPath.end() && it->second != index)
+      ctx.report("RS3003", r, at, "path", "duplicate path '" + path + "'; first used on " + lineRef(doc, it->second));
+    std::string id = nodeId(doc, r);
+    if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end() && it->second != index) {
+      const FieldRef explicitId = ctx.get(r, "id");
+      ctx.report("RS3004", r, explicitId ? explicitId.first->value : at, "id",
+                 std::string(explicitId ? "duplicate id '" : "duplicate default id '") + id + "'; first used on " +
+                     lineRef(doc, it->second),
+                 explicitId ? "" : "set a distinct id= on one of them");
+    }
+  } else if (kind.tag == "material") {
+    std::string id = nodeId(doc, r);
+    if (auto it = ix.materials.find(id); it != ix.materials.end() && it->second != index &&
+                                         nodeId(doc, doc.records[it->second]) == id)
+      ctx.report("RS3004", r, doc.positional(r, 0)->value, "id",
+                 "duplicate material id '" + id + "'; first used on " + lineRef(doc, it->second));
+  }
+
+  if (kind.role == Role::Singleton) {
+    if (auto it = ix.lastOfKind.find(&kind); it != ix.lastOfKind.end())
+      ctx.report("RS3016", r, r.tag, {},
+                 "repeated " + kind.tag + " replaces the one on " + lineRef(doc, it->second),
+                 "remove the earlier record; it is ignored");
+  }
+  if (kind.role == Role::Child) {
+    const KindDef* parent = Schema::get().kind(kind.parentTag);
+    if (!ix.lastOfKind.count(parent))
+      ctx.report("RS3015", r, r.tag, {}, kind.tag + " has no " + kind.parentTag + " record before it",
+                 "place it after the " + kind.parentTag + " it belongs to");
+  }
+  ix.lastOfKind[&kind] = index;
+
+  forEachValue(doc, r, [&](const FieldDef& def, const Field& f) { resolve(ctx, i, def, f); });
+}
+
+void checkParentCycles(Context& ctx) {
+  const auto& parent = ctx.index.parentOf;
+  std::vector<std::uint8_t> state(parent.size(), 0);  // 0 new, 1 on the walk, 2 done
+  std::vector<std::uint32_t> walk;
+  for (std::uint32_t start = 0; start < parent.size(); ++start) {
+    walk.clear();
+    std::uint32_t n = start;
+    while (n != Context::kNoRecord && state[n] == 0) {
+      state[n] = 1;
+      walk.push_back(n);
+      n = parent[n];
+    }
+    if (n != Context::kNoRecord && state[n] == 1) {
+      const Record& r = ctx.doc.records[n];
+      FieldRef f = ctx.get(r, r.kind->tag == "group" ? "parentId" : "parentGroupId");
+      if (!f) f = ctx.get(r, "parentGroupId");
+      ctx.report("RS3017", r, ctx.spanOf(r, f), f.def ? f.def->name : "",
+                 "node '" + nodePath(ctx.doc, r) + "' is its own ancestor", "break the cycle of parents");
+    }
+    for (std::uint32_t w : walk) state[w] = 2;
+  }
+}
+
+}  // namespace rscene::checks

@@ -1,0 +1,307 @@
+// RS1101, RS2xxx, RS3001/RS3002: every token against its type in the
+// schema, repeated and unknown keys, unknown tags.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <unordered_set>
+
+#include "core/check_context.hpp"
+#include "core/suggest.hpp"
+#include "core/text.hpp"
+
+namespace rscene::checks {
+namespace {
+
+std::string quoted(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  std::string q(1, '\'');
+  q.append(s.substr(0, kMax));
+  q.append(s.size() > kMax ? "...'" : "'");
+  return q;
+}
+
+// Why a token that should be a number is not one.
+void badNumber(Context& ctx, const Record& r, Span at, std::string_view field, std::string_view s) {
+  double v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  bool parsed = p == s.data() + s.size() && !s.empty();
+  if (parsed && (ec == std::errc::result_out_of_range || !std::isfinite(v)))
+    ctx.report("RS2002", r, at, field, "number " + quoted(s) + " is not finite", "numbers must be finite decimals");
+  else if (s.empty())
+    ctx.report("RS2001", r, at, field, "expected a number, found nothing");
+  else
+    ctx.report("RS2001", r, at, field, "expected a number, found " + quoted(s),
+               s.find(',') != std::string_view::npos ? "decimals use `.`; `,` separates list items" : "");
+}
+
+class TypeChecker {
+ public:
+  TypeChecker(Context& ctx, const Record& r) : ctx_(ctx), r_(r), doc_(ctx.doc) {}
+
+  void run() {
+    const KindDef& kind = *r_.kind;
+    if (const Layout* layout = kind.layoutFor(r_.positionalCount)) positionals(*layout);
+    keys(kind);
+  }
+
+ private:
+  void positionals(const Layout& layout) {
+    for (std::size_t t = 0; t < layout.tokens.size();) {
+      const FieldDef& def = layout.fields[static_cast<std::size_t>(layout.tokens[t].first)];
+      const Field* f = doc_.positional(r_, static_cast<std::uint32_t>(t));
+      if (def.width == 1) {
+        scalar(def, f->value, doc_.text(f->value));
+      } else {
+        double q[4] = {0, 0, 0, 0};
+        bool all = true;
+        for (int c = 0; c < def.width; ++c) {
+          Span s = (f + c)->value;
+          auto v = number(s, def.name, doc_.text(s));
+          if (v && c < 4) q[c] = *v;
+          all = all && v;
+        }
+        if (all && def.type == ValueType::Quat) checkQuaternion(ctx_, r_, f->value, def.name, q);
+      }
+      t += static_cast<std::size_t>(def.width);
+    }
+  }
+
+  void keys(const KindDef& kind) {
+    std::unordered_set<std::string_view> seenLarge;
+    for (std::uint32_t j = r_.positionalCount; j < r_.fieldCount; ++j) {
+      const Field& f = doc_.field(r_, j);
+      if (!f.isKey()) continue;
+      std::string_view name = doc_.text(f.key);
+      if (repeated(j, name, seenLarge)) {
+        if (ctx_.raisim())
+          ctx_.report("RS6002", r_, f.key, name, "key '" + std::string(name) + "' repeated; RaiSim refuses the record");
+        else
+          ctx_.report("RS1101", r_, f.key, name, "key '" + std::string(name) + "' repeated; the last value wins",
+                      "remove the earlier one");
+      }
+      const FieldDef* def = kind.key(name);
+      if (!def) {
+        unknownKey(kind, f.key, name);
+        continue;
+      }
+      if (def->type == ValueType::Name || def->type == ValueType::Text || def->type == ValueType::Path ||
+          def->type == ValueType::Id || def->type == ValueType::Ref || def->type == ValueType::StringList ||
+          componentCount(def->type) == 0)
+        scalar(*def, f.value, doc_.text(f.value));
+      else
+        vectorKey(*def, f.value, doc_.text(f.value));
+    }
+  }
+
+  bool repeated(std::uint32_t j, std::string_view name, std::unordered_set<std::string_view>& large) {
+    constexpr std::uint32_t kLinear = 32;
+    if (r_.fieldCount <= kLinear) {
+      for (std::uint32_t k = r_.positionalCount; k < j; ++k) {
+        const Field& g = doc_.field(r_, k);
+        if (g.isKey() && doc_.text(g.key) == name) return true;
+      }
+      return false;
+    }
+    return !large.insert(name).second;
+  }
+
+  void unknownKey(const KindDef& kind, Span at, std::string_view name) {
+    std::vector<std::string_view> names;
+    names.reserve(kind.keys.size());
+    for (const FieldDef& k : kind.keys) names.push_back(k.name);
+    std::string best = closestName(name, names);
+    ctx_.report("RS3002", r_, at, name, "unknown key '" + std::string(name) + "' for " + kind.tag,
+                best.empty() ? std::string() : "did you mean `" + best + "`?");
+  }
+
+  // Decoded text of a raw token (a scratch copy only when it has escapes).
+  std::string_view decode(std::string_view raw) {
+    if (raw.find('%') == std::string_view::npos && raw != "-") return raw;
+    scratch_.clear();
+    percentDecode(raw, scratch_);
+    return scratch_;
+  }
+
+  std::optional<double> number(Span at, std::string_view field, std::string_view raw) {
+    std::string_view s = decode(raw);
+    if (auto v = parseNumber(s)) return v;
+    badNumber(ctx_, r_, at, field, s);
+    return std::nullopt;
+  }
+
+  void scalar(const FieldDef& def, Span at, std::string_view raw) {
+    std::string_view s;
+    switch (def.type) {
+      case ValueType::Number:
+        number(at, def.name, raw);
+        return;
+      case ValueType::Integer:
+        s = decode(raw);
+        if (auto v = parseInteger(s); !v || *v < INT32_MIN || *v > INT32_MAX)
+          ctx_.report("RS2003", r_, at, def.name, "expected a 32-bit integer, found " + quoted(s));
+        return;
+      case ValueType::Group:
+        s = decode(raw);
+        if (!parseGroup(s))
+          ctx_.report("RS2004", r_, at, def.name, "expected an unsigned 64-bit integer, found " + quoted(s),
+                      "all bits is 18446744073709551615");
+        return;
+      case ValueType::Flag:
+        s = decode(raw);
+        if (!parseFlag(s))
+          ctx_.report("RS2005", r_, at, def.name, "expected a flag, found " + quoted(s),
+                      "write true or false");
+        return;
+      case ValueType::Name:
+        if (def.enumDef) name(*def.enumDef, def.name, at, decode(raw));
+        return;
+      case ValueType::NumberList:
+      case ValueType::IntegerList:
+      case ValueType::Vec3List:
+      case ValueType::TransformList:
+        list(def, at, decode(raw));
+        return;
+      case ValueType::ColorList:
+        colorList(def, at, decode(raw));
+        return;
+      default:
+        return;  // text, paths, ids, references, string lists: any text
+    }
+  }
+
+  void name(const EnumDef& e, std::string_view field, Span at, std::string_view s) {
+    if (e.canonical(s)) return;
+    std::vector<std::string_view> names;
+    std::string all;
+    for (const EnumDef::Value& v : e.values) {
+      names.push_back(v.name);
+      all += (all.empty() ? "" : ", ") + v.name;
+    }
+    std::string best = closestName(s, names);
+    std::string hint = best.empty() ? "known names: " + all : "did you mean `" + best + "`?";
+    if (!e.open)
+      ctx_.report("RS2006", r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
+    else if (ctx_.raisim())
+      ctx_.report("RS6009", r_, at, field, "RaiSim does not know " + e.name + " " + quoted(s), hint);
+    else
+      ctx_.report("RS2007", r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
+  }
+
+  // The span of item [offset, offset+len) of a value, for the caret.
+  Span item(Span value, std::string_view s, std::string_view part) const {
+    if (s.data() < doc_.buffer().data() || s.data() >= doc_.buffer().data() + doc_.buffer().size()) return value;
+    return Span{static_cast<std::uint32_t>(part.data() - doc_.buffer().data()), static_cast<std::uint32_t>(part.size())};
+  }
+
+  // Checks numbers of a list; returns their count or -1 after a report.
+  long long numbers(const FieldDef& def, Span at, std::string_view s, bool integers) {
+    long long count = 0;
+    bool bad = false;
+    bool ok = forEachNumber(s, [&](std::string_view part, char) {
+      ++count;
+      if (bad) return;
+      if (integers) {
+        if (!parseInteger(part)) {
+          ctx_.report("RS2003", r_, item(at, s, part), def.name, "expected an integer, found " + quoted(part));
+          bad = true;
+        }
+      } else if (!parseNumber(part)) {
+        badNumber(ctx_, r_, item(at, s, part), def.name, part);
+        bad = true;
+      }
+    });
+    if (!ok) {
+      ctx_.report("RS2009", r_, at, def.name, def.name + " has an empty entry",
+                  "separate numbers with single `,` or `;` and end without one");
+      return -1;
+    }
+    return bad ? -1 : count;
+  }
+
+  void list(const FieldDef& def, Span at, std::string_view s) {
+    long long n = numbers(def, at, s, def.type == ValueType::IntegerList);
+    if (n < 0) return;
+    int per = def.type == ValueType::Vec3List ? 3 : def.type == ValueType::TransformList ? 10 : 1;
+    if (n % per == 0) return;
+    if (per == 10)
+      ctx_.report("RS4004", r_, at, def.name,
+                  def.name + " has " + std::to_string(n) + " numbers, not a multiple of 10",
+                  "each instance is position (3), quaternion w,x,y,z (4) and scale (3)");
+    else
+      ctx_.report("RS2008", r_, at, def.name, def.name + " has " + std::to_string(n) + " numbers, not a multiple of 3");
+  }
+
+  void colorList(const FieldDef& def, Span at, std::string_view s) {
+    if (s.empty()) return;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= s.size(); ++i) {
+      if (i != s.size() && s[i] != ';') continue;
+      std::string_view part = s.substr(start, i - start);
+      long long n = 0;
+      bool bad = false;
+      bool ok = forEachNumber(part, [&](std::string_view x, char) {
+        ++n;
+        bad = bad || !parseNumber(x);
+      });
+      if (!ok || bad || n < 3 || n > 4) {
+        ctx_.report("RS2008", r_, item(at, s, part), def.name,
+                    def.name + " entry " + quoted(part) + " is not a color of 3 or 4 numbers",
+                    "colors are r,g,b or r,g,b,a separated by `;`");
+        return;
+      }
+      start = i + 1;
+    }
+  }
+
+  void vectorKey(const FieldDef& def, Span at, std::string_view raw) {
+    std::string_view s = decode(raw);
+    double q[4] = {0, 0, 0, 0};
+    int n = 0;
+    bool bad = false;
+    bool ok = forEachNumber(s, [&](std::string_view part, char) {
+      auto v = parseNumber(part);
+      if (!v && !bad) {
+        badNumber(ctx_, r_, item(at, s, part), def.name, part);
+        bad = true;
+      }
+      if (v && n < 4) q[n] = *v;
+      ++n;
+    });
+    if (bad) return;
+    int want = componentCount(def.type);
+    bool countOk = def.type == ValueType::Color ? (n == 3 || n == 4) : n == want;
+    if (!ok || !countOk) {
+      std::string expect = def.type == ValueType::Color ? "3 or 4" : std::to_string(want);
+      ctx_.report("RS2008", r_, at, def.name,
+                  def.name + " has " + (ok ? std::to_string(n) : "an empty") + " component" + (n == 1 && ok ? "" : "s") +
+                      ", expected " + expect,
+                  "write " + expect + " numbers separated by `,`");
+      return;
+    }
+    if (def.type == ValueType::Quat) checkQuaternion(ctx_, r_, at, def.name, q);
+  }
+
+  Context& ctx_;
+  const Record& r_;
+  const Document& doc_;
+  std::string scratch_;
+};
+
+}  // namespace
+
+void checkTypes(Context& ctx, const Record& r) {
+  if (!r.kind) {
+    std::string_view tag = ctx.doc.tag(r);
+    std::vector<std::string_view> names;
+    for (const KindDef& k : Schema::get().kinds()) names.push_back(k.tag);
+    std::string best = closestName(tag, names);
+    ctx.report("RS3001", r, r.tag, {}, "unknown record tag '" + std::string(tag.substr(0, 60)) + "'",
+               best.empty() ? "newer writers may add kinds; this one is kept and ignored"
+                            : "did you mean `" + best + "`?");
+    return;
+  }
+  TypeChecker(ctx, r).run();
+}
+
+}  // namespace rscene::checks
