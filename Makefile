@@ -42,10 +42,10 @@ demo: build
 	sh scripts/demo.sh
 
 bench: build
-	sh bench/run.sh $(BUILD_DIR)/bin
+	bash bench/run.sh $(BUILD_DIR)/bin
 
 fuzz: deps
-	FUZZ_SECONDS=$(FUZZ_SECONDS) sh tests/fuzz/run.sh
+	FUZZ_SECONDS=$(FUZZ_SECONDS) bash tests/fuzz/run.sh
 
 install:
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
