@@ -14,11 +14,17 @@ libbullet-dev libbullet-extras-dev libassimp-dev
 libpng-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
 "
 
+# One dpkg-query for all packages; a package it does not list as
+# installed is missing.
+# shellcheck disable=SC2086
+installed=$(dpkg-query -W -f='${Package} ${Status}\n' $PACKAGES 2>/dev/null |
+  awk '$NF == "installed" && $(NF-1) == "ok" { print $1 }' || true)
 missing=""
 for p in $PACKAGES; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-    missing="$missing $p"
-  fi
+  case " $(echo $installed) " in
+    *" $p "*) ;;
+    *) missing="$missing $p" ;;
+  esac
 done
 
 [ -z "$missing" ] && exit 0
