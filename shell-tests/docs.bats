@@ -2,7 +2,7 @@
 # Documentation checks for every tool built in $BIN: man pages lint clean,
 # and each long option `--help` prints is documented in the man page, the
 # three shell completions and the tool's shell test.  A new tool is checked
-# as soon as its binary exists; nothing here names a tool.
+# as soon as its binary exists in $BIN; nothing here names a tool.
 
 BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
 ROOT="$BATS_TEST_DIRNAME/.."
@@ -13,10 +13,14 @@ setup() {
   command -v mandoc >/dev/null || skip "mandoc not installed"
 }
 
+# The user-facing tools: built executables with a cmd/<tool>/ folder (so
+# helpers such as bench's scene generator are not taken for tools).
 tools() {
+  local t
   for t in "$BIN"/rscene-*; do
-    [ -x "$t" ] && [ -f "$t" ] && basename "$t"
+    [ -x "$t" ] && [ -f "$t" ] && [ -d "$ROOT/cmd/$(basename "$t")" ] && basename "$t"
   done
+  return 0
 }
 
 require_tools() {
