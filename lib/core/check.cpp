@@ -1,6 +1,7 @@
 // The validation driver: runs the passes of check_*.cpp over a document and
 // the shared field accessors they use.
 #include <algorithm>
+#include <cstdint>
 
 #include "core/check_context.hpp"
 #include "core/loader.hpp"
@@ -60,7 +61,9 @@ std::optional<double> Context::number(const Record& r, std::string_view name) co
 
 std::optional<std::int64_t> Context::integer(const Record& r, std::string_view name) const {
   FieldRef f = get(r, name);
-  return f ? parseInteger(doc.text(f.first->value)) : std::nullopt;
+  auto v = f ? parseInteger(doc.text(f.first->value)) : std::nullopt;
+  // Integers beyond 32 bits are RS2003 already; later checks stay quiet.
+  return v && *v >= INT32_MIN && *v <= INT32_MAX ? v : std::nullopt;
 }
 
 std::optional<bool> Context::flag(const Record& r, std::string_view name) const {

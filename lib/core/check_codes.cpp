@@ -16,7 +16,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS1001", E, "missing raisim_engine_scene header"},
     {"RS1002", E, "unsupported rscene version (only 1 and 2 exist)"},
     {"RS1003", E, "invalid percent escape"},
-    {"RS1004", E, "NUL byte in scene text"},
+    {"RS1004", E, "scene text contains a NUL byte"},
     {"RS1005", E, "invalid UTF-8"},
     {"RS1006", E, "control character in a token"},
     {"RS1007", E, "wrong number of positional fields for the record kind"},

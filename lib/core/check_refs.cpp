@@ -64,7 +64,9 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
       auto targetIndex = static_cast<std::uint32_t>(target - doc.records.data());
       ctx.index.parentOf[i] = targetIndex;
       if (target->kind->tag != "group" && ix.inheritedTransforms) {
-        std::string msg = "parent '" + name + "' is a " + target->kind->tag + ", not a group";
+        const std::string& k = target->kind->tag;
+        std::string msg = "parent '" + name + "' is " + (k.find_first_of("aeiou") == 0 ? "an " : "a ") + k +
+                          ", not a group";
         if (ctx.raisim())
           ctx.report("RS6004", r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
                      "parent the node to a group, or set scene_graph inheritedTransforms=false");
