@@ -1,0 +1,143 @@
+// rscene-sim: steps a scene's physics in Bullet and writes the scene back
+// with the simulated poses (and optionally a trajectory).
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "common/cli.hpp"
+#include "core/loader.hpp"
+#include "core/scene.hpp"
+#include "core/writer.hpp"
+#include "sim/trajectory.hpp"
+#include "sim/world.hpp"
+
+namespace {
+
+using namespace rscene;
+using Clock = std::chrono::steady_clock;
+
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int) { gInterrupted = 1; }
+
+struct Options {
+  std::string file = "-", output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
+  double duration = 1;
+  long long steps = -1;
+  long long every = 1;
+  bool untilRest = false, report = false;
+};
+
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+int run(const Options& opt) {
+  bool color = cli::colorFor(2);
+  Clock::time_point start = Clock::now();
+  cli::Input in;
+  if (!cli::readInput(opt.file, opt.stdinName, in)) return cli::kTrouble;
+  LoadResult loaded = parse(std::move(in.text));
+  Document& doc = loaded.document;
+  auto print = [&](const Diagnostics& ds) { cli::printDiagnostics(ds, in.display, doc.buffer(), color); };
+  if (!loaded.ok()) return print(loaded.diagnostics), cli::kTrouble;
+
+  SceneOptions so;
+  so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  so.baseDir = opt.baseDir;
+  Scene scene;
+  Diagnostics ds = loaded.diagnostics;
+  bool ok = buildScene(doc, so, scene, ds) && sim::checkPhysics(doc, scene, ds);
+  if (ok && !(scene.timeStep > 0)) {
+    cli::error("time_step must be positive");
+    return cli::kTrouble;
+  }
+  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds) : nullptr;
+  if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
+  print(ds);
+  if (!world) return cli::kTrouble;
+  Clock::time_point loadedAt = Clock::now();
+
+  long long total = opt.steps >= 0 ? opt.steps : std::llround(opt.duration / world->timeStep());
+  auto format = opt.trajectoryFormat == "csv" ? sim::TrajectoryFormat::Csv : sim::TrajectoryFormat::Jsonl;
+  std::string traj;
+  if (!opt.trajectory.empty()) {
+    traj = sim::trajectoryHeader(format);
+    sim::appendTrajectory(traj, format, world->time(), world->states());
+  }
+  bool progress = isatty(2);
+  Clock::time_point lastProgress = Clock::now();
+  double contacts = 0;
+  bool rested = false;
+  while (static_cast<long long>(world->steps()) < total && !gInterrupted) {
+    world->step();
+    contacts += world->contactCount();
+    long long n = static_cast<long long>(world->steps());
+    if (!opt.trajectory.empty() && n % opt.every == 0)
+      sim::appendTrajectory(traj, format, world->time(), world->states());
+    if (opt.untilRest && world->atRest()) {
+      rested = true;
+      break;
+    }
+    if (progress && (n & 255) == 0 && seconds(lastProgress, Clock::now()) > 0.25) {
+      lastProgress = Clock::now();
+      std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << total << std::flush;
+    }
+  }
+  if (progress) std::cerr << "\r\033[K" << std::flush;
+  if (gInterrupted) return cli::kInterrupted;
+  Clock::time_point steppedAt = Clock::now();
+
+  world->writeBack(doc);
+  if (!cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; })) return cli::kTrouble;
+  if (!opt.trajectory.empty() &&
+      !cli::writeOutput(opt.trajectory, [&](Sink& s) { s.write(traj); return true; }))
+    return cli::kTrouble;
+  if (opt.report) {
+    double wall = seconds(start, Clock::now()), stepping = seconds(loadedAt, steppedAt);
+    auto steps = world->steps();
+    nlohmann::json r = {{"steps", steps},
+                        {"simulatedTime", world->time()},
+                        {"wallTime", wall},
+                        {"loadTime", seconds(start, loadedAt)},
+                        {"stepTime", stepping},
+                        {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
+                        {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
+                        {"bodies", world->bodyCount()},
+                        {"contactsPerStep", steps ? contacts / steps : 0.0},
+                        {"atRest", rested || world->atRest()}};
+    std::cerr << r.dump() << '\n';
+  }
+  return cli::kSuccess;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Simulate the physics of a .rscene scene in Bullet and write the scene back."};
+  cli::setup(app, "rscene-sim");
+  Options opt;
+  app.add_option("file", opt.file, "Scene file; none or - reads standard input")->type_name("FILE");
+  app.add_option("-o,--output", opt.output, "Write the simulated scene to FILE (atomically) instead of standard output")
+      ->type_name("FILE");
+  auto* duration = app.add_option("--duration", opt.duration, "Simulate S seconds (default 1)")->type_name("S")
+                       ->check(CLI::NonNegativeNumber);
+  app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(CLI::NonNegativeNumber)
+      ->excludes(duration);
+  app.add_option("--trajectory", opt.trajectory, "Write body states to FILE")->type_name("FILE");
+  app.add_option("--every", opt.every, "Write a trajectory line every K steps (default 1)")->type_name("K")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--trajectory-format", opt.trajectoryFormat, "Trajectory format: jsonl (default) or csv")
+      ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
+  app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");
+  app.add_flag("--report", opt.report, "Print a JSON summary of the run on standard error");
+  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
+      ->type_name("PATH");
+  app.add_option("--base-dir", opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder")
+      ->type_name("DIR");
+  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  std::signal(SIGINT, onInterrupt);
+  return run(opt);
+}

@@ -1,0 +1,479 @@
+// Bullet world construction and stepping.  Compiled with
+// BT_USE_DOUBLE_PRECISION (bullet-float64.pc) against Debian's *-float64
+// libraries.
+#include "sim/world.hpp"
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+
+#include <map>
+#include <unordered_map>
+
+#include "core/text.hpp"
+#include "sim/mesh.hpp"
+#include "sim/wire.hpp"
+
+namespace rscene::sim {
+namespace {
+
+static_assert(sizeof(btScalar) == sizeof(double), "lib/sim needs Bullet's double-precision build");
+
+btVector3 bt(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+btQuaternion bt(const Eigen::Quaterniond& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+btTransform bt(const Pose& p) { return btTransform(bt(p.orientation), bt(p.position)); }
+Eigen::Vector3d eig(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Quaterniond eig(const btQuaternion& q) { return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()); }
+
+constexpr std::uint64_t kTerrainGroup = std::uint64_t{1} << 63;
+constexpr std::uint64_t kAll = ~std::uint64_t{0};
+
+// Per collision object: its 64-bit filter and its contact-material name.
+struct BodyInfo {
+  std::uint64_t group = 1, mask = kAll;
+  int material = -1;  // index into World::Impl::materialNames, -1 = default
+};
+
+// 64-bit group/mask test.  Bullet's own broadphase filter is 32-bit.
+struct Filter : btOverlapFilterCallback {
+  const std::vector<BodyInfo>* info = nullptr;
+  bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
+    auto* oa = static_cast<btCollisionObject*>(a->m_clientObject);
+    auto* ob = static_cast<btCollisionObject*>(b->m_clientObject);
+    const BodyInfo& x = (*info)[static_cast<std::size_t>(oa->getUserIndex())];
+    const BodyInfo& y = (*info)[static_cast<std::size_t>(ob->getUserIndex())];
+    return (x.group & y.mask) != 0 && (y.group & x.mask) != 0;
+  }
+};
+
+// Per-pair contact properties, looked up when Bullet creates a contact
+// point.  Bullet's combine hooks are global function pointers, so the
+// table of the world being stepped is published per thread.
+struct PairTable {
+  double friction = 0.8, restitution = 0, rolling = 0, spinning = 0;
+  std::map<std::pair<int, int>, ContactMaterial> pairs;
+  const ContactMaterial* find(const btCollisionObject* a, const btCollisionObject* b) const {
+    int x = a->getUserIndex2(), y = b->getUserIndex2();
+    if (x < 0 || y < 0 || pairs.empty()) return nullptr;
+    auto it = pairs.find({std::min(x, y), std::max(x, y)});
+    return it == pairs.end() ? nullptr : &it->second;
+  }
+};
+thread_local const PairTable* tPairs = nullptr;
+
+btScalar combinedFriction(const btCollisionObject* a, const btCollisionObject* b) {
+  const ContactMaterial* c = tPairs ? tPairs->find(a, b) : nullptr;
+  return c ? c->friction : tPairs ? tPairs->friction : 0.8;
+}
+btScalar combinedRestitution(const btCollisionObject* a, const btCollisionObject* b) {
+  const ContactMaterial* c = tPairs ? tPairs->find(a, b) : nullptr;
+  return c ? c->restitution : tPairs ? tPairs->restitution : 0;
+}
+btScalar combinedRolling(const btCollisionObject* a, const btCollisionObject* b) {
+  const ContactMaterial* c = tPairs ? tPairs->find(a, b) : nullptr;
+  return c ? c->rollingFriction : tPairs ? tPairs->rolling : 0;
+}
+btScalar combinedSpinning(const btCollisionObject* a, const btCollisionObject* b) {
+  const ContactMaterial* c = tPairs ? tPairs->find(a, b) : nullptr;
+  return c ? c->spinningFriction : tPairs ? tPairs->spinning : 0;
+}
+
+double volumeOf(const btCollisionShape* s) {
+  btVector3 lo, hi;
+  s->getAabb(btTransform::getIdentity(), lo, hi);
+  btVector3 d = hi - lo;
+  return std::max(d.x() * d.y() * d.z(), 1e-12);
+}
+
+}  // namespace
+
+struct Simulated {
+  int recordIndex = -1;
+  std::string path;
+  btRigidBody* body = nullptr;
+  bool dynamic = true;
+  Pose parentFrame;                             // world pose of the frame the record is written in
+  btTransform toRecord = btTransform::getIdentity();  // body frame -> record frame (compound COM shift)
+  int positionToken = 2;
+};
+
+struct World::Impl {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  std::unique_ptr<btBroadphaseInterface> broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> world;
+  Filter filter;
+  PairTable pairs;
+  std::vector<BodyInfo> info;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btStridingMeshInterface>> meshData;
+  std::vector<std::unique_ptr<TriangleMesh>> meshes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<std::unique_ptr<btMotionState>> motion;
+  std::vector<std::unique_ptr<btTypedConstraint>> constraints;
+  std::vector<std::vector<double>> heights;  // terrain data must outlive its shape
+  std::vector<Simulated> simulated;
+  std::vector<Spring> springs;
+  std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
+  std::map<std::string, int> materialIndex;
+  double dt = 0.0025;
+  std::uint64_t stepCount = 0;
+  int contacts = 0;
+
+  ~Impl() {
+    if (world) {
+      for (auto& c : constraints) world->removeConstraint(c.get());
+      for (auto& b : bodies) world->removeRigidBody(b.get());
+    }
+  }
+
+  int materialOf(const std::string& name) {
+    auto it = materialIndex.find(name);
+    if (it != materialIndex.end()) return it->second;
+    int i = static_cast<int>(materialIndex.size());
+    materialIndex.emplace(name, i);
+    return i;
+  }
+
+  btCollisionShape* keep(btCollisionShape* s) {
+    shapes.emplace_back(s);
+    return s;
+  }
+
+  // Shape of a primitive; nullptr (with `error`) when it cannot be made.
+  btCollisionShape* primitive(const std::string& prim, const Eigen::Vector3d& box, double radius, double height,
+                              const std::string& meshPath, double meshScale, bool convex, std::string& error) {
+    if (prim == "box") return keep(new btBoxShape(bt(box / 2)));
+    if (prim == "sphere") return keep(new btSphereShape(radius));
+    if (prim == "cylinder") return keep(new btCylinderShapeZ(btVector3(radius, radius, height / 2)));
+    if (prim == "capsule") return keep(new btCapsuleShapeZ(radius, height));
+    if (prim == "mesh") {
+      auto mesh = std::make_unique<TriangleMesh>();
+      if (!loadMesh(meshPath, *mesh, error)) return nullptr;
+      for (double& v : mesh->vertices) v *= meshScale;
+      if (convex) {
+        auto* hull = new btConvexHullShape(mesh->vertices.data(), static_cast<int>(mesh->vertices.size() / 3),
+                                           3 * sizeof(double));
+        hull->optimizeConvexHull();
+        hull->setMargin(0.001);
+        return keep(hull);
+      }
+      if (mesh->indices.empty()) {
+        error = "mesh '" + meshPath + "' has no triangles";
+        return nullptr;
+      }
+      auto* array = new btTriangleIndexVertexArray(
+          static_cast<int>(mesh->indices.size() / 3), mesh->indices.data(), 3 * sizeof(int),
+          static_cast<int>(mesh->vertices.size() / 3), mesh->vertices.data(), 3 * sizeof(double));
+      meshData.emplace_back(array);
+      meshes.push_back(std::move(mesh));
+      return keep(new btBvhTriangleMeshShape(array, true));
+    }
+    error = "unknown primitive '" + prim + "'";
+    return nullptr;
+  }
+
+  btRigidBody* addBody(btCollisionShape* shape, const btTransform& at, BodyMode mode, double mass,
+                       const btVector3& inertiaIn, bool useInertia, const BodyInfo& filterInfo,
+                       const std::string& contactMaterial, const Solver& sv) {
+    bool dynamic = mode == BodyMode::Dynamic;
+    btVector3 inertia(0, 0, 0);
+    if (dynamic) {
+      if (useInertia) inertia = inertiaIn;
+      else shape->calculateLocalInertia(mass, inertia);
+    }
+    auto* ms = new btDefaultMotionState(at);
+    motion.emplace_back(ms);
+    btRigidBody::btRigidBodyConstructionInfo ci(dynamic ? mass : 0, ms, shape, inertia);
+    ci.m_friction = sv.defaultFriction;
+    ci.m_restitution = sv.defaultRestitution;
+    ci.m_rollingFriction = sv.defaultRollingFriction;
+    ci.m_spinningFriction = sv.defaultSpinningFriction;
+    ci.m_linearSleepingThreshold = sv.sleepingLinearVelocityThreshold;
+    ci.m_angularSleepingThreshold = sv.sleepingAngularVelocityThreshold;
+    auto* body = new btRigidBody(ci);
+    bodies.emplace_back(body);
+    if (mode == BodyMode::Kinematic) {
+      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      body->setActivationState(DISABLE_DEACTIVATION);
+    }
+    if (dynamic && !sv.sleepingEnabled) body->setActivationState(DISABLE_DEACTIVATION);
+    if (dynamic && sv.sweptCcdEnabled) {
+      btVector3 c;
+      btScalar r;
+      shape->getBoundingSphere(c, r);
+      body->setCcdMotionThreshold(std::max(sv.sweptCcdMinSpeed * dt, r * 0.5));
+      body->setCcdSweptSphereRadius(r * 0.5);
+    }
+    body->setUserIndex(static_cast<int>(info.size()));
+    BodyInfo bi = filterInfo;
+    bi.material = contactMaterial.empty() ? -1 : materialOf(contactMaterial);
+    info.push_back(bi);
+    body->setUserIndex2(bi.material);
+    world->addRigidBody(body);
+    return body;
+  }
+};
+
+World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+World::~World() = default;
+
+std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics) {
+  auto impl = std::make_unique<Impl>();
+  Impl& w = *impl;
+  const Solver& sv = scene.solver;
+  w.dt = scene.timeStep;
+  if (sv.broadphaseType == "sap3_axis" && sv.broadphaseUseWorldBounds)
+    w.broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
+  else
+    w.broadphase = std::make_unique<btDbvtBroadphase>();
+  w.world = std::make_unique<btDiscreteDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
+  w.world->setGravity(bt(scene.gravity));
+  btContactSolverInfo& si = w.world->getSolverInfo();
+  si.m_numIterations = std::max(1, sv.iterations);
+  si.m_erp = sv.erp;
+  if (sv.erp2 > 0) si.m_erp2 = sv.erp2;
+  si.m_leastSquaresResidualThreshold = sv.tolerance;
+  si.m_restitutionVelocityThreshold = sv.defaultRestitutionThreshold;
+  si.m_solverMode &= ~SOLVER_RANDMIZE_ORDER;  // deterministic order, always
+  w.filter.info = &w.info;
+  w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
+  // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
+  gDeactivationTime = std::max(1, sv.sleepingQuietSteps) * w.dt;
+
+  w.pairs.friction = sv.defaultFriction;
+  w.pairs.restitution = sv.defaultRestitution;
+  w.pairs.rolling = sv.defaultRollingFriction;
+  w.pairs.spinning = sv.defaultSpinningFriction;
+  for (const ContactMaterial& c : scene.contactMaterials) {
+    int a = w.materialOf(c.materialA), b = w.materialOf(c.materialB);
+    w.pairs.pairs[{std::min(a, b), std::max(a, b)}] = c;
+  }
+
+  auto fail = [&](const std::string& path, const std::string& message, const char* code) {
+    Diagnostic d;
+    d.code = code;
+    d.message = path + ": " + message;
+    diagnostics.push_back(std::move(d));
+    return nullptr;
+  };
+
+  for (const Object& o : scene.objects) {
+    if (o.bodyMode == BodyMode::VisualOnly) continue;
+    BodyInfo fi{o.collisionGroup, o.collisionMask, -1};
+    btRigidBody* body = nullptr;
+    if (o.primitive == "ground" || o.primitive == "half_space") {
+      btCollisionShape* plane = w.keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
+      body = w.addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
+    } else {
+      std::string error;
+      bool convex = o.bodyMode != BodyMode::Static;
+      Eigen::Vector3d box = o.scale;
+      btCollisionShape* shape = w.primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
+                                            o.collisionMeshPath, o.meshScale(), convex, error);
+      if (!shape) return fail(o.path, error, scene_code::kBadMesh);
+      btVector3 inertia(0, 0, 0);
+      double mass = o.effectiveMass();
+      body = w.addBody(shape, bt(o.world), o.bodyMode, mass, inertia, false, fi, o.contactMaterial, sv);
+    }
+    w.byName[o.id] = body;
+    w.byName[o.path] = body;
+    if (o.bodyMode == BodyMode::Dynamic || o.bodyMode == BodyMode::Kinematic) {
+      Simulated s;
+      s.recordIndex = o.recordIndex;
+      s.path = o.path;
+      s.body = body;
+      s.dynamic = o.bodyMode == BodyMode::Dynamic;
+      s.parentFrame = o.world * o.local.inverse();
+      s.positionToken = o.positionToken;
+      w.simulated.push_back(s);
+    }
+  }
+
+  for (const Compound& c : scene.compounds) {
+    if (c.bodyMode == BodyMode::VisualOnly || c.children.empty()) continue;
+    // Child shapes about the centre of mass: given, or volume-weighted.
+    std::vector<std::pair<btCollisionShape*, btTransform>> parts;
+    std::vector<double> volumes;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    double total = 0;
+    for (const CompoundChild& ch : c.children) {
+      Eigen::Vector3d s = ch.scale.cwiseProduct(c.scale);
+      Eigen::Vector3d box = ch.size.isZero() ? s : ch.size.cwiseProduct(s);
+      std::string error;
+      btCollisionShape* shape = w.primitive(ch.primitive, box, ch.radius * s.x(), ch.height * s.z(), ch.meshPath,
+                                            s.mean(), true, error);
+      if (!shape) return fail(c.path, error, scene_code::kBadMesh);
+      Pose local = ch.local;
+      local.position = local.position.cwiseProduct(c.scale);
+      parts.emplace_back(shape, bt(local));
+      double v = volumeOf(shape);
+      volumes.push_back(v);
+      centroid += v * local.position;
+      total += v;
+    }
+    Eigen::Vector3d com = c.hasCenterOfMass ? c.centerOfMass : Eigen::Vector3d(centroid / total);
+    auto* compound = new btCompoundShape();
+    w.keep(compound);
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+    double mass = c.bodyMode == BodyMode::Dynamic ? c.mass : (c.mass > 0 ? c.mass : 1.0);
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      btTransform t = parts[i].second;
+      t.setOrigin(t.getOrigin() - bt(com));
+      compound->addChildShape(t, parts[i].first);
+      double m = mass * volumes[i] / total;
+      btVector3 li;
+      parts[i].first->calculateLocalInertia(m, li);
+      Eigen::Matrix3d r = eig(t.getRotation()).toRotationMatrix();
+      Eigen::Vector3d d = eig(t.getOrigin());
+      inertia += r * Eigen::Vector3d(li.x(), li.y(), li.z()).asDiagonal() * r.transpose() +
+                 m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    }
+    btVector3 diag = c.hasInertia ? bt(c.inertiaDiagonal) : btVector3(inertia(0, 0), inertia(1, 1), inertia(2, 2));
+    btTransform comShift(btQuaternion::getIdentity(), bt(com));
+    BodyInfo fi{c.collisionGroup, c.collisionMask, -1};
+    btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
+                                  c.contactMaterial, sv);
+    w.byName[c.id] = body;
+    w.byName[c.path] = body;
+    if (c.bodyMode == BodyMode::Dynamic || c.bodyMode == BodyMode::Kinematic) {
+      Simulated s;
+      s.recordIndex = c.recordIndex;
+      s.path = c.path;
+      s.body = body;
+      s.dynamic = c.bodyMode == BodyMode::Dynamic;
+      s.parentFrame = c.world * c.local.inverse();
+      s.toRecord = comShift.inverse();
+      s.positionToken = c.positionToken;
+      w.simulated.push_back(s);
+    }
+  }
+
+  for (const Terrain& t : scene.terrains) {
+    if (!t.collidable) continue;
+    w.heights.push_back(t.heights);
+    const std::vector<double>& h = w.heights.back();
+    auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+    double minH = *lo, maxH = *hi;
+    auto* shape = new btHeightfieldTerrainShape(t.xSamples, t.ySamples, h.data(), minH, maxH, 2, false);
+    shape->setLocalScaling(btVector3(t.xSize / (t.xSamples - 1), t.ySize / (t.ySamples - 1), 1));
+    w.keep(shape);
+    // Bullet centres a height field on its bounding box.
+    btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
+    BodyInfo fi{kTerrainGroup, kAll, -1};
+    btRigidBody* body = w.addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
+    w.byName[t.id] = body;
+    w.byName[t.path] = body;
+  }
+
+  for (const Wire& wire : scene.wires) {
+    if (!wire.enabled) continue;
+    auto find = [&](const std::string& ref) -> btRigidBody* {
+      auto it = w.byName.find(ref);
+      return it == w.byName.end() ? nullptr : it->second;
+    };
+    btRigidBody* a = find(wire.bodyA);
+    btRigidBody* b = find(wire.bodyB);
+    if (!a && !b) continue;  // checkPhysics reported it
+    // Attachment points are given in the record frame; compounds simulate
+    // about their centre of mass.
+    auto local = [&](btRigidBody* body, const Eigen::Vector3d& p) {
+      for (const Simulated& s : w.simulated)
+        if (s.body == body) return s.toRecord.inverse() * bt(p);
+      return bt(p);
+    };
+    if (!a) {  // the world is body A: keep the dynamic one first
+      std::swap(a, b);
+      Eigen::Vector3d pa = wire.localPositionB, pb = wire.localPositionA;
+      btVector3 anchor = b ? local(b, pb) : bt(pb);
+      if (wire.kind == "compliant") w.springs.push_back({a, b, local(a, pa), anchor, wire.length, wire.stiffness, wire.damping});
+      else {
+        auto* c = new RopeConstraint(*a, b, local(a, pa), anchor, wire.length);
+        w.constraints.emplace_back(c);
+        w.world->addConstraint(c, true);
+      }
+      continue;
+    }
+    btVector3 pa = local(a, wire.localPositionA);
+    btVector3 pb = b ? local(b, wire.localPositionB) : bt(wire.localPositionB);
+    if (wire.kind == "compliant") {
+      w.springs.push_back({a, b, pa, pb, wire.length, wire.stiffness, wire.damping});
+    } else {
+      auto* c = new RopeConstraint(*a, b, pa, pb, wire.length);
+      w.constraints.emplace_back(c);
+      w.world->addConstraint(c, true);
+    }
+  }
+  return std::unique_ptr<World>(new World(std::move(impl)));
+}
+
+void World::step() {
+  Impl& w = *impl_;
+  for (const Spring& s : w.springs) s.apply();
+  gCalculateCombinedFrictionCallback = combinedFriction;
+  gCalculateCombinedRestitutionCallback = combinedRestitution;
+  gCalculateCombinedRollingFrictionCallback = combinedRolling;
+  gCalculateCombinedSpinningFrictionCallback = combinedSpinning;
+  tPairs = &w.pairs;
+  w.world->stepSimulation(w.dt, 0, w.dt);
+  tPairs = nullptr;
+  ++w.stepCount;
+  int n = 0;
+  for (int i = 0, m = w.dispatcher.getNumManifolds(); i < m; ++i)
+    n += w.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
+  w.contacts = n;
+}
+
+double World::time() const { return static_cast<double>(impl_->stepCount) * impl_->dt; }
+std::uint64_t World::steps() const { return impl_->stepCount; }
+double World::timeStep() const { return impl_->dt; }
+int World::bodyCount() const { return static_cast<int>(impl_->simulated.size()); }
+int World::contactCount() const { return impl_->contacts; }
+
+bool World::atRest() const {
+  for (const Simulated& s : impl_->simulated)
+    if (s.dynamic && s.body->isActive()) return false;
+  return true;
+}
+
+std::vector<BodyState> World::states() const {
+  std::vector<BodyState> out;
+  out.reserve(impl_->simulated.size());
+  for (const Simulated& s : impl_->simulated) {
+    BodyState b;
+    b.recordIndex = s.recordIndex;
+    b.path = s.path;
+    btTransform t = s.body->getWorldTransform() * s.toRecord;
+    b.position = eig(t.getOrigin());
+    b.orientation = eig(t.getRotation()).normalized();
+    b.linearVelocity = eig(s.body->getLinearVelocity());
+    b.angularVelocity = eig(s.body->getAngularVelocity());
+    b.dynamic = s.dynamic;
+    b.sleeping = !s.body->isActive();
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+void World::writeBack(Document& doc) const {
+  std::string num;
+  for (const Simulated& s : impl_->simulated) {
+    if (!s.dynamic) continue;  // kinematic bodies have no velocity in the format: they stay put
+    btTransform t = s.body->getWorldTransform() * s.toRecord;
+    Pose world{eig(t.getOrigin()), eig(t.getRotation()).normalized()};
+    Pose local = s.parentFrame.inverse() * world;
+    if (local.orientation.w() < 0) local.orientation.coeffs() *= -1;  // one spelling per rotation
+    const Record& rec = doc.records[static_cast<std::size_t>(s.recordIndex)];
+    double values[7] = {local.position.x(), local.position.y(), local.position.z(), local.orientation.w(),
+                        local.orientation.x(), local.orientation.y(), local.orientation.z()};
+    for (int k = 0; k < 7; ++k) {
+      const Field* f = doc.positional(rec, static_cast<std::uint32_t>(s.positionToken + k));
+      if (!f) continue;
+      num.clear();
+      appendNumber(num, values[k] == 0 ? 0.0 : values[k]);  // no "-0"
+      doc.setValue(static_cast<std::uint32_t>(f - doc.fields.data()), num);
+    }
+  }
+}
+
+}  // namespace rscene::sim
