@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json", "sarif"}))
       ->type_name("FORMAT");
   app.add_flag("--strict", opt.strict, "Fail (exit 1) on warnings too");
-  app.add_option("--ignore", opt.ignore, "Do not report these codes")->delimiter(',')->type_name("CODE,...");
-  app.add_option("--only", opt.only, "Report only these codes")->delimiter(',')->type_name("CODE,...");
+  app.add_option("--ignore", opt.ignore, "Do not report these codes")->delimiter(',')->type_name("CODE,...")->allow_extra_args(false);
+  app.add_option("--only", opt.only, "Report only these codes")->delimiter(',')->type_name("CODE,...")->allow_extra_args(false);
   app.add_option("--max-issues", opt.maxIssues, "Show at most N findings (the summary counts all)")
       ->type_name("N")
       ->check(CLI::PositiveNumber);

@@ -1,0 +1,177 @@
+#!/usr/bin/env bats
+# End-to-end tests of rscene-validate: output, exit status, every flag.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+DATA="$BATS_TEST_DIRNAME/../tests/data"
+CORPUS="$BATS_TEST_DIRNAME/../../shared/corpus"
+V="$BIN/rscene-validate"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$V" ] || skip "rscene-validate not built in $BIN"
+  export NO_COLOR=1
+  cd "$BATS_TEST_TMPDIR"
+}
+
+@test "a clean scene: exit 0, no output, summary on stderr" {
+  run --separate-stderr "$V" "$DATA/validate_clean.rscene"
+  [ "$status" -eq 0 ]
+  [ -z "$output" ]
+  [ "$stderr" = "no issues in 1 file" ]
+}
+
+@test "errors: file:line:col, source line, caret, hint; exit 1" {
+  run --separate-stderr "$V" "$DATA/validate_errors.rscene"
+  [ "$status" -eq 1 ]
+  [ "${lines[0]}" = "$DATA/validate_errors.rscene:2:47: error: dynamic body has mass 0 [RS4008]" ]
+  [ "${lines[2]}" = "                                                ^" ]
+  [ "${lines[3]}" = "  hint: give it a positive mass, or make it static or kinematic" ]
+  [[ "$output" == *"3:27: warning: unknown key 'colour' for light [RS3002]"* ]]
+  [[ "$output" == *'hint: did you mean `color`?'* ]]
+  [ "$stderr" = "2 errors, 1 warning in 1 file" ]
+}
+
+@test "warnings pass unless --strict" {
+  run "$V" "$DATA/validate_warnings.rscene"
+  [ "$status" -eq 0 ]
+  run "$V" --strict "$DATA/validate_warnings.rscene"
+  [ "$status" -eq 1 ]
+}
+
+@test "syntax errors from the loader are findings" {
+  run --separate-stderr "$V" "$DATA/validate_syntax.rscene"
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == *":2:10: error: time_step has 0 positional fields, expected 1 [RS1007]" ]]
+}
+
+@test "many files in one call, counted in the summary" {
+  run --separate-stderr "$V" "$DATA/validate_clean.rscene" "$DATA/validate_errors.rscene" "$DATA/validate_warnings.rscene"
+  [ "$status" -eq 1 ]
+  [ "$stderr" = "2 errors, 2 warnings in 3 files" ]
+}
+
+@test "stdin with no operand and with -, named by --stdin-filename" {
+  run --separate-stderr "$V" < "$DATA/validate_warnings.rscene"
+  [ "$status" -eq 0 ]
+  [[ "${lines[0]}" == "<stdin>:2:27: warning: "* ]]
+  run --separate-stderr "$V" --stdin-filename scenes/w.rscene - < "$DATA/validate_warnings.rscene"
+  [[ "${lines[0]}" == "scenes/w.rscene:2:27: warning: "* ]]
+}
+
+@test "--ignore and --only filter codes; unknown codes are usage errors" {
+  run --separate-stderr "$V" --ignore RS4008,RS3008 "$DATA/validate_errors.rscene"
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "1 warning in 1 file" ]
+  run --separate-stderr "$V" --only RS3002 "$DATA/validate_errors.rscene"
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "1 warning in 1 file" ]
+  run --separate-stderr "$V" --only RS9999 "$DATA/validate_errors.rscene"
+  [ "$status" -eq 2 ]
+  [ "$stderr" = "rscene-validate: error: unknown code 'RS9999' in --only (see --list-checks)" ]
+}
+
+@test "--max-issues limits what is shown, not what is counted" {
+  run --separate-stderr "$V" --max-issues 1 "$DATA/validate_errors.rscene"
+  [ "$status" -eq 1 ]
+  [ "$(printf '%s\n' "$output" | grep -c '^/')" -eq 1 ]
+  [ "$stderr" = "2 errors, 1 warning in 1 file (2 not shown)" ]
+}
+
+@test "--list-checks prints every code with its severity" {
+  run "$V" --list-checks
+  [ "$status" -eq 0 ]
+  [[ "${lines[0]}" == "RS1001  error    missing raisim_engine_scene header" ]]
+  [[ "$output" == *"RS3002  warning  unknown key (kept and ignored)"* ]]
+  [[ "$output" == *"RS6001  error    record kind RaiSim does not load"* ]]
+}
+
+@test "--format json: one document with findings, counts and truncated" {
+  command -v jq >/dev/null || skip "jq not installed"
+  run --separate-stderr "$V" --format json --max-issues 2 "$DATA/validate_errors.rscene"
+  [ "$status" -eq 1 ]
+  [ "$(jq -r '.counts.errors, .counts.warnings, .truncated' <<<"$output" | tr '\n' ' ')" = "2 1 true " ]
+  [ "$(jq -r '.files[0].findings[1] | [.code, .severity, .line, .column, .tag, .field] | join(" ")' <<<"$output")" = "RS3008 error 2 57 object material" ]
+  [ "$(jq -r '.files[0].findings[0].hint' <<<"$output")" = "give it a positive mass, or make it static or kinematic" ]
+}
+
+@test "--format sarif: 2.1.0 with rules and regions" {
+  command -v jq >/dev/null || skip "jq not installed"
+  run --separate-stderr "$V" --format sarif "$DATA/validate_errors.rscene"
+  [ "$status" -eq 1 ]
+  [ "$(jq -r '.version' <<<"$output")" = "2.1.0" ]
+  [ "$(jq -r '.runs[0].results[0] | [.ruleId, .level, .locations[0].physicalLocation.region.startLine, .locations[0].physicalLocation.region.startColumn] | join(" ")' <<<"$output")" = "RS4008 error 2 47" ]
+  [ "$(jq -r '.runs[0].results[0] as $r | .runs[0].tool.driver.rules[$r.ruleIndex].id' <<<"$output")" = "RS4008" ]
+  [ "$(jq '.runs[0].tool.driver.rules | length' <<<"$output")" -eq "$("$V" --list-checks | wc -l)" ]
+}
+
+@test "--profile raisim adds what RaiSim refuses" {
+  run "$V" "$DATA/validate_raisim.rscene"
+  [ "$status" -eq 0 ]
+  run --separate-stderr "$V" --profile raisim "$DATA/validate_raisim.rscene"
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == *":2:1: error: RaiSim does not load point_cloud records [RS6001]" ]]
+  run "$V" --profile bullet "$DATA/validate_raisim.rscene"
+  [ "$status" -eq 2 ]
+}
+
+@test "--check-files resolves asset paths; --base-dir places stdin" {
+  run "$V" "$DATA/validate_mesh.rscene"
+  [ "$status" -eq 0 ]
+  run --separate-stderr "$V" --check-files "$DATA/validate_mesh.rscene"
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == *"error: file 'validate_missing_mesh.obj' does not exist (resolved to '$DATA/./validate_missing_mesh.obj')"* || "${lines[0]}" == *"error: file 'validate_missing_mesh.obj' does not exist"* ]]
+  mkdir -p here && touch here/validate_missing_mesh.obj
+  run "$V" --check-files --base-dir here - < "$DATA/validate_mesh.rscene"
+  [ "$status" -eq 0 ]
+  run "$V" --check-files --stdin-filename here/scene.rscene < "$DATA/validate_mesh.rscene"
+  [ "$status" -eq 0 ]
+  run "$V" --check-files < "$DATA/validate_mesh.rscene"
+  [ "$status" -eq 1 ]
+}
+
+@test "--color always colors, NO_COLOR and pipes do not" {
+  run "$V" --color always "$DATA/validate_warnings.rscene"
+  [[ "$output" == *$'\033['* ]]
+  run "$V" "$DATA/validate_warnings.rscene"
+  [[ "$output" != *$'\033['* ]]
+  run "$V" --color never "$DATA/validate_warnings.rscene"
+  [[ "$output" != *$'\033['* ]]
+}
+
+@test "an unreadable file is trouble (exit 2), the others are still checked" {
+  run --separate-stderr "$V" missing.rscene "$DATA/validate_clean.rscene"
+  [ "$status" -eq 2 ]
+  [[ "$stderr" == "rscene-validate: error: cannot read 'missing.rscene': "* ]]
+  [[ "$stderr" == *"no issues in 1 file" ]]
+}
+
+@test "binary garbage is a finding, not a crash" {
+  head -c 4096 /dev/urandom > junk.rscene
+  run "$V" junk.rscene
+  [ "$status" -eq 1 ]
+}
+
+@test "--help and --version" {
+  run "$V" --help
+  [ "$status" -eq 0 ]
+  [[ "$output" == *"--format"* ]]
+  run "$V" --version
+  [ "$status" -eq 0 ]
+  [[ "$output" == "rscene-validate "* ]]
+  run "$V" --bogus
+  [ "$status" -eq 2 ]
+}
+
+@test "the real corpus has no errors" {
+  [ -d "$CORPUS" ] || skip "no corpus"
+  run --separate-stderr "$V" "$CORPUS"/*.rscene
+  [ "$status" -eq 0 ]
+  [[ "$stderr" == "no issues in "* ]]
+}
+
+@test "the man page lists every code" {
+  for code in $("$V" --list-checks | cut -d' ' -f1); do
+    grep -q "$code" "$BATS_TEST_DIRNAME/../man/rscene-validate.1" || { echo "missing $code"; return 1; }
+  done
+}
