@@ -452,7 +452,7 @@ class Reader {
     Frame& f = stack_.back();
     if (f.value->contains(k)) return schemaError(pointer() + "/" + escapePointer(k), "duplicate member '" + k + "'");
     f.key = k;
-    if (inRecord()) offsets_[pointer() + "/" + escapePointer(k)] = here();
+    if (inRecord()) offsets_[pointer() + "/" + escapePointer(k)] = keyStart();
     return true;
   }
   bool end_object() { return close(); }
@@ -473,6 +473,14 @@ class Reader {
   };
 
   std::size_t here() const { return static_cast<std::size_t>(position_ - text_.data()); }
+  // Offset (1-based) of the opening quote of the member name just read.
+  std::size_t keyStart() const {
+    std::size_t i = std::min(here(), text_.size());
+    while (i > 0 && text_[i - 1] != '"') --i;  // the closing quote
+    if (i > 0) --i;
+    while (i > 0 && !(text_[i - 1] == '"' && (i < 2 || text_[i - 2] != '\\'))) --i;
+    return i;
+  }
   // Directly inside root.records: the frame depth of a record is 3.
   bool atRecords() const { return stack_.size() == 2 && stack_[0].key == "records" && stack_[1].value->is_array(); }
   bool inRecord() const { return stack_.size() >= 3 && stack_[0].key == "records"; }
