@@ -1,0 +1,166 @@
+// rscene-render: headless EGL render of a scene's camera to PNG, with an
+// optional comparison against a baseline image.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "common/cli.hpp"
+#include "core/assets.hpp"
+#include "core/loader.hpp"
+#include "render/camera.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+#include "render/render_scene.hpp"
+#include "render/renderer.hpp"
+#include "rscene-render/baseline.hpp"
+
+namespace {
+
+using namespace rscene;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string file = "-", output, stdinName, baseDir, camera, backend = "auto";
+  int width = 0, height = 0, samples = 4;
+  bool transparent = false, allowMissing = false, verbose = false;
+  render_cli::BaselineOptions baseline;
+};
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string skippedLine(const std::map<std::string, int>& skipped) {
+  std::string s;
+  for (const auto& [kind, n] : skipped) s += (s.empty() ? "" : ", ") + kind + " (" + std::to_string(n) + ")";
+  return s;
+}
+
+int run(const Options& opt) {
+  bool color = cli::colorFor(2);
+  cli::Input in;
+  if (!cli::readInput(opt.file, opt.stdinName, in)) return cli::kTrouble;
+  std::string text = in.text;
+  LoadResult loaded = parse(std::move(text));
+  cli::printDiagnostics(loaded.diagnostics, in.display, in.text, color);
+  if (!loaded.ok()) return cli::kTrouble;
+
+  auto tBuild = Clock::now();
+  render::SceneOptions so;
+  so.sceneDir = !opt.baseDir.empty() ? opt.baseDir : in.path.empty() ? "." : directoryOf(in.path);
+  render::RenderScene scene;
+  Diagnostics diags;
+  render::buildRenderScene(loaded.document, so, scene, diags);
+  cli::printDiagnostics(diags, in.display, in.text, color);
+  if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
+
+  render::Camera camera;
+  std::string err;
+  if (!render::chooseCamera(scene, opt.camera, camera, &err)) {
+    cli::error(err);
+    return cli::kTrouble;
+  }
+  render::RenderOptions ro;
+  ro.width = opt.width > 0 ? opt.width : camera.width > 0 ? camera.width : 1280;
+  ro.height = opt.height > 0 ? opt.height : camera.height > 0 ? camera.height : 720;
+  ro.samples = opt.samples;
+  ro.transparent = opt.transparent;
+  ro.allowMissingAssets = opt.allowMissing;
+  double aspect = double(ro.width) / ro.height;
+  if (camera.path == "auto") camera = render::autoCamera(scene, aspect);
+  if (!render::seesAnything(scene, camera, aspect))
+    cli::warning("camera '" + camera.path + "' sees none of the scene's geometry");
+  double buildSeconds = since(tBuild);
+
+  auto tStart = Clock::now();
+  render::Backend backend = opt.backend == "gpu" ? render::Backend::Gpu
+                            : opt.backend == "cpu" ? render::Backend::Cpu
+                                                   : render::Backend::Auto;
+  auto context = render::GlContext::create(backend, &err);
+  if (!context) {
+    cli::error("cannot create an OpenGL context (--backend " + opt.backend + "): " + err);
+    return cli::kTrouble;
+  }
+  double startSeconds = since(tStart);
+  if (opt.verbose) {
+    const render::ContextInfo& i = context->info();
+    std::cerr << cli::toolName() << ": backend " << i.backend << " via EGL " << i.platform
+              << (i.device.empty() ? "" : " " + i.device) << ", EGL vendor " << i.eglVendor << ", GL vendor "
+              << i.vendor << ", renderer " << i.renderer << ", " << i.version << '\n';
+  }
+
+  render::Image image;
+  render::RenderTimings timings;
+  diags.clear();
+  bool ok = render::renderScene(scene, camera, ro, image, diags, &timings);
+  cli::printDiagnostics(diags, in.display, in.text, color);
+  if (!ok) return cli::kTrouble;
+  auto tEncode = Clock::now();
+  std::string png = render::encodePng(image);
+  double encodeSeconds = since(tEncode);
+  if (opt.verbose) {
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "%s: %dx%d, %zu objects; start-up %.3f s, scene build %.3f s, upload %.3f s, drawing %.3f s, "
+                  "png encoding %.3f s\n",
+                  cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), startSeconds, buildSeconds,
+                  timings.uploadSeconds, timings.drawSeconds, encodeSeconds);
+    std::cerr << line;
+  }
+  if (!opt.output.empty() && !cli::writeOutput(opt.output, [&](Sink& s) {
+        s.write(png);
+        return true;
+      }))
+    return cli::kTrouble;
+  if (opt.baseline.reference.empty()) return cli::kSuccess;
+  return render_cli::checkBaseline(image, png, opt.baseline);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Render a .rscene scene headlessly (EGL, no window system) to a PNG image."};
+  cli::setup(app, "rscene-render");
+  Options opt;
+  app.add_option("file", opt.file, "Scene file; none or - reads standard input")->type_name("FILE");
+  app.add_option("-o,--output", opt.output, "Write the PNG to FILE (atomically); - writes standard output")
+      ->type_name("FILE");
+  app.add_option("--width", opt.width, "Image width in pixels (default: the camera's, else 1280)")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--height", opt.height, "Image height in pixels (default: the camera's, else 720)")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--samples", opt.samples, "Multisample anti-aliasing samples per pixel (default 4)")
+      ->check(CLI::Range(1, 64));
+  app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
+  app.add_option("--backend", opt.backend, "auto (GPU if one answers, else CPU), gpu (EGL device) or cpu (llvmpipe)")
+      ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
+  app.add_option("--camera", opt.camera, "Camera path or id, or auto for a three-quarter view of everything")
+      ->type_name("PATH|ID|auto");
+  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
+      ->type_name("PATH");
+  app.add_option("--base-dir", opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder")
+      ->type_name("DIR");
+  app.add_flag("--allow-missing-assets", opt.allowMissing,
+               "Draw a magenta placeholder box for a missing mesh or texture and warn, instead of failing");
+  app.add_option("--reference", opt.baseline.reference,
+                 "Compare with baseline PNG FILE; exit 1 above --threshold; a missing FILE is written")
+      ->type_name("FILE");
+  app.add_option("--threshold", opt.baseline.threshold,
+                 "Largest accepted fraction (0..1) of pixels differing by more than 16/255 (default 0.01)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--diff-output", opt.baseline.diffOutput, "With --reference, write a difference image to FILE")
+      ->type_name("FILE");
+  app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");
+  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+
+  if (opt.output.empty() && opt.baseline.reference.empty()) {
+    cli::error("nothing to write: give -o FILE (-o - for standard output) or --reference FILE");
+    return cli::kTrouble;
+  }
+  if (!opt.baseline.diffOutput.empty() && opt.baseline.reference.empty()) {
+    cli::error("--diff-output needs --reference");
+    return cli::kTrouble;
+  }
+  opt.baseline.reportToStderr = opt.output == "-";
+  return run(opt);
+}

@@ -1,0 +1,132 @@
+#include "render/camera.hpp"
+
+#include <cmath>
+
+namespace rscene::render {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double radians(double d) { return d * kPi / 180; }
+}  // namespace
+
+bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera& out, std::string* error) {
+  if (selector == "auto") {
+    out = autoCamera(scene, 16.0 / 9.0);
+    return true;
+  }
+  if (selector.empty()) {
+    for (const Camera& c : scene.cameras)
+      if (c.enabled) {
+        out = c;
+        return true;
+      }
+    out = autoCamera(scene, 16.0 / 9.0);
+    return true;
+  }
+  for (const Camera& c : scene.cameras)
+    if (c.path == selector || c.id == selector) {
+      out = c;
+      return true;
+    }
+  if (error) *error = "no camera with path or id '" + selector + "'";
+  return false;
+}
+
+Camera autoCamera(const RenderScene& scene, double aspect) {
+  Camera c;
+  c.path = "auto";
+  c.verticalFov = 50;
+  Eigen::AlignedBox3d box = scene.bounds;
+  if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
+  Eigen::Vector3d center = box.center();
+  double radius = std::max(0.5 * box.diagonal().norm(), 0.25);
+  double vfov = radians(c.verticalFov);
+  double hfov = 2 * std::atan(std::tan(vfov / 2) * aspect);
+  double distance = radius / std::sin(std::min(vfov, hfov) / 2) * 1.3;
+  // From the front-left and a little above (azimuth -135 degrees from +x,
+  // 15 up) so the horizon and some sky stay in the frame.
+  const double pitch = radians(15);
+  Eigen::Vector3d toCamera = Eigen::Vector3d(-std::cos(pitch) * std::cos(radians(45)),
+                                             -std::cos(pitch) * std::sin(radians(45)), std::sin(pitch));
+  c.position = center + distance * toCamera;
+  Eigen::Vector3d forward = -toCamera;
+  Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(forward).normalized();
+  Eigen::Vector3d up = forward.cross(left);
+  Eigen::Matrix3d r;
+  r.col(0) = forward, r.col(1) = left, r.col(2) = up;  // local +x forward, +y left, +z up
+  c.orientation = Eigen::Quaterniond(r);
+  c.nearPlane = std::max(0.01, (distance - radius) * 0.2);
+  c.farPlane = (distance + radius) * 50 + 500;
+  return c;
+}
+
+Eigen::Matrix4d viewMatrix(const Camera& camera) {
+  Eigen::Matrix3d r = camera.orientation.normalized().toRotationMatrix();
+  Eigen::Vector3d forward = r.col(0), up = r.col(2);
+  Eigen::Vector3d right = forward.cross(up);
+  Eigen::Matrix4d v = Eigen::Matrix4d::Identity();
+  v.block<1, 3>(0, 0) = right.transpose();
+  v.block<1, 3>(1, 0) = up.transpose();
+  v.block<1, 3>(2, 0) = -forward.transpose();
+  v.block<3, 1>(0, 3) = -v.block<3, 3>(0, 0) * camera.position;
+  return v;
+}
+
+double effectiveVerticalFov(const Camera& camera, double aspect) {
+  double vfov = std::clamp(camera.verticalFov, 1.0, 175.0);
+  if (camera.horizontalFov > 0) {
+    double h = radians(std::clamp(camera.horizontalFov, 1.0, 175.0));
+    vfov = std::clamp(2 * std::atan(std::tan(h / 2) / aspect) * 180 / kPi, 1.0, 175.0);
+  }
+  return vfov;
+}
+
+Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect) {
+  double n = camera.nearPlane, f = camera.farPlane;
+  Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
+  if (camera.orthographic) {
+    double h = std::max(camera.orthoScale, 1e-6) / 2, w = h * aspect;
+    p(0, 0) = 1 / w;
+    p(1, 1) = 1 / h;
+    p(2, 2) = -2 / (f - n);
+    p(2, 3) = -(f + n) / (f - n);
+    p(3, 3) = 1;
+    return p;
+  }
+  double t = 1 / std::tan(radians(effectiveVerticalFov(camera, aspect)) / 2);
+  p(0, 0) = t / aspect;
+  p(1, 1) = t;
+  p(2, 2) = -(f + n) / (f - n);
+  p(2, 3) = -2 * f * n / (f - n);
+  p(3, 2) = -1;
+  return p;
+}
+
+bool seesAnything(const RenderScene& scene, const Camera& camera, double aspect) {
+  Eigen::Matrix4d m = projectionMatrix(camera, aspect) * viewMatrix(camera);
+  auto visible = [&](const Eigen::AlignedBox3d& b) {
+    if (b.isEmpty()) return false;
+    // Outside when all 8 corners are beyond the same clip plane.
+    for (int plane = 0; plane < 6; ++plane) {
+      bool allOut = true;
+      for (int i = 0; i < 8 && allOut; ++i) {
+        Eigen::Vector4d c = m * b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)).homogeneous();
+        int axis = plane / 2;
+        double s = plane % 2 ? -1 : 1;
+        if (s * c[axis] <= c.w()) allOut = false;
+      }
+      if (allOut) return false;
+    }
+    return true;
+  };
+  for (const Drawable& d : scene.drawables)
+    if (visible(d.bounds)) return true;
+  for (const Terrain& t : scene.terrains)
+    if (visible(t.bounds)) return true;
+  for (const Instanced& b : scene.instanced)
+    if (visible(b.bounds)) return true;
+  for (const PointCloud& p : scene.pointClouds)
+    if (visible(p.bounds)) return true;
+  return false;
+}
+
+}  // namespace rscene::render

@@ -1,0 +1,30 @@
+// Draws a RenderScene from one camera into an RGBA8 image with the current
+// EGL context (gl_context.hpp): shadow map of the main light, an MSAA HDR
+// pass, then background, exposure, tone mapping and gamma.
+#pragma once
+#include <string>
+
+#include "core/diagnostic.hpp"
+#include "render/image.hpp"
+#include "render/render_scene.hpp"
+
+namespace rscene::render {
+
+struct RenderOptions {
+  int width = 1280, height = 720;
+  int samples = 4;            // clamped to what the driver offers
+  bool transparent = false;   // alpha 0 where no geometry covers a pixel
+  bool allowMissingAssets = false;  // placeholder box + warning instead of an error
+};
+
+struct RenderTimings {
+  double uploadSeconds = 0;  // meshes, textures, instance buffers
+  double drawSeconds = 0;    // passes and read-back
+};
+
+// Renders; false (with an error diagnostic naming the record's line) when
+// an asset is missing or unreadable and !allowMissingAssets, or GL fails.
+bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
+                 Diagnostics& diags, RenderTimings* timings = nullptr);
+
+}  // namespace rscene::render
