@@ -49,10 +49,15 @@ std::vector<std::uint32_t> canonicalOrder(const Document& doc) {
       }
     } else if (k) {
       auto it = parents.find({k->parentTag, percentDecode(doc.positionalText(r, 0))});
-      if (it != parents.end())
+      if (it != parents.end()) {
         group[i] = it->second;
-      else
-        joinPrevious();  // an orphan stays where it was; validate reports it
+      } else {
+        // An orphan (no parent before it; validate reports it) sorts as a
+        // group of its own with its parent's rank.  It then keeps its place
+        // relative to a parent that comes later, so fmt stays idempotent.
+        group[i] = static_cast<std::uint32_t>(groupRank.size());
+        groupRank.push_back(k->rank);
+      }
     } else {
       joinPrevious();
     }

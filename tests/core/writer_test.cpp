@@ -95,3 +95,20 @@ TEST(Writer, EditsAppendToTheBufferAndKeepOtherFields) {
   EXPECT_EQ(canonicalText(d),
             "raisim_engine_scene 1\ngravity 0 0 -9.81\nlight /World/L 0 0 -1 2.5 id=l2 color=1,0,0\n");
 }
+
+TEST(Writer, AnOrphanChildKeepsItsPlaceBeforeALaterParent) {
+  // Found by the fuzzer: the orphan used to travel with the record before
+  // it, and met its parent only on the second pass.
+  std::string in =
+      "raisim_engine_scene 1\n"
+      "wire /World/Tether stiff a b 2\n"
+      "compound_child /World/Cart box 0 0 0 1 0 0 0 1 1 1\n"
+      "compound /World/Cart 1.5 0 0.3 1 0 0 0 1 1 1 12 dynamic true true\n";
+  std::string once = fmt(in);
+  EXPECT_EQ(once,
+            "raisim_engine_scene 1\n"
+            "compound_child /World/Cart box 0 0 0 1 0 0 0 1 1 1\n"
+            "compound /World/Cart 1.5 0 0.3 1 0 0 0 1 1 1 12 dynamic true true\n"
+            "wire /World/Tether stiff a b 2\n");
+  EXPECT_EQ(fmt(once), once);
+}
