@@ -1,0 +1,102 @@
+#include "rscene-diff/render.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <map>
+
+namespace rscene::diffout {
+namespace {
+
+const char* kGreen = "\033[32m";
+const char* kRed = "\033[31m";
+const char* kYellow = "\033[33m";
+const char* kReset = "\033[0m";
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string summary(const FieldDiff& f) {
+  if (f.oldCount != f.newCount) {
+    std::string s = std::to_string(f.oldCount) + " -> " + std::to_string(f.newCount) + " values";
+    if (f.changedCount) s += ", " + std::to_string(f.changedCount) + " of the common values changed";
+    return s;
+  }
+  std::string s = std::to_string(f.newCount) + " values, " + std::to_string(f.changedCount) + " changed";
+  if (f.maxDelta > 0) s += ", max |delta| " + number(f.maxDelta);
+  return s;
+}
+
+std::string label(const RecordDiff& r) {
+  std::string s = r.tag;
+  if (!r.path.empty()) s += " " + r.path;
+  else if (!r.key.empty() && r.key != r.tag) s += " " + r.key;
+  if (r.renamed()) {
+    std::string_view from = r.oldPath, to = r.path;
+    std::string_view fromDir = from.substr(0, from.rfind('/') + 1), toDir = to.substr(0, to.rfind('/') + 1);
+    s += std::string(fromDir == toDir ? " (renamed from " : " (moved from ") + r.oldPath + ")";
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string blocks(const DiffResult& result, bool color) {
+  std::string out;
+  for (const RecordDiff& r : result.records) {
+    const char* sign = r.change == Change::Added ? "+" : r.change == Change::Removed ? "-" : "~";
+    const char* paint = r.change == Change::Added ? kGreen : r.change == Change::Removed ? kRed : kYellow;
+    if (color) out += paint;
+    out += std::string(sign) + " " + label(r);
+    if (color) out += kReset;
+    out.push_back('\n');
+    for (const FieldDiff& f : r.fields) {
+      out += "    ";
+      if (f.change == Change::Added) out += color ? std::string(kGreen) + "+ " + kReset : "+ ";
+      if (f.change == Change::Removed) out += color ? std::string(kRed) + "- " + kReset : "- ";
+      out += f.name + ": ";
+      if (f.summarized) out += summary(f);
+      else if (f.change == Change::Added) out += f.newValue;
+      else if (f.change == Change::Removed) out += f.oldValue;
+      else out += f.oldValue + " -> " + f.newValue;
+      out.push_back('\n');
+    }
+  }
+  return out;
+}
+
+std::string stat(const DiffResult& result) {
+  std::map<std::string, std::array<std::size_t, 3>> perTag;
+  std::size_t width = 0;
+  for (const RecordDiff& r : result.records) {
+    perTag[r.tag][static_cast<int>(r.change)]++;
+    width = std::max(width, r.tag.size());
+  }
+  auto counts = [](std::size_t added, std::size_t removed, std::size_t changed) {
+    std::string s;
+    auto add = [&](std::size_t n, const char* what) {
+      if (!n) return;
+      if (!s.empty()) s += ", ";
+      s += std::to_string(n) + " " + what;
+    };
+    add(changed, "changed");
+    add(added, "added");
+    add(removed, "removed");
+    return s;
+  };
+  std::string out;
+  for (const auto& [tag, c] : perTag)
+    out += " " + tag + std::string(width - tag.size(), ' ') + "  " +
+           counts(c[static_cast<int>(Change::Added)], c[static_cast<int>(Change::Removed)],
+                  c[static_cast<int>(Change::Changed)]) +
+           "\n";
+  std::size_t n = result.records.size();
+  out += " " + std::to_string(n) + (n == 1 ? " record: " : " records: ") +
+         counts(result.count(Change::Added), result.count(Change::Removed), result.count(Change::Changed)) + "\n";
+  return out;
+}
+
+}  // namespace rscene::diffout
