@@ -58,11 +58,14 @@ now_ns() { date +%s%N; }
 measure() {
   BEST_NS=0
   PEAK_KB=0
-  local i t0 t1 ns kb
+  local i t0 t1 ns kb rc
   for ((i = 0; i < REPEAT; i++)); do
     t0=$(now_ns)
-    if ! "$TIME" -f %M -o "$DIR/rss" "$@" > /dev/null 2> "$DIR/stderr"; then
-      echo "bench/run.sh: error: '$*' failed:" >&2
+    rc=0
+    "$TIME" -f %M -o "$DIR/rss" "$@" > /dev/null 2> "$DIR/stderr" || rc=$?
+    # 1 means findings (lint errors, differences): the tool did its work.
+    if ((rc > 1)); then
+      echo "bench/run.sh: error: '$*' failed with status $rc:" >&2
       sed -n '1,5p' "$DIR/stderr" >&2
       return 1
     fi
