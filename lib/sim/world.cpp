@@ -193,6 +193,9 @@ struct World::Impl {
     ci.m_angularSleepingThreshold = sv.sleepingAngularVelocityThreshold;
     auto* body = new btRigidBody(ci);
     bodies.emplace_back(body);
+    // Solve only touching contacts: Bullet's speculative (still separated)
+    // contacts subtract gap/dt from the rebound and eat restitution.
+    body->setContactProcessingThreshold(0);
     if (mode == BodyMode::Kinematic) {
       body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
       body->setActivationState(DISABLE_DEACTIVATION);
@@ -236,6 +239,15 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   si.m_leastSquaresResidualThreshold = sv.tolerance;
   si.m_restitutionVelocityThreshold = sv.defaultRestitutionThreshold;
   si.m_solverMode &= ~SOLVER_RANDMIZE_ORDER;  // deterministic order, always
+  si.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+  // Bullet drops restitution on contacts older than this many steps, which
+  // loses bounces whose contact point was found before impact; the
+  // restitution velocity threshold alone decides, as in Engine 2.
+  si.m_restingContactRestitutionThreshold = 1 << 30;
+  // Penetration is always removed by split impulses, which move bodies
+  // without adding velocity (Baumgarte would add energy to bounces).
+  si.m_splitImpulse = true;
+  si.m_splitImpulsePenetrationThreshold = 0;
   w.filter.info = &w.info;
   w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
   // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
