@@ -54,15 +54,17 @@ fi
 now_ns() { date +%s%N; }
 
 # measure CMD...: runs the command REPEAT times with stdout to /dev/null;
-# sets BEST_NS (best wall time) and PEAK_KB (largest max RSS seen).
+# sets BEST_NS (best wall time), BEST_CPU (best user+system seconds) and
+# PEAK_KB (largest max RSS seen).
 measure() {
   BEST_NS=0
+  BEST_CPU=
   PEAK_KB=0
-  local i t0 t1 ns kb rc
+  local i t0 t1 ns kb rc cpu
   for ((i = 0; i < REPEAT; i++)); do
     t0=$(now_ns)
     rc=0
-    "$TIME" -f %M -o "$DIR/rss" "$@" > /dev/null 2> "$DIR/stderr" || rc=$?
+    "$TIME" -f '%M %U %S' -o "$DIR/rss" "$@" > /dev/null 2> "$DIR/stderr" || rc=$?
     # 1 means findings (lint errors, differences): the tool did its work.
     if ((rc > 1)); then
       echo "bench/run.sh: error: '$*' failed with status $rc:" >&2
@@ -71,7 +73,8 @@ measure() {
     fi
     t1=$(now_ns)
     ns=$((t1 - t0))
-    kb=$(tail -n 1 "$DIR/rss")
+    read -r kb cpu < <(tail -n 1 "$DIR/rss" | awk '{ print $1, $2 + $3 }')
+    if [[ -z $BEST_CPU ]] || awk -v a="$cpu" -v b="$BEST_CPU" 'BEGIN { exit !(a < b) }'; then BEST_CPU=$cpu; fi
     if ((BEST_NS == 0 || ns < BEST_NS)); then BEST_NS=$ns; fi
     if ((kb > PEAK_KB)); then PEAK_KB=$kb; fi
   done
@@ -80,13 +83,17 @@ measure() {
 # mbps BYTES NS -> MB/s with MB = 2^20 bytes
 mbps() { awk -v b="$1" -v ns="$2" 'BEGIN { printf "%.1f", (b / 1048576) / (ns / 1e9) }'; }
 
+# cpu_mbps BYTES SECONDS -> MB/s of CPU time (10 ms resolution; "-" below it).
+# Less sensitive than wall time to other jobs on a shared machine.
+cpu_mbps() { awk -v b="$1" -v s="$2" 'BEGIN { if (s < 0.05) print "-"; else printf "%.1f", (b / 1048576) / s }'; }
+
 status=0
 declare -A RATE RSSX NS BYTES
 
 echo "rscene benchmark: $(uname -m), $(nproc) cores, best of $REPEAT runs, MB = 2^20 bytes"
 echo "scenes in $DIR (rscene-bench-gen --seed $SEED)"
 echo
-printf '%-8s %-16s %10s %10s %9s %11s %9s\n' size tool "MB/s" "cat MB/s" "tool/cat" "peak RSS" "RSS/size"
+printf '%-8s %-16s %10s %10s %9s %11s %9s %9s\n' size tool "MB/s" "cat MB/s" "tool/cat" "peak RSS" "RSS/size" "CPU MB/s"
 
 for mb in $SIZES; do
   A=$DIR/scene_${mb}M.rscene
@@ -103,8 +110,9 @@ for mb in $SIZES; do
   measure cat "$A"
   cat_ns=$BEST_NS
   cat_rate=$(mbps "$bytes" "$cat_ns")
-  printf '%-8s %-16s %10s %10s %9s %11s %9s\n' "${mb} MB" cat "$cat_rate" "$cat_rate" 1.00 \
-    "$((PEAK_KB / 1024)) MB" "$(awk -v k="$PEAK_KB" -v b="$bytes" 'BEGIN { printf "%.2fx", k * 1024 / b }')"
+  printf '%-8s %-16s %10s %10s %9s %11s %9s %9s\n' "${mb} MB" cat "$cat_rate" "$cat_rate" 1.00 \
+    "$((PEAK_KB / 1024)) MB" "$(awk -v k="$PEAK_KB" -v b="$bytes" 'BEGIN { printf "%.2fx", k * 1024 / b }')" \
+    "$(cpu_mbps "$bytes" "$BEST_CPU")"
   for entry in "${TOOLS[@]}"; do
     tool=${entry%%|*}
     [[ -x $BIN/$tool ]] || continue
@@ -124,8 +132,8 @@ for mb in $SIZES; do
     NS[$tool,$mb]=$BEST_NS
     BYTES[$mb]=$bytes
     RSSX[$tool,$mb]=$rssx
-    printf '%-8s %-16s %10s %10s %9s %11s %9s\n' "${mb} MB" "$tool" "$rate" "$cat_rate" "$ratio" \
-      "$((PEAK_KB / 1024)) MB" "${rssx}x"
+    printf '%-8s %-16s %10s %10s %9s %11s %9s %9s\n' "${mb} MB" "$tool" "$rate" "$cat_rate" "$ratio" \
+      "$((PEAK_KB / 1024)) MB" "${rssx}x" "$(cpu_mbps "$bytes" "$BEST_CPU")"
   done
 done
 
