@@ -93,11 +93,29 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
   return ok && i >= n;
 }
 
+bool Context::hasExplicitId(const Record& r) const {
+  const Field* f = doc.find(r, "id");
+  return f && !percentDecode(doc.text(f->value)).empty();
+}
+
 const Record* Context::node(std::string_view ref) const {
-  std::string key(ref);
-  if (auto it = index.nodeById.find(key); it != index.nodeById.end()) return &doc.records[it->second];
-  if (auto it = index.nodeByPath.find(key); it != index.nodeByPath.end()) return &doc.records[it->second];
+  if (auto it = index.nodeById.find(ref); it != index.nodeById.end()) return &doc.records[it->second];
+  if (auto it = index.nodeByPath.find(ref); it != index.nodeByPath.end()) return &doc.records[it->second];
+  // Default ids are a kind's prefix and the path (compat-notes.md); they
+  // are resolved through the path map instead of being stored.
+  for (const KindDef& k : Schema::get().kinds()) {
+    if (k.idPrefix.empty() || ref.substr(0, k.idPrefix.size()) != k.idPrefix) continue;
+    auto it = index.nodeByPath.find(ref.substr(k.idPrefix.size()));
+    if (it == index.nodeByPath.end()) continue;
+    const Record& r = doc.records[it->second];
+    if (r.kind == &k && !hasExplicitId(r)) return &r;
+  }
   return nullptr;
+}
+
+const Record* Context::terrain(std::string_view ref) const {
+  const Record* r = node(ref);
+  return r && r->kind->tag == "terrain_region" ? r : nullptr;
 }
 
 }  // namespace checks

@@ -1,6 +1,7 @@
 // Private to the check*.cpp files: the state one validation run shares and
 // typed access to a record's fields by their schema name.
 #pragma once
+#include <deque>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,8 +53,11 @@ class Context {
 
   // Identity of the nodes and resources, built once (check_refs.cpp).
   struct Index {
-    std::unordered_map<std::string, std::uint32_t> nodeByPath, nodeById;
-    std::unordered_map<std::string, std::uint32_t> materials, resources, terrains;
+    // Views into the document's text, or into `owned` for decoded text.
+    std::unordered_map<std::string_view, std::uint32_t> nodeByPath, nodeById;  // ids written as id=
+    std::vector<std::string_view> pathOf;                                      // per record; nodes only
+    std::deque<std::string> owned;
+    std::unordered_map<std::string, std::uint32_t> materials, resources;
     std::unordered_map<std::string, bool> contacts;
     std::vector<std::int64_t> textureSlots;
     bool inheritedTransforms = true;
@@ -63,8 +67,12 @@ class Context {
     std::vector<std::uint32_t> parentOf;                          // kNoRecord when none
   } index;
   static constexpr std::uint32_t kNoRecord = 0xffffffffu;
-  // The node a reference names (by id, then path), or nullptr.
+  // The node a reference names (by id, default id or path), or nullptr.
   const Record* node(std::string_view ref) const;
+  // The terrain_region a reference names, or nullptr.
+  const Record* terrain(std::string_view ref) const;
+  // Whether a node has an id= of its own (and so no default id).
+  bool hasExplicitId(const Record& r) const;
 
  private:
   Diagnostics& out_;

@@ -46,10 +46,10 @@ void checkRaisim(Context& ctx, std::size_t i) {
         ctx.report("RS6005", r, ctx.spanOf(r, ctx.get(r, name)), name,
                    std::string("terrain with ") + name + "=false; RaiSim refuses it");
   } else if (tag == "terrain_splat_layer" || tag == "terrain_foliage_layer") {
-    auto it = ctx.index.terrains.find(ctx.text(r, "terrain"));
-    if (it != ctx.index.terrains.end() && it->second > i)
+    const Record* t = ctx.terrain(ctx.text(r, "terrain"));
+    if (t && t > &r)
       ctx.report("RS6006", r, ctx.spanOf(r, ctx.get(r, "terrain")), "terrain",
-                 tag + " comes before its terrain on line " + std::to_string(ctx.doc.records[it->second].line),
+                 tag + " comes before its terrain on line " + std::to_string(t->line),
                  "move the layer after its terrain_region");
   } else if (tag == "instanced_visual" && enabled(ctx, r)) {
     if (ctx.flag(r, "grassPatch") == std::optional<bool>(true))

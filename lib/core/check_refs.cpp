@@ -50,7 +50,7 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
   } else if (what == "resource") {
     if (!ix.resources.count(name)) missing("RS3010", "articulated resource");
   } else if (what == "terrain") {
-    if (!ix.terrains.count(name)) missing("RS3013", "terrain");
+    if (!ctx.terrain(name)) missing("RS3013", "terrain");
   } else if (what == "body") {
     if (!ctx.node(name)) missing("RS3012", "body", "name a node by its id or path");
   } else if (what == "node") {
@@ -89,6 +89,15 @@ void buildIndex(Context& ctx) {
   const Document& doc = ctx.doc;
   auto& ix = ctx.index;
   ix.parentOf.assign(doc.records.size(), Context::kNoRecord);
+  ix.pathOf.assign(doc.records.size(), {});
+  std::size_t nodes = 0;
+  for (const Record& r : doc.records) nodes += r.kind && r.kind->isNode();
+  ix.nodeByPath.reserve(nodes);
+  // Most text needs no decoding: keep a view of the document's buffer.
+  auto keep = [&](std::string_view raw) -> std::string_view {
+    if (raw.find('%') == std::string_view::npos && raw != "-") return raw;
+    return ix.owned.emplace_back(percentDecode(raw));
+  };
   ix.assetRoot = assetRootOf(doc);
   for (std::size_t i = 0; i < doc.records.size(); ++i) {
     const Record& r = doc.records[i];
@@ -96,13 +105,12 @@ void buildIndex(Context& ctx) {
     auto index = static_cast<std::uint32_t>(i);
     const std::string& tag = r.kind->tag;
     if (r.kind->isNode()) {
-      std::string path = nodePath(doc, r);
-      std::string id = nodeId(doc, r);
+      std::string_view path = keep(doc.positionalText(r, 0));
+      ix.pathOf[i] = path;
       ix.nodeByPath.emplace(path, index);
-      if (!id.empty()) ix.nodeById.emplace(id, index);
-      if (tag == "terrain_region") {
-        ix.terrains.emplace(path, index);
-        if (!id.empty()) ix.terrains.emplace(id, index);
+      if (const Field* id = doc.find(r, "id")) {
+        std::string_view v = keep(doc.text(id->value));
+        if (!v.empty()) ix.nodeById.emplace(v, index);
       }
     } else if (tag == "material") {
       ix.materials.emplace(nodeId(doc, r), index);
@@ -129,18 +137,28 @@ void checkRefs(Context& ctx, std::size_t i) {
   auto index = static_cast<std::uint32_t>(i);
 
   if (kind.isNode()) {
-    std::string path = nodePath(doc, r);
+    std::string_view path = ix.pathOf[i];
     Span at = doc.positional(r, 0)->value;
     if (!isUnderWorld(path))
-      ctx.report("RS3005", r, at, "path", "path '" + path + "' is not under /World", "node paths start with /World/");
-    if (auto it = ix.nodeByPath.find(path); it != ix.nodeByPath.end() && it->second != index)
-      ctx.report("RS3003", r, at, "path", "duplicate path '" + path + "'; first used on " + lineRef(doc, it->second));
-    std::string id = nodeId(doc, r);
-    if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end() && it->second != index) {
-      const FieldRef explicitId = ctx.get(r, "id");
-      ctx.report("RS3004", r, explicitId ? explicitId.first->value : at, "id",
+      ctx.report("RS3005", r, at, "path", "path '" + std::string(path) + "' is not under /World",
+                 "node paths start with /World/");
+    auto samePath = ix.nodeByPath.find(path);
+    bool duplicatePath = samePath != ix.nodeByPath.end() && samePath->second != index;
+    if (duplicatePath)
+      ctx.report("RS3003", r, at, "path",
+                 "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, samePath->second));
+    // An id is taken when another node has it as id= or as its default id.
+    bool explicitId = ctx.hasExplicitId(r);
+    std::string id = explicitId || kind.idPrefix.empty() ? nodeId(doc, r) : kind.idPrefix + std::string(path);
+    // (Paths start with `/`; an id that looks like a path is not compared
+    // with paths here.)
+    const Record* other = id.empty() || id[0] == '/' ? nullptr : ctx.node(id);
+    if (auto it = ix.nodeById.find(id); it != ix.nodeById.end() && !id.empty()) other = &doc.records[it->second];
+    if (other && other != &r && !(duplicatePath && !explicitId)) {
+      const FieldRef idField = ctx.get(r, "id");
+      ctx.report("RS3004", r, idField ? idField.first->value : at, "id",
                  std::string(explicitId ? "duplicate id '" : "duplicate default id '") + id + "'; first used on " +
-                     lineRef(doc, it->second),
+                     lineRef(doc, static_cast<std::uint32_t>(other - doc.records.data())),
                  explicitId ? "" : "set a distinct id= on one of them");
     }
   } else if (kind.tag == "material") {

@@ -76,9 +76,9 @@ void terrain(Context& ctx, const Record& r) {
 
 void terrainLayer(Context& ctx, const Record& r) {
   std::string name = ctx.text(r, "terrain");
-  auto it = ctx.index.terrains.find(name);
-  if (it == ctx.index.terrains.end()) return;  // RS3013 says so
-  const Record& t = ctx.doc.records[it->second];
+  const Record* found = ctx.terrain(name);
+  if (!found) return;  // RS3013 says so
+  const Record& t = *found;
   auto xs = ctx.integer(t, "xSamples"), ys = ctx.integer(t, "ySamples");
   if (!xs || !ys || *xs < kMinSamples || *ys < kMinSamples || *xs > kMaxSamples || *ys > kMaxSamples) return;
   if (*xs * *ys <= kMaxTotalSamples) perSampleLists(ctx, r, *xs * *ys);
