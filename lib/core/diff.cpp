@@ -7,7 +7,6 @@
 
 #include "core/diff_identity.hpp"
 #include "core/text.hpp"
-#include "core/writer.hpp"
 
 namespace rscene {
 namespace {
@@ -41,17 +40,13 @@ class Differ {
     std::vector<char> matched(keysA.size(), 0);
     // Sort key: the kind's writer rank, then the position in its file.
     std::vector<std::pair<std::pair<int, std::uint32_t>, RecordDiff>> out;
-    std::vector<std::uint32_t> orderB = canonicalOrder(b_), orderA = canonicalOrder(a_);
-    std::vector<std::uint32_t> posB(orderB.size()), posA(orderA.size());
-    for (std::uint32_t i = 0; i < orderB.size(); ++i) posB[orderB[i]] = i;
-    for (std::uint32_t i = 0; i < orderA.size(); ++i) posA[orderA[i]] = i;
 
     for (std::uint32_t j = 0; j < keysB.size(); ++j) {
       const Record& rb = b_.records[j];
       if (skipped(b_, rb)) continue;
       auto it = inA.find(keysB[j]);
       if (it == inA.end()) {
-        out.push_back({{rank(rb), posB[j]}, header(Change::Added, b_, rb, keysB[j])});
+        out.push_back({{rank(rb), j}, header(Change::Added, b_, rb, keysB[j])});
         continue;
       }
       matched[it->second] = 1;
@@ -60,7 +55,7 @@ class Differ {
       RecordDiff d = header(Change::Changed, b_, rb, keysB[j]);
       d.oldLine = ra.line;
       compare(ra, rb, d);
-      if (!d.fields.empty() || d.renamed()) out.push_back({{rank(rb), posB[j]}, std::move(d)});
+      if (!d.fields.empty() || d.renamed()) out.push_back({{rank(rb), j}, std::move(d)});
     }
     for (std::uint32_t i = 0; i < keysA.size(); ++i) {
       const Record& ra = a_.records[i];
@@ -68,7 +63,7 @@ class Differ {
       RecordDiff d = header(Change::Removed, a_, ra, keysA[i]);
       d.oldLine = ra.line;
       d.newLine = 0;
-      out.push_back({{rank(ra), posA[i]}, std::move(d)});
+      out.push_back({{rank(ra), i}, std::move(d)});
     }
     std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first.first < y.first.first; });
     result.records.reserve(out.size());

@@ -75,6 +75,12 @@ std::string fieldText(const Document& doc, const Record& r, std::string_view nam
 }
 
 std::vector<std::string> identityKeys(const Document& doc) {
+  static const std::vector<std::string> parentTags = [] {
+    std::vector<std::string> v;
+    for (const KindDef& k : Schema::get().kinds())
+      if (!k.parentTag.empty()) v.push_back(k.parentTag);
+    return v;
+  }();
   std::vector<std::string> keys(doc.records.size());
   // Latest parent record per (tag, path), and how many children each has.
   std::unordered_map<std::string, std::string> parents;
@@ -106,9 +112,15 @@ std::vector<std::string> identityKeys(const Document& doc) {
       else key += std::to_string(siblings[parent + kSep + std::string(tag)]++);
     } else if (k.role == Role::Node) {
       std::string id = nodeId(doc, r);
-      if (!id.empty()) key += "id" + std::string(1, kSep) + id;
-      else key += nodePath(doc, r);
-      parents[k.tag + kSep + nodePath(doc, r)] = key;
+      if (!id.empty()) {
+        key += "id";
+        key.push_back(kSep);
+        key += id;
+      } else {
+        key += nodePath(doc, r);
+      }
+      if (std::find(parentTags.begin(), parentTags.end(), k.tag) != parentTags.end())
+        parents[k.tag + kSep + nodePath(doc, r)] = key;
     } else if (const IdentityRule* rule = ruleFor(tag)) {
       key += ruleKey(doc, r, *rule);
     } else {

@@ -58,7 +58,33 @@ Shape shapeOf(ValueType t) {
   }
 }
 
+// Fast path for the common case: plain decimal text in JSON's grammar with
+// no exponent and a sane number of digits is a finite double (and, with at
+// most 15 digits, an exact integer), so it is copied without parsing.
+// Returns 1 when copied, 0 to take the slow path.
+int copyPlain(std::string& out, std::string_view s, bool integer) {
+  std::size_t i = 0, n = s.size(), digits = 0;
+  bool negative = false, nonZero = false;
+  if (i < n && s[i] == '-') {
+    negative = true;
+    ++i;
+  }
+  if (i >= n || !isDigit(s[i]) || (s[i] == '0' && i + 1 < n && isDigit(s[i + 1]))) return 0;
+  for (; i < n && isDigit(s[i]); ++i, ++digits) nonZero |= s[i] != '0';
+  if (i < n) {
+    if (integer || s[i] != '.' || ++i >= n) return 0;
+    std::size_t start = i;
+    for (; i < n && isDigit(s[i]); ++i, ++digits) nonZero |= s[i] != '0';
+    if (i != n || i == start) return 0;
+  }
+  if (negative && !nonZero) return 0;  // -0 stays a string; integers take the slow path
+  if (digits > (integer ? 15u : 300u)) return 0;
+  out.append(s);
+  return 1;
+}
+
 bool appendNumberItem(std::string& out, std::string_view item, bool integer) {
+  if (copyPlain(out, item, integer)) return true;
   if (integer) {
     auto v = parseInteger(item);
     if (!v || *v > kMaxExactInteger || *v < -kMaxExactInteger) return false;
