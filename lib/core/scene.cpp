@@ -71,7 +71,9 @@ class Builder {
  private:
   std::string asset(const std::string& path) const {
     if (path.empty()) return path;
-    return resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, opt_.exists);
+    std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, opt_.exists);
+    for (std::size_t at; (at = out.find("/./")) != std::string::npos;) out.erase(at, 2);  // "dir/./x" -> "dir/x"
+    return out;
   }
 
   void indexNodes() {

@@ -83,8 +83,8 @@ void RecordReader::error(std::string_view name, const char* code, const std::str
 void RecordReader::bad(std::string_view name, std::string_view value, std::string_view expected) const {
   std::string shown(value.substr(0, 60));
   error(name, scene_code::kBadValue,
-        "invalid " + std::string(expected) + " '" + shown + "' for " + std::string(name) + " of " +
-            std::string(doc_.tag(rec_)));
+        "invalid " + std::string(expected) + " '" + shown + "' for " + std::string(name) +
+            (name == doc_.tag(rec_) ? std::string() : " of " + std::string(doc_.tag(rec_))));
 }
 
 double RecordReader::number(std::string_view name, double fallback) const {

@@ -1,0 +1,132 @@
+#!/usr/bin/env bats
+# End-to-end tests of rscene-sim: every flag, exit statuses, exact
+# messages for bad physics input, determinism and the batch recipe.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+ROOT="$BATS_TEST_DIRNAME/.."
+DATA="$ROOT/tests/data"
+SIM="$BIN/rscene-sim"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
+  mkdir "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w"
+  cp "$DATA"/sim_*.rscene .
+}
+
+# z of object PATH in scene text on stdin.
+zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
+
+@test "--help lists every option" {
+  run -0 "$SIM" --help
+  for opt in --output --duration --steps --trajectory --every --trajectory-format --until-rest --report \
+             --stdin-filename --base-dir --version; do
+    [[ $output == *"$opt"* ]] || { echo "missing $opt"; false; }
+  done
+}
+
+@test "--version prints the tool name" {
+  run -0 "$SIM" --version
+  [[ $output == "rscene-sim "* ]]
+}
+
+@test "dropped bodies settle on the ground and are written back" {
+  run -0 --separate-stderr "$SIM" --duration 2 sim_drop.rscene
+  [ -z "$stderr" ]
+  box=$(zof /World/Box <<<"$output")
+  ball=$(zof /World/Ball <<<"$output")
+  awk -v z="$box" 'BEGIN { exit !(z > 0.199 && z < 0.201) }'
+  awk -v z="$ball" 'BEGIN { exit !(z > 0.099 && z < 0.101) }'
+  # the static ground line is unchanged
+  grep -qx 'object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615' <<<"$output"
+}
+
+@test "zero steps writes what rscene-fmt writes" {
+  [ -x "$BIN/rscene-fmt" ] || skip "rscene-fmt not built"
+  "$SIM" --steps 0 sim_drop.rscene > a
+  "$BIN/rscene-fmt" sim_drop.rscene > b
+  cmp a b
+}
+
+@test "output is byte-identical run after run" {
+  "$SIM" --duration 1 sim_drop.rscene > a
+  "$SIM" --duration 1 sim_drop.rscene > b
+  cmp a b
+}
+
+@test "reads stdin and writes -o atomically" {
+  run -0 "$SIM" --steps 100 -o out.rscene --stdin-filename sim_drop.rscene < sim_drop.rscene
+  [ -z "$output" ]
+  "$SIM" --steps 100 sim_drop.rscene | cmp - out.rscene
+}
+
+@test "--trajectory writes JSON Lines every K steps" {
+  run -0 "$SIM" --steps 10 --trajectory t.jsonl --every 5 sim_drop.rscene
+  [ "$(wc -l < t.jsonl)" -eq 6 ]  # t = 0, 5, 10 for two bodies
+  jq -e 'has("time") and has("path") and (.position|length)==3 and (.quaternion|length)==4
+         and (.linearVelocity|length)==3 and (.angularVelocity|length)==3' t.jsonl > /dev/null
+  [ "$(head -1 t.jsonl | jq -r .path)" = /World/Box ]
+}
+
+@test "--trajectory-format csv has a header and one row per body and sample" {
+  run -0 "$SIM" --steps 4 --trajectory t.csv --every 2 --trajectory-format csv sim_drop.rscene
+  [ "$(head -1 t.csv)" = "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz" ]
+  [ "$(wc -l < t.csv)" -eq 7 ]
+  run -2 "$SIM" --trajectory-format xml sim_drop.rscene
+}
+
+@test "--until-rest stops early and --report says so" {
+  run -0 --separate-stderr "$SIM" --duration 10 --until-rest --report sim_drop.rscene
+  jq -e '.atRest == true and .steps < 10000 and .bodies == 2 and has("realtimeFactor")
+         and has("stepsPerSecond") and has("contactsPerStep") and has("wallTime")' <<<"$stderr"
+}
+
+@test "--duration and --steps exclude each other" {
+  run -2 "$SIM" --duration 1 --steps 3 sim_drop.rscene
+  [[ $output == *"--duration excludes --steps"* ]]
+}
+
+@test "a dynamic body without mass is refused" {
+  run -2 --separate-stderr "$SIM" sim_bad_mass.rscene
+  [ -z "$output" ]
+  [ "${stderr_lines[0]}" = "sim_bad_mass.rscene:2:49: error: dynamic body '/World/Box' needs a mass > 0 [RS5002]" ]
+}
+
+@test "a missing mesh is refused with its resolved path; --base-dir moves it" {
+  run -2 --separate-stderr "$SIM" sim_missing_mesh.rscene
+  [ "${stderr_lines[0]}" = "sim_missing_mesh.rscene:2:93: error: mesh file 'meshes/rock.obj' does not exist [RS5004]" ]
+  run -2 --separate-stderr "$SIM" --base-dir /nowhere sim_missing_mesh.rscene
+  [[ ${stderr_lines[0]} == *"mesh file '/nowhere/meshes/rock.obj' does not exist [RS5004]" ]]
+}
+
+@test "non-finite numbers are refused, not simulated" {
+  run -2 --separate-stderr "$SIM" --stdin-filename nan.rscene <<<$'raisim_engine_scene 1\ngravity 0 0 nan'
+  [ "${stderr_lines[0]}" = "nan.rscene:2:13: error: invalid number 'nan' for gravity [RS5001]" ]
+}
+
+@test "records it cannot simulate are kept and named in one warning" {
+  run -0 --separate-stderr "$SIM" --steps 1 sim_unsupported.rscene
+  [ "$stderr" = "sim_unsupported.rscene: warning: not simulated, kept unchanged: sensor (1), granular (1) [RS5010]" ]
+  grep -q '^sensor /World/Imu imu /World/Ball 0 0 0 1 0 0 0$' <<<"$output"
+  grep -q '^granular /World/Sand sand' <<<"$output"
+}
+
+@test "a failed run leaves no output file" {
+  run -2 "$SIM" -o out.rscene sim_bad_mass.rscene
+  [ ! -e out.rscene ]
+}
+
+@test "batch: GNU parallel runs many scenes, one output each" {
+  command -v parallel > /dev/null || skip "GNU parallel not installed"
+  mkdir in out
+  for i in 1 2 3 4; do cp sim_drop.rscene in/s$i.rscene; done
+  run -0 parallel --halt soon,fail=1 "$SIM" --duration 0.5 -o out/{/} {} ::: in/*.rscene
+  [ "$(ls out | wc -l)" -eq 4 ]
+  cmp out/s1.rscene out/s4.rscene
+  # one bad scene fails the batch
+  cp sim_bad_mass.rscene in/bad.rscene
+  run parallel --halt soon,fail=1 "$SIM" -o out/{/} {} ::: in/*.rscene
+  [ "$status" -ne 0 ]
+}
