@@ -487,10 +487,21 @@ bool Frame::draw(const Camera& camera, Image& out) {
   if (shadowLight_ >= 0) {
     Eigen::AlignedBox3d box = scene_.bounds;
     if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
-    Eigen::Vector3d c = box.center();
-    double r = std::max(0.5 * box.diagonal().norm(), 0.5) * 1.2;
-    Camera lc;
     Eigen::Vector3d fwd = lights_[std::size_t(shadowLight_)].direction.normalized();
+    // Cover where the shadows land too: each corner carried along the light
+    // down to the lowest point (the ground), at most 50 m away.
+    if (fwd.z() < -0.05) {
+      double floor = std::min(box.min().z(), 0.0);
+      Eigen::AlignedBox3d withShadows = box;
+      for (int i = 0; i < 8; ++i) {
+        Eigen::Vector3d p = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+        withShadows.extend(p + fwd * std::min((p.z() - floor) / -fwd.z(), 50.0));
+      }
+      box = withShadows;
+    }
+    Eigen::Vector3d c = box.center();
+    double r = std::max(0.5 * box.diagonal().norm(), 0.5) * 1.1;
+    Camera lc;
     Eigen::Vector3d upHint = std::abs(fwd.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
     Eigen::Vector3d left = upHint.cross(fwd).normalized();
     Eigen::Matrix3d rot;
