@@ -295,8 +295,15 @@ class Differ {
       std::string pa = nodePath(a_, ra), pb = nodePath(b_, rb);
       if (pa != pb) d.oldPath = pa;
     }
+    // A set-like identity (the contact pair) matched already, in any order.
+    std::vector<std::string_view> identity;
+    for (const IdentityRule& rule : identityRules())
+      if (rule.unordered && tag == rule.tag) identity = splitWords(rule.fields);
+    auto isIdentity = [&](std::string_view name) {
+      return std::find(identity.begin(), identity.end(), name) != identity.end();
+    };
     for (Value& b : vb) {
-      if (ignored(tag, b.name)) continue;
+      if (ignored(tag, b.name) || isIdentity(b.name)) continue;
       if (d.renamed() && b.name == "path" && b.def) continue;
       const FieldDef* def = schemaDef(b.name);
       Value* a = lookup(va, b.name);
@@ -320,7 +327,7 @@ class Differ {
       d.fields.push_back(std::move(f));
     }
     for (Value& a : va) {
-      if (ignored(tag, a.name) || lookup(vb, a.name)) continue;
+      if (ignored(tag, a.name) || isIdentity(a.name) || lookup(vb, a.name)) continue;
       if (d.renamed() && a.name == "path" && a.def) continue;
       const FieldDef* def = schemaDef(a.name);
       if (def && def->defaultValue) {
