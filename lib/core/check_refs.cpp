@@ -148,13 +148,13 @@ void checkRefs(Context& ctx, std::size_t i) {
       ctx.report("RS3003", r, at, "path",
                  "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, samePath->second));
     // An id is taken when another node has it as id= or as its default id.
+    // Two default ids collide only with a duplicate path (reported above).
     bool explicitId = ctx.hasExplicitId(r);
     std::string id = explicitId || kind.idPrefix.empty() ? nodeId(doc, r) : kind.idPrefix + std::string(path);
-    // (Paths start with `/`; an id that looks like a path is not compared
-    // with paths here.)
-    const Record* other = id.empty() || id[0] == '/' ? nullptr : ctx.node(id);
-    if (auto it = ix.nodeById.find(id); it != ix.nodeById.end() && !id.empty()) other = &doc.records[it->second];
-    if (other && other != &r && !(duplicatePath && !explicitId)) {
+    const Record* other = nullptr;
+    if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end()) other = &doc.records[it->second];
+    if (!other && explicitId && id[0] != '/') other = ctx.node(id);  // another node's default id
+    if (other && other != &r) {
       const FieldRef idField = ctx.get(r, "id");
       ctx.report("RS3004", r, idField ? idField.first->value : at, "id",
                  std::string(explicitId ? "duplicate id '" : "duplicate default id '") + id + "'; first used on " +
