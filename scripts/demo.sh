@@ -38,5 +38,6 @@ step rscene-fmt "format in place" 'rscene-fmt -i *.rscene'
 step rscene-fmt "all canonical now (exit 0)" 'rscene-fmt --check *.rscene && echo "all canonical"'
 # Later tools add their steps here, for example:
 # step rscene-validate "lint" 'rscene-validate *.rscene'
+step rscene-validate "lint the scenes" 'rscene-validate *.rscene'
 
 printf '\nresults: %s\n' "$OUT"
