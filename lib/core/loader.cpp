@@ -10,25 +10,6 @@ namespace {
 
 constexpr std::size_t kMaxErrors = 50;
 
-// Length of the valid UTF-8 sequence starting at s[i] (i < n), or 0.
-std::size_t utf8Length(const unsigned char* s, std::size_t i, std::size_t n) {
-  unsigned char c = s[i];
-  std::size_t len;
-  std::uint32_t cp;
-  if (c >= 0xc2 && c <= 0xdf) { len = 2; cp = c & 0x1f; }
-  else if (c >= 0xe0 && c <= 0xef) { len = 3; cp = c & 0x0f; }
-  else if (c >= 0xf0 && c <= 0xf4) { len = 4; cp = c & 0x07; }
-  else return 0;
-  if (i + len > n) return 0;
-  for (std::size_t k = 1; k < len; ++k) {
-    if ((s[i + k] & 0xc0) != 0x80) return 0;
-    cp = (cp << 6) | (s[i + k] & 0x3f);
-  }
-  if ((len == 3 && cp < 0x800) || (len == 4 && (cp < 0x10000 || cp > 0x10ffff)) || (cp >= 0xd800 && cp <= 0xdfff))
-    return 0;
-  return len;
-}
-
 std::string hexByte(unsigned char c) {
   static const char* hex = "0123456789ABCDEF";
   return std::string{hex[c >> 4], hex[c & 15]};
@@ -130,7 +111,7 @@ class Loader {
               "write it as %" + hexByte(c));
         return false;
       } else if (c >= 0x80) {
-        std::size_t len = utf8Length(s, i, end);
+        std::size_t len = utf8SequenceLength(std::string_view(reinterpret_cast<const char*>(s), end), i);
         if (!len) {
           error(line, col, "RS1005", "invalid UTF-8 byte 0x" + hexByte(c), "save the file as UTF-8");
           return false;

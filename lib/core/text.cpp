@@ -16,6 +16,31 @@ int hexValue(char c) {
 
 bool isSeparator(char c) { return c == ',' || c == ';'; }
 
+}  // namespace
+
+std::size_t utf8SequenceLength(std::string_view text, std::size_t i) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  unsigned char c = s[i];
+  std::size_t len;
+  std::uint32_t cp;
+  if (c < 0x80) return 1;
+  if (c >= 0xc2 && c <= 0xdf) { len = 2; cp = c & 0x1f; }
+  else if (c >= 0xe0 && c <= 0xef) { len = 3; cp = c & 0x0f; }
+  else if (c >= 0xf0 && c <= 0xf4) { len = 4; cp = c & 0x07; }
+  else return 0;
+  if (i + len > n) return 0;
+  for (std::size_t k = 1; k < len; ++k) {
+    if ((s[i + k] & 0xc0) != 0x80) return 0;
+    cp = (cp << 6) | (s[i + k] & 0x3f);
+  }
+  if ((len == 3 && cp < 0x800) || (len == 4 && (cp < 0x10000 || cp > 0x10ffff)) || (cp >= 0xd800 && cp <= 0xdfff))
+    return 0;
+  return len;
+}
+
+namespace {
+
 bool needsEscape(unsigned char c, int version) {
   return c < 0x20 || c == 0x7f || c == ' ' || c == '%' || c == '=' || (version >= 2 && c == ';');
 }
@@ -40,11 +65,20 @@ void appendEscaped(std::string& out, unsigned char c) {
 }
 
 // Encodes without the empty/dash rules (used inside lists).
+// Bytes that are not valid UTF-8 (from an escape like %97) stay escaped, so
+// the output is always text our own loader reads back.
 void encodeBytes(std::string_view value, int version, std::string& out) {
   std::size_t run = 0;  // start of the pending run of bytes that need no escape
   for (std::size_t i = 0; i < value.size(); ++i) {
     unsigned char c = static_cast<unsigned char>(value[i]);
-    if (!needsEscape(c, version)) continue;
+    if (c >= 0x80) {
+      if (std::size_t len = utf8SequenceLength(value, i)) {
+        i += len - 1;
+        continue;
+      }
+    } else if (!needsEscape(c, version)) {
+      continue;
+    }
     out.append(value.substr(run, i - run));
     appendEscaped(out, c);
     run = i + 1;

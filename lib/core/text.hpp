@@ -26,6 +26,9 @@ std::string percentDecode(std::string_view token);
 // string as `-`.
 void percentEncode(std::string_view value, int version, std::string& out);
 
+// Length of the valid UTF-8 sequence that starts at s[i], or 0.
+std::size_t utf8SequenceLength(std::string_view s, std::size_t i);
+
 // Typed parses of decoded text.  Numbers must be finite and use the whole
 // text (C locale, std::from_chars); flags are true/1/yes/on, false/0/no/off.
 std::optional<double> parseNumber(std::string_view s);

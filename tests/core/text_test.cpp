@@ -43,6 +43,13 @@ TEST(PercentCodec, EncodesPerVersion) {
   EXPECT_EQ(ctl, "a%09b%7F");
 }
 
+TEST(PercentCodec, InvalidUtf8StaysEscaped) {
+  // Found by the fuzzer: %97 decoded to a raw byte the loader then refused.
+  EXPECT_EQ(canon("A%97B", ValueType::Text, 1), "A%97B");
+  EXPECT_EQ(canon("d%C3%A9j%C3%A0", ValueType::Text, 1), "d\xc3\xa9j\xc3\xa0");
+  EXPECT_EQ(canon("%E2%82", ValueType::Text, 2), "%E2%82");
+}
+
 TEST(Numbers, ParseIsStrict) {
   EXPECT_EQ(parseNumber("1e-07"), 1e-07);
   EXPECT_EQ(parseNumber("-0.5"), -0.5);
