@@ -1,0 +1,12 @@
+# fish completion for rscene-diff
+complete -c rscene-diff -s h -l help -d 'Print help and exit'
+complete -c rscene-diff -l version -d 'Print version and exit'
+complete -c rscene-diff -s q -l quiet -d 'Print nothing, only the exit status'
+complete -c rscene-diff -l stat -d 'Print counts of changed records per kind'
+complete -c rscene-diff -l format -x -a 'text json' -d 'Output format'
+complete -c rscene-diff -l tolerance -x -d 'Numbers that differ by at most ABS are equal'
+complete -c rscene-diff -l rel-tolerance -x -d 'Numbers that differ by at most REL times the larger are equal'
+complete -c rscene-diff -l ignore-editor-state -d 'Skip snapping, editor_ux, render_bake, locked, expanded, selection'
+complete -c rscene-diff -l ignore -x -d 'Skip these fields (NAME or TAG.NAME, comma-separated)'
+complete -c rscene-diff -l stdin-filename -r -F -d 'Name standard input in messages'
+complete -c rscene-diff -k -x -a '(__fish_complete_suffix .rscene)'
