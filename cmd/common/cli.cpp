@@ -98,7 +98,11 @@ int parseArgs(CLI::App& app, int argc, char** argv) {
     std::cout << e.what() << '\n';
     return kSuccess;
   } catch (const CLI::ParseError& e) {
-    error(e.what());
+    // CLI11 starts its messages with a capital; ours are lower-case.
+    std::string msg = e.what();
+    if (!msg.empty() && msg[0] >= 'A' && msg[0] <= 'Z' && !(msg.size() > 1 && msg[1] >= 'A' && msg[1] <= 'Z'))
+      msg[0] = static_cast<char>(msg[0] - 'A' + 'a');
+    error(msg);
     std::cerr << "Try '" << gTool << " --help' for more information.\n";
     return kTrouble;
   }

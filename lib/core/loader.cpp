@@ -24,11 +24,19 @@ std::string expectedCounts(const KindDef& k) {
   return s;
 }
 
-// Bytes that need a closer look in a token: `%`, control bytes, non-ASCII.
+// Byte classes for the tokenizer.  kSpecial bytes (`%`, control bytes,
+// non-ASCII) send a token through checkToken.
+enum : std::uint8_t { kPlain, kSeparator, kEquals, kSpecial };
 struct ByteClasses {
+  std::uint8_t cls[256] = {};
   bool special[256] = {};
   ByteClasses() {
-    for (int c = 0; c < 256; ++c) special[c] = c == '%' || c < 0x20 || c >= 0x7f;
+    for (int c = 0; c < 256; ++c) {
+      special[c] = c == '%' || c < 0x20 || c >= 0x7f;
+      cls[c] = special[c] ? kSpecial : kPlain;
+    }
+    cls[static_cast<unsigned char>(' ')] = cls[static_cast<unsigned char>('\t')] = kSeparator;
+    cls[static_cast<unsigned char>('=')] = kEquals;
   }
 };
 const ByteClasses kBytes;
@@ -145,12 +153,25 @@ class Loader {
     bool first = true, sawKey = false;
     std::size_t misplaced = 0;
     std::size_t pos = start;
+    const char* data = text.data();
     while (pos < end) {
-      while (pos < end && (text[pos] == ' ' || text[pos] == '\t')) ++pos;
+      // One pass per token: split, find the first `=`, and note whether any
+      // byte needs the closer look of checkToken (most tokens need none).
+      while (pos < end && kBytes.cls[static_cast<unsigned char>(data[pos])] == kSeparator) ++pos;
       if (pos >= end) break;
-      std::size_t tokStart = pos;
-      while (pos < end && text[pos] != ' ' && text[pos] != '\t') ++pos;
-      if (!checkToken(tokStart, pos, line, lineStart)) return;
+      std::size_t tokStart = pos, eqPos = std::string::npos;
+      bool special = false;
+      for (; pos < end; ++pos) {
+        std::uint8_t cls = kBytes.cls[static_cast<unsigned char>(data[pos])];
+        if (cls == kPlain) continue;
+        if (cls == kSeparator) break;
+        if (cls == kEquals) {
+          if (eqPos == std::string::npos) eqPos = pos;
+        } else {
+          special = true;
+        }
+      }
+      if (special && !checkToken(tokStart, pos, line, lineStart)) return;
       Span whole{static_cast<std::uint32_t>(tokStart), static_cast<std::uint32_t>(pos - tokStart)};
       if (first) {
         r.tag = whole;
@@ -158,9 +179,7 @@ class Loader {
         continue;
       }
       Field f;
-      const void* eq = std::memchr(text.data() + tokStart, '=', pos - tokStart);
-      if (eq) {
-        auto eqPos = static_cast<std::size_t>(static_cast<const char*>(eq) - text.data());
+      if (eqPos != std::string::npos) {
         if (eqPos == tokStart) {
           error(line, static_cast<std::uint32_t>(tokStart - lineStart + 1), "RS1009", "key=value token without a key",
                 "write the key before `=`, or escape `=` as %3D");
