@@ -444,15 +444,20 @@ class Reader {
   bool number_integer(Json::number_integer_t v) { return scalar(Json(v)); }
   bool number_unsigned(Json::number_unsigned_t v) { return scalar(Json(v)); }
   bool number_float(Json::number_float_t v, const std::string&) { return scalar(Json(v)); }
-  bool string(std::string& v) { return scalar(Json(std::move(v))); }
+  bool string(std::string& v) {
+    stringStart(v);
+    return scalar(Json(std::move(v)));
+  }
   bool binary(Json::binary_t&) { return false; }
   bool start_object(std::size_t) { return open(Json::object()); }
   bool start_array(std::size_t) { return open(Json::array()); }
   bool key(std::string& k) {
     Frame& f = stack_.back();
-    if (f.value->contains(k)) return schemaError(pointer() + "/" + escapePointer(k), "duplicate member '" + k + "'");
+    std::size_t at = stringStart(k);
+    std::string where = pointer() + "/" + escapePointer(k);
+    if (inRecord()) offsets_[where] = at;
+    if (f.value->contains(k)) return schemaError(where, "duplicate member '" + k + "'");
     f.key = k;
-    if (inRecord()) offsets_[pointer() + "/" + escapePointer(k)] = keyStart();
     return true;
   }
   bool end_object() { return close(); }
@@ -473,13 +478,17 @@ class Reader {
   };
 
   std::size_t here() const { return static_cast<std::size_t>(position_ - text_.data()); }
-  // Offset (1-based) of the opening quote of the member name just read.
-  std::size_t keyStart() const {
-    std::size_t i = std::min(here(), text_.size());
-    while (i > 0 && text_[i - 1] != '"') --i;  // the closing quote
-    if (i > 0) --i;
-    while (i > 0 && !(text_[i - 1] == '"' && (i < 2 || text_[i - 2] != '\\'))) --i;
-    return i;
+  // Offset (1-based) of the opening quote of the string just read: found
+  // by searching its quoted text between the previous string and the
+  // parser's position (strings with escapes fall back to the position).
+  std::size_t stringStart(std::string_view str) {
+    std::size_t end = std::min(text_.size(), here() + 2);
+    std::string quoted = "\"" + std::string(str) + "\"";
+    std::size_t at = scan_ < end ? text_.substr(scan_, end - scan_).find(quoted) : std::string_view::npos;
+    if (at == std::string_view::npos) return here();
+    at += scan_;
+    scan_ = at + quoted.size();
+    return at + 1;
   }
   // Directly inside root.records: the frame depth of a record is 3.
   bool atRecords() const { return stack_.size() == 2 && stack_[0].key == "records" && stack_[1].value->is_array(); }
@@ -631,6 +640,7 @@ class Reader {
   JsonLoadResult& out_;
   RecordBuilder builder_;
   const char* position_ = nullptr;
+  std::size_t scan_ = 0;  // where the next string's text is searched from
   Json root_;
   Json record_;
   std::vector<Frame> stack_;
