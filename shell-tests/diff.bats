@@ -140,3 +140,11 @@ EOF2
   run -0 git log -p --format=%s
   [[ $output == *"@@"* ]]  # without --ext-diff, log keeps line diffs
 }
+
+@test "--help and --version" {
+  run -0 "$DIFF" --help
+  [[ $output == *"--ignore-editor-state"* && $output == *"--rel-tolerance"* ]]
+  run -0 "$DIFF" --version
+  [[ $output == "rscene-diff "* ]]
+  run -2 "$DIFF" --no-such-flag "$OLD" "$NEW"
+}
