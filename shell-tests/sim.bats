@@ -91,24 +91,24 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 @test "a dynamic body without mass is refused" {
   run -2 --separate-stderr "$SIM" sim_bad_mass.rscene
   [ -z "$output" ]
-  [ "${stderr_lines[0]}" = "sim_bad_mass.rscene:2:49: error: dynamic body '/World/Box' needs a mass > 0 [RS5002]" ]
+  [ "${stderr_lines[0]}" = "sim_bad_mass.rscene:2:49: error: dynamic body '/World/Box' needs a mass > 0 [RS7002]" ]
 }
 
 @test "a missing mesh is refused with its resolved path; --base-dir moves it" {
   run -2 --separate-stderr "$SIM" sim_missing_mesh.rscene
-  [ "${stderr_lines[0]}" = "sim_missing_mesh.rscene:2:93: error: mesh file 'meshes/rock.obj' does not exist [RS5004]" ]
+  [ "${stderr_lines[0]}" = "sim_missing_mesh.rscene:2:93: error: mesh file 'meshes/rock.obj' does not exist [RS7004]" ]
   run -2 --separate-stderr "$SIM" --base-dir /nowhere sim_missing_mesh.rscene
-  [[ ${stderr_lines[0]} == *"mesh file '/nowhere/meshes/rock.obj' does not exist [RS5004]" ]]
+  [[ ${stderr_lines[0]} == *"mesh file '/nowhere/meshes/rock.obj' does not exist [RS7004]" ]]
 }
 
 @test "non-finite numbers are refused, not simulated" {
   run -2 --separate-stderr "$SIM" --stdin-filename nan.rscene <<<$'raisim_engine_scene 1\ngravity 0 0 nan'
-  [ "${stderr_lines[0]}" = "nan.rscene:2:13: error: invalid number 'nan' for gravity [RS5001]" ]
+  [ "${stderr_lines[0]}" = "nan.rscene:2:13: error: invalid number 'nan' for gravity [RS7001]" ]
 }
 
 @test "records it cannot simulate are kept and named in one warning" {
   run -0 --separate-stderr "$SIM" --steps 1 sim_unsupported.rscene
-  [ "$stderr" = "sim_unsupported.rscene: warning: not simulated, kept unchanged: sensor (1), granular (1) [RS5010]" ]
+  [ "$stderr" = "sim_unsupported.rscene: warning: not simulated, kept unchanged: sensor (1), granular (1) [RS7010]" ]
   grep -q '^sensor /World/Imu imu /World/Ball 0 0 0 1 0 0 0$' <<<"$output"
   grep -q '^granular /World/Sand sand' <<<"$output"
 }

@@ -16,7 +16,7 @@
 //
 // The view is built in one pass and owns its data; it does not point into
 // the Document.  buildScene() never throws on bad input: values that do not
-// parse are reported as RS5001 errors and the default is used instead.
+// parse are reported as RS7001 errors and the default is used instead.
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -32,14 +32,14 @@ namespace rscene {
 
 // Diagnostic codes of the scene view and of the simulator (RS5xxx).
 namespace scene_code {
-inline constexpr const char* kBadValue = "RS5001";      // value does not parse as its type, or is not finite
-inline constexpr const char* kBadMass = "RS5002";       // dynamic body with mass <= 0
-inline constexpr const char* kZeroSize = "RS5003";      // shape with a zero or negative size
-inline constexpr const char* kMissingFile = "RS5004";   // mesh file that does not exist (resolved path named)
-inline constexpr const char* kUnknownRef = "RS5005";    // reference to a body that does not exist
-inline constexpr const char* kBadTerrain = "RS5006";    // sample counts, sizes or per-sample list lengths
-inline constexpr const char* kBadMesh = "RS5007";       // mesh file that cannot be read
-inline constexpr const char* kUnsupported = "RS5010";   // records kept but not simulated (warning)
+inline constexpr const char* kBadValue = "RS7001";      // value does not parse as its type, or is not finite
+inline constexpr const char* kBadMass = "RS7002";       // dynamic body with mass <= 0
+inline constexpr const char* kZeroSize = "RS7003";      // shape with a zero or negative size
+inline constexpr const char* kMissingFile = "RS7004";   // mesh file that does not exist (resolved path named)
+inline constexpr const char* kUnknownRef = "RS7005";    // reference to a body that does not exist
+inline constexpr const char* kBadTerrain = "RS7006";    // sample counts, sizes or per-sample list lengths
+inline constexpr const char* kBadMesh = "RS7007";       // mesh file that cannot be read
+inline constexpr const char* kUnsupported = "RS7010";   // records kept but not simulated (warning)
 }  // namespace scene_code
 
 struct Pose {

@@ -2,7 +2,7 @@
 // scene view.  A field is looked up among the positional fields of the
 // record's layout, then among its keys; an absent field falls back to the
 // schema default, then to the caller's fallback.  A value that does not
-// parse adds an RS5001 error (with line and column) and yields the fallback.
+// parse adds an RS7001 error (with line and column) and yields the fallback.
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>

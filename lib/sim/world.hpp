@@ -47,17 +47,17 @@ struct BodyState {
 };
 
 // Checks what Bullet cannot simulate sensibly: dynamic bodies with mass
-// <= 0 (RS5002), zero-size shapes (RS5003), missing mesh files (RS5004),
-// wires naming unknown bodies (RS5005).  Errors point at the record's
+// <= 0 (RS7002), zero-size shapes (RS7003), missing mesh files (RS7004),
+// wires naming unknown bodies (RS7005).  Errors point at the record's
 // field.  Returns false when it added an error.
 bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
-// Records kept but not simulated, named in one warning (RS5010), or none.
+// Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
 
 class World {
  public:
-  // Builds the Bullet world; mesh files are read here (RS5004/RS5007 on
+  // Builds the Bullet world; mesh files are read here (RS7004/RS7007 on
   // failure).  Returns nullptr after adding an error diagnostic.
   static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics);
   ~World();
