@@ -569,6 +569,21 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glDepthFunc(GL_LESS);
   glCullFace(GL_BACK);
   Eigen::Matrix4d viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
+  // Depth pre-pass: the lit shader then runs once per visible pixel, which
+  // is what keeps llvmpipe fast on scenes with heavy overdraw.
+  glUseProgram(depth);
+  setMat(depth, "uViewProj", viewProj);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  for (const Batch& b : batches_) {
+    if (b.blend) continue;
+    glBindVertexArray(b.vao);
+    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.count);
+  }
+  glBindVertexArray(0);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
   glUseProgram(surface);
   setMat(surface, "uViewProj", viewProj);
   setMat(surface, "uLightViewProj", lightViewProj);
@@ -603,6 +618,8 @@ bool Frame::draw(const Camera& camera, Image& out) {
   setVec3(surface, "uFogColor", env.fogColor);
   glDisable(GL_BLEND);
   drawBatches(surface, false, false);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
   if (pointVao_) {
     glUseProgram(pointProg);
     glEnable(GL_PROGRAM_POINT_SIZE);

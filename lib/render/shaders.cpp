@@ -15,6 +15,7 @@ layout(location = 8) in vec4 iColor;
 layout(location = 9) in vec4 iPbr;       // metallic, roughness, checker, unlit
 layout(location = 10) in vec4 iEmissive;
 uniform mat4 uViewProj;
+invariant gl_Position;  // the depth pre-pass and the lit pass must agree bit for bit
 out vec3 vWorld;
 out vec3 vNormal;
 out vec2 vUv;
