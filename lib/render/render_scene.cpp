@@ -123,7 +123,7 @@ class Builder {
   void warn(const Record& r, std::string message) {
     Diagnostic d;
     d.severity = Severity::Warning;
-    d.code = "RS8101";
+    d.code = "RS9101";
     d.line = r.line;
     d.column = r.line ? 1 : 0;
     d.message = std::move(message);

@@ -107,7 +107,7 @@ class Frame {
   }
   // Missing/unreadable asset: an error, or a warning when allowed.
   bool assetProblem(std::uint32_t line, const std::string& message) {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, "RS8001", line, message);
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, "RS9001", line, message);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -223,7 +223,7 @@ bool Frame::materialTexture(const Material& m, GLuint& out) {
   if (!fileExistsOnDisk(m.albedoTexture)) return assetProblem(m.line, "texture file not found: " + m.albedoTexture);
   Image image;
   if (!readFile(m.albedoTexture, bytes, &err) || !decodePng(bytes, image, &err)) {
-    diag(Severity::Warning, "RS8002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err);
+    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err);
     return true;
   }
   out = textures_[m.albedoTexture] = texture(image);
@@ -245,7 +245,7 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
     failed = !assetProblem(line, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded.warnings) diag(Severity::Warning, "RS8002", line, w);
+  for (const std::string& w : loaded.warnings) diag(Severity::Warning, "RS9002", line, w);
   for (const MeshPart& p : loaded.parts)
     parts.push_back({upload(p.mesh), p.baseColor, p.metallic, p.roughness,
                      p.texture.width > 0 ? texture(p.texture) : 0u});
@@ -351,7 +351,7 @@ bool Frame::prepare() {
     FloatImage hdr;
     std::string bytes, err;
     if (env.hdrPath.empty() || !readFile(env.hdrPath, bytes, &err) || !decodeHdr(bytes, hdr, &err)) {
-      diag(Severity::Warning, "RS8003", env.hdrLine,
+      diag(Severity::Warning, "RS9003", env.hdrLine,
            "hdr background " + (env.hdrPath.empty() ? std::string("has no envMapPath") : env.hdrPath + ": " + err) +
                "; drawing the procedural sky");
     } else {
@@ -435,7 +435,7 @@ void Frame::buildLights() {
     lights_.push_back(sun);
   }
   if (lights_.size() > std::size_t(kMaxLights)) {
-    diag(Severity::Warning, "RS8004", 0,
+    diag(Severity::Warning, "RS9004", 0,
          std::to_string(lights_.size()) + " lights; only the first " + std::to_string(kMaxLights) + " are drawn");
     lights_.resize(kMaxLights);
   }
@@ -476,7 +476,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
   GLuint post = program(shaders::kPostVertex, shaders::kPostFragment, log);
   programs_ = {surface, depth, pointProg, post};
   if (!surface || !depth || !pointProg || !post) {
-    diag(Severity::Error, "RS8010", 0, "shader build failed: " + log);
+    diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
     return false;
   }
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
@@ -558,7 +558,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    diag(Severity::Error, "RS8011", 0, "cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
+    diag(Severity::Error, "RS9011", 0, "cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
                                            " framebuffer with " + std::to_string(samples) + " samples");
     return false;
   }
@@ -695,7 +695,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
     std::copy_n(&rows[std::size_t(h - 1 - y) * w * 4], std::size_t(w) * 4, out.pixel(0, y));
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (GLenum e = glGetError(); e != GL_NO_ERROR) {
-    diag(Severity::Error, "RS8012", 0, "OpenGL error 0x" + [&] {
+    diag(Severity::Error, "RS9012", 0, "OpenGL error 0x" + [&] {
       char b[16];
       std::snprintf(b, sizeof b, "%04x", e);
       return std::string(b);
