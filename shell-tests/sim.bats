@@ -80,7 +80,8 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 @test "--until-rest stops early and --report says so" {
   run -0 --separate-stderr "$SIM" --duration 10 --until-rest --report sim_drop.rscene
   jq -e '.atRest == true and .steps < 10000 and .bodies == 2 and has("realtimeFactor")
-         and has("stepsPerSecond") and has("contactsPerStep") and has("wallTime")' <<<"$stderr"
+         and has("stepsPerSecond") and has("contactsPerStep") and has("wallTime")
+         and has("parseTime") and has("buildTime") and has("writeTime")' <<<"$stderr"
 }
 
 @test "--duration and --steps exclude each other" {

@@ -40,6 +40,7 @@ int run(const Options& opt) {
   cli::Input in;
   if (!cli::readInput(opt.file, opt.stdinName, in)) return cli::kTrouble;
   LoadResult loaded = parse(std::move(in.text));
+  Clock::time_point parsedAt = Clock::now();
   Document& doc = loaded.document;
   auto print = [&](const Diagnostics& ds) { cli::printDiagnostics(ds, in.display, doc.buffer(), color); };
   if (!loaded.ok()) return print(loaded.diagnostics), cli::kTrouble;
@@ -95,6 +96,7 @@ int run(const Options& opt) {
   if (!opt.trajectory.empty() &&
       !cli::writeOutput(opt.trajectory, [&](Sink& s) { s.write(traj); return true; }))
     return cli::kTrouble;
+  Clock::time_point writtenAt = Clock::now();
   if (opt.report) {
     double wall = seconds(start, Clock::now()), stepping = seconds(loadedAt, steppedAt);
     auto steps = world->steps();
@@ -102,7 +104,10 @@ int run(const Options& opt) {
                         {"simulatedTime", world->time()},
                         {"wallTime", wall},
                         {"loadTime", seconds(start, loadedAt)},
+                        {"parseTime", seconds(start, parsedAt)},
+                        {"buildTime", seconds(parsedAt, loadedAt)},
                         {"stepTime", stepping},
+                        {"writeTime", seconds(steppedAt, writtenAt)},
                         {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
                         {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
                         {"bodies", world->bodyCount()},
