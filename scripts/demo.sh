@@ -36,8 +36,13 @@ step rscene-fmt "what rscene-fmt would change" 'rscene-fmt --diff *.rscene'
 step rscene-fmt "files that are not canonical" 'rscene-fmt --check *.rscene'
 step rscene-fmt "format in place" 'rscene-fmt -i *.rscene'
 step rscene-fmt "all canonical now (exit 0)" 'rscene-fmt --check *.rscene && echo "all canonical"'
-# Later tools add their steps here, for example:
-# step rscene-validate "lint" 'rscene-validate *.rscene'
 step rscene-validate "lint the scenes" 'rscene-validate *.rscene'
+step rscene-to-json "JSON for scripts (records per tag)" \
+  'rscene-to-json warehouse_crates.rscene > warehouse_crates.json && jq -r ".records | group_by(.tag)[] | \"\\(length) \\(.[0].tag)\"" warehouse_crates.json'
+step rscene-sim "drop the crates: simulate 2 s" \
+  'rscene-sim --duration 2 --report -o warehouse_crates.settled.rscene warehouse_crates.rscene'
+step rscene-diff "what the simulation moved" 'rscene-diff --stat warehouse_crates.rscene warehouse_crates.settled.rscene'
+step rscene-render "thumbnails (CPU, headless EGL)" \
+  'for f in *.rscene; do rscene-render --width 480 --height 300 --allow-missing-assets -o "${f%.rscene}.png" "$f" || exit $?; done; ls *.png'
 
 printf '\nresults: %s\n' "$OUT"
