@@ -25,12 +25,127 @@ void Context::report(std::string_view code, const Record& r, Span at, std::strin
   out_.push_back(std::move(d));
 }
 
+Context::Context(const Document& d, const CheckOptions& o, Diagnostics& out) : doc(d), opt(o), out_(out) {
+  const auto& kinds = Schema::get().kinds();
+  std::size_t maxKeys = 0;
+  for (const KindDef& k : kinds) maxKeys = std::max(maxKeys, k.keys.size());
+  cur_.lastKey.assign(maxKeys, 0);
+  cur_.stamp.assign(maxKeys, 0);
+  slots_.resize(kinds.size());
+  slotCursor_.assign(kinds.size(), 0);
+  lastKeys_.resize(kinds.size());
+}
+
 Span Context::spanOf(const Record& r, const FieldRef& f) const {
   if (!f.first) return r.tag;
   return f.first->value;
 }
 
+std::string_view Context::decode(std::string_view raw, std::string& scratch) {
+  if (raw.find('%') == std::string_view::npos && raw != "-") return raw;
+  scratch.clear();
+  percentDecode(raw, scratch);
+  return scratch;
+}
+
+void Context::resolve(const Record& r) {
+  const KindDef& kind = *r.kind;
+  cur_.record = &r;
+  cur_.layout = kind.layoutFor(r.positionalCount);
+  cur_.kind = kindIndex(kind);
+  if (++cur_.generation == 0) {  // wrapped: forget every stamp
+    std::fill(cur_.stamp.begin(), cur_.stamp.end(), 0);
+    cur_.generation = 1;
+  }
+  const std::uint32_t gen = cur_.generation;
+  cur_.defs.assign(r.fieldCount, nullptr);
+  cur_.repeated.assign(r.fieldCount, 0);
+  if (const Layout* layout = cur_.layout) {
+    for (std::uint32_t t = 0; t < r.positionalCount && t < layout->tokens.size(); ++t)
+      if (const Field* f = doc.positional(r, t))
+        cur_.defs[static_cast<std::size_t>(f - &doc.field(r, 0))] =
+            &layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+  }
+  auto& last = lastKeys_[cur_.kind];
+  std::size_t k = 0;  // keys seen so far
+  for (std::uint32_t j = 0; j < r.fieldCount; ++j) {
+    const Field& f = doc.field(r, j);
+    if (!f.isKey()) continue;
+    std::string_view name = doc.text(f.key);
+    int ki;
+    if (k < last.size() && last[k].first == name) {
+      ki = last[k].second;
+    } else {
+      ki = kind.keyIndex(name);
+      if (k >= last.size()) last.resize(k + 1);
+      last[k] = {name, ki};
+    }
+    ++k;
+    if (ki >= 0) {
+      auto i = static_cast<std::size_t>(ki);
+      cur_.defs[j] = &kind.keys[i];
+      cur_.repeated[j] = cur_.stamp[i] == gen;
+      cur_.stamp[i] = gen;
+      cur_.lastKey[i] = j;
+    } else {
+      // An unknown key repeats only another unknown key.
+      for (std::uint32_t g = 0; g < j; ++g) {
+        const Field& h = doc.field(r, g);
+        if (h.isKey() && !cur_.defs[g] && doc.text(h.key) == name) {
+          cur_.repeated[j] = 1;
+          break;
+        }
+      }
+    }
+  }
+}
+
+const Context::NameSlot& Context::slot(std::string_view name) const {
+  auto& slots = slots_[cur_.kind];
+  std::size_t& cursor = slotCursor_[cur_.kind];
+  for (std::size_t n = 0, i = cursor; n < slots.size(); ++n, i = i + 1 == slots.size() ? 0 : i + 1) {
+    const NameSlot& s = slots[i];
+    if (s.layout == cur_.layout && s.name == name) {
+      cursor = i + 1 == slots.size() ? 0 : i + 1;
+      return s;
+    }
+  }
+  NameSlot s{std::string(name), cur_.layout, -1, -1};
+  const KindDef& kind = Schema::get().kinds()[cur_.kind];
+  s.keyIndex = kind.keyIndex(name);
+  if (const Layout* layout = cur_.layout) {
+    for (std::size_t t = 0; t < layout->tokens.size(); ++t) {
+      const FieldDef& def = layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+      if (layout->tokens[t].second == 0 && def.name == name) {
+        s.token = static_cast<int>(t);
+        break;
+      }
+    }
+  }
+  slots.push_back(std::move(s));
+  cursor = 0;
+  return slots.back();
+}
+
 FieldRef Context::get(const Record& r, std::string_view name) const {
+  if (cur_.record != &r) return getSlow(r, name);
+  const NameSlot& s = slot(name);
+  const KindDef& kind = *r.kind;
+  if (s.keyIndex >= 0) {
+    auto i = static_cast<std::size_t>(s.keyIndex);
+    if (cur_.stamp[i] == cur_.generation) return FieldRef{&kind.keys[i], &doc.field(r, cur_.lastKey[i]), 1, true};
+  }
+  if (s.token >= 0) {
+    const Layout& layout = *cur_.layout;
+    auto t = static_cast<std::size_t>(s.token);
+    const FieldDef& def = layout.fields[static_cast<std::size_t>(layout.tokens[t].first)];
+    return FieldRef{&def, doc.positional(r, static_cast<std::uint32_t>(t)), static_cast<std::uint32_t>(def.width),
+                    false};
+  }
+  return FieldRef{};
+}
+
+FieldRef Context::getSlow(const Record& r, std::string_view name) const {
   FieldRef ref;
   if (!r.kind) return ref;
   if (const FieldDef* k = r.kind->key(name)) {
@@ -56,7 +171,7 @@ std::string Context::text(const Record& r, std::string_view name) const { return
 
 std::optional<double> Context::number(const Record& r, std::string_view name) const {
   FieldRef f = get(r, name);
-  return f ? parseNumber(doc.text(f.first->value)) : std::nullopt;
+  return f ? toNumber(doc.text(f.first->value)) : std::nullopt;
 }
 
 std::optional<std::int64_t> Context::integer(const Record& r, std::string_view name) const {
@@ -77,7 +192,7 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
   if (!f.isKey) {
     if (static_cast<int>(f.tokens) < n) return false;
     for (int i = 0; i < n; ++i) {
-      auto v = parseNumber(doc.text((f.first + i)->value));
+      auto v = toNumber(doc.text((f.first + i)->value));
       if (!v) return false;
       out[i] = *v;
     }
@@ -85,7 +200,7 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
   }
   int i = 0;
   bool ok = forEachNumber(doc.text(f.first->value), [&](std::string_view item, char) {
-    auto v = parseNumber(item);
+    auto v = toNumber(item);
     if (!v) ok = false;
     if (i < n && v) out[i] = *v;
     ++i;
@@ -94,8 +209,12 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
 }
 
 bool Context::hasExplicitId(const Record& r) const {
-  const Field* f = doc.find(r, "id");
-  return f && !percentDecode(doc.text(f->value)).empty();
+  // Decoding yields "" only for `-` and the empty token.
+  FieldRef ref = get(r, "id");
+  const Field* f = ref && ref.isKey ? ref.first : doc.find(r, "id");
+  if (!f) return false;
+  std::string_view v = doc.text(f->value);
+  return !v.empty() && v != "-";
 }
 
 const Record* Context::node(std::string_view ref) const {
@@ -127,6 +246,7 @@ Diagnostics check(const Document& doc, const CheckOptions& options) {
   for (std::size_t i = 0; i < doc.records.size(); ++i) {
     const Record& r = doc.records[i];
     std::size_t before = out.size();
+    if (r.kind) ctx.resolve(r);
     checks::checkTypes(ctx, r);
     if (!r.kind) continue;
     checks::checkRefs(ctx, i);

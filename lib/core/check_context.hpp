@@ -10,6 +10,7 @@
 
 #include "core/check.hpp"
 #include "core/document.hpp"
+#include "core/text.hpp"
 
 namespace rscene::checks {
 
@@ -23,9 +24,58 @@ struct FieldRef {
   explicit operator bool() const { return first != nullptr; }
 };
 
+// Number checks with a fast path for plain decimals (`-12.5`, `.5`, `3.`):
+// with at most 15 digits the value is exact as mantissa / 10^k (one
+// correctly rounded division), the same double std::from_chars gives;
+// anything else (exponents, inf, long mantissas) goes to parseNumber.
+inline bool fastDecimal(std::string_view s, double& out) {
+  static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  const char* p = s.data();
+  const char* e = p + s.size();
+  bool neg = p != e && *p == '-';
+  p += neg;
+  std::uint64_t m = 0;
+  int digits = 0, frac = 0;
+  for (; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits) m = m * 10 + static_cast<unsigned>(*p - '0');
+  if (p != e && *p == '.') {
+    for (++p; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits, ++frac)
+      m = m * 10 + static_cast<unsigned>(*p - '0');
+  }
+  if (p != e || digits == 0 || digits > 15) return false;
+  double v = static_cast<double>(m);
+  if (frac) v /= kPow10[frac];
+  out = neg ? -v : v;
+  return true;
+}
+
+// parseNumber, fast for plain decimals.
+inline std::optional<double> toNumber(std::string_view s) {
+  double v;
+  if (fastDecimal(s, v)) return v;
+  return parseNumber(s);
+}
+
+// Whether parseNumber accepts `s`, without computing it when it is a plain
+// decimal (no exponent, at most 100 characters: finite and in range).
+inline bool isNumber(std::string_view s) {
+  const char* p = s.data();
+  const char* e = p + s.size();
+  p += p != e && *p == '-';
+  const char* d = p;
+  while (p != e && static_cast<unsigned>(*p - '0') < 10) ++p;
+  std::size_t digits = static_cast<std::size_t>(p - d);
+  if (p != e && *p == '.') {
+    const char* f = ++p;
+    while (p != e && static_cast<unsigned>(*p - '0') < 10) ++p;
+    digits += static_cast<std::size_t>(p - f);
+  }
+  if (p == e && digits > 0 && s.size() <= 100) return true;
+  return parseNumber(s).has_value();
+}
+
 class Context {
  public:
-  Context(const Document& d, const CheckOptions& o, Diagnostics& out) : doc(d), opt(o), out_(out) {}
+  Context(const Document& d, const CheckOptions& o, Diagnostics& out);
 
   const Document& doc;
   const CheckOptions& opt;
@@ -36,6 +86,16 @@ class Context {
               std::string hint = {});
   // Where a field's value starts (its key for a key=value when keyColumn).
   Span spanOf(const Record& r, const FieldRef& f) const;
+
+  // Makes `r` (a record of a known kind) the current record: each of its
+  // fields is resolved to its FieldDef once, for every pass.
+  void resolve(const Record& r);
+  // Of the current record: field j's FieldDef (nullptr: an unknown key),
+  // whether key j was written before in the record, the layout.
+  const FieldDef* defOf(std::uint32_t j) const { return cur_.defs[j]; }
+  bool repeatedKey(std::uint32_t j) const { return cur_.repeated[j] != 0; }
+  const Layout* layout() const { return cur_.layout; }
+  bool isCurrent(const Record& r) const { return cur_.record == &r; }
 
   // The key `name` if written, else the positional field `name`.
   FieldRef get(const Record& r, std::string_view name) const;
@@ -51,22 +111,33 @@ class Context {
   // Up to `n` components of a vector field (positional tokens or CSV key).
   bool vector(const Record& r, const FieldRef& f, double* out, int n) const;
 
+  // Decoded text of a raw token: a view of `raw` itself unless it has
+  // escapes or is `-` (then of `scratch`).
+  static std::string_view decode(std::string_view raw, std::string& scratch);
+
   // Identity of the nodes and resources, built once (check_refs.cpp).
   struct Index {
     // Views into the document's text, or into `owned` for decoded text.
     std::unordered_map<std::string_view, std::uint32_t> nodeByPath, nodeById;  // ids written as id=
     std::vector<std::string_view> pathOf;                                      // per record; nodes only
+    // Per record: the first node with the same path / the same id= (the
+    // record itself when it is the first), kNoRecord when none.
+    std::vector<std::uint32_t> firstWithPath, firstWithId;
     std::deque<std::string> owned;
-    std::unordered_map<std::string, std::uint32_t> materials, resources;
-    std::unordered_map<std::string, bool> contacts;
+    std::unordered_map<std::string_view, std::uint32_t> materials, resources;
+    std::unordered_map<std::string_view, bool> contacts;
     std::vector<std::int64_t> textureSlots;
     bool inheritedTransforms = true;
     std::string assetRoot = ".";  // decoded, of the last asset_root
     // Filled while records are visited in order.
-    std::unordered_map<const KindDef*, std::uint32_t> lastOfKind;  // record index
-    std::vector<std::uint32_t> parentOf;                          // kNoRecord when none
+    std::vector<std::uint32_t> lastOfKind;  // per kind (index in the schema): record index, kNoRecord when none
+    std::vector<std::uint32_t> parentOf;    // kNoRecord when none
   } index;
   static constexpr std::uint32_t kNoRecord = 0xffffffffu;
+  // Index of a kind in Schema::get().kinds().
+  static std::size_t kindIndex(const KindDef& k) {
+    return static_cast<std::size_t>(&k - Schema::get().kinds().data());
+  }
   // The node a reference names (by id, default id or path), or nullptr.
   const Record* node(std::string_view ref) const;
   // The terrain_region a reference names, or nullptr.
@@ -75,6 +146,32 @@ class Context {
   bool hasExplicitId(const Record& r) const;
 
  private:
+  FieldRef getSlow(const Record& r, std::string_view name) const;
+  // A name the passes ask for, resolved for one kind and layout.
+  struct NameSlot {
+    std::string name;
+    const Layout* layout;
+    int keyIndex;  // -1: not a key of the kind
+    int token;     // first positional token of the field, -1: none
+  };
+  struct Current {
+    const Record* record = nullptr;
+    const Layout* layout = nullptr;
+    std::size_t kind = 0;
+    std::vector<const FieldDef*> defs;     // per field
+    std::vector<std::uint8_t> repeated;    // per field
+    std::vector<std::uint32_t> lastKey;    // per key index: field index of its last occurrence
+    std::vector<std::uint32_t> stamp;      // per key index: generation lastKey is valid for
+    std::uint32_t generation = 0;
+  } cur_;
+  // Per kind: the names asked for (searched from the last hit, since the
+  // passes ask in the same order for every record), and the key names of
+  // the last record of the kind with their key indexes (records of a kind
+  // mostly repeat their keys in the same order).
+  mutable std::vector<std::vector<NameSlot>> slots_;
+  mutable std::vector<std::size_t> slotCursor_;
+  std::vector<std::vector<std::pair<std::string_view, int>>> lastKeys_;
+  const NameSlot& slot(std::string_view name) const;
   Diagnostics& out_;
 };
 
@@ -88,11 +185,12 @@ void checkQuaternion(Context& ctx, const Record& r, Span at, std::string_view fi
 void checkFiles(Context& ctx, const Record& r);        // check_files.cpp
 void checkRaisim(Context& ctx, std::size_t recordIndex); // check_raisim.cpp
 
-// Visits every single-token field of a known record (positional fields of
-// one token, then keys the schema knows) as f(def, field).
+// Visits every single-token field of the current record (positional
+// fields of one token, then keys the schema knows) as f(def, field).
 template <class F>
-void forEachValue(const Document& doc, const Record& r, F&& f) {
-  if (const Layout* layout = r.kind->layoutFor(r.positionalCount)) {
+void forEachValue(const Context& ctx, const Record& r, F&& f) {
+  const Document& doc = ctx.doc;
+  if (const Layout* layout = ctx.layout()) {
     for (std::size_t t = 0; t < layout->tokens.size(); ++t) {
       const FieldDef& def = layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
       if (def.width == 1) f(def, *doc.positional(r, static_cast<std::uint32_t>(t)));
@@ -101,7 +199,7 @@ void forEachValue(const Document& doc, const Record& r, F&& f) {
   for (std::uint32_t j = r.positionalCount; j < r.fieldCount; ++j) {
     const Field& field = doc.field(r, j);
     if (!field.isKey()) continue;
-    if (const FieldDef* def = r.kind->key(doc.text(field.key))) f(*def, field);
+    if (const FieldDef* def = ctx.defOf(j)) f(*def, field);
   }
 }
 

@@ -9,7 +9,7 @@ namespace rscene::checks {
 void checkFiles(Context& ctx, const Record& r) {
   // asset_root names a directory, and output paths are written, not read.
   if (r.kind->tag == "asset_root") return;
-  forEachValue(ctx.doc, r, [&](const FieldDef& def, const Field& f) {
+  forEachValue(ctx, r, [&](const FieldDef& def, const Field& f) {
     if (def.type != ValueType::Path || def.name.rfind("output", 0) == 0) return;
     std::string path = percentDecode(ctx.doc.text(f.value));
     if (path.empty()) return;

@@ -20,7 +20,7 @@ std::string lineRef(const Document& doc, std::uint32_t index) {
   return "line " + std::to_string(doc.records[index].line);
 }
 
-void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
+void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, std::string& scratch) {
   const Document& doc = ctx.doc;
   const Record& r = doc.records[i];
   const auto& ix = ctx.index;
@@ -34,11 +34,12 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
     return;
   }
   if (def.type != ValueType::Ref) return;
-  std::string name = percentDecode(raw);
+  std::string_view name = Context::decode(raw, scratch);
   if (name.empty()) return;  // no reference
   const std::string& what = def.arg;
   auto missing = [&](std::string_view code, std::string_view noun, std::string hint = {}) {
-    ctx.report(code, r, f.value, def.name, std::string(noun) + " '" + name + "' does not exist", std::move(hint));
+    ctx.report(code, r, f.value, def.name, std::string(noun) + " '" + std::string(name) + "' does not exist",
+               std::move(hint));
   };
   if (what == "material") {
     if (name != kDefaultMaterial && !ix.materials.count(name))
@@ -65,7 +66,7 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f) {
       ctx.index.parentOf[i] = targetIndex;
       if (target->kind->tag != "group" && ix.inheritedTransforms) {
         const std::string& k = target->kind->tag;
-        std::string msg = "parent '" + name + "' is " + (k.find_first_of("aeiou") == 0 ? "an " : "a ") + k +
+        std::string msg = "parent '" + std::string(name) + "' is " + (k.find_first_of("aeiou") == 0 ? "an " : "a ") + k +
                           ", not a group";
         if (ctx.raisim())
           ctx.report("RS6004", r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
@@ -90,14 +91,19 @@ void buildIndex(Context& ctx) {
   auto& ix = ctx.index;
   ix.parentOf.assign(doc.records.size(), Context::kNoRecord);
   ix.pathOf.assign(doc.records.size(), {});
+  ix.firstWithPath.assign(doc.records.size(), Context::kNoRecord);
+  ix.firstWithId.assign(doc.records.size(), Context::kNoRecord);
+  ix.lastOfKind.assign(Schema::get().kinds().size(), Context::kNoRecord);
   std::size_t nodes = 0;
   for (const Record& r : doc.records) nodes += r.kind && r.kind->isNode();
   ix.nodeByPath.reserve(nodes);
+  ix.nodeById.reserve(nodes);
   // Most text needs no decoding: keep a view of the document's buffer.
   auto keep = [&](std::string_view raw) -> std::string_view {
     if (raw.find('%') == std::string_view::npos && raw != "-") return raw;
     return ix.owned.emplace_back(percentDecode(raw));
   };
+  auto own = [&](std::string s) -> std::string_view { return ix.owned.emplace_back(std::move(s)); };
   ix.assetRoot = assetRootOf(doc);
   for (std::size_t i = 0; i < doc.records.size(); ++i) {
     const Record& r = doc.records[i];
@@ -107,19 +113,19 @@ void buildIndex(Context& ctx) {
     if (r.kind->isNode()) {
       std::string_view path = keep(doc.positionalText(r, 0));
       ix.pathOf[i] = path;
-      ix.nodeByPath.emplace(path, index);
+      ix.firstWithPath[i] = ix.nodeByPath.emplace(path, index).first->second;
       if (const Field* id = doc.find(r, "id")) {
         std::string_view v = keep(doc.text(id->value));
-        if (!v.empty()) ix.nodeById.emplace(v, index);
+        if (!v.empty()) ix.firstWithId[i] = ix.nodeById.emplace(v, index).first->second;
       }
     } else if (tag == "material") {
-      ix.materials.emplace(nodeId(doc, r), index);
-      ix.materials.emplace(ctx.text(r, "name"), index);
+      ix.materials.emplace(own(nodeId(doc, r)), index);
+      ix.materials.emplace(own(ctx.text(r, "name")), index);
     } else if (tag == "contact_material") {
-      for (std::string_view k : {"materialA", "materialB", "id"}) ix.contacts.emplace(ctx.text(r, k), true);
+      for (std::string_view k : {"materialA", "materialB", "id"}) ix.contacts.emplace(own(ctx.text(r, k)), true);
     } else if (tag == "articulated_resource") {
-      ix.resources.emplace(ctx.text(r, "id"), index);
-      ix.resources.emplace(ctx.text(r, "name"), index);
+      ix.resources.emplace(own(ctx.text(r, "id")), index);
+      ix.resources.emplace(own(ctx.text(r, "name")), index);
     } else if (tag == "terrain_texture") {
       if (auto slot = ctx.integer(r, "slot")) ix.textureSlots.push_back(*slot);
     } else if (tag == "scene_graph") {
@@ -142,18 +148,23 @@ void checkRefs(Context& ctx, std::size_t i) {
     if (!isUnderWorld(path))
       ctx.report("RS3005", r, at, "path", "path '" + std::string(path) + "' is not under /World",
                  "node paths start with /World/");
-    auto samePath = ix.nodeByPath.find(path);
-    bool duplicatePath = samePath != ix.nodeByPath.end() && samePath->second != index;
-    if (duplicatePath)
-      ctx.report("RS3003", r, at, "path",
-                 "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, samePath->second));
+    // buildIndex noted the first node with each path.
+    if (std::uint32_t first = ix.firstWithPath[i]; first != Context::kNoRecord && first != index)
+      ctx.report("RS3003", r, at, "path", "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, first));
     // An id is taken when another node has it as id= or as its default id.
     // Two default ids collide only with a duplicate path (reported above).
     bool explicitId = ctx.hasExplicitId(r);
-    std::string id = explicitId || kind.idPrefix.empty() ? nodeId(doc, r) : kind.idPrefix + std::string(path);
     const Record* other = nullptr;
-    if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end()) other = &doc.records[it->second];
-    if (!other && explicitId && id[0] != '/') other = ctx.node(id);  // another node's default id
+    std::string id;
+    if (explicitId && ix.firstWithId[i] != Context::kNoRecord) {
+      // buildIndex noted the first node with this id= (maybe this one).
+      other = &doc.records[ix.firstWithId[i]];
+      if (other != &r) id = nodeId(doc, r);
+    } else {
+      id = explicitId || kind.idPrefix.empty() ? nodeId(doc, r) : kind.idPrefix + std::string(path);
+      if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end()) other = &doc.records[it->second];
+      if (!other && explicitId && id[0] != '/') other = ctx.node(id);  // another node's default id
+    }
     if (other && other != &r) {
       const FieldRef idField = ctx.get(r, "id");
       ctx.report("RS3004", r, idField ? idField.first->value : at, "id",
@@ -169,21 +180,24 @@ void checkRefs(Context& ctx, std::size_t i) {
                  "duplicate material id '" + id + "'; first used on " + lineRef(doc, it->second));
   }
 
+  const std::size_t k = Context::kindIndex(kind);
   if (kind.role == Role::Singleton) {
-    if (auto it = ix.lastOfKind.find(&kind); it != ix.lastOfKind.end())
-      ctx.report("RS3016", r, r.tag, {},
-                 "repeated " + kind.tag + " replaces the one on " + lineRef(doc, it->second),
+    if (std::uint32_t last = ix.lastOfKind[k]; last != Context::kNoRecord)
+      ctx.report("RS3016", r, r.tag, {}, "repeated " + kind.tag + " replaces the one on " + lineRef(doc, last),
                  "remove the earlier record; it is ignored");
   }
   if (kind.role == Role::Child) {
     const KindDef* parent = Schema::get().kind(kind.parentTag);
-    if (!ix.lastOfKind.count(parent))
+    if (!parent || ix.lastOfKind[Context::kindIndex(*parent)] == Context::kNoRecord)
       ctx.report("RS3015", r, r.tag, {}, kind.tag + " has no " + kind.parentTag + " record before it",
                  "place it after the " + kind.parentTag + " it belongs to");
   }
-  ix.lastOfKind[&kind] = index;
+  ix.lastOfKind[k] = index;
 
-  forEachValue(doc, r, [&](const FieldDef& def, const Field& f) { resolve(ctx, i, def, f); });
+  std::string scratch;
+  forEachValue(ctx, r, [&](const FieldDef& def, const Field& f) {
+    if (def.type == ValueType::Ref || def.type == ValueType::Integer) resolve(ctx, i, def, f, scratch);
+  });
 }
 
 void checkParentCycles(Context& ctx) {

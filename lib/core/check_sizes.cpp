@@ -36,7 +36,7 @@ void perSampleLists(Context& ctx, const Record& r, std::int64_t samples) {
   for (std::uint32_t j = r.positionalCount; j < r.fieldCount; ++j) {
     const Field& f = doc.field(r, j);
     if (!f.isKey()) continue;
-    const FieldDef* def = r.kind->key(doc.text(f.key));
+    const FieldDef* def = ctx.isCurrent(r) ? ctx.defOf(j) : r.kind->key(doc.text(f.key));
     if (!def) continue;
     std::string_view v = doc.text(f.value);
     bool colors = def->type == ValueType::ColorList;

@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <unordered_set>
 
 #include "core/check_context.hpp"
 #include "core/suggest.hpp"
@@ -68,19 +67,18 @@ class TypeChecker {
   }
 
   void keys(const KindDef& kind) {
-    std::unordered_set<std::string_view> seenLarge;
     for (std::uint32_t j = r_.positionalCount; j < r_.fieldCount; ++j) {
       const Field& f = doc_.field(r_, j);
       if (!f.isKey()) continue;
       std::string_view name = doc_.text(f.key);
-      if (repeated(j, name, seenLarge)) {
+      if (ctx_.repeatedKey(j)) {
         if (ctx_.raisim())
           ctx_.report("RS6002", r_, f.key, name, "key '" + std::string(name) + "' repeated; RaiSim refuses the record");
         else
           ctx_.report("RS1101", r_, f.key, name, "key '" + std::string(name) + "' repeated; the last value wins",
                       "remove the earlier one");
       }
-      const FieldDef* def = kind.key(name);
+      const FieldDef* def = ctx_.defOf(j);
       if (!def) {
         unknownKey(kind, f.key, name);
         continue;
@@ -94,18 +92,6 @@ class TypeChecker {
     }
   }
 
-  bool repeated(std::uint32_t j, std::string_view name, std::unordered_set<std::string_view>& large) {
-    constexpr std::uint32_t kLinear = 32;
-    if (r_.fieldCount <= kLinear) {
-      for (std::uint32_t k = r_.positionalCount; k < j; ++k) {
-        const Field& g = doc_.field(r_, k);
-        if (g.isKey() && doc_.text(g.key) == name) return true;
-      }
-      return false;
-    }
-    return !large.insert(name).second;
-  }
-
   void unknownKey(const KindDef& kind, Span at, std::string_view name) {
     std::vector<std::string_view> names;
     names.reserve(kind.keys.size());
@@ -116,16 +102,11 @@ class TypeChecker {
   }
 
   // Decoded text of a raw token (a scratch copy only when it has escapes).
-  std::string_view decode(std::string_view raw) {
-    if (raw.find('%') == std::string_view::npos && raw != "-") return raw;
-    scratch_.clear();
-    percentDecode(raw, scratch_);
-    return scratch_;
-  }
+  std::string_view decode(std::string_view raw) { return Context::decode(raw, scratch_); }
 
   std::optional<double> number(Span at, std::string_view field, std::string_view raw) {
     std::string_view s = decode(raw);
-    if (auto v = parseNumber(s)) return v;
+    if (auto v = toNumber(s)) return v;
     badNumber(ctx_, r_, at, field, s);
     return std::nullopt;
   }
@@ -195,26 +176,52 @@ class TypeChecker {
   }
 
   // Checks numbers of a list; returns their count or -1 after a report.
+  // Items are separated by `,` or `;`; the scan stops at the first empty
+  // item (RS2009) and reports only the first item that is no number.
   long long numbers(const FieldDef& def, Span at, std::string_view s, bool integers) {
+    if (s.empty()) return 0;
     long long count = 0;
     bool bad = false;
-    bool ok = forEachNumber(s, [&](std::string_view part, char) {
+    const char* p = s.data();
+    const char* e = p + s.size();
+    for (;;) {
+      const char* q = p;
+      // A plain decimal is scanned in place; anything else up to the next
+      // separator goes to the full parser.
+      q += q != e && *q == '-';
+      const char* d = q;
+      while (q != e && static_cast<unsigned>(*q - '0') < 10) ++q;
+      std::size_t digits = static_cast<std::size_t>(q - d);
+      bool plain = true;
+      if (q != e && *q == '.') {
+        plain = !integers;
+        const char* fr = ++q;
+        while (q != e && static_cast<unsigned>(*q - '0') < 10) ++q;
+        digits += static_cast<std::size_t>(q - fr);
+      }
+      plain = plain && digits > 0 && (q == e || *q == ',' || *q == ';');
+      if (!plain)
+        while (q != e && *q != ',' && *q != ';') ++q;
+      std::string_view part(p, static_cast<std::size_t>(q - p));
+      if (part.empty()) {
+        ctx_.report("RS2009", r_, at, def.name, def.name + " has an empty entry",
+                    "separate numbers with single `,` or `;` and end without one");
+        return -1;
+      }
       ++count;
-      if (bad) return;
-      if (integers) {
-        if (!parseInteger(part)) {
-          ctx_.report("RS2003", r_, item(at, s, part), def.name, "expected an integer, found " + quoted(part));
+      if (!bad && !(plain && part.size() <= (integers ? 18u : 100u))) {
+        if (integers) {
+          if (!parseInteger(part)) {
+            ctx_.report("RS2003", r_, item(at, s, part), def.name, "expected an integer, found " + quoted(part));
+            bad = true;
+          }
+        } else if (!parseNumber(part)) {
+          badNumber(ctx_, r_, item(at, s, part), def.name, part);
           bad = true;
         }
-      } else if (!parseNumber(part)) {
-        badNumber(ctx_, r_, item(at, s, part), def.name, part);
-        bad = true;
       }
-    });
-    if (!ok) {
-      ctx_.report("RS2009", r_, at, def.name, def.name + " has an empty entry",
-                  "separate numbers with single `,` or `;` and end without one");
-      return -1;
+      if (q == e) break;
+      p = q + 1;
     }
     return bad ? -1 : count;
   }
@@ -242,7 +249,7 @@ class TypeChecker {
       bool bad = false;
       bool ok = forEachNumber(part, [&](std::string_view x, char) {
         ++n;
-        bad = bad || !parseNumber(x);
+        bad = bad || !isNumber(x);
       });
       if (!ok || bad || n < 3 || n > 4) {
         ctx_.report("RS2008", r_, item(at, s, part), def.name,
@@ -260,7 +267,7 @@ class TypeChecker {
     int n = 0;
     bool bad = false;
     bool ok = forEachNumber(s, [&](std::string_view part, char) {
-      auto v = parseNumber(part);
+      auto v = toNumber(part);
       if (!v && !bad) {
         badNumber(ctx_, r_, item(at, s, part), def.name, part);
         bad = true;
