@@ -218,15 +218,23 @@ bool Context::hasExplicitId(const Record& r) const {
 }
 
 const Record* Context::node(std::string_view ref) const {
-  if (auto it = index.nodeById.find(ref); it != index.nodeById.end()) return &doc.records[it->second];
-  if (auto it = index.nodeByPath.find(ref); it != index.nodeByPath.end()) return &doc.records[it->second];
+  if (memoValid_ && memoRef_ == ref) return memoNode_;
+  memoNode_ = findNode(ref);
+  memoRef_.assign(ref);
+  memoValid_ = true;
+  return memoNode_;
+}
+
+const Record* Context::findNode(std::string_view ref) const {
+  if (std::uint32_t i = index.nodeById.find(ref); i != TextIndex::kNone) return &doc.records[i];
+  if (std::uint32_t i = index.nodeByPath.find(ref); i != TextIndex::kNone) return &doc.records[i];
   // Default ids are a kind's prefix and the path (compat-notes.md); they
   // are resolved through the path map instead of being stored.
   for (const KindDef& k : Schema::get().kinds()) {
     if (k.idPrefix.empty() || ref.substr(0, k.idPrefix.size()) != k.idPrefix) continue;
-    auto it = index.nodeByPath.find(ref.substr(k.idPrefix.size()));
-    if (it == index.nodeByPath.end()) continue;
-    const Record& r = doc.records[it->second];
+    std::uint32_t i = index.nodeByPath.find(ref.substr(k.idPrefix.size()));
+    if (i == TextIndex::kNone) continue;
+    const Record& r = doc.records[i];
     if (r.kind == &k && !hasExplicitId(r)) return &r;
   }
   return nullptr;

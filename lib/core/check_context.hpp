@@ -73,6 +73,67 @@ inline bool isNumber(std::string_view s) {
   return parseNumber(s).has_value();
 }
 
+// A map from text to a record index for the node maps: open addressing in
+// one array of 8-byte slots (a 32-bit hash and the index); the key of index
+// i is keys[i], a view that outlives the map.  std::unordered_map costs a
+// bucket, a node, an allocation and a cache miss for each of them.
+class TextIndex {
+ public:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  explicit TextIndex(const std::vector<std::string_view>& keys) : keys_(keys) {}
+  void reserve(std::size_t n) {
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    if (size > slots_.size()) rehash(size);
+  }
+  // Maps keys[value] to value unless that key is there; returns the value
+  // the key has.
+  std::uint32_t emplace(std::uint32_t value) {
+    if (2 * (used_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : 2 * slots_.size());
+    std::string_view key = keys_[value];
+    auto h = static_cast<std::uint32_t>(std::hash<std::string_view>{}(key));
+    for (std::size_t i = h & mask_;; i = (i + 1) & mask_) {
+      Slot& s = slots_[i];
+      if (s.value == kNone) {
+        s = Slot{h, value};
+        ++used_;
+        return value;
+      }
+      if (s.hash == h && keys_[s.value] == key) return s.value;
+    }
+  }
+  // The value of key, or kNone.
+  std::uint32_t find(std::string_view key) const {
+    if (slots_.empty()) return kNone;
+    auto h = static_cast<std::uint32_t>(std::hash<std::string_view>{}(key));
+    for (std::size_t i = h & mask_;; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.value == kNone) return kNone;
+      if (s.hash == h && keys_[s.value] == key) return s.value;
+    }
+  }
+
+ private:
+  struct Slot {
+    std::uint32_t hash = 0;
+    std::uint32_t value = kNone;
+  };
+  void rehash(std::size_t size) {
+    std::vector<Slot> old(size);
+    old.swap(slots_);
+    mask_ = size - 1;
+    for (const Slot& s : old) {
+      if (s.value == kNone) continue;
+      std::size_t i = s.hash & mask_;
+      while (slots_[i].value != kNone) i = (i + 1) & mask_;
+      slots_[i] = s;
+    }
+  }
+  const std::vector<std::string_view>& keys_;
+  std::vector<Slot> slots_;
+  std::size_t used_ = 0, mask_ = 0;
+};
+
 class Context {
  public:
   Context(const Document& d, const CheckOptions& o, Diagnostics& out);
@@ -118,8 +179,8 @@ class Context {
   // Identity of the nodes and resources, built once (check_refs.cpp).
   struct Index {
     // Views into the document's text, or into `owned` for decoded text.
-    std::unordered_map<std::string_view, std::uint32_t> nodeByPath, nodeById;  // ids written as id=
-    std::vector<std::string_view> pathOf;                                      // per record; nodes only
+    std::vector<std::string_view> pathOf, idOf;  // per record; nodes only (idOf: the id= written)
+    TextIndex nodeByPath{pathOf}, nodeById{idOf};  // ids written as id=
     // Per record: the first node with the same path / the same id= (the
     // record itself when it is the first), kNoRecord when none.
     std::vector<std::uint32_t> firstWithPath, firstWithId;
@@ -139,6 +200,7 @@ class Context {
     return static_cast<std::size_t>(&k - Schema::get().kinds().data());
   }
   // The node a reference names (by id, default id or path), or nullptr.
+  // Only once the index is built.
   const Record* node(std::string_view ref) const;
   // The terrain_region a reference names, or nullptr.
   const Record* terrain(std::string_view ref) const;
@@ -147,6 +209,11 @@ class Context {
 
  private:
   FieldRef getSlow(const Record& r, std::string_view name) const;
+  const Record* findNode(std::string_view ref) const;
+  // The last node() answer: references repeat (siblings name one parent).
+  mutable std::string memoRef_;
+  mutable const Record* memoNode_ = nullptr;
+  mutable bool memoValid_ = false;
   // A name the passes ask for, resolved for one kind and layout.
   struct NameSlot {
     std::string name;

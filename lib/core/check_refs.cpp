@@ -91,6 +91,7 @@ void buildIndex(Context& ctx) {
   auto& ix = ctx.index;
   ix.parentOf.assign(doc.records.size(), Context::kNoRecord);
   ix.pathOf.assign(doc.records.size(), {});
+  ix.idOf.assign(doc.records.size(), {});
   ix.firstWithPath.assign(doc.records.size(), Context::kNoRecord);
   ix.firstWithId.assign(doc.records.size(), Context::kNoRecord);
   ix.lastOfKind.assign(Schema::get().kinds().size(), Context::kNoRecord);
@@ -113,10 +114,13 @@ void buildIndex(Context& ctx) {
     if (r.kind->isNode()) {
       std::string_view path = keep(doc.positionalText(r, 0));
       ix.pathOf[i] = path;
-      ix.firstWithPath[i] = ix.nodeByPath.emplace(path, index).first->second;
+      ix.firstWithPath[i] = ix.nodeByPath.emplace(index);
       if (const Field* id = doc.find(r, "id")) {
         std::string_view v = keep(doc.text(id->value));
-        if (!v.empty()) ix.firstWithId[i] = ix.nodeById.emplace(v, index).first->second;
+        if (!v.empty()) {
+          ix.idOf[i] = v;
+          ix.firstWithId[i] = ix.nodeById.emplace(index);
+        }
       }
     } else if (tag == "material") {
       ix.materials.emplace(own(nodeId(doc, r)), index);
@@ -162,7 +166,7 @@ void checkRefs(Context& ctx, std::size_t i) {
       if (other != &r) id = nodeId(doc, r);
     } else {
       id = explicitId || kind.idPrefix.empty() ? nodeId(doc, r) : kind.idPrefix + std::string(path);
-      if (auto it = ix.nodeById.find(id); !id.empty() && it != ix.nodeById.end()) other = &doc.records[it->second];
+      if (std::uint32_t it = ix.nodeById.find(id); !id.empty() && it != TextIndex::kNone) other = &doc.records[it];
       if (!other && explicitId && id[0] != '/') other = ctx.node(id);  // another node's default id
     }
     if (other && other != &r) {

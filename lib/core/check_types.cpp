@@ -48,7 +48,7 @@ class TypeChecker {
   void positionals(const Layout& layout) {
     for (std::size_t t = 0; t < layout.tokens.size();) {
       const FieldDef& def = layout.fields[static_cast<std::size_t>(layout.tokens[t].first)];
-      const Field* f = doc_.positional(r_, static_cast<std::uint32_t>(t));
+      const Field* f = r_.interleaved ? doc_.positional(r_, static_cast<std::uint32_t>(t)) : &doc_.field(r_, static_cast<std::uint32_t>(t));
       if (def.width == 1) {
         scalar(def, f->value, doc_.text(f->value));
       } else {
@@ -105,6 +105,8 @@ class TypeChecker {
   std::string_view decode(std::string_view raw) { return Context::decode(raw, scratch_); }
 
   std::optional<double> number(Span at, std::string_view field, std::string_view raw) {
+    double v;
+    if (fastDecimal(raw, v)) return v;  // a plain decimal has no escapes to decode
     std::string_view s = decode(raw);
     if (auto v = toNumber(s)) return v;
     badNumber(ctx_, r_, at, field, s);
@@ -118,17 +120,21 @@ class TypeChecker {
         number(at, def.name, raw);
         return;
       case ValueType::Integer:
+        // Text that parses has no escapes: decode only the rest.
+        if (auto v = parseInteger(raw); v && *v >= INT32_MIN && *v <= INT32_MAX) return;
         s = decode(raw);
         if (auto v = parseInteger(s); !v || *v < INT32_MIN || *v > INT32_MAX)
           ctx_.report("RS2003", r_, at, def.name, "expected a 32-bit integer, found " + quoted(s));
         return;
       case ValueType::Group:
+        if (parseGroup(raw)) return;
         s = decode(raw);
         if (!parseGroup(s))
           ctx_.report("RS2004", r_, at, def.name, "expected an unsigned 64-bit integer, found " + quoted(s),
                       "all bits is 18446744073709551615");
         return;
       case ValueType::Flag:
+        if (parseFlag(raw)) return;
         s = decode(raw);
         if (!parseFlag(s))
           ctx_.report("RS2005", r_, at, def.name, "expected a flag, found " + quoted(s),
