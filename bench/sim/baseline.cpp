@@ -124,6 +124,7 @@ bool readTable(const char* file, Settings& s, std::vector<Body>& bodies, std::st
 class World {
  public:
   World(const Settings& s, const std::vector<Body>& list) : dt_(s.dt) {
+    config_.setPlaneConvexMultipointIterations(3, 3);  // up to four box-plane contact points
     broadphase_ = std::make_unique<btDbvtBroadphase>();
     world_ = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher_, broadphase_.get(), &solver_, &config_);
     world_->setGravity(btVector3(s.gravity[0], s.gravity[1], s.gravity[2]));

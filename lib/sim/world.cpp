@@ -225,6 +225,11 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   auto impl = std::make_unique<Impl>();
   Impl& w = *impl;
   const Solver& sv = scene.solver;
+  // Up to four contact points between a convex body and a plane (Bullet
+  // finds one by default): a box sliding faster than its contact-breaking
+  // threshold per step otherwise keeps a single corner point, rocks and
+  // sinks millimetres into the ground.
+  w.config.setPlaneConvexMultipointIterations(3, 3);
   w.dt = scene.timeStep;
   if (sv.broadphaseType == "sap3_axis" && sv.broadphaseUseWorldBounds)
     w.broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
@@ -465,6 +470,33 @@ std::vector<BodyState> World::states() const {
     out.push_back(std::move(b));
   }
   return out;
+}
+
+namespace {
+// The dynamic body named by path or id, or nullptr.
+btRigidBody* dynamicBody(const World::Impl& w, const std::string& name) {
+  auto it = w.byName.find(name);
+  if (it == w.byName.end()) return nullptr;
+  for (const Simulated& s : w.simulated)
+    if (s.body == it->second) return s.dynamic ? s.body : nullptr;
+  return nullptr;
+}
+}  // namespace
+
+bool World::setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity) {
+  btRigidBody* body = dynamicBody(*impl_, pathOrId);
+  if (!body || !velocity.allFinite()) return false;
+  body->setLinearVelocity(bt(velocity));
+  body->activate(true);
+  return true;
+}
+
+bool World::setAngularVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity) {
+  btRigidBody* body = dynamicBody(*impl_, pathOrId);
+  if (!body || !velocity.allFinite()) return false;
+  body->setAngularVelocity(bt(velocity));
+  body->activate(true);
+  return true;
 }
 
 void World::writeBack(Document& doc) const {

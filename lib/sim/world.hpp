@@ -73,6 +73,13 @@ class World {
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
 
+  // Initial conditions the format has no key for (tests, programs that
+  // embed lib/sim): sets the velocity of the dynamic body named by path or
+  // id, in the world frame, and wakes it.  Returns false (and changes
+  // nothing) when no dynamic body has that name or a value is not finite.
+  bool setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
+  bool setAngularVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
+
   // Writes the current poses of dynamic and kinematic bodies into `doc`
   // (positional position and orientation tokens, shortest round-trip),
   // relative to their parent frame when they inherit one.
