@@ -6,6 +6,8 @@
 # (rscene-fmt >= 150 MB/s on the 128 MB scene, peak RSS <= 3x the file
 # size, time linear in size) are marked PASS or MISS.  Quote the ratio to
 # `cat` from the same run; absolute MB/s move with the machine's load.
+# At the end, when rscene-sim is built, bench/sim/run.sh compares it with
+# a hand-written Bullet program (several minutes; SIM_BENCH_* there).
 #
 # Environment:
 #   BENCH_DIR     where the scenes go (default: a temporary directory, removed)
@@ -170,5 +172,11 @@ if [[ -n ${RATE[rscene-fmt,$last]:-} ]]; then
   fi
 else
   echo "  rscene-fmt was not measured"
+fi
+
+# rscene-sim against a hand-written Bullet program (issue 5), when built.
+if [[ -x $BIN/rscene-sim && -x $BIN/rscene-sim-baseline && -x $BIN/rscene-sim-bench-gen ]]; then
+  echo
+  bash "$(dirname "${BASH_SOURCE[0]}")/sim/run.sh" "$BIN" || status=1
 fi
 exit $status
