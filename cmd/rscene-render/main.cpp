@@ -46,15 +46,17 @@ int run(const Options& opt) {
   if (!loaded.ok()) return cli::kTrouble;
 
   auto tBuild = Clock::now();
-  render::SceneOptions so;
-  so.sceneDir = !opt.baseDir.empty() ? opt.baseDir : in.path.empty() ? "." : directoryOf(in.path);
+  SceneOptions so;
+  so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  so.baseDir = opt.baseDir;
   render::RenderScene scene;
   Diagnostics diags;
-  render::buildRenderScene(loaded.document, so, scene, diags);
+  bool built = render::buildRenderScene(loaded.document, so, scene, diags);
   cli::printDiagnostics(diags, in.display, in.text, color);
+  if (!built) return cli::kTrouble;
   if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
 
-  render::Camera camera;
+  Camera camera;
   std::string err;
   if (!render::chooseCamera(scene, opt.camera, camera, &err)) {
     cli::error(err);

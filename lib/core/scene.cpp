@@ -47,6 +47,7 @@ class Builder {
       else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms", true);
       else if (tag == "environment") readEnvironment(r, idx);
       else if (tag == "weather") readWeather(r, idx);
+      else if (tag == "rayrai_render") readRenderSettings(r, idx);
       else if (tag == "material") readMaterial(r, idx);
       else if (tag == "contact_material") readContact(r, idx);
       else if (tag == "terrain_texture") readTerrainTexture(r, idx);
@@ -159,7 +160,14 @@ class Builder {
     w.sunAzimuthDegrees = r.number("sunAzimuthDegrees", 180);
     w.sunElevationDegrees = r.number("sunElevationDegrees", 42);
     w.fogDensity = r.number("fogDensity", 0);
-    w.cloudCoverage = r.number("cloudCoverage", 0);
+    if (r.has("cloudCoverage")) w.cloudCoverage = r.number("cloudCoverage", 0);
+  }
+
+  void readRenderSettings(const RecordReader& r, int idx) {
+    RenderSettings& v = s_.renderSettings;
+    v.recordIndex = idx;
+    v.preset = r.name("preset", "balanced");
+    v.colorMode = r.name("colorMode", "");
   }
 
   void readMaterial(const RecordReader& r, int idx) {
@@ -222,6 +230,8 @@ class Builder {
     g.id = nodeId(doc_, r.record());
     g.parentId = r.str("parentId");
     g.visible = r.flag("visible", true);
+    parentOf_[idx] = g.parentId;
+    if (!g.visible) hiddenGroups_.push_back(idx);
     s_.groups.push_back(std::move(g));
   }
 
@@ -245,7 +255,9 @@ class Builder {
     l.radius = r.number("radius", 0);
     l.areaSize = r.vec3("areaSize", Eigen::Vector3d::Zero());
     l.shadows = r.flag("shadows", true);
-    parentOf_[idx] = r.str("parentGroupId");
+    l.negative = r.flag("negative", false);
+    l.parentId = r.str("parentGroupId");
+    parentOf_[idx] = l.parentId;
     s_.lights.push_back(std::move(l));
   }
 
@@ -306,6 +318,7 @@ class Builder {
       if (o.bodyMode != BodyMode::VisualOnly) o.bodyMode = BodyMode::Static;
     if (!o.collidable) o.bodyMode = BodyMode::VisualOnly;
     o.visible = r.flag("visible", true);
+    o.castShadow = r.flag("castShadow", true);
     std::string mesh = r.str("meshPath");
     if (std::string render = r.str("renderMeshPath"); !render.empty()) mesh = render;
     std::string collision = r.str("collisionMeshPath");
@@ -417,6 +430,7 @@ class Builder {
     t.collidable = r.flag("collidable", true);
     t.castShadow = r.flag("castShadow", true);
     t.receiveShadow = r.flag("receiveShadow", true);
+    t.textureSplatting = r.flag("textureSplattingEnabled", true);
     t.sourceKind = r.name("sourceKind", "samples");
     sampleList(r, "texturePrimary", n, 1, t.texturePrimary);
     sampleList(r, "textureSecondary", n, 1, t.textureSecondary);
@@ -499,7 +513,7 @@ class Builder {
           in.position = {xs[i], xs[i + 1], xs[i + 2]};
           Eigen::Quaterniond q(xs[i + 3], xs[i + 4], xs[i + 5], xs[i + 6]);
           in.orientation = q.norm() > 1e-12 ? q.normalized() : Eigen::Quaterniond::Identity();
-          in.scale = xs[i + 7];  // uniform: x of the scale triple
+          in.scale = {xs[i + 7], xs[i + 8], xs[i + 9]};
           v.instances.push_back(in);
         }
       }
@@ -508,6 +522,8 @@ class Builder {
     v.castShadows = r.flag("castShadows", true);
     v.grassPatch = r.flag("grassPatch", false);
     v.enabled = r.flag("enabled", true);
+    v.parentId = r.str("parentGroupId");
+    parentOf_[idx] = v.parentId;
     s_.instancedVisuals.push_back(std::move(v));
   }
 
@@ -535,6 +551,8 @@ class Builder {
     }
     p.pointSize = r.number("pointSize", 1);
     p.enabled = r.flag("enabled", true);
+    p.parentId = r.str("parentGroupId");
+    parentOf_[idx] = p.parentId;
     s_.pointClouds.push_back(std::move(p));
   }
 
@@ -575,6 +593,20 @@ class Builder {
     return parentFrame(parent, depth + 1) * *p;
   }
 
+  // Whether a group with visible=false is among the node's ancestors.
+  bool hiddenByGroup(int idx) const {
+    if (hiddenGroups_.empty()) return false;
+    for (int depth = 0; depth < 64; ++depth) {
+      auto it = parentOf_.find(idx);
+      if (it == parentOf_.end()) return false;
+      int parent = lookup(it->second);
+      if (parent < 0 || parent == idx) return false;
+      if (std::find(hiddenGroups_.begin(), hiddenGroups_.end(), parent) != hiddenGroups_.end()) return true;
+      idx = parent;
+    }
+    return false;
+  }
+
   void resolveWorld() {
     for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
     for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
@@ -582,7 +614,13 @@ class Builder {
     for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex, 0) * o.local;
     for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex, 0) * c.local;
     for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    for (Object& o : s_.objects) o.hiddenByGroup = hiddenByGroup(o.recordIndex);
+    for (Compound& c : s_.compounds) c.hiddenByGroup = hiddenByGroup(c.recordIndex);
+    for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);
+    for (InstancedVisual& v : s_.instancedVisuals) v.hiddenByGroup = hiddenByGroup(v.recordIndex);
+    for (PointCloud& p : s_.pointClouds) p.hiddenByGroup = hiddenByGroup(p.recordIndex);
     for (Light& l : s_.lights) {
+      l.hiddenByGroup = hiddenByGroup(l.recordIndex);
       Pose f = parentFrame(l.recordIndex, 0);
       l.position = f.position + f.orientation * l.position;
       l.direction = f.orientation * l.direction;
@@ -596,6 +634,7 @@ class Builder {
   std::unordered_map<std::string, std::size_t> byId_, byPath_;
   std::unordered_map<int, std::string> parentOf_;
   std::unordered_map<int, const Pose*> poses_;
+  std::vector<int> hiddenGroups_;  // record indices of groups with visible=false
 };
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -124,7 +125,14 @@ struct Weather {
   double sunAzimuthDegrees = 180;
   double sunElevationDegrees = 42;
   double fogDensity = 0;
-  double cloudCoverage = 0;
+  std::optional<double> cloudCoverage;  // absent: the preset's
+};
+
+// rayrai_render record (what a renderer needs of Engine 2's view settings).
+struct RenderSettings {
+  int recordIndex = -1;
+  std::string preset = "balanced";
+  std::string colorMode;  // empty: not written (environment colorMode wins when written)
 };
 
 struct Material {
@@ -174,7 +182,7 @@ struct Group {
 
 struct Light {
   int recordIndex = -1;
-  std::string path, id;
+  std::string path, id, parentId;
   std::string type = "directional";  // directional | point | spot | area
   Eigen::Vector3d direction{0, 0, -1};  // the way the light travels, world frame, normalised
   double intensity = 1;
@@ -187,6 +195,8 @@ struct Light {
   double radius = 0;
   Eigen::Vector3d areaSize = Eigen::Vector3d::Zero();
   bool shadows = true;
+  bool negative = false;       // subtracts light
+  bool hiddenByGroup = false;  // an ancestor group has visible=false
 };
 
 struct Camera {
@@ -214,6 +224,8 @@ struct Object {
   std::string contactMaterial;      // contact-material name (may be empty / "default")
   std::string material;             // visual material id
   bool visible = true;
+  bool hiddenByGroup = false;  // an ancestor group has visible=false
+  bool castShadow = true;
   BodyMode bodyMode = BodyMode::Dynamic;  // resolved from #21, #17, #19, collidable
   bool collidable = true;
   std::uint64_t collisionGroup = 1;
@@ -252,6 +264,7 @@ struct Compound {
   double mass = 1;
   BodyMode bodyMode = BodyMode::Dynamic;
   bool visible = true, collidable = true;
+  bool hiddenByGroup = false;
   bool hasCenterOfMass = false, hasInertia = false;
   Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();  // compound frame
   Eigen::Vector3d inertiaDiagonal = Eigen::Vector3d::Zero();
@@ -282,6 +295,8 @@ struct Terrain {
   std::string material, contactMaterial;
   int baseTexture = 0;
   bool visible = true, collidable = true, castShadow = true, receiveShadow = true;
+  bool hiddenByGroup = false;
+  bool textureSplatting = true;  // textureSplattingEnabled
   std::string sourceKind = "samples";
   std::vector<double> texturePrimary, textureSecondary, textureBlend, wetness, holes;  // per sample or empty
   std::vector<Eigen::Vector4d> vertexColors;  // per sample or empty
@@ -308,12 +323,12 @@ struct Wire {
 struct Instance {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  double scale = 1;  // the tenth number
+  Eigen::Vector3d scale{1, 1, 1};  // numbers 8..10
 };
 
 struct InstancedVisual {
   int recordIndex = -1;
-  std::string path, id;
+  std::string path, id, parentId;
   std::string primitive = "box";
   std::string meshPath;  // resolved
   Eigen::Vector3d size{1, 1, 1};
@@ -321,15 +336,17 @@ struct InstancedVisual {
   std::vector<Instance> instances;
   std::vector<double> colorWeights;  // one per instance or empty
   bool castShadows = true, enabled = true, grassPatch = false;
+  bool hiddenByGroup = false;
 };
 
 struct PointCloud {
   int recordIndex = -1;
-  std::string path, id;
+  std::string path, id, parentId;
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector4d> colors;  // one per point or empty
   double pointSize = 1;
   bool enabled = true;
+  bool hiddenByGroup = false;
 };
 
 // A scene-content record the view does not model (articulated, deformable,
@@ -347,6 +364,7 @@ struct Scene {
   std::string assetRoot = ".";
   Environment environment;
   Weather weather;
+  RenderSettings renderSettings;
   std::vector<Material> materials;  // never empty: engine_default without material records
   std::vector<ContactMaterial> contactMaterials;
   std::vector<TerrainTexture> terrainTextures;  // never empty: slots 0/1 by default

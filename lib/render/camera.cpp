@@ -35,6 +35,7 @@ Camera autoCamera(const RenderScene& scene, double aspect) {
   Camera c;
   c.path = "auto";
   c.verticalFov = 50;
+  c.width = c.height = 0;  // no size of its own: the caller's
   Eigen::AlignedBox3d box = scene.bounds;
   if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
   Eigen::Vector3d center = box.center();
@@ -47,27 +48,28 @@ Camera autoCamera(const RenderScene& scene, double aspect) {
   const double pitch = radians(15);
   Eigen::Vector3d toCamera = Eigen::Vector3d(-std::cos(pitch) * std::cos(radians(45)),
                                              -std::cos(pitch) * std::sin(radians(45)), std::sin(pitch));
-  c.position = center + distance * toCamera;
+  c.world.position = center + distance * toCamera;
   Eigen::Vector3d forward = -toCamera;
   Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(forward).normalized();
   Eigen::Vector3d up = forward.cross(left);
   Eigen::Matrix3d r;
   r.col(0) = forward, r.col(1) = left, r.col(2) = up;  // local +x forward, +y left, +z up
-  c.orientation = Eigen::Quaterniond(r);
+  c.world.orientation = Eigen::Quaterniond(r);
+  c.local = c.world;
   c.nearPlane = std::max(0.01, (distance - radius) * 0.2);
   c.farPlane = (distance + radius) * 50 + 500;
   return c;
 }
 
 Eigen::Matrix4d viewMatrix(const Camera& camera) {
-  Eigen::Matrix3d r = camera.orientation.normalized().toRotationMatrix();
+  Eigen::Matrix3d r = camera.world.orientation.normalized().toRotationMatrix();
   Eigen::Vector3d forward = r.col(0), up = r.col(2);
   Eigen::Vector3d right = forward.cross(up);
   Eigen::Matrix4d v = Eigen::Matrix4d::Identity();
   v.block<1, 3>(0, 0) = right.transpose();
   v.block<1, 3>(1, 0) = up.transpose();
   v.block<1, 3>(2, 0) = -forward.transpose();
-  v.block<3, 1>(0, 3) = -v.block<3, 3>(0, 0) * camera.position;
+  v.block<3, 1>(0, 3) = -v.block<3, 3>(0, 0) * camera.world.position;
   return v;
 }
 
@@ -83,7 +85,7 @@ double effectiveVerticalFov(const Camera& camera, double aspect) {
 Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect) {
   double n = camera.nearPlane, f = camera.farPlane;
   Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
-  if (camera.orthographic) {
+  if (camera.projection == "orthographic") {
     double h = std::max(camera.orthoScale, 1e-6) / 2, w = h * aspect;
     p(0, 0) = 1 / w;
     p(1, 1) = 1 / h;
@@ -120,11 +122,11 @@ bool seesAnything(const RenderScene& scene, const Camera& camera, double aspect)
   };
   for (const Drawable& d : scene.drawables)
     if (visible(d.bounds)) return true;
-  for (const Terrain& t : scene.terrains)
+  for (const TerrainMesh& t : scene.terrains)
     if (visible(t.bounds)) return true;
   for (const Instanced& b : scene.instanced)
     if (visible(b.bounds)) return true;
-  for (const PointCloud& p : scene.pointClouds)
+  for (const PointBatch& p : scene.pointClouds)
     if (visible(p.bounds)) return true;
   return false;
 }

@@ -1,24 +1,27 @@
-// What the renderer draws, read from a Document: materials, drawables at
-// physical size in world space, lights, cameras, terrain meshes, instanced
-// batches, point clouds and the environment.  Records it cannot draw are
-// counted in `skipped`.  Asset paths are resolved (core/assets.hpp) but not
-// opened here; the renderer opens them.
+// What the renderer draws, prepared from the typed scene view of lib/core
+// (core/scene.hpp, shared with rscene-sim): materials in the form the
+// shaders take, drawables at physical size in world space, lights, terrain
+// meshes with their colors, instanced batches, point clouds and the look of
+// the environment.  Nothing here reads the Document's fields; the Document
+// is consulted only for the source line of a record, for messages.
 //
-// This is a render-side adapter over the Document (typed by the schema
-// table through RecordView).  It will read lib/core/scene.hpp's typed view
-// where that covers a record kind.
+// Cameras are the scene view's own rscene::Camera (world pose, looks along
+// local +x with local +z up).
 #pragma once
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "core/scene.hpp"
 
 namespace rscene::render {
 
-struct Material {
+// A scene material as the shaders take it.
+struct RenderMaterial {
   std::string id;
   Eigen::Vector4f color{0.55f, 0.62f, 0.72f, 1.f};
   float metallic = 0;
@@ -41,7 +44,6 @@ struct Drawable {
   Eigen::Affine3d world = Eigen::Affine3d::Identity();
   double capsuleRadius = 0, capsuleHeight = 0;
   std::string meshPath;   // resolved
-  std::string meshWritten;
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
@@ -50,11 +52,11 @@ struct Drawable {
 
 enum class LightType { Directional, Point, Spot, Area };
 
-struct Light {
+struct RenderLight {
   LightType type = LightType::Directional;
   Eigen::Vector3d direction{0, 0, -1};  // the way the light travels, unit
   Eigen::Vector3d position{0, 0, 3};
-  Eigen::Vector3f color{1, 1, 1};       // color x intensity
+  Eigen::Vector3f color{1, 1, 1};       // color x intensity (negative lights subtract)
   Eigen::Vector3f attenuation{1, 0.04f, 0.012f};
   float coneDegrees = 30, innerConeDegrees = 18;
   float range = 0;
@@ -62,25 +64,13 @@ struct Light {
   bool shadows = false;
 };
 
-struct Camera {
-  std::string path, id;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // looks along local +x, local +z up
-  double verticalFov = 52, horizontalFov = 0;
-  double nearPlane = 0.05, farPlane = 100;
-  int width = 0, height = 0;
-  bool orthographic = false;
-  double orthoScale = 10;  // full height of the view in metres
-  bool enabled = true;
-  std::uint32_t line = 0;
-};
-
-struct Terrain {
+struct TerrainMesh {
   int xSamples = 0, ySamples = 0;
   std::vector<Eigen::Vector3f> positions;  // world space
   std::vector<Eigen::Vector4f> colors;
   std::vector<bool> holes;
   int material = 0;
+  bool castShadow = true;
   Eigen::AlignedBox3d bounds;
 };
 
@@ -90,11 +80,12 @@ struct Instanced {
   std::vector<Eigen::Affine3d> worlds;  // unit shape -> world
   std::vector<Eigen::Vector4f> colors;
   int material = 0;
+  bool castShadow = true;
   std::uint32_t line = 0;
   Eigen::AlignedBox3d bounds;
 };
 
-struct PointCloud {
+struct PointBatch {
   std::vector<Eigen::Vector3f> points;
   std::vector<Eigen::Vector4f> colors;
   float pointSize = 1;
@@ -104,11 +95,11 @@ struct PointCloud {
 enum class Background { PlainColor, Hdr, Sky };
 enum class ToneMap { Linear, Aces, Filmic, AgX, Unreal };
 
-struct Environment {
+struct Look {
   Eigen::Vector3f background{0.38f, 0.38f, 0.38f};
   Eigen::Vector3f ambient{0.15f, 0.16f, 0.20f};
   float fogDensity = 0;
-  Eigen::Vector3f fogColor{0.66f, 0.78f, 0.96f};
+  Eigen::Vector3f fogColor{0.38f, 0.38f, 0.38f};
   bool shadows = true;
   float exposure = 1, gamma = 2.2f;
   Background mode = Background::Sky;
@@ -120,25 +111,27 @@ struct Environment {
   bool overcast = false, night = false;
 };
 
-struct SceneOptions {
-  std::string sceneDir = ".";   // directory that relative asset paths start from
-};
-
 struct RenderScene {
-  std::vector<Material> materials;  // [0] is engine_default
+  std::vector<RenderMaterial> materials;  // [0] is engine_default
   std::vector<Drawable> drawables;
-  std::vector<Light> lights;
-  std::vector<Camera> cameras;
-  std::vector<Terrain> terrains;
+  std::vector<RenderLight> lights;
+  std::vector<Camera> cameras;  // the scene view's, near/far made usable
+  std::vector<TerrainMesh> terrains;
   std::vector<Instanced> instanced;
-  std::vector<PointCloud> pointClouds;
-  Environment environment;
+  std::vector<PointBatch> pointClouds;
+  Look environment;
   std::map<std::string, int> skipped;  // record kind -> count
   Eigen::AlignedBox3d bounds;          // everything visible but the ground
   bool hasGround = false;
 };
 
-// Fills `out`; diagnostics are warnings only (the Document already loaded).
-void buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags);
+// Prepares `out` from a scene view built from `doc` (the Document gives
+// record lines for messages only).  Adds no diagnostics of its own.
+void prepareScene(const Document& doc, const Scene& scene, RenderScene& out);
+
+// buildScene() then prepareScene(); false when the scene view reported an
+// error (a value that does not parse, a malformed terrain ...).  `out` is
+// filled as far as possible either way.
+bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags);
 
 }  // namespace rscene::render

@@ -113,7 +113,7 @@ class Frame {
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
   std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0);
   GLuint texture(const Image& image);
-  bool materialTexture(const Material& m, GLuint& out);
+  bool materialTexture(const RenderMaterial& m, GLuint& out);
   const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, bool& failed);
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
@@ -132,7 +132,7 @@ class Frame {
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
   std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
-  std::vector<Light> lights_;
+  std::vector<RenderLight> lights_;
   int shadowLight_ = -1;
   GLuint hdrTexture_ = 0;
   GLuint pointVao_ = 0, pointVbo_ = 0;
@@ -210,7 +210,7 @@ GLuint Frame::texture(const Image& image) {
   return t;
 }
 
-bool Frame::materialTexture(const Material& m, GLuint& out) {
+bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   out = 0;
   if (m.albedoTexture.empty()) return true;
   auto it = textures_.find(m.albedoTexture);
@@ -276,9 +276,9 @@ void Frame::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bo
 
 bool Frame::prepare() {
   const Eigen::Vector4f placeholderColor(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: cannot be mistaken for content
-  auto pbrOf = [](const Material& m, float checker) { return Eigen::Vector4f(m.metallic, m.roughness, checker, 0); };
+  auto pbrOf = [](const RenderMaterial& m, float checker) { return Eigen::Vector4f(m.metallic, m.roughness, checker, 0); };
   for (const Drawable& d : scene_.drawables) {
-    const Material& mat = scene_.materials[std::size_t(d.material)];
+    const RenderMaterial& mat = scene_.materials[std::size_t(d.material)];
     if (d.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, failed);
@@ -305,7 +305,7 @@ bool Frame::prepare() {
         mat.doubleSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
         pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive);
   }
-  for (const Terrain& t : scene_.terrains) {
+  for (const TerrainMesh& t : scene_.terrains) {
     MeshData m;
     int nx = t.xSamples, ny = t.ySamples;
     m.vertices.reserve(std::size_t(nx) * ny * 8);
@@ -327,8 +327,8 @@ bool Frame::prepare() {
         m.indices.insert(m.indices.end(), {i, i + 1, i + std::uint32_t(nx) + 1, i, i + std::uint32_t(nx) + 1,
                                            i + std::uint32_t(nx)});
       }
-    const Material& mat = scene_.materials[std::size_t(t.material)];
-    add(upload(m, &t.colors), 0, false, true, true, Eigen::Affine3d::Identity(), Eigen::Vector4f(1, 1, 1, 1),
+    const RenderMaterial& mat = scene_.materials[std::size_t(t.material)];
+    add(upload(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(), Eigen::Vector4f(1, 1, 1, 1),
         pbrOf(mat, 0), Eigen::Vector3f::Zero());
   }
   for (const Instanced& b : scene_.instanced) {
@@ -341,12 +341,12 @@ bool Frame::prepare() {
     } else {
       mesh = primitive(b.shape);
     }
-    const Material& mat = scene_.materials[std::size_t(b.material)];
+    const RenderMaterial& mat = scene_.materials[std::size_t(b.material)];
     for (std::size_t i = 0; i < b.worlds.size(); ++i)
-      add(mesh, 0, b.colors[i].w() < 0.999f, false, true, b.worlds[i], b.colors[i], pbrOf(mat, 0),
+      add(mesh, 0, b.colors[i].w() < 0.999f, false, b.castShadow, b.worlds[i], b.colors[i], pbrOf(mat, 0),
           Eigen::Vector3f::Zero());
   }
-  const Environment& env = scene_.environment;
+  const Look& env = scene_.environment;
   if (env.mode == Background::Hdr) {
     FloatImage hdr;
     std::string bytes, err;
@@ -367,7 +367,7 @@ bool Frame::prepare() {
   }
   // Point clouds: one buffer, one range per cloud.
   std::vector<float> points;
-  for (const PointCloud& pc : scene_.pointClouds) {
+  for (const PointBatch& pc : scene_.pointClouds) {
     pointRanges_.emplace_back(GLint(points.size() / 7), GLsizei(pc.points.size()));
     pointSizes_.push_back(pc.pointSize);
     for (std::size_t i = 0; i < pc.points.size(); ++i) {
@@ -428,7 +428,7 @@ void Frame::finishBatches() {
 void Frame::buildLights() {
   lights_ = scene_.lights;
   if (lights_.empty()) {  // a scene without lights is lit by the sun of its sky
-    Light sun;
+    RenderLight sun;
     sun.direction = -scene_.environment.sunDirection;
     sun.color = Eigen::Vector3f(1.0f, 0.96f, 0.9f) * 3.0f;
     sun.shadows = true;
@@ -466,7 +466,7 @@ void Frame::drawBatches(GLuint prog, bool blendPass, bool shadowPass) {
 }
 
 bool Frame::draw(const Camera& camera, Image& out) {
-  const Environment& env = scene_.environment;
+  const Look& env = scene_.environment;
   int w = opt_.width, h = opt_.height;
   double aspect = double(w) / double(h);
   std::string log;
@@ -506,9 +506,9 @@ bool Frame::draw(const Camera& camera, Image& out) {
     Eigen::Vector3d left = upHint.cross(fwd).normalized();
     Eigen::Matrix3d rot;
     rot.col(0) = fwd, rot.col(1) = left, rot.col(2) = fwd.cross(left);
-    lc.orientation = Eigen::Quaterniond(rot);
-    lc.position = c - fwd * 2 * r;
-    lc.orthographic = true;
+    lc.world.orientation = Eigen::Quaterniond(rot);
+    lc.world.position = c - fwd * 2 * r;
+    lc.projection = "orthographic";
     lc.orthoScale = 2 * r;
     lc.nearPlane = 0.01;
     lc.farPlane = 4 * r;
@@ -587,10 +587,10 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glUseProgram(surface);
   setMat(surface, "uViewProj", viewProj);
   setMat(surface, "uLightViewProj", lightViewProj);
-  setVec3(surface, "uCameraPos", camera.position.cast<float>());
+  setVec3(surface, "uCameraPos", camera.world.position.cast<float>());
   glUniform1i(loc(surface, "uLightCount"), int(lights_.size()));
   for (std::size_t i = 0; i < lights_.size(); ++i) {
-    const Light& l = lights_[i];
+    const RenderLight& l = lights_[i];
     std::string idx = "[" + std::to_string(i) + "]";
     Eigen::Vector3f p = l.position.cast<float>(), d = l.direction.normalized().cast<float>();
     constexpr float kDeg = 3.14159265f / 180;

@@ -201,7 +201,7 @@ TEST(Scene, LightsCamerasInstances) {
   EXPECT_DOUBLE_EQ(b.scene.lights[0].coneAngle, 30);
   EXPECT_DOUBLE_EQ(b.scene.cameras[0].verticalFov, 175);
   ASSERT_EQ(b.scene.instancedVisuals[0].instances.size(), 2u);
-  EXPECT_DOUBLE_EQ(b.scene.instancedVisuals[0].instances[0].scale, 2);
+  EXPECT_EQ(b.scene.instancedVisuals[0].instances[0].scale, Eigen::Vector3d(2, 2, 2));
 }
 
 TEST(Scene, CorpusScenesBuild) {
