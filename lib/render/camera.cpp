@@ -103,23 +103,24 @@ Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect) {
   return p;
 }
 
+bool boxInFrustum(const Eigen::Matrix4d& m, const Eigen::AlignedBox3d& b) {
+  if (b.isEmpty()) return false;
+  Eigen::Vector4d c[8];
+  for (int i = 0; i < 8; ++i) c[i] = m * b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)).homogeneous();
+  for (int plane = 0; plane < 6; ++plane) {
+    int axis = plane / 2;
+    double s = plane % 2 ? -1 : 1;
+    bool allOut = true;
+    for (int i = 0; i < 8 && allOut; ++i)
+      if (s * c[i][axis] <= c[i].w()) allOut = false;
+    if (allOut) return false;
+  }
+  return true;
+}
+
 bool seesAnything(const RenderScene& scene, const Camera& camera, double aspect) {
   Eigen::Matrix4d m = projectionMatrix(camera, aspect) * viewMatrix(camera);
-  auto visible = [&](const Eigen::AlignedBox3d& b) {
-    if (b.isEmpty()) return false;
-    // Outside when all 8 corners are beyond the same clip plane.
-    for (int plane = 0; plane < 6; ++plane) {
-      bool allOut = true;
-      for (int i = 0; i < 8 && allOut; ++i) {
-        Eigen::Vector4d c = m * b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)).homogeneous();
-        int axis = plane / 2;
-        double s = plane % 2 ? -1 : 1;
-        if (s * c[axis] <= c.w()) allOut = false;
-      }
-      if (allOut) return false;
-    }
-    return true;
-  };
+  auto visible = [&](const Eigen::AlignedBox3d& b) { return boxInFrustum(m, b); };
   for (const Drawable& d : scene.drawables)
     if (visible(d.bounds)) return true;
   for (const TerrainMesh& t : scene.terrains)

@@ -22,6 +22,10 @@ Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect);
 // Vertical field of view actually used, degrees (horizontalFov>0 wins).
 double effectiveVerticalFov(const Camera& camera, double aspect);
 
+// Whether a world-space box may be seen through clip-space matrix
+// `viewProj` (false only when all eight corners lie beyond one clip plane).
+bool boxInFrustum(const Eigen::Matrix4d& viewProj, const Eigen::AlignedBox3d& box);
+
 // Whether any drawable, terrain, batch or point cloud (the ground included)
 // has bounds inside the camera's frustum.
 bool seesAnything(const RenderScene& scene, const Camera& camera, double aspect);

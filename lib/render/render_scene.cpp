@@ -331,7 +331,8 @@ class Preparer {
       b.worlds.push_back(m);
       float w = i < v.colorWeights.size() ? std::clamp(float(v.colorWeights[i]), 0.f, 1.f) : 0.f;
       b.colors.push_back(colorA * (1 - w) + colorB * w);
-      b.bounds.extend(worldBounds(m, unitBounds(b.shape)));
+      b.instanceBounds.push_back(worldBounds(m, unitBounds(b.shape)));
+      b.bounds.extend(b.instanceBounds.back());
     }
     out_.bounds.extend(b.bounds);
     out_.instanced.push_back(std::move(b));

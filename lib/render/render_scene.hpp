@@ -79,6 +79,7 @@ struct Instanced {
   std::string meshPath;
   std::vector<Eigen::Affine3d> worlds;  // unit shape -> world
   std::vector<Eigen::Vector4f> colors;
+  std::vector<Eigen::AlignedBox3d> instanceBounds;  // world-space, one per instance
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;

@@ -3,6 +3,7 @@
 #include <GL/glcorearb.h>
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -22,6 +23,9 @@ using Clock = std::chrono::steady_clock;
 constexpr int kInstanceFloats = 28;  // model (16), color (4), pbr (4), emissive (4)
 constexpr int kMaxLights = 8;
 constexpr int kShadowSize = 2048;
+// llvmpipe pays for every shadow texel it rasterises; 1024 keeps the same
+// shadows at CPU-backend thumbnail sizes.
+constexpr int kSoftwareShadowSize = 1024;
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -81,16 +85,20 @@ struct Batch {
   std::shared_ptr<GpuMesh> mesh;
   GLuint texture = 0;
   bool blend = false, doubleSided = false, castShadow = true;
-  std::vector<float> instances;
+  std::vector<float> instances, outOfView;  // outOfView: cast shadows only
   GLuint vao = 0, instanceVbo = 0;
-  GLsizei count = 0;
+  GLsizei count = 0, inView = 0;  // the first inView instances are inside the camera's frustum
 };
 
 // Owns every GL object of one render; released in the destructor.
 class Frame {
  public:
-  Frame(const RenderScene& scene, const RenderOptions& options, Diagnostics& diags)
-      : scene_(scene), opt_(options), diags_(diags) {}
+  Frame(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Diagnostics& diags)
+      : scene_(scene), opt_(options), diags_(diags) {
+    aspect_ = double(options.width) / double(options.height);
+    viewProj_ = projectionMatrix(camera, aspect_) * viewMatrix(camera);
+    camera_ = camera;
+  }
   ~Frame();
   bool prepare();
   bool draw(const Camera& camera, Image& out);
@@ -111,13 +119,16 @@ class Frame {
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
-  std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0);
+  std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0, int segments = 48);
+  // Segments around a round shape whose bounds are `box`: the polygon stays
+  // within half a pixel of the circle at the size it is seen.
+  int segmentsFor(const Eigen::AlignedBox3d& box) const;
   GLuint texture(const Image& image);
   bool materialTexture(const RenderMaterial& m, GLuint& out);
   const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, bool& failed);
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
-           const Eigen::Vector3f& emissive);
+           const Eigen::Vector3f& emissive, bool inView = true);
   void buildLights();
   void finishBatches();
   void drawBatches(GLuint prog, bool blendPass, bool shadowPass);
@@ -125,6 +136,9 @@ class Frame {
   const RenderScene& scene_;
   const RenderOptions& opt_;
   Diagnostics& diags_;
+  Camera camera_;
+  double aspect_ = 1;
+  Eigen::Matrix4d viewProj_;
   std::map<std::string, std::shared_ptr<GpuMesh>> primitives_;
   std::map<std::string, std::vector<TexturedPart>> meshFiles_;
   std::map<std::string, GLuint> textures_;
@@ -181,17 +195,36 @@ std::shared_ptr<GpuMesh> Frame::upload(const MeshData& m, const std::vector<Eige
   return g;
 }
 
-std::shared_ptr<GpuMesh> Frame::primitive(Shape s, double capsuleR, double capsuleH) {
+std::shared_ptr<GpuMesh> Frame::primitive(Shape s, double capsuleR, double capsuleH, int segments) {
+  bool round = s == Shape::Sphere || s == Shape::Cylinder || s == Shape::Capsule;
   std::string key = std::to_string(int(s));
+  if (round) key += "/" + std::to_string(segments);
   if (s == Shape::Capsule) key += ":" + std::to_string(capsuleR) + ":" + std::to_string(capsuleH);
   auto it = primitives_.find(key);
   if (it != primitives_.end()) return it->second;
-  MeshData m = s == Shape::Sphere     ? unitSphere()
-               : s == Shape::Cylinder ? unitCylinder()
-               : s == Shape::Capsule  ? capsule(capsuleR, capsuleH)
+  MeshData m = s == Shape::Sphere     ? unitSphere(segments, std::max(segments / 2, 4))
+               : s == Shape::Cylinder ? unitCylinder(segments)
+               : s == Shape::Capsule  ? capsule(capsuleR, capsuleH, segments)
                : s == Shape::Ground   ? unitPlane()
                                       : unitBox();
   return primitives_[key] = upload(m);
+}
+
+int Frame::segmentsFor(const Eigen::AlignedBox3d& box) const {
+  double radius = 0.5 * box.sizes().maxCoeff();
+  double pixels;  // radius on screen
+  if (camera_.projection == "orthographic") {
+    pixels = radius / std::max(camera_.orthoScale / 2, 1e-9) * opt_.height / 2;
+  } else {
+    double distance = (box.center() - camera_.world.position).norm() - radius;
+    double t = std::tan(effectiveVerticalFov(camera_, aspect_) * 3.14159265358979 / 360);
+    pixels = distance <= camera_.nearPlane ? 1e9 : radius / (distance * t) * opt_.height / 2;
+  }
+  // Sagitta r (1 - cos(pi / n)) ~ r pi^2 / (2 n^2) <= 0.5 px.
+  double wanted = 3.14159265358979 * std::sqrt(std::max(pixels, 0.0));
+  for (int n : {8, 12, 16, 24, 32})
+    if (n >= wanted) return n;
+  return 48;
 }
 
 GLuint Frame::texture(const Image& image) {
@@ -254,7 +287,7 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
 
 void Frame::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
                 const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
-                const Eigen::Vector3f& emissive) {
+                const Eigen::Vector3f& emissive, bool inView) {
   auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow);
   auto [it, inserted] = batchIndex_.emplace(key, batches_.size());
   if (inserted) {
@@ -266,7 +299,8 @@ void Frame::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bo
     b.castShadow = castShadow;
     batches_.push_back(std::move(b));
   }
-  std::vector<float>& v = batches_[it->second].instances;
+  Batch& batch = batches_[it->second];
+  std::vector<float>& v = inView ? batch.instances : batch.outOfView;
   Eigen::Matrix4f m = world.matrix().cast<float>();
   v.insert(v.end(), m.data(), m.data() + 16);
   v.insert(v.end(), color.data(), color.data() + 4);
@@ -279,13 +313,14 @@ bool Frame::prepare() {
   auto pbrOf = [](const RenderMaterial& m, float checker) { return Eigen::Vector4f(m.metallic, m.roughness, checker, 0); };
   for (const Drawable& d : scene_.drawables) {
     const RenderMaterial& mat = scene_.materials[std::size_t(d.material)];
+    bool inView = boxInFrustum(viewProj_, d.bounds);
     if (d.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, failed);
       if (failed) return false;
       if (!parts) {
         add(primitive(Shape::Box), 0, false, false, true, d.world, placeholderColor, {0, 0.6f, 0, 1},
-            Eigen::Vector3f::Zero());
+            Eigen::Vector3f::Zero(), inView);
         continue;
       }
       GLuint matTex = 0;
@@ -295,15 +330,29 @@ bool Frame::prepare() {
         Eigen::Vector4f color = own ? p.color : mat.color;
         Eigen::Vector4f pbr = own ? Eigen::Vector4f(p.metallic, p.roughness, 0, 0) : pbrOf(mat, 0);
         add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), mat.doubleSided,
-            d.castShadow, d.world, color, pbr, mat.emissive);
+            d.castShadow, d.world, color, pbr, mat.emissive, inView);
       }
       continue;
     }
     GLuint tex = 0;
     if (!materialTexture(mat, tex)) return false;
-    add(primitive(d.shape, d.capsuleRadius, d.capsuleHeight), tex, mat.blend,
+    int segments = d.shape == Shape::Box || d.shape == Shape::Ground ? 0 : segmentsFor(d.bounds);
+    if (d.shape == Shape::Capsule && !mat.blend && !tex) {
+      // An opaque capsule is a cylinder and two spheres: unit meshes that
+      // join the batches of every sphere and cylinder, instead of one mesh
+      // (and one draw) per capsule size.
+      double r = d.capsuleRadius, h = d.capsuleHeight;
+      Eigen::Vector4f pbr = pbrOf(mat, 0);
+      add(primitive(Shape::Cylinder, 0, 0, segments), 0, false, mat.doubleSided, d.castShadow,
+          d.world * Eigen::Scaling(r, r, h), mat.color, pbr, mat.emissive, inView);
+      for (double end : {-h / 2, h / 2})
+        add(primitive(Shape::Sphere, 0, 0, segments), 0, false, mat.doubleSided, d.castShadow,
+            d.world * Eigen::Translation3d(0, 0, end) * Eigen::Scaling(r), mat.color, pbr, mat.emissive, inView);
+      continue;
+    }
+    add(primitive(d.shape, d.capsuleRadius, d.capsuleHeight, segments), tex, mat.blend,
         mat.doubleSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
-        pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive);
+        pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive, inView);
   }
   for (const TerrainMesh& t : scene_.terrains) {
     MeshData m;
@@ -344,7 +393,7 @@ bool Frame::prepare() {
     const RenderMaterial& mat = scene_.materials[std::size_t(b.material)];
     for (std::size_t i = 0; i < b.worlds.size(); ++i)
       add(mesh, 0, b.colors[i].w() < 0.999f, false, b.castShadow, b.worlds[i], b.colors[i], pbrOf(mat, 0),
-          Eigen::Vector3f::Zero());
+          Eigen::Vector3f::Zero(), boxInFrustum(viewProj_, b.instanceBounds[i]));
   }
   const Look& env = scene_.environment;
   if (env.mode == Background::Hdr) {
@@ -394,6 +443,9 @@ bool Frame::prepare() {
 
 void Frame::finishBatches() {
   for (Batch& b : batches_) {
+    b.inView = GLsizei(b.instances.size() / kInstanceFloats);
+    b.instances.insert(b.instances.end(), b.outOfView.begin(), b.outOfView.end());
+    std::vector<float>().swap(b.outOfView);
     b.count = GLsizei(b.instances.size() / kInstanceFloats);
     glGenVertexArrays(1, &b.vao);
     glBindVertexArray(b.vao);
@@ -459,8 +511,10 @@ void Frame::drawBatches(GLuint prog, bool blendPass, bool shadowPass) {
       if (b.doubleSided) glDisable(GL_CULL_FACE);
       else glEnable(GL_CULL_FACE);
     }
+    GLsizei n = shadowPass ? b.count : b.inView;
+    if (n == 0) continue;
     glBindVertexArray(b.vao);
-    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.count);
+    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, n);
   }
   glBindVertexArray(0);
 }
@@ -481,6 +535,9 @@ bool Frame::draw(const Camera& camera, Image& out) {
   }
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
 
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  bool software = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+  int shadowSize = software ? kSoftwareShadowSize : kShadowSize;
   // Shadow map of the main light, fitted to the scene's bounds.
   Eigen::Matrix4d lightViewProj = Eigen::Matrix4d::Identity();
   GLuint shadowTex = 0;
@@ -516,7 +573,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
     glGenTextures(1, &shadowTex);
     ownedTextures_.push_back(shadowTex);
     glBindTexture(GL_TEXTURE_2D, shadowTex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowSize, kShadowSize, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize, shadowSize, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                  nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -531,7 +588,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex, 0);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
-    glViewport(0, 0, kShadowSize, kShadowSize);
+    glViewport(0, 0, shadowSize, shadowSize);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -576,9 +633,9 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glDisable(GL_CULL_FACE);
   for (const Batch& b : batches_) {
-    if (b.blend) continue;
+    if (b.blend || b.inView == 0) continue;
     glBindVertexArray(b.vao);
-    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.count);
+    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
   }
   glBindVertexArray(0);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -604,7 +661,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
                 l.range);
   }
   glUniform1i(loc(surface, "uShadowLight"), shadowLight_);
-  glUniform1f(loc(surface, "uShadowTexel"), 1.0f / kShadowSize);
+  glUniform1f(loc(surface, "uShadowTexel"), 1.0f / float(shadowSize));
   glUniform1i(loc(surface, "uShadowMap"), 0);
   glUniform1i(loc(surface, "uAlbedo"), 1);
   glActiveTexture(GL_TEXTURE0);
@@ -710,7 +767,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
 bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
                  Diagnostics& diags, RenderTimings* timings) {
   auto t0 = Clock::now();
-  Frame frame(scene, options, diags);
+  Frame frame(scene, camera, options, diags);
   if (!frame.prepare()) return false;
   glFinish();
   auto t1 = Clock::now();
