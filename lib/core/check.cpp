@@ -61,10 +61,12 @@ void Context::resolve(const Record& r) {
   cur_.defs.assign(r.fieldCount, nullptr);
   cur_.repeated.assign(r.fieldCount, 0);
   if (const Layout* layout = cur_.layout) {
-    for (std::uint32_t t = 0; t < r.positionalCount && t < layout->tokens.size(); ++t)
-      if (const Field* f = doc.positional(r, t))
+    for (std::uint32_t t = 0; t < r.positionalCount && t < layout->tokens.size(); ++t) {
+      const Field* f = r.interleaved ? doc.positional(r, t) : &doc.field(r, t);
+      if (f)
         cur_.defs[static_cast<std::size_t>(f - &doc.field(r, 0))] =
             &layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+    }
   }
   auto& last = lastKeys_[cur_.kind];
   std::size_t k = 0;  // keys seen so far

@@ -245,25 +245,45 @@ class TypeChecker {
       ctx_.report("RS2008", r_, at, def.name, def.name + " has " + std::to_string(n) + " numbers, not a multiple of 3");
   }
 
+  // Colors of 3 or 4 numbers separated by `;` (numbers by `,`); reports
+  // the first entry that is not one.  One scan, plain decimals in place.
   void colorList(const FieldDef& def, Span at, std::string_view s) {
     if (s.empty()) return;
-    std::size_t start = 0;
-    for (std::size_t i = 0; i <= s.size(); ++i) {
-      if (i != s.size() && s[i] != ';') continue;
-      std::string_view part = s.substr(start, i - start);
-      long long n = 0;
-      bool bad = false;
-      bool ok = forEachNumber(part, [&](std::string_view x, char) {
+    const char* p = s.data();
+    const char* e = p + s.size();
+    for (;;) {
+      const char* start = p;
+      int n = 0;
+      bool good = true;
+      for (;;) {  // the numbers of one color
+        const char* q = p;
+        q += q != e && *q == '-';
+        const char* d = q;
+        while (q != e && static_cast<unsigned>(*q - '0') < 10) ++q;
+        std::size_t digits = static_cast<std::size_t>(q - d);
+        if (q != e && *q == '.') {
+          const char* fr = ++q;
+          while (q != e && static_cast<unsigned>(*q - '0') < 10) ++q;
+          digits += static_cast<std::size_t>(q - fr);
+        }
+        if (!(digits > 0 && (q == e || *q == ',' || *q == ';') && q - p <= 100)) {
+          while (q != e && *q != ',' && *q != ';') ++q;
+          if (q == p || !parseNumber(std::string_view(p, static_cast<std::size_t>(q - p)))) good = false;
+        }
         ++n;
-        bad = bad || !isNumber(x);
-      });
-      if (!ok || bad || n < 3 || n > 4) {
+        p = q;
+        if (p == e || *p == ';') break;
+        ++p;  // past `,`
+      }
+      if (!good || n < 3 || n > 4) {
+        std::string_view part(start, static_cast<std::size_t>(p - start));
         ctx_.report("RS2008", r_, item(at, s, part), def.name,
                     def.name + " entry " + quoted(part) + " is not a color of 3 or 4 numbers",
                     "colors are r,g,b or r,g,b,a separated by `;`");
         return;
       }
-      start = i + 1;
+      if (p == e) return;
+      ++p;  // past `;`
     }
   }
 

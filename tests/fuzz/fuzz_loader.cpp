@@ -3,14 +3,21 @@
 // point, and the formatted text parses back to the same scene record for
 // record.  A violation aborts with the input's first difference, so that
 // libFuzzer saves the input as a crash artifact.
+//
+// Every input that loads is also validated (rscene::check with the engine2
+// and raisim profiles, file checks off, and validateText from the bytes):
+// the validator must not crash, and each finding must carry a known code,
+// a line of the input and a column inside that line, and render.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <string_view>
 
+#include "core/check.hpp"
 #include "core/io.hpp"
 #include "core/loader.hpp"
+#include "core/report.hpp"
 #include "core/writer.hpp"
 
 namespace {
@@ -37,11 +44,38 @@ std::string firstDifference(std::string_view a, std::string_view b) {
   return "line " + std::to_string(line) + ":\n  fmt(x):      " + lineAt(a) + "\n  fmt(fmt(x)): " + lineAt(b);
 }
 
+// Validates a loaded document under one profile and checks each finding.
+void validate(const rscene::Document& doc, rscene::Profile profile) {
+  rscene::CheckOptions options;
+  options.profile = profile;
+  options.checkFiles = false;
+  rscene::Diagnostics found = rscene::check(doc, options);
+  for (const rscene::Diagnostic& d : found) {
+    if (!rscene::checkInfo(d.code)) fail("findings have a known code", d.code + ": " + d.message);
+    std::string_view line;
+    for (const rscene::Record& r : doc.records)
+      if (r.line == d.line) line = doc.sourceLine(r);
+    if (d.line == 0 || d.line > doc.records.back().line)
+      fail("findings name a line of the input", d.code + " on line " + std::to_string(d.line));
+    if (d.column > line.size() + 1)
+      fail("findings point inside their line",
+           d.code + " at column " + std::to_string(d.column) + " of a line of " + std::to_string(line.size()));
+    if (rscene::formatDiagnostic(d, "fuzz.rscene", line, false).empty()) fail("findings render", d.code);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   rscene::LoadResult first = rscene::parse(std::string(reinterpret_cast<const char*>(data), size));
   if (!first.ok()) return 0;  // refused input: the loader's only duty was not to crash
+  validate(first.document, rscene::Profile::Engine2);
+  validate(first.document, rscene::Profile::RaiSim);
+  {
+    rscene::Document doc;
+    rscene::CheckOptions options;
+    rscene::validateText(std::string(reinterpret_cast<const char*>(data), size), options, doc);
+  }
   std::string once = rscene::canonicalText(first.document);
   rscene::LoadResult second = rscene::parse(once);
   if (!second.ok())
