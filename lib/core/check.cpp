@@ -5,6 +5,7 @@
 
 #include "core/check_context.hpp"
 #include "core/loader.hpp"
+#include "core/suggest.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
@@ -208,6 +209,25 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
     ++i;
   });
   return ok && i >= n;
+}
+
+const std::string& Context::suggestion(const KindDef* kind, std::string_view name) {
+  static const std::string kNone;
+  if (name.empty() || name.size() > 64) return kNone;  // closestName suggests nothing for these
+  std::string key = kind ? std::to_string(kindIndex(*kind)) + ":" : std::string("tag:");
+  key.append(name);
+  auto [it, added] = suggestions_.try_emplace(std::move(key));
+  if (added) {
+    std::vector<std::string_view> names;
+    if (kind) {
+      names.reserve(kind->keys.size());
+      for (const FieldDef& k : kind->keys) names.push_back(k.name);
+    } else {
+      for (const KindDef& k : Schema::get().kinds()) names.push_back(k.tag);
+    }
+    it->second = closestName(name, names);
+  }
+  return it->second;
 }
 
 bool Context::hasExplicitId(const Record& r) const {

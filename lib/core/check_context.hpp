@@ -176,6 +176,11 @@ class Context {
   // escapes or is `-` (then of `scratch`).
   static std::string_view decode(std::string_view raw, std::string& scratch);
 
+  // The closest known name to an unknown key of `kind` (nullptr: to an
+  // unknown record tag), or empty; remembered, since an unknown key tends
+  // to be on every record a newer writer saved.
+  const std::string& suggestion(const KindDef* kind, std::string_view name);
+
   // Identity of the nodes and resources, built once (check_refs.cpp).
   struct Index {
     // Views into the document's text, or into `owned` for decoded text.
@@ -239,6 +244,7 @@ class Context {
   mutable std::vector<std::size_t> slotCursor_;
   std::vector<std::vector<std::pair<std::string_view, int>>> lastKeys_;
   const NameSlot& slot(std::string_view name) const;
+  std::unordered_map<std::string, std::string> suggestions_;
   Diagnostics& out_;
 };
 

@@ -93,10 +93,7 @@ class TypeChecker {
   }
 
   void unknownKey(const KindDef& kind, Span at, std::string_view name) {
-    std::vector<std::string_view> names;
-    names.reserve(kind.keys.size());
-    for (const FieldDef& k : kind.keys) names.push_back(k.name);
-    std::string best = closestName(name, names);
+    const std::string& best = ctx_.suggestion(&kind, name);
     ctx_.report("RS3002", r_, at, name, "unknown key '" + std::string(name) + "' for " + kind.tag,
                 best.empty() ? std::string() : "did you mean `" + best + "`?");
   }
@@ -326,9 +323,7 @@ class TypeChecker {
 void checkTypes(Context& ctx, const Record& r) {
   if (!r.kind) {
     std::string_view tag = ctx.doc.tag(r);
-    std::vector<std::string_view> names;
-    for (const KindDef& k : Schema::get().kinds()) names.push_back(k.tag);
-    std::string best = closestName(tag, names);
+    const std::string& best = ctx.suggestion(nullptr, tag);
     ctx.report("RS3001", r, r.tag, {}, "unknown record tag '" + std::string(tag.substr(0, 60)) + "'",
                best.empty() ? "newer writers may add kinds; this one is kept and ignored"
                             : "did you mean `" + best + "`?");

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/check.hpp"
 #include "core/io.hpp"
@@ -50,13 +51,14 @@ void validate(const rscene::Document& doc, rscene::Profile profile) {
   options.profile = profile;
   options.checkFiles = false;
   rscene::Diagnostics found = rscene::check(doc, options);
+  if (found.empty()) return;
+  std::vector<const rscene::Record*> byLine(doc.records.back().line + 1, nullptr);
+  for (const rscene::Record& r : doc.records) byLine[r.line] = &r;
   for (const rscene::Diagnostic& d : found) {
     if (!rscene::checkInfo(d.code)) fail("findings have a known code", d.code + ": " + d.message);
-    std::string_view line;
-    for (const rscene::Record& r : doc.records)
-      if (r.line == d.line) line = doc.sourceLine(r);
-    if (d.line == 0 || d.line > doc.records.back().line)
-      fail("findings name a line of the input", d.code + " on line " + std::to_string(d.line));
+    if (d.line == 0 || d.line >= byLine.size() || !byLine[d.line])
+      fail("findings name the line of a record", d.code + " on line " + std::to_string(d.line));
+    std::string_view line = doc.sourceLine(*byLine[d.line]);
     if (d.column > line.size() + 1)
       fail("findings point inside their line",
            d.code + " at column " + std::to_string(d.column) + " of a line of " + std::to_string(line.size()));
