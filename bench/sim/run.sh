@@ -128,9 +128,9 @@ status=0
 echo "rscene-sim benchmark: $(uname -m), $(nproc) cores, ${DURATION} s simulated, best of $REPEAT runs"
 echo "scenes in $DIR"
 echo
-printf '%-10s %6s %6s  %-20s %9s %9s  %-20s %9s %9s\n' scene bodies steps "" "rscene-sim" "" "" "baseline" ""
-printf '%-10s %6s %6s  %9s %9s  %9s %9s  %9s %9s %9s %9s\n' "" "" "" "CPU s" "wall s" "CPU s" "wall s" \
-  "CPU ratio" "wall ratio" "load" "pose diff"
+echo "sim = rscene-sim, base = rscene-sim-baseline; ratios sim/base; load = loadTime / wallTime of rscene-sim"
+printf '%-10s %6s %6s  %9s %9s  %10s %9s  %9s %10s %9s %9s\n' scene bodies steps "sim CPU s" "sim wall" \
+  "base CPU s" "base wall" "CPU ratio" "wall ratio" "load" "pose diff"
 
 declare -a RESULTS
 
@@ -159,7 +159,7 @@ bench() {
     { if (!($1 in p)) { missing++; next } split(p[$1], a, " "); n++
       for (i = 2; i <= 8; i++) { d = a[i] - $i; if (d < 0) d = -d; if (d > m) m = d } }
     END { if (missing || n == 0) print "missing"; else printf "%.1e", m }' - "$DIR/$name.base.txt")
-  printf '%-10s %6s %6s  %9.2f %9.2f  %9.2f %9.2f  %9.3f %9.3f %8s%% %9s\n' "$name" "$bodies" "$steps" \
+  printf '%-10s %6s %6s  %9.2f %9.2f  %10.2f %9.2f  %9.3f %10.3f %8s%% %9s\n' "$name" "$bodies" "$steps" \
     "$sim_cpu" "$sim_wall" "$base_cpu" "$base_wall" \
     "$(awk -v a="$sim_cpu" -v b="$base_cpu" 'BEGIN { print a / b }')" \
     "$(awk -v a="$sim_wall" -v b="$base_wall" 'BEGIN { print a / b }')" "$share" "$diff"
