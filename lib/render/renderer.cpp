@@ -607,13 +607,13 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA16F, w, h);
   glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH_COMPONENT24, w, h);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH24_STENCIL8, w, h);
   GLuint fbos[3];
   glGenFramebuffers(3, fbos);
   fbos_.insert(fbos_.end(), fbos, fbos + 3);
   glBindFramebuffer(GL_FRAMEBUFFER, fbos[0]);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     diag(Severity::Error, "RS9011", 0, "cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
                                            " framebuffer with " + std::to_string(samples) + " samples");
@@ -621,26 +621,32 @@ bool Frame::draw(const Camera& camera, Image& out) {
   }
   glViewport(0, 0, w, h);
   glClearColor(0, 0, 0, 0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glCullFace(GL_BACK);
   Eigen::Matrix4d viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
-  // Depth pre-pass: the lit shader then runs once per visible pixel, which
-  // is what keeps llvmpipe fast on scenes with heavy overdraw.
-  glUseProgram(depth);
-  setMat(depth, "uViewProj", viewProj);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glDisable(GL_CULL_FACE);
-  for (const Batch& b : batches_) {
-    if (b.blend || b.inView == 0) continue;
-    glBindVertexArray(b.vao);
-    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
+  // Depth pre-pass on GPUs: the lit shader then runs once per visible
+  // sample.  Not on llvmpipe, where it was measured slower (it shades every
+  // sample of a multisampled target and pays the rasterisation twice): 0.87
+  // against 0.70 s of drawing on the 5000-object bench scene.
+  bool prepass = !software;
+  if (prepass) {
+    glUseProgram(depth);
+    setMat(depth, "uViewProj", viewProj);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    for (const Batch& b : batches_) {
+      if (b.blend || b.inView == 0) continue;
+      glBindVertexArray(b.vao);
+      glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
+    }
+    glBindVertexArray(0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
   }
-  glBindVertexArray(0);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
   glUseProgram(surface);
   setMat(surface, "uViewProj", viewProj);
   setMat(surface, "uLightViewProj", lightViewProj);
@@ -674,7 +680,17 @@ bool Frame::draw(const Camera& camera, Image& out) {
   glUniform1f(loc(surface, "uFogDensity"), env.fogDensity);
   setVec3(surface, "uFogColor", env.fogColor);
   glDisable(GL_BLEND);
+  // Each sample is lit once: after a pre-pass, coplanar surfaces (stacked
+  // boxes with level tops, overlapping placeholders) all pass GL_LEQUAL, so
+  // the stencil lets the first one drawn through and rejects the rest
+  // before they are shaded.
+  if (prepass) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  }
   drawBatches(surface, false, false);
+  glDisable(GL_STENCIL_TEST);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   if (pointVao_) {
