@@ -198,4 +198,5 @@ if [[ -x $BIN/rscene-sim && -x $BIN/rscene-sim-baseline && -x $BIN/rscene-sim-be
   echo
   bash "$(dirname "${BASH_SOURCE[0]}")/sim/run.sh" "$BIN" || status=1
 fi
+[[ -x $BIN/rscene-render ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/render/run.sh" "$BIN" || status=1; }
 exit $status
