@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -63,11 +64,16 @@ bool readFile(const std::string& path, std::string& out, std::string* error) {
     if (error) *error = std::strerror(EISDIR);
     return false;
   }
+  // Regular files are read straight into the string; pipes grow it.
   out.clear();
-  if (st.st_size > 0) out.reserve(static_cast<std::size_t>(st.st_size));
-  char buf[1 << 16];
+  std::size_t used = 0;
+  if (st.st_size > 0) out.resize(static_cast<std::size_t>(st.st_size));
+  char probe[1 << 12];
   for (;;) {
-    ssize_t n = ::read(fd, buf, sizeof buf);
+    // When the string is full, a small read tells end of file from more
+    // data, so a file of exactly st_size bytes is never over-allocated.
+    bool full = used == out.size();
+    ssize_t n = full ? ::read(fd, probe, sizeof probe) : ::read(fd, out.data() + used, out.size() - used);
     if (n < 0) {
       if (errno == EINTR) continue;
       if (error) *error = std::strerror(errno);
@@ -75,9 +81,14 @@ bool readFile(const std::string& path, std::string& out, std::string* error) {
       return false;
     }
     if (n == 0) break;
-    out.append(buf, static_cast<std::size_t>(n));
-    if (out.size() > kMaxInputBytes + 1) break;  // the loader reports it
+    if (full) {
+      out.resize(std::max<std::size_t>(out.size() * 2, 1 << 16));
+      std::memcpy(out.data() + used, probe, static_cast<std::size_t>(n));
+    }
+    used += static_cast<std::size_t>(n);
+    if (used > kMaxInputBytes + 1) break;  // the loader reports it
   }
+  out.resize(used);
   ::close(fd);
   return true;
 }
