@@ -88,6 +88,29 @@ void setup(CLI::App& app, const char* tool) {
   app.footer("Exit status: 0 success, 1 findings, 2 usage, I/O or parse error.\nSee " + std::string(tool) + "(1).");
 }
 
+void addInputOperand(CLI::App& app, std::string& file, const char* what) {
+  app.add_option("file", file, std::string(what) + "; none or - reads standard input")->type_name("FILE");
+}
+
+void addInputOperands(CLI::App& app, std::vector<std::string>& files) {
+  app.add_option("files", files, "Scene files; none or - reads standard input")->type_name("FILE");
+}
+
+void addOutputOption(CLI::App& app, std::string& output, const char* what) {
+  app.add_option("-o,--output", output, what)->type_name("FILE");
+}
+
+void addStdinFilename(CLI::App& app, std::string& name, bool assets) {
+  app.add_option("--stdin-filename", name,
+                 assets ? "Name standard input PATH in messages and for asset paths"
+                        : "Name standard input PATH in messages")
+      ->type_name("PATH");
+}
+
+void addBaseDir(CLI::App& app, std::string& dir, const char* help) {
+  app.add_option("--base-dir", dir, help)->type_name("DIR");
+}
+
 int parseArgs(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);

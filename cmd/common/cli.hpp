@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/diagnostic.hpp"
 #include "core/writer.hpp"
@@ -49,6 +50,15 @@ void warning(std::string_view message);
 // Sets the tool name, --version and the common help footer.
 void setup(CLI::App& app, const char* tool);
 const std::string& toolName();
+
+// The operands and options every tool shares, declared once so their
+// spelling and help stay the same across tools.
+void addInputOperand(CLI::App& app, std::string& file, const char* what = "Scene file");
+void addInputOperands(CLI::App& app, std::vector<std::string>& files);
+void addOutputOption(CLI::App& app, std::string& output, const char* what);
+// `assets`: stdin's name also places relative asset paths.
+void addStdinFilename(CLI::App& app, std::string& name, bool assets);
+void addBaseDir(CLI::App& app, std::string& dir, const char* help);
 
 // Runs app.parse(); on --help/--version prints and returns kSuccess, on a
 // usage error prints it and returns kTrouble; -1 when the tool should go on.

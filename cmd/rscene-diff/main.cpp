@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
                "Skip snapping, editor_ux, render_bake and the locked, expanded and selection* fields");
   app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
-  app.add_option("--stdin-filename", stdinName, "Name standard input PATH in messages")->type_name("PATH");
+  cli::addStdinFilename(app, stdinName, false);
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
   bool git = files.size() == 7;

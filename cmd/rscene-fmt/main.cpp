@@ -74,13 +74,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Write .rscene scenes in canonical form."};
   cli::setup(app, "rscene-fmt");
   Options opt;
-  app.add_option("files", opt.files, "Scene files; none or - reads standard input")->type_name("FILE");
-  app.add_option("-o,--output", opt.output, "Write the result to FILE (atomically) instead of standard output")
-      ->type_name("FILE");
+  cli::addInputOperands(app, opt.files);
+  cli::addOutputOption(app, opt.output, "Write the result to FILE (atomically) instead of standard output");
   app.add_flag("-i,--in-place", opt.inPlace, "Rewrite each file in place; canonical files are not touched");
   app.add_flag("--check", opt.check, "Write nothing; list files that are not canonical and exit 1 if any");
   app.add_flag("--diff", opt.diff, "Print a unified diff of what formatting would change");
-  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages")->type_name("PATH");
+  cli::addStdinFilename(app, opt.stdinName, false);
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
   if (opt.files.empty()) opt.files.push_back("-");

@@ -10,10 +10,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Write the canonical .rscene text of a scene in rscene-to-json's JSON form."};
   cli::setup(app, "rscene-from-json");
   std::string file = "-", output, stdinName;
-  app.add_option("file", file, "JSON file; none or - reads standard input")->type_name("FILE");
-  app.add_option("-o,--output", output, "Write the scene to FILE (atomically) instead of standard output")
-      ->type_name("FILE");
-  app.add_option("--stdin-filename", stdinName, "Name standard input PATH in messages")->type_name("PATH");
+  cli::addInputOperand(app, file, "JSON file");
+  cli::addOutputOption(app, output, "Write the scene to FILE (atomically) instead of standard output");
+  cli::addStdinFilename(app, stdinName, false);
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
   cli::Input in;

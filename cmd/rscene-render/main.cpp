@@ -124,9 +124,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Render a .rscene scene headlessly (EGL, no window system) to a PNG image."};
   cli::setup(app, "rscene-render");
   Options opt;
-  app.add_option("file", opt.file, "Scene file; none or - reads standard input")->type_name("FILE");
-  app.add_option("-o,--output", opt.output, "Write the PNG to FILE (atomically); - writes standard output")
-      ->type_name("FILE");
+  cli::addInputOperand(app, opt.file);
+  cli::addOutputOption(app, opt.output, "Write the PNG to FILE (atomically); - writes standard output");
   app.add_option("--width", opt.width, "Image width in pixels (default: the camera's, else 1280)")
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", opt.height, "Image height in pixels (default: the camera's, else 720)")
@@ -138,10 +137,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
   app.add_option("--camera", opt.camera, "Camera path or id, or auto for a three-quarter view of everything")
       ->type_name("PATH|ID|auto");
-  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
-      ->type_name("PATH");
-  app.add_option("--base-dir", opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder")
-      ->type_name("DIR");
+  cli::addStdinFilename(app, opt.stdinName, true);
+  cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   app.add_flag("--allow-missing-assets", opt.allowMissing,
                "Draw a magenta placeholder box for a missing mesh or texture and warn, instead of failing");
   app.add_option("--reference", opt.baseline.reference,

@@ -124,9 +124,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Simulate the physics of a .rscene scene in Bullet and write the scene back."};
   cli::setup(app, "rscene-sim");
   Options opt;
-  app.add_option("file", opt.file, "Scene file; none or - reads standard input")->type_name("FILE");
-  app.add_option("-o,--output", opt.output, "Write the simulated scene to FILE (atomically) instead of standard output")
-      ->type_name("FILE");
+  cli::addInputOperand(app, opt.file);
+  cli::addOutputOption(app, opt.output, "Write the simulated scene to FILE (atomically) instead of standard output");
   auto* duration = app.add_option("--duration", opt.duration, "Simulate S seconds (default 1)")->type_name("S")
                        ->check(CLI::NonNegativeNumber);
   app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(CLI::NonNegativeNumber)
@@ -138,10 +137,8 @@ int main(int argc, char** argv) {
       ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
   app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");
   app.add_flag("--report", opt.report, "Print a JSON summary of the run on standard error");
-  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
-      ->type_name("PATH");
-  app.add_option("--base-dir", opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder")
-      ->type_name("DIR");
+  cli::addStdinFilename(app, opt.stdinName, true);
+  cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
   std::signal(SIGINT, onInterrupt);
   return run(opt);

@@ -13,13 +13,12 @@ int main(int argc, char** argv) {
   cli::setup(app, "rscene-to-json");
   std::string file = "-", output, stdinName;
   bool compact = false, pretty = false, schema = false;
-  app.add_option("file", file, "Scene file; none or - reads standard input")->type_name("FILE");
-  app.add_option("-o,--output", output, "Write the JSON to FILE (atomically) instead of standard output")
-      ->type_name("FILE");
+  cli::addInputOperand(app, file);
+  cli::addOutputOption(app, output, "Write the JSON to FILE (atomically) instead of standard output");
   auto* compactFlag = app.add_flag("-c,--compact", compact, "One line of JSON (the default when stdout is not a terminal)");
   app.add_flag("-p,--pretty", pretty, "Indented JSON (the default on a terminal)")->excludes(compactFlag);
   app.add_flag("--schema", schema, "Print the JSON Schema (2020-12) of the JSON form and exit");
-  app.add_option("--stdin-filename", stdinName, "Name standard input PATH in messages")->type_name("PATH");
+  cli::addStdinFilename(app, stdinName, false);
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
   if (schema) {

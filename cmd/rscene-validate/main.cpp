@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Check .rscene scenes for syntax, type, reference, size and file errors."};
   cli::setup(app, "rscene-validate");
   Options opt;
-  app.add_option("files", opt.files, "Scene files; none or - reads standard input")->type_name("FILE");
+  cli::addInputOperands(app, opt.files);
   app.add_option("--format", opt.format, "Output format: text, json or sarif")
       ->check(CLI::IsMember({"text", "json", "sarif"}))
       ->type_name("FORMAT");
@@ -106,9 +106,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"engine2", "raisim"}))
       ->type_name("PROFILE");
   app.add_flag("--check-files", opt.checkFiles, "Check that every referenced asset file exists");
-  app.add_option("--base-dir", opt.baseDir, "Resolve standard input's asset paths from DIR")->type_name("DIR");
-  app.add_option("--stdin-filename", opt.stdinName, "Name standard input PATH in messages and for asset paths")
-      ->type_name("PATH");
+  cli::addBaseDir(app, opt.baseDir, "Resolve standard input's asset paths from DIR");
+  cli::addStdinFilename(app, opt.stdinName, true);
   app.add_option("--color", opt.color, "Color the text output: auto, always or never")
       ->check(CLI::IsMember({"auto", "always", "never"}))
       ->type_name("WHEN");

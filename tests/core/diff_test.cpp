@@ -94,8 +94,12 @@ TEST(Diff, AddedAndRemovedRecords) {
   EXPECT_EQ(d.count(Change::Added), 1u);
   EXPECT_EQ(d.count(Change::Removed), 1u);
   for (const RecordDiff& r : d.records) {
-    if (r.change == Change::Added) EXPECT_EQ(r.path, "/World/Sun");
-    if (r.change == Change::Removed) EXPECT_EQ(r.key, "0");  // terrain textures by slot
+    if (r.change == Change::Added) {
+      EXPECT_EQ(r.path, "/World/Sun");
+    }
+    if (r.change == Change::Removed) {
+      EXPECT_EQ(r.key, "0");  // terrain textures by slot
+    }
   }
 }
 
