@@ -9,6 +9,16 @@
 namespace rscene {
 namespace {
 
+// The last node of `nodes` whose id or path is `ref` (a child record
+// belongs to the most recent parent of that name), or nullptr.
+template <class Node>
+Node* lastNamed(std::vector<Node>& nodes, const std::string& ref) {
+  Node* found = nullptr;
+  for (Node& n : nodes)
+    if (n.id == ref || n.path == ref) found = &n;
+  return found;
+}
+
 // Record kinds the view turns into structs; other node and child kinds are
 // listed in Scene::skipped.
 constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
@@ -362,9 +372,7 @@ class Builder {
 
   void readCompoundChild(const RecordReader& r, int idx) {
     std::string ref = r.str("compound");
-    Compound* owner = nullptr;
-    for (Compound& c : s_.compounds)
-      if (c.id == ref || c.path == ref) owner = &c;
+    Compound* owner = lastNamed(s_.compounds, ref);
     if (!owner) {
       r.error("compound", scene_code::kUnknownRef, "compound_child names unknown compound '" + ref + "'");
       return;
@@ -455,9 +463,7 @@ class Builder {
 
   void readSplat(const RecordReader& r, int idx) {
     std::string ref = r.str("terrain");
-    Terrain* owner = nullptr;
-    for (Terrain& t : s_.terrains)
-      if (t.id == ref || t.path == ref) owner = &t;
+    Terrain* owner = lastNamed(s_.terrains, ref);
     if (!owner) {
       r.error("terrain", scene_code::kUnknownRef, "terrain_splat_layer names unknown terrain '" + ref + "'");
       return;
