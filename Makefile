@@ -17,7 +17,7 @@ deps:
 	sh scripts/install-deps.sh
 
 build: deps
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRSCENE_REQUIRE_RENDER=ON
 	cmake --build $(BUILD_DIR) -j$(JOBS)
 
 # Unit tests, end-to-end shell tests, then the unit tests again under

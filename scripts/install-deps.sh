@@ -10,8 +10,8 @@ libcli11-dev nlohmann-json3-dev libeigen3-dev
 libgtest-dev libgmock-dev bats
 clang libclang-rt-14-dev libfuzzer-14-dev
 mandoc jq time parallel libdtl-dev
-libbullet-dev libbullet-extras-dev libassimp-dev
-libpng-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+libbullet-dev libassimp-dev
+libpng-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
 "
 
 # One dpkg-query for all packages; a package it does not list as
