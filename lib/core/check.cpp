@@ -174,7 +174,7 @@ std::string Context::text(const Record& r, std::string_view name) const { return
 
 std::optional<double> Context::number(const Record& r, std::string_view name) const {
   FieldRef f = get(r, name);
-  return f ? toNumber(doc.text(f.first->value)) : std::nullopt;
+  return f ? parseNumber(doc.text(f.first->value)) : std::nullopt;
 }
 
 std::optional<std::int64_t> Context::integer(const Record& r, std::string_view name) const {
@@ -195,7 +195,7 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
   if (!f.isKey) {
     if (static_cast<int>(f.tokens) < n) return false;
     for (int i = 0; i < n; ++i) {
-      auto v = toNumber(doc.text((f.first + i)->value));
+      auto v = parseNumber(doc.text((f.first + i)->value));
       if (!v) return false;
       out[i] = *v;
     }
@@ -203,7 +203,7 @@ bool Context::vector(const Record& r, const FieldRef& f, double* out, int n) con
   }
   int i = 0;
   bool ok = forEachNumber(doc.text(f.first->value), [&](std::string_view item, char) {
-    auto v = toNumber(item);
+    auto v = parseNumber(item);
     if (!v) ok = false;
     if (i < n && v) out[i] = *v;
     ++i;

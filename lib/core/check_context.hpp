@@ -24,37 +24,6 @@ struct FieldRef {
   explicit operator bool() const { return first != nullptr; }
 };
 
-// Number checks with a fast path for plain decimals (`-12.5`, `.5`, `3.`):
-// with at most 15 digits the value is exact as mantissa / 10^k (one
-// correctly rounded division), the same double std::from_chars gives;
-// anything else (exponents, inf, long mantissas) goes to parseNumber.
-inline bool fastDecimal(std::string_view s, double& out) {
-  static constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  const char* p = s.data();
-  const char* e = p + s.size();
-  bool neg = p != e && *p == '-';
-  p += neg;
-  std::uint64_t m = 0;
-  int digits = 0, frac = 0;
-  for (; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits) m = m * 10 + static_cast<unsigned>(*p - '0');
-  if (p != e && *p == '.') {
-    for (++p; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits, ++frac)
-      m = m * 10 + static_cast<unsigned>(*p - '0');
-  }
-  if (p != e || digits == 0 || digits > 15) return false;
-  double v = static_cast<double>(m);
-  if (frac) v /= kPow10[frac];
-  out = neg ? -v : v;
-  return true;
-}
-
-// parseNumber, fast for plain decimals.
-inline std::optional<double> toNumber(std::string_view s) {
-  double v;
-  if (fastDecimal(s, v)) return v;
-  return parseNumber(s);
-}
-
 // Whether parseNumber accepts `s`, without computing it when it is a plain
 // decimal (no exponent, at most 100 characters: finite and in range).
 inline bool isNumber(std::string_view s) {

@@ -102,10 +102,9 @@ class TypeChecker {
   std::string_view decode(std::string_view raw) { return Context::decode(raw, scratch_); }
 
   std::optional<double> number(Span at, std::string_view field, std::string_view raw) {
-    double v;
-    if (fastDecimal(raw, v)) return v;  // a plain decimal has no escapes to decode
+    if (auto v = parseNumber(raw)) return v;  // most values have no escapes to decode
     std::string_view s = decode(raw);
-    if (auto v = toNumber(s)) return v;
+    if (auto v = parseNumber(s)) return v;
     badNumber(ctx_, r_, at, field, s);
     return std::nullopt;
   }
@@ -290,7 +289,7 @@ class TypeChecker {
     int n = 0;
     bool bad = false;
     bool ok = forEachNumber(s, [&](std::string_view part, char) {
-      auto v = toNumber(part);
+      auto v = parseNumber(part);
       if (!v && !bad) {
         badNumber(ctx_, r_, item(at, s, part), def.name, part);
         bad = true;

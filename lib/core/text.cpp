@@ -225,8 +225,38 @@ void percentEncode(std::string_view value, int version, std::string& out) {
   }
 }
 
+namespace {
+
+// Plain decimals (`-12.5`, `.5`, `3.`) with at most 15 digits: the mantissa
+// is exact in a double and one correctly rounded division by an exact power
+// of ten gives the double std::from_chars gives (Clinger's fast path).  Most
+// numbers in scenes take this path; the rest go to from_chars.
+bool fastDecimal(std::string_view s, double& out) {
+  static constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  const char* p = s.data();
+  const char* e = p + s.size();
+  bool neg = p != e && *p == '-';
+  p += neg;
+  std::uint64_t m = 0;
+  int digits = 0, frac = 0;
+  for (; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits) m = m * 10 + static_cast<unsigned>(*p - '0');
+  if (p != e && *p == '.') {
+    for (++p; p != e && static_cast<unsigned>(*p - '0') < 10; ++p, ++digits, ++frac)
+      m = m * 10 + static_cast<unsigned>(*p - '0');
+  }
+  if (p != e || digits == 0 || digits > 15) return false;
+  double v = static_cast<double>(m);
+  if (frac) v /= kPow10[frac];
+  out = neg ? -v : v;
+  return true;
+}
+
+}  // namespace
+
 std::optional<double> parseNumber(std::string_view s) {
   double v = 0;
+  if (fastDecimal(s, v)) return v;
   const char* end = s.data() + s.size();
   auto [p, ec] = std::from_chars(s.data(), end, v);
   if (ec != std::errc() || p != end || !std::isfinite(v)) return std::nullopt;

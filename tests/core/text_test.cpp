@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <random>
+
 #include "core/text.hpp"
 
 using namespace rscene;
@@ -158,5 +163,34 @@ TEST(Canonical, FastPathAgreesWithToChars) {
     std::string again;
     appendCanonical(again, t, ValueType::Number, 1);
     EXPECT_EQ(again, t);
+  }
+}
+
+// parseNumber's fast path for plain decimals must give from_chars' double,
+// bit for bit, and refuse exactly what from_chars refuses.
+TEST(Numbers, FastPathGivesFromCharsDouble) {
+  auto reference = [](std::string_view s) -> std::optional<double> {
+    double v = 0;
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+  };
+  std::mt19937_64 rng(3);
+  std::vector<std::string> samples = {"0", "-0", "1.", ".5", "-.5", "00.10", "123456789012345", "0.000000000000001",
+                                      "999999999999999", "-4.2", "3.14159265358979", "", "-", ".", "-.", "+1", "1e5",
+                                      "1e400", "inf", "nan", "0x1", "1.2.3", "--1", "1-", std::string(120, '1'),
+                                      "0." + std::string(400, '0') + "1", std::string(400, '9')};
+  for (int i = 0; i < 20000; ++i) {
+    std::string s = (rng() % 2 ? "-" : "") + std::to_string(rng() % 100000000);
+    std::size_t dot = rng() % (s.size() + 1);
+    if (s[0] != '-' || dot > 0) s.insert(dot, ".");
+    samples.push_back(s);
+  }
+  for (const std::string& s : samples) {
+    auto want = reference(s), got = parseNumber(s);
+    ASSERT_EQ(got.has_value(), want.has_value()) << s;
+    if (got) {
+      ASSERT_EQ(std::memcmp(&*got, &*want, sizeof(double)), 0) << s;
+    }
   }
 }
