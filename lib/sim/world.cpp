@@ -97,6 +97,24 @@ struct Simulated {
 };
 
 struct World::Impl {
+  // Names a body by id and path and, when it moves, remembers where its
+  // pose is written back (objects and compounds alike).
+  template <class Node>
+  void registerBody(const Node& n, btRigidBody* body, const btTransform& toRecord = btTransform::getIdentity()) {
+    byName[n.id] = body;
+    byName[n.path] = body;
+    if (n.bodyMode != BodyMode::Dynamic && n.bodyMode != BodyMode::Kinematic) return;
+    Simulated s;
+    s.recordIndex = n.recordIndex;
+    s.path = n.path;
+    s.body = body;
+    s.dynamic = n.bodyMode == BodyMode::Dynamic;
+    s.parentFrame = n.world * n.local.inverse();
+    s.toRecord = toRecord;
+    s.positionToken = n.positionToken;
+    simulated.push_back(s);
+  }
+
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   std::unique_ptr<btBroadphaseInterface> broadphase;
@@ -293,18 +311,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       double mass = o.effectiveMass();
       body = w.addBody(shape, bt(o.world), o.bodyMode, mass, inertia, false, fi, o.contactMaterial, sv);
     }
-    w.byName[o.id] = body;
-    w.byName[o.path] = body;
-    if (o.bodyMode == BodyMode::Dynamic || o.bodyMode == BodyMode::Kinematic) {
-      Simulated s;
-      s.recordIndex = o.recordIndex;
-      s.path = o.path;
-      s.body = body;
-      s.dynamic = o.bodyMode == BodyMode::Dynamic;
-      s.parentFrame = o.world * o.local.inverse();
-      s.positionToken = o.positionToken;
-      w.simulated.push_back(s);
-    }
+    w.registerBody(o, body);
   }
 
   for (const Compound& c : scene.compounds) {
@@ -351,19 +358,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     BodyInfo fi{c.collisionGroup, c.collisionMask, -1};
     btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
                                   c.contactMaterial, sv);
-    w.byName[c.id] = body;
-    w.byName[c.path] = body;
-    if (c.bodyMode == BodyMode::Dynamic || c.bodyMode == BodyMode::Kinematic) {
-      Simulated s;
-      s.recordIndex = c.recordIndex;
-      s.path = c.path;
-      s.body = body;
-      s.dynamic = c.bodyMode == BodyMode::Dynamic;
-      s.parentFrame = c.world * c.local.inverse();
-      s.toRecord = comShift.inverse();
-      s.positionToken = c.positionToken;
-      w.simulated.push_back(s);
-    }
+    w.registerBody(c, body, comShift.inverse());
   }
 
   for (const Terrain& t : scene.terrains) {
