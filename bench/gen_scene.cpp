@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/schema.hpp"
+#include "rng.hpp"
 
 namespace {
 
@@ -32,25 +33,6 @@ using rscene::FieldDef;
 using rscene::KindDef;
 using rscene::Schema;
 using rscene::ValueType;
-
-// splitmix64: the same stream on every platform, unlike <random>'s
-// distributions.
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : s_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53; }
-  std::uint64_t below(std::uint64_t n) { return next() % n; }
-  bool chance(double p) { return uniform(0, 1) < p; }
-
- private:
-  std::uint64_t s_;
-};
 
 constexpr double kNoiseRate = 1.0 / 150.0;  // records written non-canonically
 

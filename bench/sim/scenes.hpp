@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "../rng.hpp"
+
 namespace rscene::bench {
 
 // One box body.  Orientation (w, x, y, z) is exactly unit length (its
@@ -23,24 +25,11 @@ struct Box {
   bool dynamic;
 };
 
-// splitmix64: the same stream on every platform.
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : s_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  // Multiples of 1/1024 in [lo, hi): short decimals, exact in binary.
-  double uniform(double lo, double hi) { return lo + std::floor((hi - lo) * 1024 * unit()) / 1024; }
-  std::uint64_t below(std::uint64_t n) { return next() % n; }
-
- private:
-  double unit() { return static_cast<double>(next() >> 11) * 0x1p-53; }
-  std::uint64_t s_;
-};
+// Multiples of 1/1024 in [lo, hi): short decimals, exact in binary, so
+// reading the scene back changes nothing.
+inline double shortUniform(Rng& rng, double lo, double hi) {
+  return lo + std::floor((hi - lo) * 1024 * rng.unit()) / 1024;
+}
 
 // The 12 of a cube's 24 rotations whose quaternion components are 0, +-1
 // or +-0.5: the identity, three half turns about the axes and eight third
@@ -65,14 +54,14 @@ inline std::vector<Box> pile(int count, std::uint64_t seed = 1) {
     double shift = (layer % 2) * 0.125;
     Box b;
     b.path = "/World/Pile/Box_" + std::to_string(i);
-    b.size[0] = rng.uniform(0.2, 0.4);
-    b.size[1] = rng.uniform(0.2, 0.4);
-    b.size[2] = rng.uniform(0.2, 0.4);
-    b.position[0] = (cell % 10 - 4.5) * 0.5 + shift + rng.uniform(-0.04, 0.04);
-    b.position[1] = (cell / 10 - 4.5) * 0.5 + shift + rng.uniform(-0.04, 0.04);
+    b.size[0] = shortUniform(rng, 0.2, 0.4);
+    b.size[1] = shortUniform(rng, 0.2, 0.4);
+    b.size[2] = shortUniform(rng, 0.2, 0.4);
+    b.position[0] = (cell % 10 - 4.5) * 0.5 + shift + shortUniform(rng, -0.04, 0.04);
+    b.position[1] = (cell / 10 - 4.5) * 0.5 + shift + shortUniform(rng, -0.04, 0.04);
     b.position[2] = 0.5 + layer * 0.6;
     cubeRotation(rng.below(12), b.orientation);
-    b.mass = rng.uniform(0.5, 3);
+    b.mass = shortUniform(rng, 0.5, 3);
     b.dynamic = true;
     out.push_back(b);
   }
@@ -89,8 +78,8 @@ inline std::vector<Box> crates(int count, double cx, double cy, double z0, std::
     Box b;
     b.path = "/World/Crates/Crate_" + std::to_string(i);
     b.size[0] = b.size[1] = b.size[2] = 0.4;
-    b.position[0] = cx + (cell % 5 - 2) * 1.0 + rng.uniform(-0.2, 0.2);
-    b.position[1] = cy + (cell / 5 - 2) * 1.0 + rng.uniform(-0.2, 0.2);
+    b.position[0] = cx + (cell % 5 - 2) * 1.0 + shortUniform(rng, -0.2, 0.2);
+    b.position[1] = cy + (cell / 5 - 2) * 1.0 + shortUniform(rng, -0.2, 0.2);
     b.position[2] = z0 + layer * 0.8;
     cubeRotation(rng.below(12), b.orientation);
     b.mass = 5;
