@@ -9,34 +9,11 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/output_file.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
 namespace {
-
-class FdSink : public Sink {
- public:
-  explicit FdSink(int fd) : fd_(fd) {}
-  void write(std::string_view chunk) override {
-    while (ok_ && !chunk.empty()) {
-      ssize_t n = ::write(fd_, chunk.data(), chunk.size());
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        ok_ = false;
-        errno_ = errno;
-        return;
-      }
-      chunk.remove_prefix(static_cast<std::size_t>(n));
-    }
-  }
-  bool ok() const { return ok_; }
-  int error() const { return errno_; }
-
- private:
-  int fd_;
-  bool ok_ = true;
-  int errno_ = 0;
-};
 
 ValueType fieldType(const Record& r, const Document& doc, const Field& f, std::uint32_t positionalIndex) {
   if (!r.kind) return ValueType::Text;
@@ -94,47 +71,7 @@ bool readFile(const std::string& path, std::string& out, std::string* error) {
 }
 
 bool writeFileAtomic(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error) {
-  std::string dir = ".";
-  if (std::size_t slash = path.rfind('/'); slash != std::string::npos) dir = slash ? path.substr(0, slash) : "/";
-  std::string base = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
-  std::string tmp = dir + "/." + base + ".tmpXXXXXX";
-  int fd = ::mkstemp(tmp.data());
-  if (fd < 0) {
-    if (error) *error = std::string("cannot create temporary file in ") + dir + ": " + std::strerror(errno);
-    return false;
-  }
-  struct stat st {};
-  mode_t mode = 0666;
-  if (::stat(path.c_str(), &st) == 0) {
-    mode = st.st_mode & 07777;
-  } else {
-    mode_t mask = ::umask(0);
-    ::umask(mask);
-    mode = 0666 & ~mask;
-  }
-  ::fchmod(fd, mode);
-  FdSink sink(fd);
-  bool produced = produce(sink);
-  bool ok = produced && sink.ok();
-  int err = sink.ok() ? 0 : sink.error();
-  if (ok && ::fsync(fd) != 0) {
-    ok = false;
-    err = errno;
-  }
-  if (::close(fd) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (ok && ::rename(tmp.c_str(), path.c_str()) != 0) {
-    ok = false;
-    err = errno;
-  }
-  if (!ok) {
-    ::unlink(tmp.c_str());
-    if (error && err) *error = std::strerror(err);
-    else if (error && error->empty()) *error = "write cancelled";
-  }
-  return ok;
+  return writeOutputFile(path, produce, error);
 }
 
 std::string firstError(const Diagnostics& diagnostics) {

@@ -1,6 +1,7 @@
 // Whole-file entry points in the style of Engine 2's RSceneIO.hpp:
-// errors come back as "line N: message".  File reading and atomic writing
-// live here so every tool shares them; nothing here prints.
+// errors come back as "line N: message".  File reading lives here and
+// writing forwards to core/output_file.hpp, so every tool shares them;
+// nothing here prints.
 #pragma once
 #include <functional>
 #include <string>
@@ -20,9 +21,10 @@ bool saveFile(const Document& doc, const std::string& path, std::string* error =
 // Reads a whole file; `error` gets strerror-style text.
 bool readFile(const std::string& path, std::string& out, std::string* error);
 
-// Writes `path` atomically: produce() writes into a temporary file in the
-// same directory, which replaces `path` only when produce() returns true
-// and everything was flushed.  An existing file's permissions are kept.
+// Writes `path` through the one output routine, writeOutputFile() in
+// core/output_file.hpp: atomic replacement of a regular file (mode and
+// owner kept), symlinks kept, devices and FIFOs written through, read-only
+// and hard-linked files refused.  Kept under this name for library users.
 bool writeFileAtomic(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error);
 
 // "line N: message" for the first error of a load.
