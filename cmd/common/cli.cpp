@@ -1,5 +1,6 @@
 #include "common/cli.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -8,12 +9,49 @@
 #include <iostream>
 
 #include "core/io.hpp"
+#include "core/output_file.hpp"
 #include "core/report.hpp"
+#include "core/temp_files.hpp"
 
 namespace rscene::cli {
 namespace {
 
 std::string gTool = "rscene";
+
+volatile std::sig_atomic_t gWriting = 0;             // inside writeOutput()
+volatile std::sig_atomic_t* gStopFlag = nullptr;     // stopOnInterrupt()
+
+extern "C" void onTerminatingSignal(int sig) {
+  if (sig == SIGINT && gStopFlag && !gWriting) {
+    *gStopFlag = 1;
+    return;
+  }
+  removeTemporaryFiles();
+  ::_exit(128 + sig);
+}
+
+void installSignalHandlers() {
+  static const int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction action {};
+  action.sa_handler = onTerminatingSignal;
+  action.sa_flags = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  for (int sig : kSignals) sigaddset(&action.sa_mask, sig);
+  for (int sig : kSignals) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    ::sigaction(sig, &action, nullptr);
+  }
+  // Past a file size limit (ulimit -f) a write then fails with EFBIG, which
+  // is reported and cleaned up, instead of killing the tool mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+// Marks the span of a write for the signal handler.
+struct WritingScope {
+  WritingScope() { gWriting = 1; }
+  ~WritingScope() { gWriting = 0; }
+};
 
 class StdoutSink : public Sink {
  public:
@@ -54,6 +92,7 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
 }
 
 bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce) {
+  WritingScope writing;
   if (path.empty() || path == "-") {
     StdoutSink sink;
     bool ok = produce(sink);
@@ -61,13 +100,17 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
     if (!sink.ok_) error("cannot write standard output");
     return ok && sink.ok_;
   }
+  // /dev/stdout and /dev/fd/1 are written straight to the descriptor.
+  std::fflush(stdout);
   std::string err;
-  if (!writeFileAtomic(path, produce, &err)) {
-    error("cannot write '" + path + "': " + err);
+  if (!writeOutputFile(path, produce, &err)) {
+    error(path + ": " + err);
     return false;
   }
   return true;
 }
+
+void stopOnInterrupt(volatile std::sig_atomic_t* flag) { gStopFlag = flag; }
 
 bool colorFor(int fd) {
   const char* noColor = std::getenv("NO_COLOR");
@@ -83,6 +126,7 @@ void printDiagnostics(const Diagnostics& ds, std::string_view display, std::stri
 
 void setup(CLI::App& app, const char* tool) {
   gTool = tool;
+  installSignalHandlers();
   app.name(tool);
   app.set_version_flag("--version", std::string(tool) + " " RSCENE_VERSION);
   app.footer("Exit status: 0 success, 1 findings, 2 usage, I/O or parse error.\nSee " + std::string(tool) + "(1).");

@@ -2,6 +2,7 @@
 // writing outputs atomically, color policy and diagnostic printing.  This
 // is the only layer that looks at the terminal and the environment.
 #pragma once
+#include <csignal>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -34,8 +35,18 @@ struct Input {
 // Reads `operand` ("-" = stdin).  On failure prints `tool: error: ...`.
 bool readInput(const std::string& operand, const std::string& stdinName, Input& in);
 
-// Writes `produce`'s output to `path` ("-" = stdout) atomically.
+// Writes `produce`'s output to `path` ("-" = stdout) through the library's
+// one output routine (core/output_file.hpp: atomic replacement, links kept,
+// devices written through, read-only and hard-linked files refused).  On
+// failure prints `tool: error: PATH: why`.
 bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce);
+
+// setup() makes SIGINT, SIGTERM and SIGHUP remove the temporary file of an
+// output being written and exit 128+signal (130 for SIGINT); signals that
+// were ignored when the tool started stay ignored (nohup, `cmd &`).  A tool
+// with a long loop of its own passes a flag here: SIGINT then only sets it,
+// except while an output is being written.
+void stopOnInterrupt(volatile std::sig_atomic_t* flag);
 
 // Color on stderr/stdout: only on a terminal, never with NO_COLOR.
 bool colorFor(int fd);

@@ -21,8 +21,7 @@ namespace {
 using namespace rscene;
 using Clock = std::chrono::steady_clock;
 
-volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int) { gInterrupted = 1; }
+volatile std::sig_atomic_t gInterrupted = 0;  // set by SIGINT between outputs (cli::stopOnInterrupt)
 
 struct Options {
   std::string file = "-", output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
@@ -140,6 +139,6 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
-  std::signal(SIGINT, onInterrupt);
+  cli::stopOnInterrupt(&gInterrupted);
   return run(opt);
 }
