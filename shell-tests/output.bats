@@ -359,3 +359,18 @@ interrupt_mid_write() {
   cmp big.rscene big.orig
   [ -z "$(leftovers)" ]
 }
+
+@test "SIGINT while rscene-sim steps: exit 130 and no output written" {
+  [ -x "$BIN/rscene-sim" ] || skip "rscene-sim not built in $BIN"
+  command -v env > /dev/null && env --default-signal=INT true || skip "env --default-signal unsupported"
+  echo keep > out.rscene
+  env --default-signal=INT "$BIN/rscene-sim" --steps 100000000 -o out.rscene "$DATA/sim_drop.rscene" &
+  pid=$!
+  sleep 0.5
+  kill -INT "$pid"
+  status=0
+  wait "$pid" || status=$?
+  [ "$status" -eq 130 ]
+  [ "$(cat out.rscene)" = keep ]
+  [ -z "$(leftovers)" ]
+}
