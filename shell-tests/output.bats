@@ -211,6 +211,12 @@ leftovers() { find "${1:-.}" -maxdepth 1 -name '.*.tmp*' | sort; }
   [ -p pipe ]
 }
 
+@test "a terminal is written through" {
+  command -v script > /dev/null || skip "script(1) not installed"
+  run -0 script -qec "'$FMT' -o \$(tty) '$DATA/fmt_canonical.rscene'; test -c \$(tty)" typescript
+  grep -q '^raisim_engine_scene' typescript
+}
+
 @test "-o /dev/stdout writes to the open descriptor (appending stays appending)" {
   echo first > log
   "$FMT" -o /dev/stdout "$DATA/fmt_messy.rscene" >> log
@@ -331,8 +337,12 @@ interrupt_mid_write() {
   env --default-signal=INT "$@" &
   local pid=$! seen=""
   SECONDS=0
+  # Polls every few milliseconds: the temporary file lives for the whole
+  # write (at least a few hundred of them for 64 MB), and the signal goes
+  # at first sight, far from the rename at its end.
   while [ -z "$seen" ] && [ "$SECONDS" -lt 120 ] && kill -0 "$pid" 2> /dev/null; do
     for t in .big.rscene.tmp*; do [ -e "$t" ] && seen=$t; done
+    [ -n "$seen" ] || sleep 0.005
   done
   [ -n "$seen" ] && kill -s "$sig" "$pid"
   status=0
