@@ -27,6 +27,17 @@ extern "C" void onTerminatingSignal(int sig) {
     return;
   }
   removeTemporaryFiles();
+  // Die of the signal itself rather than exit(128+sig): the status a shell
+  // reports is the same, and a calling script's loop stops on it too.
+  struct sigaction fallback {};
+  fallback.sa_handler = SIG_DFL;
+  sigemptyset(&fallback.sa_mask);
+  ::sigaction(sig, &fallback, nullptr);
+  sigset_t only;
+  sigemptyset(&only);
+  sigaddset(&only, sig);
+  ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
+  ::raise(sig);
   ::_exit(128 + sig);
 }
 

@@ -42,7 +42,8 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
 bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce);
 
 // setup() makes SIGINT, SIGTERM and SIGHUP remove the temporary file of an
-// output being written and exit 128+signal (130 for SIGINT); signals that
+// output being written, then end the tool by that signal (a shell reports
+// 128+signal, 130 for SIGINT); signals that
 // were ignored when the tool started stay ignored (nohup, `cmd &`).  A tool
 // with a long loop of its own passes a flag here: SIGINT then only sets it,
 // except while an output is being written.
