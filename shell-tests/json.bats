@@ -122,3 +122,10 @@ header_json='{"tag":"raisim_engine_scene","fields":{"version":1}}'
   [[ $output == "rscene-from-json "* ]]
   run -2 "$TO" --no-such-flag
 }
+
+@test "from-json: 100 k nested objects fail at once, in bounded memory" {
+  awk 'BEGIN { printf "{\"zz\":"; for (i = 0; i < 100000; i++) printf "{\"a\":"; printf "1";
+               for (i = 0; i < 100000; i++) printf "}"; print "}" }' > deep.json
+  run -2 --separate-stderr bash -c "ulimit -v 400000; ulimit -t 10; '$FROM' deep.json"
+  [[ ${stderr_lines[0]} == "deep.json:1:"*": error: /zz/a/"*"nesting deeper than 32 levels (a scene nests at most 6) [RS8002]" ]]
+}

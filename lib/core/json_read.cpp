@@ -477,6 +477,8 @@ class Reader {
     std::size_t index = 0;  // next element of an array
   };
 
+  static constexpr std::size_t kMaxDepth = 32;
+
   std::size_t here() const { return static_cast<std::size_t>(position_ - text_.data()); }
   // Offset (1-based) of the opening quote of the string just read: found
   // by searching its quoted text between the previous string and the
@@ -528,6 +530,12 @@ class Reader {
 
   bool open(Json&& v) {
     if (stack_.empty() && !v.is_object()) return schemaError("", "expected a JSON object at the top level");
+    // A scene nests containers at most 6 deep (root, records, record,
+    // fields, a list, its entries).  Refusing deeper nesting at once keeps
+    // the per-key JSON pointer, and so the whole read, linear in the input.
+    if (stack_.size() >= kMaxDepth)
+      return schemaError(pointer(), "nesting deeper than " + std::to_string(kMaxDepth) +
+                                        " levels (a scene nests at most 6)");
     if (atRecords()) {
       offsets_.clear();
       offsets_[pointer() + "/" + std::to_string(stack_.back().index)] = here();
