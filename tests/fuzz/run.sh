@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# tests/fuzz/run.sh - builds the libFuzzer target in build-fuzz (clang,
-# ASan+UBSan) and fuzzes the loader for ${FUZZ_SECONDS:-60} seconds from a
-# seed corpus of the test fixtures, the examples and ../shared/corpus when
-# present.  Exit status: 0 when nothing was found, non-zero on a crash, a
-# leak, a timeout or a broken invariant (the input is in
-# build-fuzz/fuzz-artifacts/).
+# tests/fuzz/run.sh - builds the libFuzzer targets in build-fuzz (clang,
+# ASan+UBSan) and runs each for ${FUZZ_SECONDS:-60} seconds, one after the
+# other, from seed corpora made of the test fixtures, the examples and
+# ../shared/corpus when present:
+#   fuzz_loader     the .rscene loader, writer and validator
+#   fuzz_from_json  rscene-from-json's reader (seeds: the scenes as JSON)
+# Exit status: 0 when nothing was found, non-zero on a crash, a leak, a
+# timeout or a broken invariant (the inputs are in build-fuzz/fuzz-artifacts/).
 #
-# Environment: FUZZ_SECONDS, FUZZ_BUILD_DIR (default build-fuzz),
-# FUZZ_JOBS (build parallelism, default 2), FUZZ_ARGS (extra libFuzzer flags).
+# Environment: FUZZ_SECONDS (per target), FUZZ_TARGETS (default: all of
+# them), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_JOBS (build parallelism,
+# default 2), FUZZ_ARGS (extra libFuzzer flags).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${FUZZ_BUILD_DIR:-$ROOT/build-fuzz}
@@ -20,16 +23,17 @@ fi
 CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRSCENE_FUZZ=ON -DRSCENE_BUILD_TOOLS=OFF -DRSCENE_BUILD_TESTS=OFF > "$BUILD.configure.log" 2>&1 ||
   { cat "$BUILD.configure.log" >&2; exit 2; }
-cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target fuzz_loader
+TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json})
+cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_seeds
 
-# The working corpus lives in the build directory: libFuzzer adds the
+# The working corpora live in the build directory: libFuzzer adds the
 # inputs it finds there, and the seeds in the repository stay as they are.
-CORPUS=$BUILD/fuzz-corpus
 ARTIFACTS=$BUILD/fuzz-artifacts
-mkdir -p "$CORPUS" "$ARTIFACTS"
+mkdir -p "$ARTIFACTS" "$BUILD/fuzz-corpus" "$BUILD/fuzz-corpus-json"
 shopt -s nullglob
 seeds=("$ROOT"/tests/data/*.rscene "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene)
-for f in "${seeds[@]}"; do cp -f "$f" "$CORPUS/seed_$(basename "$f")"; done
+for f in "${seeds[@]}"; do cp -f "$f" "$BUILD/fuzz-corpus/seed_$(basename "$f")"; done
+"$BUILD/bin/make_json_seeds" "$BUILD/fuzz-corpus-json" "${seeds[@]}"
 
 # A dictionary of the tags and keys the seeds use helps the mutator build
 # records that get past the first token.
@@ -54,13 +58,30 @@ cat >> "$DICT" << 'ENTRIES'
 "raisim_engine_scene 2\x0A"
 ENTRIES
 
-echo "fuzzing for ${SECONDS_TO_RUN}s: ${#seeds[@]} seeds, $(wc -l < "$DICT") dictionary entries"
+# The JSON reader's dictionary: the loader's words as member names, and
+# the structure of the JSON form.
+JSON_DICT=$BUILD/fuzz-json.dict
+{
+  sed -n 's/^"\([A-Za-z_][A-Za-z0-9_]*\)=\{0,1\}"$/"\\"\1\\":"/p' "$DICT" | sort -u
+  printf '%s\n' '"{\"format\":\"rscene\",\"version\":1,\"records\":["' '"\"fields\":{"' '"\"tokens\":["' \
+    '"\"unknownKeys\":["' '"\"unknownTag\":true"' '"\"comments\":["' '"\"positionalCount\":"' '"{\"raw\":"' \
+    '"\"trailingComments\":["' '"\\u0000"' '"\\ud800"' '"-0"' '"1e308"' '"[["' '"]]"'
+} > "$JSON_DICT"
+
 status=0
-# shellcheck disable=SC2086
-"$BUILD/bin/fuzz_loader" -max_total_time="$SECONDS_TO_RUN" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
-  -print_final_stats=1 -artifact_prefix="$ARTIFACTS/" -dict="$DICT" ${FUZZ_ARGS:-} "$CORPUS" || status=$?
-if ((status != 0)); then
-  echo "tests/fuzz/run.sh: the fuzzer stopped with status $status; reproducer(s):" >&2
-  ls -1 "$ARTIFACTS" >&2
-fi
+for target in "${TARGETS[@]}"; do
+  case $target in
+    fuzz_loader) corpus=$BUILD/fuzz-corpus dict=$DICT ;;
+    fuzz_from_json) corpus=$BUILD/fuzz-corpus-json dict=$JSON_DICT ;;
+    *) echo "tests/fuzz/run.sh: error: unknown target '$target'" >&2; exit 2 ;;
+  esac
+  echo "$target: fuzzing for ${SECONDS_TO_RUN}s from $(find "$corpus" -type f | wc -l) inputs, $(wc -l < "$dict") dictionary entries"
+  # shellcheck disable=SC2086
+  "$BUILD/bin/$target" -max_total_time="$SECONDS_TO_RUN" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+    -print_final_stats=1 -artifact_prefix="$ARTIFACTS/$target-" -dict="$dict" ${FUZZ_ARGS:-} "$corpus" || {
+    status=$?
+    echo "tests/fuzz/run.sh: $target stopped with status $status; reproducer(s):" >&2
+    ls -1 "$ARTIFACTS" >&2
+  }
+done
 exit $status
