@@ -50,12 +50,15 @@ int run(const Options& opt) {
   so.baseDir = opt.baseDir;
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
+  asset::AssetCache assets;
   bool ok = buildScene(doc, so, scene, ds) && sim::checkPhysics(doc, scene, ds);
   if (ok && !(scene.timeStep > 0)) {
     cli::error("time_step must be positive");
     return cli::kTrouble;
   }
-  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds) : nullptr;
+  sim::WorldOptions wo;
+  wo.assets = &assets;
+  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
   if (!world) return cli::kTrouble;

@@ -6,11 +6,11 @@
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
+#include <cstring>
 #include <map>
 #include <unordered_map>
 
 #include "core/text.hpp"
-#include "sim/mesh.hpp"
 #include "sim/wire.hpp"
 
 namespace rscene::sim {
@@ -125,7 +125,11 @@ struct World::Impl {
   std::vector<BodyInfo> info;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btStridingMeshInterface>> meshData;
-  std::vector<std::unique_ptr<TriangleMesh>> meshes;
+  std::unique_ptr<asset::AssetCache> ownAssets;
+  asset::AssetCache* assets = nullptr;
+  std::vector<std::shared_ptr<const asset::Mesh>> meshes;  // triangle shapes point into them
+  std::map<std::string, btCollisionShape*> meshShapes;     // one shape per file, scale and kind
+
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::unique_ptr<btMotionState>> motion;
   std::vector<std::unique_ptr<btTypedConstraint>> constraints;
@@ -165,30 +169,53 @@ struct World::Impl {
     if (prim == "sphere") return keep(new btSphereShape(radius));
     if (prim == "cylinder") return keep(new btCylinderShapeZ(btVector3(radius, radius, height / 2)));
     if (prim == "capsule") return keep(new btCapsuleShapeZ(radius, height));
-    if (prim == "mesh") {
-      auto mesh = std::make_unique<TriangleMesh>();
-      if (!loadMesh(meshPath, *mesh, error)) return nullptr;
-      for (double& v : mesh->vertices) v *= meshScale;
-      if (convex) {
-        auto* hull = new btConvexHullShape(mesh->vertices.data(), static_cast<int>(mesh->vertices.size() / 3),
-                                           3 * sizeof(double));
-        hull->optimizeConvexHull();
-        hull->setMargin(0.001);
-        return keep(hull);
-      }
-      if (mesh->indices.empty()) {
-        error = "mesh '" + meshPath + "' has no triangles";
-        return nullptr;
-      }
-      auto* array = new btTriangleIndexVertexArray(
-          static_cast<int>(mesh->indices.size() / 3), mesh->indices.data(), 3 * sizeof(int),
-          static_cast<int>(mesh->vertices.size() / 3), mesh->vertices.data(), 3 * sizeof(double));
-      meshData.emplace_back(array);
-      meshes.push_back(std::move(mesh));
-      return keep(new btBvhTriangleMeshShape(array, true));
-    }
+    if (prim == "mesh") return meshShape(meshPath, meshScale, convex, error);
     error = "unknown primitive '" + prim + "'";
     return nullptr;
+  }
+
+  // Ten bodies naming one mesh file at one scale share one shape (one
+  // convex hull, one BVH): Bullet shapes may be shared between bodies.
+  btCollisionShape* meshShape(const std::string& path, double scale, bool convex, std::string& error) {
+    char key[32];
+    std::memcpy(key, &scale, sizeof scale);
+    key[sizeof scale] = convex ? 'h' : 't';
+    std::string name = std::string(key, sizeof scale + 1) + path;
+    if (auto it = meshShapes.find(name); it != meshShapes.end()) return it->second;
+    std::string why;
+    std::shared_ptr<const asset::Mesh> mesh = assets->mesh(path, asset::MeshContent::Geometry, &why);
+    if (!mesh) {
+      error = "cannot read mesh '" + path + "': " + why;
+      return nullptr;
+    }
+    const asset::MeshPart& part = mesh->parts.front();  // Geometry: one part of all triangles
+    btCollisionShape* shape = nullptr;
+    if (convex) {
+      std::vector<double> points(part.positions.begin(), part.positions.end());
+      for (double& v : points) v *= scale;
+      auto* hull = new btConvexHullShape(points.data(), static_cast<int>(part.vertexCount()), 3 * sizeof(double));
+      hull->optimizeConvexHull();
+      hull->setMargin(0.001);
+      shape = keep(hull);
+    } else {
+      // Bullet reads the cached float vertices in place, scaled as it reads.
+      btIndexedMesh im;
+      im.m_numTriangles = static_cast<int>(part.indices.size() / 3);
+      im.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(part.indices.data());
+      im.m_triangleIndexStride = 3 * sizeof(std::uint32_t);
+      im.m_numVertices = static_cast<int>(part.vertexCount());
+      im.m_vertexBase = reinterpret_cast<const unsigned char*>(part.positions.data());
+      im.m_vertexStride = 3 * sizeof(float);
+      im.m_indexType = PHY_INTEGER;
+      im.m_vertexType = PHY_FLOAT;
+      auto* array = new btTriangleIndexVertexArray();
+      array->addIndexedMesh(im, PHY_INTEGER);
+      array->setScaling(btVector3(scale, scale, scale));
+      meshData.emplace_back(array);
+      shape = keep(new btBvhTriangleMeshShape(array, true));
+    }
+    meshes.push_back(std::move(mesh));
+    return meshShapes[name] = shape;
   }
 
   btRigidBody* addBody(btCollisionShape* shape, const btTransform& at, BodyMode mode, double mass,
@@ -239,9 +266,14 @@ struct World::Impl {
 World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 World::~World() = default;
 
-std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics) {
+std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics, const WorldOptions& options) {
   auto impl = std::make_unique<Impl>();
   Impl& w = *impl;
+  w.assets = options.assets;
+  if (!w.assets) {
+    w.ownAssets = std::make_unique<asset::AssetCache>();
+    w.assets = w.ownAssets.get();
+  }
   const Solver& sv = scene.solver;
   // Up to four contact points between a convex body and a plane (Bullet
   // finds one by default): a box sliding faster than its contact-breaking

@@ -10,7 +10,8 @@
 //                    thresholds and quiet steps, swept CCD, broadphase
 //   object           ground/half_space = static plane at position.z; box,
 //                    sphere, cylinder, capsule; mesh = convex hull (dynamic,
-//                    kinematic) or triangle mesh (static)
+//                    kinematic) or triangle mesh (static), read through
+//                    lib/asset's cache (one import and one shape per file)
 //   group/mask       full 64-bit test in an overlap filter: a pair collides
 //                    when (groupA & maskB) != 0 and (groupB & maskA) != 0
 //   contact_material per-pair friction/restitution/rolling/spinning,
@@ -28,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "core/scene.hpp"
@@ -55,11 +57,16 @@ bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnost
 // Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
 
+struct WorldOptions {
+  asset::AssetCache* assets = nullptr;  // null: the world reads the disk through a cache of its own
+};
+
 class World {
  public:
   // Builds the Bullet world; mesh files are read here (RS7004/RS7007 on
   // failure).  Returns nullptr after adding an error diagnostic.
-  static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics);
+  static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics,
+                                       const WorldOptions& options = {});
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
