@@ -131,3 +131,42 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   run parallel --halt soon,fail=1 "$SIM" -o out/{/} {} ::: in/*.rscene
   [ "$status" -ne 0 ]
 }
+
+# --- missing assets ---
+
+CORPUS="$ROOT/../shared/corpus"
+
+@test "--allow-missing-assets leaves out a body whose mesh is missing and simulates the rest" {
+  run -0 "$SIM" --help
+  [[ $output == *"--allow-missing-assets"* ]]
+  { cat sim_missing_mesh.rscene
+    echo 'object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615'
+    echo 'object /World/Box box 3 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615'
+  } > partial.rscene
+  run -2 "$SIM" --steps 10 partial.rscene
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --duration 1 partial.rscene
+  [ "${stderr_lines[0]}" = "partial.rscene:2:93: warning: mesh file 'meshes/rock.obj' does not exist; body '/World/Rock' is not simulated [RS7004]" ]
+  # the left-out body's record is written unchanged; the box fell onto the ground
+  grep -qxF "$(sed -n 2p partial.rscene)" <<<"$output"
+  box=$(zof /World/Box <<<"$output")
+  awk -v z="$box" 'BEGIN { exit !(z > 0.19 && z < 0.21) }'
+}
+
+@test "--allow-missing-assets: an unreadable mesh (a device, a non-mesh) is left out too" {
+  sed 's|meshes/rock.obj|/dev/zero|' sim_missing_mesh.rscene > dev.rscene
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 dev.rscene
+  [[ ${stderr_lines[0]} == "dev.rscene:2:"*": warning: cannot read mesh '/dev/zero': not a regular file; body '/World/Rock' is not simulated [RS7007]" ]]
+  run -2 --separate-stderr timeout 10 "$SIM" --steps 5 dev.rscene
+  [[ $stderr == *"cannot read mesh '/dev/zero': not a regular file [RS7007]"* ]]
+}
+
+@test "corpus: the warehouse and the city simulate with --allow-missing-assets" {
+  [ -d "$CORPUS" ] || skip "no ../shared/corpus"
+  for scene in rayrai_warehouse rayrai_city; do
+    run -2 "$SIM" --steps 1 "$CORPUS/$scene.rscene"
+    run -0 --separate-stderr "$SIM" --allow-missing-assets --duration 1 --report -o out.rscene "$CORPUS/$scene.rscene"
+    [[ $stderr == *"does not exist; bodies '"*"' and "*" others are not simulated [RS7004]"* ]]
+    jq -e '.steps > 0' <<<"${stderr_lines[-1]}"
+    [ -s out.rscene ]
+  done
+}

@@ -29,7 +29,7 @@ struct Options {
   double duration = 1;
   long long steps = -1;
   long long every = 1;
-  bool untilRest = false, report = false;
+  bool untilRest = false, report = false, allowMissing = false;
 };
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -51,7 +51,9 @@ int run(const Options& opt) {
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
   asset::AssetCache assets;
-  bool ok = buildScene(doc, so, scene, ds) && sim::checkPhysics(doc, scene, ds);
+  bool ok = buildScene(doc, so, scene, ds);
+  if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
+  ok = ok && sim::checkPhysics(doc, scene, ds);
   if (ok && !(scene.timeStep > 0)) {
     cli::error("time_step must be positive");
     return cli::kTrouble;
@@ -140,6 +142,8 @@ int main(int argc, char** argv) {
       ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
   app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");
   app.add_flag("--report", opt.report, "Print a JSON summary of the run on standard error");
+  app.add_flag("--allow-missing-assets", opt.allowMissing,
+               "Leave out a body whose collision mesh is missing or unreadable and warn, instead of failing");
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;

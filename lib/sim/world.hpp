@@ -57,6 +57,17 @@ bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnost
 // Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
 
+// rscene-sim --allow-missing-assets: every object or compound whose
+// collision mesh is missing (RS7004) or unreadable (RS7007) is left out of
+// the simulation (made visual-only in `scene`, so its record is written
+// back unchanged), with one warning per file naming it and the first
+// record (and how many more), and a wire attached to such a body is
+// skipped with a warning.  Meshes are read through `assets`, so
+// World::create given the same cache reads nothing twice.
+// Returns how many bodies were left out.
+int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetCache& assets,
+                                Diagnostics& diagnostics);
+
 struct WorldOptions {
   asset::AssetCache* assets = nullptr;  // null: the world reads the disk through a cache of its own
 };

@@ -1,5 +1,6 @@
 // lib/sim and lib/asset: meshes through the shared cache (read once, from
-// an in-memory disk).
+// an in-memory disk), bodies left out for a missing mesh
+// (--allow-missing-assets).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,8 +39,9 @@ struct Run {
   std::unique_ptr<World> world;
 };
 
-// Loads `body`; with `assets`, meshes come from it.
-std::unique_ptr<Run> make(const std::string& body, asset::AssetCache* assets = nullptr) {
+// Loads `body`; with `assets`, meshes come from it and missing ones are
+// left out as rscene-sim --allow-missing-assets does.
+std::unique_ptr<Run> make(const std::string& body, asset::AssetCache* assets = nullptr, bool allowMissing = false) {
   auto r = std::make_unique<Run>();
   LoadResult loaded = parse("raisim_engine_scene 1\n" + body);
   EXPECT_TRUE(loaded.ok());
@@ -48,9 +50,10 @@ std::unique_ptr<Run> make(const std::string& body, asset::AssetCache* assets = n
   so.baseDir = "/s";  // the scene's folder on the in-memory disk
   if (assets) so.exists = [assets](const std::string& p) { return assets->fileSystem().exists(p); };
   EXPECT_TRUE(buildScene(r->doc, so, r->scene, r->diags));
+  if (allowMissing) skipBodiesWithMissingMeshes(r->doc, r->scene, *assets, r->diags);
   // checkPhysics asks the real disk whether mesh files exist: a scene on
-  // the in-memory disk skips it.
-  if (!assets) {
+  // the in-memory disk skips it unless missing meshes were left out.
+  if (!assets || allowMissing) {
     EXPECT_TRUE(checkPhysics(r->doc, r->scene, r->diags)) << (r->diags.empty() ? "" : r->diags[0].message);
   }
   WorldOptions wo;
@@ -87,6 +90,44 @@ TEST(SimAssets, TenBodiesNamingOneMeshReadItOnce) {
   steps(*r->world, 2);
   for (int i = 0; i < 10; ++i)  // each hull rests on the ground: hull margin 1 mm + contact slop
     EXPECT_NEAR(state(*r->world, "/World/M" + std::to_string(i)).position.z(), 0.2, 3e-3) << i;
+}
+
+TEST(SimAssets, MissingAndUnreadableMeshesAreLeftOutWithAWarning) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/junk.obj", "this is not a mesh\n");
+  asset::AssetCache cache(fs);
+  std::string body = kGround + object("/World/Box", "box", 0, 0, 1, "0.4 0.4 0.4", 1, "dynamic") +
+                     object("/World/Rock", "mesh", 3, 0, 1, "1 1 1", 2, "dynamic", "collisionMeshPath=rock.obj") +
+                     object("/World/Junk", "mesh", 6, 0, 1, "1 1 1", 2, "dynamic", "collisionMeshPath=junk.obj") +
+                     object("/World/Rock2", "mesh", 9, 0, 1, "1 1 1", 2, "static", "collisionMeshPath=rock.obj") +
+                     "wire /World/W stiff /World/Box /World/Rock 1\n";
+  auto r = make(body, &cache, true);
+  ASSERT_EQ(r->diags.size(), 3u);
+  const Diagnostic& rock = r->diags[0];
+  EXPECT_EQ(rock.severity, Severity::Warning);
+  EXPECT_EQ(rock.code, "RS7004");
+  EXPECT_EQ(rock.line, 4u);
+  EXPECT_GT(rock.column, 0u);  // at the collisionMeshPath key
+  // One warning per file, at the first body naming it.
+  EXPECT_EQ(rock.message, "mesh file '/s/rock.obj' does not exist; bodies '/World/Rock' and 1 other are not simulated");
+  EXPECT_EQ(r->diags[1].code, "RS7007");
+  EXPECT_EQ(r->diags[1].severity, Severity::Warning);
+  EXPECT_EQ(r->diags[1].message.rfind("cannot read mesh '/s/junk.obj': ", 0), 0u) << r->diags[1].message;
+  EXPECT_TRUE(r->diags[1].message.ends_with("; body '/World/Junk' is not simulated")) << r->diags[1].message;
+  EXPECT_EQ(r->diags[2].line, 7u);  // the wire to the rock is skipped too
+  EXPECT_EQ(r->diags[2].message, "wire '/World/W' is not simulated: body '/World/Rock' was left out for its mesh");
+  EXPECT_EQ(r->world->bodyCount(), 1);
+  std::string before = canonicalText(r->doc);
+  steps(*r->world, 2);
+  EXPECT_NEAR(state(*r->world, "/World/Box").position.z(), 0.2, 3e-3);  // the rest simulates
+  r->world->writeBack(r->doc);
+  std::string after = canonicalText(r->doc);
+  auto line = [](const std::string& text, const std::string& path) {
+    std::size_t at = text.find("object " + path + " ");
+    return text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(line(after, "/World/Rock"), line(before, "/World/Rock"));  // written back unchanged
+  EXPECT_NE(line(after, "/World/Box"), line(before, "/World/Box"));
 }
 
 TEST(SimAssets, WithoutTheFlagAMissingMeshStaysAnError) {
