@@ -132,7 +132,7 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   [ "$status" -ne 0 ]
 }
 
-# --- missing assets ---
+# --- missing assets and bodies leaving the world ---
 
 CORPUS="$ROOT/../shared/corpus"
 
@@ -158,6 +158,21 @@ CORPUS="$ROOT/../shared/corpus"
   [[ ${stderr_lines[0]} == "dev.rscene:2:"*": warning: cannot read mesh '/dev/zero': not a regular file; body '/World/Rock' is not simulated [RS7007]" ]]
   run -2 --separate-stderr timeout 10 "$SIM" --steps 5 dev.rscene
   [[ $stderr == *"cannot read mesh '/dev/zero': not a regular file [RS7007]"* ]]
+}
+
+@test "a body that falls off the edge leaves the world and --until-rest still finishes" {
+  cat > edge.rscene <<'SCENE'
+raisim_engine_scene 1
+object /World/Platform box 0 0 0 1 0 0 0 2 2 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615
+object /World/On box 0 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Off box 3 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  run -0 --separate-stderr "$SIM" --duration 30 --until-rest --report edge.rscene
+  [[ ${stderr_lines[0]} == "edge.rscene:4: warning: dynamic body '/World/Off' left the world at step "*" s): fell below z = -10.5 (10 m under the lowest static geometry); no longer simulated, written at its last pose [RS7011]" ]]
+  jq -e '.leftWorld == 1 and .atRest == true and .simulatedTime < 5' <<<"${stderr_lines[-1]}"
+  # written at the pose it had when it left: about 10 m under the platform
+  off=$(zof /World/Off <<<"$output")
+  awk -v z="$off" 'BEGIN { exit !(z < -10.5 && z > -10.7) }'
 }
 
 @test "corpus: the warehouse and the city simulate with --allow-missing-assets" {

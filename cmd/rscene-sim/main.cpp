@@ -94,6 +94,9 @@ int run(const Options& opt) {
   }
   if (progress) std::cerr << "\r\033[K" << std::flush;
   if (gInterrupted) return cli::kInterrupted;
+  Diagnostics departures;
+  for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
+  print(departures);
   Clock::time_point steppedAt = Clock::now();
 
   world->writeBack(doc);
@@ -116,6 +119,7 @@ int run(const Options& opt) {
                         {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
                         {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
                         {"bodies", world->bodyCount()},
+                        {"leftWorld", world->departures().size()},
                         {"contactsPerStep", steps ? contacts / steps : 0.0},
                         {"atRest", rested || world->atRest()}};
     std::cerr << r.dump() << '\n';

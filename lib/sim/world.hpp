@@ -36,6 +36,11 @@
 
 namespace rscene::sim {
 
+// Codes of the simulator's own findings (the scene view's are scene_code).
+namespace sim_code {
+inline constexpr const char* kLeftWorld = "RS7011";  // a dynamic body left the world (warning)
+}  // namespace sim_code
+
 // State of one simulated body (dynamic or kinematic), in the world frame.
 struct BodyState {
   int recordIndex = -1;  // object or compound record
@@ -46,6 +51,7 @@ struct BodyState {
   Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();
   bool dynamic = true;
   bool sleeping = false;
+  bool departed = false;  // left the world (see Departure): frozen at its last pose
 };
 
 // Checks what Bullet cannot simulate sensibly: dynamic bodies with mass
@@ -70,7 +76,27 @@ int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetC
 
 struct WorldOptions {
   asset::AssetCache* assets = nullptr;  // null: the world reads the disk through a cache of its own
+  // A dynamic body more than this far below the lowest static geometry
+  // has left the world (it fell off the edge or through the floor).
+  double leaveMargin = 10;
 };
+
+// A dynamic body that left the world: below the lowest static geometry
+// by WorldOptions::leaveMargin, or outside the solver's broadphase bounds
+// when broadphaseUseWorldBounds is set.  It is taken out of the world at
+// that step (no longer stepped, no longer keeping atRest() false) and keeps
+// the pose it had then.
+struct Departure {
+  int recordIndex = -1;
+  std::string path;
+  std::uint64_t step = 0;
+  double time = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string reason;  // "fell below z = -10 (10 m under the lowest static geometry)"
+};
+
+// The warning (RS7011) for a departure, at its record's line.
+Diagnostic departureWarning(const Document& doc, const Departure& departure);
 
 class World {
  public:
@@ -86,10 +112,11 @@ class World {
   double time() const;              // simulated seconds since create()
   std::uint64_t steps() const;
   double timeStep() const;
-  bool atRest() const;              // every dynamic body sleeps
+  bool atRest() const;              // every dynamic body still in the world sleeps
   int bodyCount() const;            // simulated dynamic and kinematic bodies
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
+  const std::vector<Departure>& departures() const;  // in the order they happened
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or

@@ -1,6 +1,6 @@
 // lib/sim and lib/asset: meshes through the shared cache (read once, from
 // an in-memory disk), bodies left out for a missing mesh
-// (--allow-missing-assets).
+// (--allow-missing-assets), and bodies that leave the world.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -147,4 +147,55 @@ TEST(SimAssets, WithoutTheFlagAMissingMeshStaysAnError) {
   EXPECT_EQ(ds[0].severity, Severity::Error);
   EXPECT_EQ(ds[0].code, "RS7007");
   EXPECT_EQ(ds[0].message, "/World/Rock: cannot read mesh '/s/rock.obj': No such file or directory");
+}
+
+TEST(SimAssets, ABodyFallingOffTheEdgeLeavesTheWorldAndTheRestComesToRest) {
+  // A static platform (top at z = 0.5) with one box on it and one beside it.
+  auto r = make(object("/World/Platform", "box", 0, 0, 0, "2 2 1", 1, "static") +
+                object("/World/On", "box", 0, 0, 0.7, "0.4 0.4 0.4", 1, "dynamic") +
+                object("/World/Off", "box", 3, 0, 0.7, "0.4 0.4 0.4", 1, "dynamic"));
+  std::uint64_t leftAt = 0;
+  for (int i = 0; i < 4000 && !r->world->atRest(); ++i) {
+    r->world->step();
+    if (!leftAt && !r->world->departures().empty()) leftAt = r->world->steps();
+  }
+  ASSERT_EQ(r->world->departures().size(), 1u);
+  const Departure& d = r->world->departures()[0];
+  EXPECT_EQ(d.path, "/World/Off");
+  EXPECT_EQ(d.step, leftAt);
+  // Lowest static geometry z = -0.5; it leaves 10 m under that.  Free fall
+  // from 0.7 to -10.5: t = sqrt(2 * 11.2 / 9.81) = 1.511 s.
+  EXPECT_NEAR(d.time, std::sqrt(2 * 11.2 / 9.81), 0.01);
+  EXPECT_LT(d.position.z(), -10.5);
+  EXPECT_GT(d.position.z(), -10.6);
+  EXPECT_TRUE(r->world->atRest());  // the box on the platform sleeps; the departed one does not count
+  BodyState off = state(*r->world, "/World/Off");
+  EXPECT_TRUE(off.departed);
+  EXPECT_EQ(off.position.z(), d.position.z());  // frozen at its last pose
+  r->world->step();
+  EXPECT_EQ(state(*r->world, "/World/Off").position.z(), d.position.z());
+  Diagnostic w = departureWarning(r->doc, d);
+  EXPECT_EQ(w.severity, Severity::Warning);
+  EXPECT_EQ(w.code, "RS7011");
+  EXPECT_EQ(w.line, 4u);
+  EXPECT_EQ(w.message.rfind("dynamic body '/World/Off' left the world at step " + std::to_string(d.step), 0), 0u)
+      << w.message;
+}
+
+TEST(SimAssets, ABodyLeavingTheBroadphaseBoundsLeavesTheWorld) {
+  auto r = make("solver 80 1e-07 0.2 accurate broadphaseUseWorldBounds=true broadphaseWorldMin=-5,-5,-5 "
+                "broadphaseWorldMax=5,5,5\n" +
+                kGround + object("/World/B", "sphere", 0, 0, 0.5, "1 1 1", 1, "dynamic"));
+  ASSERT_TRUE(r->world->setLinearVelocity("/World/B", Eigen::Vector3d(0, 20, 0)));
+  steps(*r->world, 1);
+  ASSERT_EQ(r->world->departures().size(), 1u);
+  EXPECT_EQ(r->world->departures()[0].reason, "left the broadphase bounds");
+  EXPECT_GT(r->world->departures()[0].position.y(), 5);
+  EXPECT_LT(r->world->departures()[0].position.y(), 5.1);
+}
+
+TEST(SimAssets, BodiesRestingOnTheGroundNeverLeave) {
+  auto r = make(kGround + object("/World/B", "box", 0, 0, 0.2, "0.4 0.4 0.4", 1, "dynamic"));
+  steps(*r->world, 3);
+  EXPECT_TRUE(r->world->departures().empty());
 }
