@@ -171,3 +171,27 @@ TEST(Decode, FloatImagesOfPngAreLinear) {
   EXPECT_NEAR(f.rgb[1], 0.2158, 1e-3);  // sRGB 128 in linear light
   EXPECT_FLOAT_EQ(f.rgb[2], 0.0f);
 }
+
+TEST(Decode, EveryTruncationAndByteFlipEndsCleanly) {
+  // Either a whole image of the declared size or a failure with nothing
+  // kept; never a crash (this also runs under ASan/UBSan).
+  Image src = halves();
+  for (const std::string& file : {encodePng(src), test::encodeJpeg(src)}) {
+    auto check = [&](const std::string& bytes) {
+      Image out;
+      std::string err;
+      if (decodeImage(bytes, out, &err)) {
+        EXPECT_EQ(out.rgba.size(), std::size_t(out.width) * std::size_t(out.height) * 4);
+      } else {
+        EXPECT_TRUE(out.rgba.empty());
+        EXPECT_FALSE(err.empty());
+      }
+    };
+    for (std::size_t n = 0; n < file.size(); ++n) check(file.substr(0, n));
+    for (std::size_t i = 0; i < file.size(); ++i) {
+      std::string flipped = file;
+      flipped[i] = static_cast<char>(flipped[i] ^ 0x5a);
+      check(flipped);
+    }
+  }
+}
