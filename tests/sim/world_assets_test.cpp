@@ -130,6 +130,23 @@ TEST(SimAssets, MissingAndUnreadableMeshesAreLeftOutWithAWarning) {
   EXPECT_NE(line(after, "/World/Box"), line(before, "/World/Box"));
 }
 
+TEST(SimAssets, ACompoundWithAMissingMeshChildIsLeftOutWhole) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cube.obj", kCube);
+  asset::AssetCache cache(fs);
+  auto r = make(kGround +
+                    "compound /World/C 0 0 1 1 0 0 0 1 1 1 2 dynamic true true\n"
+                    "compound_child /World/C mesh -0.3 0 0 1 0 0 0 0.2 0.2 0.2 meshPath=cube.obj\n"
+                    "compound_child /World/C mesh 0.3 0 0 1 0 0 0 0.2 0.2 0.2 meshPath=gone.obj\n" +
+                    object("/World/Box", "box", 3, 0, 1, "0.4 0.4 0.4", 1, "dynamic"),
+                &cache, true);
+  ASSERT_EQ(r->diags.size(), 1u);
+  EXPECT_EQ(r->diags[0].severity, Severity::Warning);
+  EXPECT_EQ(r->diags[0].line, 5u);  // the child that names the missing file
+  EXPECT_EQ(r->diags[0].message, "mesh file '/s/gone.obj' does not exist; body '/World/C' is not simulated");
+  EXPECT_EQ(r->world->bodyCount(), 1);  // the box only
+}
+
 TEST(SimAssets, WithoutTheFlagAMissingMeshStaysAnError) {
   MemoryFileSystem fs;
   asset::AssetCache cache(fs);
