@@ -11,7 +11,7 @@ libgtest-dev libgmock-dev bats
 clang libclang-rt-14-dev libfuzzer-14-dev
 mandoc jq time parallel libdtl-dev
 libbullet-dev libassimp-dev
-libpng-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+libpng-dev libjpeg-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
 "
 
 # One dpkg-query for all packages; a package it does not list as

@@ -131,3 +131,57 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   run parallel --halt soon,fail=1 "$SIM" -o out/{/} {} ::: in/*.rscene
   [ "$status" -ne 0 ]
 }
+
+# --- missing assets and bodies leaving the world ---
+
+CORPUS="$ROOT/../shared/corpus"
+
+@test "--allow-missing-assets leaves out a body whose mesh is missing and simulates the rest" {
+  run -0 "$SIM" --help
+  [[ $output == *"--allow-missing-assets"* ]]
+  { cat sim_missing_mesh.rscene
+    echo 'object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615'
+    echo 'object /World/Box box 3 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615'
+  } > partial.rscene
+  run -2 "$SIM" --steps 10 partial.rscene
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --duration 1 partial.rscene
+  [ "${stderr_lines[0]}" = "partial.rscene:2:93: warning: mesh file 'meshes/rock.obj' does not exist; body '/World/Rock' is not simulated [RS7004]" ]
+  # the left-out body's record is written unchanged; the box fell onto the ground
+  grep -qxF "$(sed -n 2p partial.rscene)" <<<"$output"
+  box=$(zof /World/Box <<<"$output")
+  awk -v z="$box" 'BEGIN { exit !(z > 0.19 && z < 0.21) }'
+}
+
+@test "--allow-missing-assets: an unreadable mesh (a device, a non-mesh) is left out too" {
+  sed 's|meshes/rock.obj|/dev/zero|' sim_missing_mesh.rscene > dev.rscene
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 dev.rscene
+  [[ ${stderr_lines[0]} == "dev.rscene:2:"*": warning: cannot read mesh '/dev/zero': not a regular file; body '/World/Rock' is not simulated [RS7007]" ]]
+  run -2 --separate-stderr timeout 10 "$SIM" --steps 5 dev.rscene
+  [[ $stderr == *"cannot read mesh '/dev/zero': not a regular file [RS7007]"* ]]
+}
+
+@test "a body that falls off the edge leaves the world and --until-rest still finishes" {
+  cat > edge.rscene <<'SCENE'
+raisim_engine_scene 1
+object /World/Platform box 0 0 0 1 0 0 0 2 2 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615
+object /World/On box 0 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Off box 3 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  run -0 --separate-stderr "$SIM" --duration 30 --until-rest --report edge.rscene
+  [[ ${stderr_lines[0]} == "edge.rscene:4: warning: dynamic body '/World/Off' left the world at step "*" s): fell below z = -10.5 (10 m under the lowest static geometry); no longer simulated, written at its last pose [RS7011]" ]]
+  jq -e '.leftWorld == 1 and .atRest == true and .simulatedTime < 5' <<<"${stderr_lines[-1]}"
+  # written at the pose it had when it left: about 10 m under the platform
+  off=$(zof /World/Off <<<"$output")
+  awk -v z="$off" 'BEGIN { exit !(z < -10.5 && z > -10.7) }'
+}
+
+@test "corpus: the warehouse and the city simulate with --allow-missing-assets" {
+  [ -d "$CORPUS" ] || skip "no ../shared/corpus"
+  for scene in rayrai_warehouse rayrai_city; do
+    run -2 "$SIM" --steps 1 "$CORPUS/$scene.rscene"
+    run -0 --separate-stderr "$SIM" --allow-missing-assets --duration 1 --report -o out.rscene "$CORPUS/$scene.rscene"
+    [[ $stderr == *"does not exist; bodies '"*"' and "*" others are not simulated [RS7004]"* ]]
+    jq -e '.steps > 0' <<<"${stderr_lines[-1]}"
+    [ -s out.rscene ]
+  done
+}

@@ -28,7 +28,7 @@ struct Options {
   double duration = 1;
   long long steps = -1;
   long long every = 1;
-  bool untilRest = false, report = false;
+  bool untilRest = false, report = false, allowMissing = false;
 };
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -49,12 +49,17 @@ int run(const Options& opt) {
   so.baseDir = opt.baseDir;
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
-  bool ok = buildScene(doc, so, scene, ds) && sim::checkPhysics(doc, scene, ds);
+  asset::AssetCache assets;
+  bool ok = buildScene(doc, so, scene, ds);
+  if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
+  ok = ok && sim::checkPhysics(doc, scene, ds);
   if (ok && !(scene.timeStep > 0)) {
     cli::error("time_step must be positive");
     return cli::kTrouble;
   }
-  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds) : nullptr;
+  sim::WorldOptions wo;
+  wo.assets = &assets;
+  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
   if (!world) return cli::kTrouble;
@@ -88,6 +93,9 @@ int run(const Options& opt) {
   }
   if (progress) std::cerr << "\r\033[K" << std::flush;
   if (gInterrupted) return cli::kInterrupted;
+  Diagnostics departures;
+  for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
+  print(departures);
   Clock::time_point steppedAt = Clock::now();
 
   world->writeBack(doc);
@@ -110,6 +118,7 @@ int run(const Options& opt) {
                         {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
                         {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
                         {"bodies", world->bodyCount()},
+                        {"leftWorld", world->departures().size()},
                         {"contactsPerStep", steps ? contacts / steps : 0.0},
                         {"atRest", rested || world->atRest()}};
     std::cerr << r.dump() << '\n';
@@ -136,6 +145,8 @@ int main(int argc, char** argv) {
       ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
   app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");
   app.add_flag("--report", opt.report, "Print a JSON summary of the run on standard error");
+  app.add_flag("--allow-missing-assets", opt.allowMissing,
+               "Leave out a body whose collision mesh is missing or unreadable and warn, instead of failing");
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;

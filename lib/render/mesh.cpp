@@ -1,14 +1,6 @@
 #include "render/mesh.hpp"
 
-#include <assimp/cimport.h>
-#include <assimp/material.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
 #include <cmath>
-#include <cstring>
-
-#include "core/io.hpp"
 
 namespace rscene::render {
 namespace {
@@ -120,99 +112,18 @@ MeshData unitPlane() {
   return m;
 }
 
-namespace {
-
-std::string folderOf(const std::string& path) {
-  std::size_t slash = path.rfind('/');
-  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
-void readTexture(const aiScene* scene, const aiMaterial* mat, const std::string& dir, MeshPart& part,
-                 LoadedMesh& out) {
-  aiString texPath;
-  if (mat->GetTexture(aiTextureType_BASE_COLOR, 0, &texPath) != AI_SUCCESS &&
-      mat->GetTexture(aiTextureType_DIFFUSE, 0, &texPath) != AI_SUCCESS)
-    return;
-  std::string name = texPath.C_Str();
-  std::string err;
-  if (const aiTexture* embedded = scene->GetEmbeddedTexture(texPath.C_Str())) {
-    if (embedded->mHeight == 0) {
-      std::string bytes(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth);
-      if (!decodePng(bytes, part.texture, &err))
-        out.warnings.push_back("embedded texture " + name + " is not drawn: " + err);
-    } else {
-      part.texture.width = int(embedded->mWidth);
-      part.texture.height = int(embedded->mHeight);
-      part.texture.rgba.resize(std::size_t(embedded->mWidth) * embedded->mHeight * 4);
-      for (std::size_t i = 0; i < std::size_t(embedded->mWidth) * embedded->mHeight; ++i) {
-        const aiTexel& t = embedded->pcData[i];
-        std::uint8_t* p = &part.texture.rgba[i * 4];
-        p[0] = t.r, p[1] = t.g, p[2] = t.b, p[3] = t.a;
-      }
-    }
-    return;
+MeshData interleave(const asset::MeshPart& part) {
+  MeshData m;
+  m.vertices.reserve(part.vertexCount() * 8);
+  for (std::size_t v = 0; v < part.vertexCount(); ++v) {
+    const float* p = &part.positions[v * 3];
+    const float* n = part.normals.empty() ? nullptr : &part.normals[v * 3];
+    const float* uv = part.uvs.empty() ? nullptr : &part.uvs[v * 2];
+    m.vertices.insert(m.vertices.end(), {p[0], p[1], p[2], n ? n[0] : 0.f, n ? n[1] : 0.f, n ? n[2] : 1.f,
+                                         uv ? uv[0] : 0.f, uv ? uv[1] : 0.f});
   }
-  std::string full = !name.empty() && name.front() == '/' ? name : dir + "/" + name;
-  std::string bytes;
-  if (!readFile(full, bytes, &err)) {
-    out.warnings.push_back("texture " + full + " is not drawn: " + err);
-    return;
-  }
-  if (!decodePng(bytes, part.texture, &err)) {
-    part.texture = Image{};
-    out.warnings.push_back("texture " + full + " is not drawn: " + err);
-  }
-}
-
-}  // namespace
-
-bool loadMesh(const std::string& path, LoadedMesh& out, std::string* error) {
-  out = LoadedMesh{};
-  const unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
-                         aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs | aiProcess_SortByPType;
-  const aiScene* scene = aiImportFile(path.c_str(), flags);
-  if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-    if (error) *error = aiGetErrorString();
-    if (scene) aiReleaseImport(scene);
-    return false;
-  }
-  std::string dir = folderOf(path);
-  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
-    const aiMesh* mesh = scene->mMeshes[mi];
-    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || mesh->mNumVertices == 0) continue;
-    MeshPart part;
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D& p = mesh->mVertices[v];
-      aiVector3D n = mesh->mNormals ? mesh->mNormals[v] : aiVector3D(0, 0, 1);
-      aiVector3D uv = mesh->mTextureCoords[0] ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
-      part.mesh.vertices.insert(part.mesh.vertices.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
-    }
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f)
-      if (mesh->mFaces[f].mNumIndices == 3)
-        part.mesh.indices.insert(part.mesh.indices.end(),
-                                 {mesh->mFaces[f].mIndices[0], mesh->mFaces[f].mIndices[1], mesh->mFaces[f].mIndices[2]});
-    if (mesh->mMaterialIndex < scene->mNumMaterials) {
-      const aiMaterial* mat = scene->mMaterials[mesh->mMaterialIndex];
-      aiColor4D c;
-      if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == AI_SUCCESS ||
-          aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS)
-        part.baseColor = Eigen::Vector4f(c.r, c.g, c.b, c.a);
-      float opacity = 1;
-      if (aiGetMaterialFloat(mat, AI_MATKEY_OPACITY, &opacity) == AI_SUCCESS && opacity < 1)
-        part.baseColor.w() *= opacity;
-      float f = 0;
-      if (aiGetMaterialFloat(mat, AI_MATKEY_METALLIC_FACTOR, &f) == AI_SUCCESS) part.metallic = f;
-      if (aiGetMaterialFloat(mat, AI_MATKEY_ROUGHNESS_FACTOR, &f) == AI_SUCCESS) part.roughness = f;
-      readTexture(scene, mat, dir, part, out);
-    }
-    out.parts.push_back(std::move(part));
-  }
-  aiReleaseImport(scene);
-  if (out.parts.empty()) {
-    if (error) *error = "no triangles in mesh file";
-    return false;
-  }
-  return true;
+  m.indices = part.indices;
+  return m;
 }
 
 }  // namespace rscene::render

@@ -9,10 +9,8 @@
 #include <memory>
 #include <tuple>
 
-#include "core/assets.hpp"
-#include "core/io.hpp"
+#include "asset/cache.hpp"
 #include "render/camera.hpp"
-#include "render/hdr.hpp"
 #include "render/mesh.hpp"
 #include "render/shaders.hpp"
 
@@ -124,6 +122,7 @@ class Frame {
   // within half a pixel of the circle at the size it is seen.
   int segmentsFor(const Eigen::AlignedBox3d& box) const;
   GLuint texture(const Image& image);
+  GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
   const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, bool& failed);
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
@@ -142,6 +141,8 @@ class Frame {
   std::map<std::string, std::shared_ptr<GpuMesh>> primitives_;
   std::map<std::string, std::vector<TexturedPart>> meshFiles_;
   std::map<std::string, GLuint> textures_;
+  std::map<const Image*, GLuint> imageTextures_;
+  asset::AssetCache assets_;  // a mesh or texture named many times is read once
   std::vector<GLuint> ownedTextures_;
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
@@ -243,6 +244,13 @@ GLuint Frame::texture(const Image& image) {
   return t;
 }
 
+GLuint Frame::texture(const std::shared_ptr<const Image>& image) {
+  if (!image) return 0;
+  auto [it, fresh] = imageTextures_.try_emplace(image.get(), 0);
+  if (fresh) it->second = texture(*image);
+  return it->second;
+}
+
 bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   out = 0;
   if (m.albedoTexture.empty()) return true;
@@ -252,10 +260,11 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
     return true;
   }
   textures_[m.albedoTexture] = 0;
-  std::string bytes, err;
-  if (!fileExistsOnDisk(m.albedoTexture)) return assetProblem(m.line, "texture file not found: " + m.albedoTexture);
-  Image image;
-  if (!readFile(m.albedoTexture, bytes, &err) || !decodePng(bytes, image, &err)) {
+  if (!assets_.fileSystem().exists(m.albedoTexture))
+    return assetProblem(m.line, "texture file not found: " + m.albedoTexture);
+  std::string err;
+  std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
+  if (!image) {
     diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err);
     return true;
   }
@@ -268,20 +277,20 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
-  if (path.empty() || !fileExistsOnDisk(path)) {
+  if (path.empty() || !assets_.fileSystem().exists(path)) {
     failed = !assetProblem(line, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path));
     return nullptr;
   }
-  LoadedMesh loaded;
   std::string err;
-  if (!loadMesh(path, loaded, &err)) {
+  std::shared_ptr<const asset::Mesh> loaded = assets_.mesh(path, asset::MeshContent::Surface, &err);
+  if (!loaded) {
     failed = !assetProblem(line, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded.warnings) diag(Severity::Warning, "RS9002", line, w);
-  for (const MeshPart& p : loaded.parts)
-    parts.push_back({upload(p.mesh), p.baseColor, p.metallic, p.roughness,
-                     p.texture.width > 0 ? texture(p.texture) : 0u});
+  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w);
+  for (const asset::MeshPart& p : loaded->parts)
+    parts.push_back({upload(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
+                     p.material.roughness, texture(p.material.texture)});
   return &parts;
 }
 
@@ -397,9 +406,9 @@ bool Frame::prepare() {
   }
   const Look& env = scene_.environment;
   if (env.mode == Background::Hdr) {
-    FloatImage hdr;
-    std::string bytes, err;
-    if (env.hdrPath.empty() || !readFile(env.hdrPath, bytes, &err) || !decodeHdr(bytes, hdr, &err)) {
+    std::string err;
+    std::shared_ptr<const FloatImage> hdr = env.hdrPath.empty() ? nullptr : assets_.floatImage(env.hdrPath, &err);
+    if (!hdr) {
       diag(Severity::Warning, "RS9003", env.hdrLine,
            "hdr background " + (env.hdrPath.empty() ? std::string("has no envMapPath") : env.hdrPath + ": " + err) +
                "; drawing the procedural sky");
@@ -407,7 +416,7 @@ bool Frame::prepare() {
       glGenTextures(1, &hdrTexture_);
       ownedTextures_.push_back(hdrTexture_);
       glBindTexture(GL_TEXTURE_2D, hdrTexture_);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, hdr.width, hdr.height, 0, GL_RGB, GL_FLOAT, hdr.rgb.data());
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, hdr->width, hdr->height, 0, GL_RGB, GL_FLOAT, hdr->rgb.data());
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);

@@ -6,11 +6,15 @@
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
 #include "core/text.hpp"
-#include "sim/mesh.hpp"
 #include "sim/wire.hpp"
 
 namespace rscene::sim {
@@ -94,6 +98,7 @@ struct Simulated {
   Pose parentFrame;                             // world pose of the frame the record is written in
   btTransform toRecord = btTransform::getIdentity();  // body frame -> record frame (compound COM shift)
   int positionToken = 2;
+  bool departed = false;
 };
 
 struct World::Impl {
@@ -125,7 +130,16 @@ struct World::Impl {
   std::vector<BodyInfo> info;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btStridingMeshInterface>> meshData;
-  std::vector<std::unique_ptr<TriangleMesh>> meshes;
+  std::unique_ptr<asset::AssetCache> ownAssets;
+  asset::AssetCache* assets = nullptr;
+  std::vector<std::shared_ptr<const asset::Mesh>> meshes;  // triangle shapes point into them
+  std::map<std::string, btCollisionShape*> meshShapes;     // one shape per file, scale and kind
+  double floorZ = std::numeric_limits<double>::infinity();  // lowest static geometry
+  double leaveMargin = 10;
+  bool bounded = false;
+  btVector3 boundsMin, boundsMax;
+  std::vector<Departure> departures;
+
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::unique_ptr<btMotionState>> motion;
   std::vector<std::unique_ptr<btTypedConstraint>> constraints;
@@ -139,7 +153,7 @@ struct World::Impl {
   int contacts = 0;
 
   ~Impl() {
-    if (world) {
+    if (world) {  // removing what is not (or no longer) in the world is a no-op
       for (auto& c : constraints) world->removeConstraint(c.get());
       for (auto& b : bodies) world->removeRigidBody(b.get());
     }
@@ -151,6 +165,49 @@ struct World::Impl {
     int i = static_cast<int>(materialIndex.size());
     materialIndex.emplace(name, i);
     return i;
+  }
+
+  void lowerFloorTo(const btRigidBody* body) {
+    btVector3 lo, hi;
+    body->getAabb(lo, hi);
+    floorZ = std::min(floorZ, double(lo.z()));
+  }
+
+  // Whether `s` has left the world, and why.
+  std::string departure(const Simulated& s) const {
+    btVector3 p = s.body->getCenterOfMassPosition();
+    char why[160] = "";
+    if (std::isfinite(floorZ) && p.z() < floorZ - leaveMargin)  // a world without statics has no floor
+      std::snprintf(why, sizeof why, "fell below z = %g (%g m under the lowest static geometry)", floorZ - leaveMargin,
+                    leaveMargin);
+    else if (bounded && (p.x() < boundsMin.x() || p.y() < boundsMin.y() || p.z() < boundsMin.z() ||
+                         p.x() > boundsMax.x() || p.y() > boundsMax.y() || p.z() > boundsMax.z()))
+      std::snprintf(why, sizeof why, "left the broadphase bounds");
+    return why;
+  }
+
+  // Takes `s` out of the world where it is now: no more steps, contacts,
+  // wires or springs; its pose stays what it was.
+  void depart(Simulated& s, std::string reason) {
+    btRigidBody* body = s.body;
+    for (auto& c : constraints)
+      if (&c->getRigidBodyA() == body || &c->getRigidBodyB() == body) world->removeConstraint(c.get());
+    springs.erase(std::remove_if(springs.begin(), springs.end(),
+                                 [&](const Spring& sp) { return sp.a == body || sp.b == body; }),
+                  springs.end());
+    world->removeRigidBody(body);
+    body->setLinearVelocity(btVector3(0, 0, 0));
+    body->setAngularVelocity(btVector3(0, 0, 0));
+    body->forceActivationState(DISABLE_SIMULATION);
+    s.departed = true;
+    Departure d;
+    d.recordIndex = s.recordIndex;
+    d.path = s.path;
+    d.step = stepCount;
+    d.time = static_cast<double>(stepCount) * dt;
+    d.position = eig(body->getWorldTransform() * s.toRecord * btVector3(0, 0, 0));
+    d.reason = std::move(reason);
+    departures.push_back(std::move(d));
   }
 
   btCollisionShape* keep(btCollisionShape* s) {
@@ -165,30 +222,53 @@ struct World::Impl {
     if (prim == "sphere") return keep(new btSphereShape(radius));
     if (prim == "cylinder") return keep(new btCylinderShapeZ(btVector3(radius, radius, height / 2)));
     if (prim == "capsule") return keep(new btCapsuleShapeZ(radius, height));
-    if (prim == "mesh") {
-      auto mesh = std::make_unique<TriangleMesh>();
-      if (!loadMesh(meshPath, *mesh, error)) return nullptr;
-      for (double& v : mesh->vertices) v *= meshScale;
-      if (convex) {
-        auto* hull = new btConvexHullShape(mesh->vertices.data(), static_cast<int>(mesh->vertices.size() / 3),
-                                           3 * sizeof(double));
-        hull->optimizeConvexHull();
-        hull->setMargin(0.001);
-        return keep(hull);
-      }
-      if (mesh->indices.empty()) {
-        error = "mesh '" + meshPath + "' has no triangles";
-        return nullptr;
-      }
-      auto* array = new btTriangleIndexVertexArray(
-          static_cast<int>(mesh->indices.size() / 3), mesh->indices.data(), 3 * sizeof(int),
-          static_cast<int>(mesh->vertices.size() / 3), mesh->vertices.data(), 3 * sizeof(double));
-      meshData.emplace_back(array);
-      meshes.push_back(std::move(mesh));
-      return keep(new btBvhTriangleMeshShape(array, true));
-    }
+    if (prim == "mesh") return meshShape(meshPath, meshScale, convex, error);
     error = "unknown primitive '" + prim + "'";
     return nullptr;
+  }
+
+  // Ten bodies naming one mesh file at one scale share one shape (one
+  // convex hull, one BVH): Bullet shapes may be shared between bodies.
+  btCollisionShape* meshShape(const std::string& path, double scale, bool convex, std::string& error) {
+    char key[32];
+    std::memcpy(key, &scale, sizeof scale);
+    key[sizeof scale] = convex ? 'h' : 't';
+    std::string name = std::string(key, sizeof scale + 1) + path;
+    if (auto it = meshShapes.find(name); it != meshShapes.end()) return it->second;
+    std::string why;
+    std::shared_ptr<const asset::Mesh> mesh = assets->mesh(path, asset::MeshContent::Geometry, &why);
+    if (!mesh) {
+      error = "cannot read mesh '" + path + "': " + why;
+      return nullptr;
+    }
+    const asset::MeshPart& part = mesh->parts.front();  // Geometry: one part of all triangles
+    btCollisionShape* shape = nullptr;
+    if (convex) {
+      std::vector<double> points(part.positions.begin(), part.positions.end());
+      for (double& v : points) v *= scale;
+      auto* hull = new btConvexHullShape(points.data(), static_cast<int>(part.vertexCount()), 3 * sizeof(double));
+      hull->optimizeConvexHull();
+      hull->setMargin(0.001);
+      shape = keep(hull);
+    } else {
+      // Bullet reads the cached float vertices in place, scaled as it reads.
+      btIndexedMesh im;
+      im.m_numTriangles = static_cast<int>(part.indices.size() / 3);
+      im.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(part.indices.data());
+      im.m_triangleIndexStride = 3 * sizeof(std::uint32_t);
+      im.m_numVertices = static_cast<int>(part.vertexCount());
+      im.m_vertexBase = reinterpret_cast<const unsigned char*>(part.positions.data());
+      im.m_vertexStride = 3 * sizeof(float);
+      im.m_indexType = PHY_INTEGER;
+      im.m_vertexType = PHY_FLOAT;
+      auto* array = new btTriangleIndexVertexArray();
+      array->addIndexedMesh(im, PHY_INTEGER);
+      array->setScaling(btVector3(scale, scale, scale));
+      meshData.emplace_back(array);
+      shape = keep(new btBvhTriangleMeshShape(array, true));
+    }
+    meshes.push_back(std::move(mesh));
+    return meshShapes[name] = shape;
   }
 
   btRigidBody* addBody(btCollisionShape* shape, const btTransform& at, BodyMode mode, double mass,
@@ -239,10 +319,19 @@ struct World::Impl {
 World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 World::~World() = default;
 
-std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics) {
+std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics, const WorldOptions& options) {
   auto impl = std::make_unique<Impl>();
   Impl& w = *impl;
+  w.assets = options.assets;
+  if (!w.assets) {
+    w.ownAssets = std::make_unique<asset::AssetCache>();
+    w.assets = w.ownAssets.get();
+  }
+  w.leaveMargin = options.leaveMargin;
   const Solver& sv = scene.solver;
+  w.bounded = sv.broadphaseUseWorldBounds;
+  w.boundsMin = bt(sv.broadphaseWorldMin);
+  w.boundsMax = bt(sv.broadphaseWorldMax);
   // Up to four contact points between a convex body and a plane (Bullet
   // finds one by default): a box sliding faster than its contact-breaking
   // threshold per step otherwise keeps a single corner point, rocks and
@@ -300,6 +389,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = w.keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
       body = w.addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
+      w.floorZ = std::min(w.floorZ, o.world.position.z());  // a plane's AABB is unbounded: its height is the floor
     } else {
       std::string error;
       bool convex = o.bodyMode != BodyMode::Static;
@@ -310,6 +400,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       btVector3 inertia(0, 0, 0);
       double mass = o.effectiveMass();
       body = w.addBody(shape, bt(o.world), o.bodyMode, mass, inertia, false, fi, o.contactMaterial, sv);
+      if (o.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
     }
     w.registerBody(o, body);
   }
@@ -358,6 +449,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     BodyInfo fi{c.collisionGroup, c.collisionMask, -1};
     btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
                                   c.contactMaterial, sv);
+    if (c.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
     w.registerBody(c, body, comShift.inverse());
   }
 
@@ -374,6 +466,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
     BodyInfo fi{kTerrainGroup, kAll, -1};
     btRigidBody* body = w.addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
+    w.lowerFloorTo(body);
     w.byName[t.id] = body;
     w.byName[t.path] = body;
   }
@@ -430,6 +523,12 @@ void World::step() {
   w.world->stepSimulation(w.dt, 0, w.dt);
   tPairs = nullptr;
   ++w.stepCount;
+  for (Simulated& s : w.simulated) {
+    // Sleeping bodies do not move; only awake dynamic ones can leave.
+    if (!s.dynamic || s.departed || !s.body->isActive()) continue;
+    std::string why = w.departure(s);
+    if (!why.empty()) w.depart(s, std::move(why));
+  }
   int n = 0;
   for (int i = 0, m = w.dispatcher.getNumManifolds(); i < m; ++i)
     n += w.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
@@ -444,8 +543,26 @@ int World::contactCount() const { return impl_->contacts; }
 
 bool World::atRest() const {
   for (const Simulated& s : impl_->simulated)
-    if (s.dynamic && s.body->isActive()) return false;
+    if (s.dynamic && !s.departed && s.body->isActive()) return false;
   return true;
+}
+
+const std::vector<Departure>& World::departures() const { return impl_->departures; }
+
+Diagnostic departureWarning(const Document& doc, const Departure& d) {
+  Diagnostic w;
+  w.severity = Severity::Warning;
+  w.code = sim_code::kLeftWorld;
+  if (d.recordIndex >= 0 && static_cast<std::size_t>(d.recordIndex) < doc.records.size()) {
+    const Record& r = doc.records[static_cast<std::size_t>(d.recordIndex)];
+    w.line = r.line;
+    w.tag = std::string(doc.tag(r));
+  }
+  char at[96];
+  std::snprintf(at, sizeof at, "at step %llu (t = %.6g s)", static_cast<unsigned long long>(d.step), d.time);
+  w.message = "dynamic body '" + d.path + "' left the world " + at + ": " + d.reason +
+              "; no longer simulated, written at its last pose";
+  return w;
 }
 
 std::vector<BodyState> World::states() const {
@@ -462,6 +579,7 @@ std::vector<BodyState> World::states() const {
     b.angularVelocity = eig(s.body->getAngularVelocity());
     b.dynamic = s.dynamic;
     b.sleeping = !s.body->isActive();
+    b.departed = s.departed;
     out.push_back(std::move(b));
   }
   return out;

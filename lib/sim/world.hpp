@@ -10,7 +10,8 @@
 //                    thresholds and quiet steps, swept CCD, broadphase
 //   object           ground/half_space = static plane at position.z; box,
 //                    sphere, cylinder, capsule; mesh = convex hull (dynamic,
-//                    kinematic) or triangle mesh (static)
+//                    kinematic) or triangle mesh (static), read through
+//                    lib/asset's cache (one import and one shape per file)
 //   group/mask       full 64-bit test in an overlap filter: a pair collides
 //                    when (groupA & maskB) != 0 and (groupB & maskA) != 0
 //   contact_material per-pair friction/restitution/rolling/spinning,
@@ -28,11 +29,17 @@
 #include <string>
 #include <vector>
 
+#include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "core/scene.hpp"
 
 namespace rscene::sim {
+
+// Codes of the simulator's own findings (the scene view's are scene_code).
+namespace sim_code {
+inline constexpr const char* kLeftWorld = "RS7011";  // a dynamic body left the world (warning)
+}  // namespace sim_code
 
 // State of one simulated body (dynamic or kinematic), in the world frame.
 struct BodyState {
@@ -44,6 +51,7 @@ struct BodyState {
   Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();
   bool dynamic = true;
   bool sleeping = false;
+  bool departed = false;  // left the world (see Departure): frozen at its last pose
 };
 
 // Checks what Bullet cannot simulate sensibly: dynamic bodies with mass
@@ -55,11 +63,47 @@ bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnost
 // Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
 
+// rscene-sim --allow-missing-assets: every object or compound whose
+// collision mesh is missing (RS7004) or unreadable (RS7007) is left out of
+// the simulation (made visual-only in `scene`, so its record is written
+// back unchanged), with one warning per file naming it and the first
+// record (and how many more), and a wire attached to such a body is
+// skipped with a warning.  Meshes are read through `assets`, so
+// World::create given the same cache reads nothing twice.
+// Returns how many bodies were left out.
+int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetCache& assets,
+                                Diagnostics& diagnostics);
+
+struct WorldOptions {
+  asset::AssetCache* assets = nullptr;  // null: the world reads the disk through a cache of its own
+  // A dynamic body more than this far below the lowest static geometry
+  // has left the world (it fell off the edge or through the floor).
+  double leaveMargin = 10;
+};
+
+// A dynamic body that left the world: below the lowest static geometry
+// by WorldOptions::leaveMargin, or outside the solver's broadphase bounds
+// when broadphaseUseWorldBounds is set.  It is taken out of the world at
+// that step (no longer stepped, no longer keeping atRest() false) and keeps
+// the pose it had then.
+struct Departure {
+  int recordIndex = -1;
+  std::string path;
+  std::uint64_t step = 0;
+  double time = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string reason;  // "fell below z = -10 (10 m under the lowest static geometry)"
+};
+
+// The warning (RS7011) for a departure, at its record's line.
+Diagnostic departureWarning(const Document& doc, const Departure& departure);
+
 class World {
  public:
   // Builds the Bullet world; mesh files are read here (RS7004/RS7007 on
   // failure).  Returns nullptr after adding an error diagnostic.
-  static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics);
+  static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics,
+                                       const WorldOptions& options = {});
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -68,10 +112,11 @@ class World {
   double time() const;              // simulated seconds since create()
   std::uint64_t steps() const;
   double timeStep() const;
-  bool atRest() const;              // every dynamic body sleeps
+  bool atRest() const;              // every dynamic body still in the world sleeps
   int bodyCount() const;            // simulated dynamic and kinematic bodies
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
+  const std::vector<Departure>& departures() const;  // in the order they happened
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or

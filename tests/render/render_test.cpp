@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "core/io.hpp"
@@ -13,6 +14,7 @@
 #include "render/image.hpp"
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
+#include "test_images.hpp"
 
 using namespace rscene;
 using namespace rscene::render;
@@ -261,4 +263,23 @@ TEST(Render, MinimalExampleMatchesBaseline) {
   Comparison cmp = compareImages(image, baseline);
   ASSERT_TRUE(cmp.sameSize);
   EXPECT_LE(cmp.differingFraction, 0.02);
+}
+
+TEST(Render, JpegAlbedoTextureIsDrawn) {
+  // A box whose material's albedo is a white material times a red JPEG: the
+  // centre pixel is red, where the untextured white material would be gray.
+  char tmpl[] = "/tmp/rscene-jpeg-XXXXXX";
+  std::string dir = mkdtemp(tmpl);
+  std::ofstream(dir + "/red.jpg", std::ios::binary) << test::encodeJpeg(test::solidImage(16, 16, 230, 20, 20));
+  std::string scene = std::string(kCameraIdentity) + "light /World/Sun 1 0.4 -0.4 3 type=directional\n" +
+                      "material tex 1 1 1 1 0 0.6 0 0 0 0 false red.jpg - - - - - id=tex\n" +
+                      box("/World/Box", 5, 0, 0, "tex");
+  Result r = renderText(scene, kPlainBlack, {}, "", dir);
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(r.ok);
+  for (const Diagnostic& d : r.diags) EXPECT_NE(d.code, "RS9002") << d.message;  // "texture ... is not drawn"
+  const std::uint8_t* c = r.image.pixel(100, 100);
+  EXPECT_GT(c[0], 100);
+  EXPECT_GT(c[0], 3 * c[1]);
+  EXPECT_GT(c[0], 3 * c[2]);
 }

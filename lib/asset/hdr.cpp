@@ -1,10 +1,14 @@
-#include "render/hdr.hpp"
-
+// Radiance .hdr (RGBE, flat or new-style run-length encoded), for
+// equirectangular backgrounds.  Debian 12 has no small packaged reader.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 
-namespace rscene::render {
+#include "asset/image.hpp"
+#include "asset/image_limits.hpp"
+
+namespace rscene::asset {
 namespace {
 
 bool fail(std::string* error, const char* why) {
@@ -21,9 +25,7 @@ void rgbeToFloat(const unsigned char* e, float* rgb) {
   for (int k = 0; k < 3; ++k) rgb[k] = (float(e[k]) + 0.5f) * f;
 }
 
-}  // namespace
-
-bool decodeHdr(const std::string& bytes, FloatImage& out, std::string* error, std::uint64_t maxPixels) {
+bool decode(const std::string& bytes, FloatImage& out, std::string* error, const ImageLimits& limits) {
   if (bytes.rfind("#?", 0) != 0) return fail(error, "not a radiance hdr file");
   std::size_t pos = 0;
   // Header lines up to an empty line, then the resolution line.
@@ -45,8 +47,17 @@ bool decodeHdr(const std::string& bytes, FloatImage& out, std::string* error, st
   if (std::sscanf(res.c_str(), "%2s %d %2s %d", ys, &h, xs, &w) != 4 || std::strcmp(ys, "-Y") != 0 ||
       std::strcmp(xs, "+X") != 0)
     return fail(error, "unsupported hdr orientation (only -Y H +X W)");
-  if (w <= 0 || h <= 0 || std::uint64_t(w) * std::uint64_t(h) > maxPixels) return fail(error, "hdr image too large");
+  if (std::string problem = sizeProblem("hdr", std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)), limits);
+      !problem.empty()) {
+    if (error) *error = problem;
+    return false;
+  }
   pos = nl + 1;
+  // The smallest scanline is run-length encoded: a 4-byte header and, per
+  // channel, one 2-byte run per 127 pixels.  Fewer bytes than h of those
+  // cannot be this image: refused before the pixels are allocated.
+  std::uint64_t minScanline = w >= 8 && w < 32768 ? 4 + 4 * 2 * ((std::uint64_t(w) + 126) / 127) : 4 * std::uint64_t(w);
+  if (std::uint64_t(bytes.size() - pos) < minScanline * std::uint64_t(h)) return fail(error, "truncated hdr pixels");
   out.width = w;
   out.height = h;
   out.rgb.assign(std::size_t(w) * h * 3, 0.f);
@@ -85,4 +96,13 @@ bool decodeHdr(const std::string& bytes, FloatImage& out, std::string* error, st
   return true;
 }
 
-}  // namespace rscene::render
+}  // namespace
+
+bool decodeHdr(const std::string& bytes, FloatImage& out, std::string* error, const ImageLimits& limits) {
+  out = FloatImage{};
+  if (decode(bytes, out, error, limits)) return true;
+  out = FloatImage{};
+  return false;
+}
+
+}  // namespace rscene::asset

@@ -1,0 +1,93 @@
+// rscene-sim --allow-missing-assets (world.hpp): bodies whose collision
+// mesh cannot be read are left out, as rscene-render draws a placeholder.
+#include <map>
+#include <set>
+#include <vector>
+
+#include "core/scene_reader.hpp"
+#include "sim/world.hpp"
+
+namespace rscene::sim {
+namespace {
+
+// A warning at `field` of record `recordIndex`.  RecordReader reports
+// errors only; the position is what matters, the severity is ours.
+void warn(const Document& doc, int recordIndex, const char* field, const char* code, const std::string& message,
+          Diagnostics& diagnostics) {
+  RecordReader r(doc, static_cast<std::size_t>(recordIndex), diagnostics);
+  r.error(field, code, message);
+  diagnostics.back().severity = Severity::Warning;
+}
+
+// Why `path` gives no collision mesh ("does not exist", or the reader's
+// reason), with its code; empty when it does.
+std::pair<std::string, const char*> meshProblem(const std::string& path, asset::AssetCache& assets) {
+  if (path.empty()) return {"no mesh file", scene_code::kMissingFile};
+  if (!assets.fileSystem().exists(path)) return {"mesh file '" + path + "' does not exist", scene_code::kMissingFile};
+  std::string why;
+  if (!assets.mesh(path, asset::MeshContent::Geometry, &why))
+    return {"cannot read mesh '" + path + "': " + why, scene_code::kBadMesh};
+  return {};
+}
+
+}  // namespace
+
+int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetCache& assets,
+                                Diagnostics& diagnostics) {
+  // One warning per mesh file, at the first body that names it (a city of
+  // 136 street lamps gives one line, as in rscene-render).
+  struct Missing {
+    std::string problem;
+    const char* code;
+    int recordIndex;
+    const char* field;
+    std::string firstBody;
+    int bodies = 0;
+  };
+  std::vector<Missing> missing;
+  std::map<std::string, std::size_t> byPath;
+  std::set<std::string> skipped;  // ids and paths
+  int count = 0;
+  auto skip = [&](auto& body, const std::string& path, int recordIndex, const char* field) {
+    auto [it, fresh] = byPath.try_emplace(path, missing.size());
+    if (fresh) {
+      auto [problem, code] = meshProblem(path, assets);
+      missing.push_back({problem, code, recordIndex, field, body.path});
+    }
+    ++missing[it->second].bodies;
+    body.bodyMode = BodyMode::VisualOnly;
+    for (const std::string* name : {&body.id, &body.path})
+      if (!name->empty()) skipped.insert(*name);
+    ++count;
+  };
+  for (Object& o : scene.objects) {
+    if (o.bodyMode == BodyMode::VisualOnly || o.primitive != "mesh") continue;
+    if (meshProblem(o.collisionMeshPath, assets).first.empty()) continue;
+    RecordReader fields(doc, static_cast<std::size_t>(o.recordIndex), diagnostics);
+    skip(o, o.collisionMeshPath, o.recordIndex, fields.has("collisionMeshPath") ? "collisionMeshPath" : "meshPath");
+  }
+  for (Compound& c : scene.compounds) {
+    if (c.bodyMode == BodyMode::VisualOnly) continue;
+    for (const CompoundChild& ch : c.children)
+      if (ch.primitive == "mesh" && !meshProblem(ch.meshPath, assets).first.empty()) {
+        skip(c, ch.meshPath, ch.recordIndex, "meshPath");
+        break;
+      }
+  }
+  for (const Missing& m : missing) {
+    std::string who = m.bodies == 1 ? "body '" + m.firstBody + "' is"
+                                    : "bodies '" + m.firstBody + "' and " + std::to_string(m.bodies - 1) +
+                                          (m.bodies == 2 ? " other are" : " others are");
+    warn(doc, m.recordIndex, m.field, m.code, m.problem + "; " + who + " not simulated", diagnostics);
+  }
+  for (Wire& w : scene.wires) {
+    if (!w.enabled || !(skipped.count(w.bodyA) || skipped.count(w.bodyB))) continue;
+    const std::string& body = skipped.count(w.bodyA) ? w.bodyA : w.bodyB;
+    warn(doc, w.recordIndex, body == w.bodyA ? "bodyA" : "bodyB", scene_code::kMissingFile,
+         "wire '" + w.path + "' is not simulated: body '" + body + "' was left out for its mesh", diagnostics);
+    w.enabled = false;
+  }
+  return count;
+}
+
+}  // namespace rscene::sim
