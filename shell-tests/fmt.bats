@@ -461,3 +461,17 @@ EOF
   done
   [ "${lines[1]}" = "scene.rscene" ]
 }
+
+@test "a mistyped option gets the closest long option as a suggestion" {
+  run -2 --separate-stderr "$FMT" --chek x.rscene
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: unknown option '--chek'; did you mean '--check'?" ]
+  [ "${stderr_lines[1]}" = "Try 'rscene-fmt --help' for more information." ]
+  # one dash short of a long option, and a value after `=`
+  run -2 --separate-stderr "$FMT" -check x.rscene
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: unknown option '-check'; did you mean '--check'?" ]
+  run -2 --separate-stderr "$FMT" --stdin-filenme=a.rscene
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: unknown option '--stdin-filenme'; did you mean '--stdin-filename'?" ]
+  # nothing close: no guess
+  run -2 --separate-stderr "$FMT" --banana
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: unknown option '--banana'" ]
+}

@@ -131,3 +131,19 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   run parallel --halt soon,fail=1 "$SIM" -o out/{/} {} ::: in/*.rscene
   [ "$status" -ne 0 ]
 }
+
+@test "--duration 2s says what a duration looks like; counts must be whole numbers" {
+  run -2 --separate-stderr "$SIM" --duration 2s sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --duration: expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '2s'" ]
+  run -2 --separate-stderr "$SIM" --duration=-1 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --duration: expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '-1'" ]
+  run -2 --separate-stderr "$SIM" --steps 2.5 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --steps: expected a whole number >= 0, not '2.5'" ]
+  run -2 --separate-stderr "$SIM" --every 0 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --every: expected a whole number >= 1, not '0'" ]
+  run -2 --separate-stderr "$SIM" --duraton 2 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: unknown option '--duraton'; did you mean '--duration'?" ]
+  # the forms it takes
+  run -0 "$SIM" --duration 0.5 sim_drop.rscene
+  run -0 "$SIM" --duration 1e-2 sim_drop.rscene
+}

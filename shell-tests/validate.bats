@@ -175,3 +175,10 @@ setup() {
     grep -q "$code" "$BATS_TEST_DIRNAME/../man/rscene-validate.1" || { echo "missing $code"; return 1; }
   done
 }
+
+@test "a mistyped option gets a suggestion; --max-issues wants a whole number" {
+  run -2 --separate-stderr "$V" --formt json x.rscene
+  [ "${stderr_lines[0]}" = "rscene-validate: error: unknown option '--formt'; did you mean '--format'?" ]
+  run -2 --separate-stderr "$V" --max-issues 0 x.rscene
+  [ "${stderr_lines[0]}" = "rscene-validate: error: --max-issues: expected a whole number >= 1, not '0'" ]
+}

@@ -111,25 +111,4 @@ void addBaseDir(CLI::App& app, std::string& dir, const char* help) {
   app.add_option("--base-dir", dir, help)->type_name("DIR");
 }
 
-int parseArgs(CLI::App& app, int argc, char** argv) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    std::cout << app.help();
-    return kSuccess;
-  } catch (const CLI::CallForVersion& e) {
-    std::cout << e.what() << '\n';
-    return kSuccess;
-  } catch (const CLI::ParseError& e) {
-    // CLI11 starts its messages with a capital; ours are lower-case.
-    std::string msg = e.what();
-    if (!msg.empty() && msg[0] >= 'A' && msg[0] <= 'Z' && !(msg.size() > 1 && msg[1] >= 'A' && msg[1] <= 'Z'))
-      msg[0] = static_cast<char>(msg[0] - 'A' + 'a');
-    error(msg);
-    std::cerr << "Try '" << gTool << " --help' for more information.\n";
-    return kTrouble;
-  }
-  return -1;
-}
-
 }  // namespace rscene::cli

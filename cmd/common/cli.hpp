@@ -12,6 +12,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 
 namespace rscene::cli {
@@ -62,6 +63,12 @@ void addBaseDir(CLI::App& app, std::string& dir, const char* help);
 
 // Runs app.parse(); on --help/--version prints and returns kSuccess, on a
 // usage error prints it and returns kTrouble; -1 when the tool should go on.
+// A mistyped long option gets "did you mean" (args.cpp).
 int parseArgs(CLI::App& app, int argc, char** argv);
+
+// Validators whose messages name the expected form: seconds as a plain
+// number >= 0 (`2`, `0.5`, not `2s`); a whole number >= min.
+CLI::Validator seconds();
+CLI::Validator count(long long min);
 
 }  // namespace rscene::cli

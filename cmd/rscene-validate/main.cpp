@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   app.add_option("--only", opt.only, "Report only these codes")->delimiter(',')->type_name("CODE,...")->allow_extra_args(false);
   app.add_option("--max-issues", opt.maxIssues, "Show at most N findings (the summary counts all)")
       ->type_name("N")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::count(1));
   app.add_flag("--list-checks", opt.listChecks, "List every code with its severity and meaning, then exit");
   app.add_option("--profile", opt.profile, "engine2 (what Engine 2 loads) or raisim (also what RaiSim refuses)")
       ->check(CLI::IsMember({"engine2", "raisim"}))
