@@ -182,3 +182,13 @@ setup() {
   run -2 --separate-stderr "$V" --max-issues 0 x.rscene
   [ "${stderr_lines[0]}" = "rscene-validate: error: --max-issues: expected a whole number >= 1, not '0'" ]
 }
+
+@test "a byte order mark is named, and a trailing backslash gets the no-continuation hint" {
+  printf '\xef\xbb\xbfraisim_engine_scene 1\n' > bom.rscene
+  run -1 --separate-stderr "$V" bom.rscene
+  [ "${lines[0]}" = "bom.rscene:1:1: error: file starts with a UTF-8 byte order mark (EF BB BF); remove it [RS1001]" ]
+  printf 'raisim_engine_scene 1\ngravity 0 0 \\\n  -9.81\n' > cont.rscene
+  run -1 --separate-stderr "$V" cont.rscene
+  [ "${lines[0]}" = "cont.rscene:2:13: error: expected a number, found '\\' [RS2001]" ]
+  [ "${lines[3]}" = '  hint: line 2 ends with `\`, but the format has no continuation lines: write each record on one line' ]
+}
