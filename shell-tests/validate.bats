@@ -192,3 +192,17 @@ setup() {
   [ "${lines[0]}" = "cont.rscene:2:13: error: expected a number, found '\\' [RS2001]" ]
   [ "${lines[3]}" = '  hint: line 2 ends with `\`, but the format has no continuation lines: write each record on one line' ]
 }
+
+@test "references to nothing get did-you-mean: mat_bx, folder_prop" {
+  {
+    echo 'raisim_engine_scene 1'
+    echo 'material mat_box 1 0.42 0.05 1 0 0.6 0 0 0 0 false - - - - - - id=mat_box'
+    echo 'group /World/Props id=folder_props'
+    echo 'object /World/Props/A box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default mat_bx false true false - dynamic true 1 18446744073709551615 parentGroupId=folder_prop'
+  } > refs.rscene
+  run -1 --separate-stderr "$V" refs.rscene
+  [ "${lines[0]}" = "refs.rscene:4:65: error: material 'mat_bx' does not exist [RS3008]" ]
+  [ "${lines[3]}" = '  hint: did you mean `mat_box`?' ]
+  [ "${lines[4]}" = "refs.rscene:4:141: error: parent 'folder_prop' does not exist [RS3006]" ]
+  [ "${lines[7]}" = '  hint: did you mean `folder_props`?' ]
+}
