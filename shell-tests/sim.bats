@@ -147,3 +147,11 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   run -0 "$SIM" --duration 0.5 sim_drop.rscene
   run -0 "$SIM" --duration 1e-2 sim_drop.rscene
 }
+
+@test "trajectory times are the step count times the step as written: 1.4, not 1.4000000000000001" {
+  sed 's/^time_step .*/time_step 0.1/' sim_drop.rscene > tenth.rscene
+  run -0 "$SIM" --steps 20 --trajectory t.csv --trajectory-format csv tenth.rscene
+  [ "$(cut -d, -f1 t.csv | uniq | tr '\n' ' ')" = "time 0 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9 1 1.1 1.2 1.3 1.4 1.5 1.6 1.7 1.8 1.9 2 " ]
+  run -0 "$SIM" --steps 3 --trajectory t.jsonl tenth.rscene
+  grep -q '^{"time":0.3,' t.jsonl
+}

@@ -1,5 +1,6 @@
 #include "core/text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -323,6 +324,43 @@ void appendInteger(std::string& out, std::int64_t v) {
   char buf[24];
   auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, p);
+}
+
+double decimalMultiple(std::uint64_t n, double step) {
+  if (!std::isfinite(step) || step == 0 || n == 0) return static_cast<double>(n) * step;
+  // step = digits x 10^exp with at most 17 digits; n * digits < 2^64 * 10^17
+  // fits in 128 bits, so the product is exact until the one rounding of
+  // from_chars.
+  char buf[40];
+  const char* end = std::to_chars(buf, buf + sizeof buf, step, std::chars_format::scientific).ptr;
+  const char* p = buf;
+  bool negative = *p == '-';
+  p += negative;
+  unsigned __int128 digits = 0;
+  int fraction = 0;
+  for (bool afterPoint = false; *p != 'e'; ++p) {
+    if (*p == '.') {
+      afterPoint = true;
+      continue;
+    }
+    digits = digits * 10 + static_cast<unsigned>(*p - '0');
+    fraction += afterPoint;
+  }
+  int exponent = 0;
+  std::from_chars(p + 1 + (p[1] == '+'), end, exponent);
+  unsigned __int128 product = digits * n;
+  std::string number;
+  do {
+    number.push_back(static_cast<char>('0' + static_cast<unsigned>(product % 10)));
+    product /= 10;
+  } while (product);
+  if (negative) number.push_back('-');
+  std::reverse(number.begin(), number.end());
+  number += 'e' + std::to_string(exponent - fraction);
+  double v = 0;
+  if (std::from_chars(number.data(), number.data() + number.size(), v).ec != std::errc())
+    return static_cast<double>(n) * step;  // beyond double's range
+  return v;
 }
 
 void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version) {

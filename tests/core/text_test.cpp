@@ -194,3 +194,31 @@ TEST(Numbers, FastPathGivesFromCharsDouble) {
     }
   }
 }
+
+TEST(Text, DecimalMultipleIsTheProductOfTheWrittenStep) {
+  auto shortest = [](double v) {
+    std::string s;
+    appendNumber(s, v);
+    return s;
+  };
+  EXPECT_EQ(shortest(14 * 0.1), "1.4000000000000001");  // why this exists
+  EXPECT_EQ(shortest(decimalMultiple(14, 0.1)), "1.4");
+  EXPECT_EQ(shortest(decimalMultiple(3, 0.1)), "0.3");
+  EXPECT_EQ(shortest(decimalMultiple(400, 0.0025)), "1");
+  EXPECT_EQ(shortest(decimalMultiple(12345, 0.001)), "12.345");
+  EXPECT_EQ(shortest(decimalMultiple(7, 1.0 / 3)), "2.333333333333333");  // 7 x 0.3333333333333333
+  EXPECT_EQ(shortest(decimalMultiple(1000000007, 1e-07)), "100.0000007");
+  EXPECT_EQ(shortest(decimalMultiple(2, -0.25)), "-0.5");
+  EXPECT_EQ(decimalMultiple(0, 0.1), 0.0);
+  EXPECT_EQ(decimalMultiple(5, 0.0), 0.0);
+  // The largest count and a large step still give one rounding, no overflow.
+  EXPECT_EQ(decimalMultiple(UINT64_MAX, 1.0), 18446744073709551615.0);
+  EXPECT_EQ(decimalMultiple(10, 1e308), 10 * 1e308);  // inf, as the plain product
+  // Every count of a common step agrees with the decimal product.
+  for (std::uint64_t n = 0; n < 2000; ++n) {
+    double want = 0;
+    std::string text = std::to_string(n) + "e-3";
+    std::from_chars(text.data(), text.data() + text.size(), want);
+    ASSERT_EQ(decimalMultiple(n, 0.001), want) << n;
+  }
+}
