@@ -206,3 +206,17 @@ setup() {
   [ "${lines[4]}" = "refs.rscene:4:141: error: parent 'folder_prop' does not exist [RS3006]" ]
   [ "${lines[7]}" = '  hint: did you mean `folder_props`?' ]
 }
+
+@test "a directory operand validates every scene under it; hidden folders are skipped" {
+  mkdir -p scenes/sub scenes/.cache empty
+  cp "$DATA/validate_clean.rscene" scenes/a.rscene
+  cp "$DATA/validate_clean.rscene" scenes/sub/b.rscene
+  cp "$DATA/validate_errors.rscene" scenes/.cache/bad.rscene
+  run -0 --separate-stderr "$V" scenes/
+  [ "$stderr" = "no issues in 2 files" ]
+  cp "$DATA/validate_errors.rscene" scenes/sub/c.rscene
+  run -1 --separate-stderr "$V" --format json scenes
+  [[ "$output" == *'"scenes/sub/c.rscene"'* ]]
+  run -0 --separate-stderr "$V" empty
+  [ "${stderr_lines[0]}" = "rscene-validate: warning: no .rscene files under 'empty'" ]
+}

@@ -93,7 +93,8 @@ void addInputOperand(CLI::App& app, std::string& file, const char* what) {
 }
 
 void addInputOperands(CLI::App& app, std::vector<std::string>& files) {
-  app.add_option("files", files, "Scene files; none or - reads standard input")->type_name("FILE");
+  app.add_option("files", files, "Scene files, or folders to search for *.rscene; none or - reads standard input")
+      ->type_name("FILE");
 }
 
 void addOutputOption(CLI::App& app, std::string& output, const char* what) {

@@ -128,9 +128,10 @@ int main(int argc, char** argv) {
   std::unique_ptr<validate::Reporter> reporter = opt.format == "json"    ? validate::jsonReporter()
                                                  : opt.format == "sarif" ? validate::sarifReporter()
                                                                          : validate::textReporter(color);
+  cli::Operands operands = cli::expandOperands(opt.files);
   Run run{opt, *reporter, {opt.ignore.begin(), opt.ignore.end()}, {opt.only.begin(), opt.only.end()}, {}, false};
-  bool trouble = false;
-  for (const std::string& f : opt.files) trouble = !run.file(f) || trouble;
+  bool trouble = !operands.ok;
+  for (const std::string& f : operands.files) trouble = !run.file(f) || trouble;
   if (!reporter->finish(run.totals)) {
     cli::error("cannot write standard output");
     return cli::kTrouble;
