@@ -55,6 +55,11 @@ double decimalMultiple(std::uint64_t n, double step);
 // kept, only re-encoded, so formatting never loses what a user wrote.
 void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version);
 
+// Whether appendCanonical(raw, type, version) would append `raw` itself,
+// decided without building anything.  It may say false for a token that is
+// canonical after all (escapes, unusual spellings); callers then format it.
+bool isCanonicalToken(std::string_view raw, ValueType type, int version);
+
 // Whether two raw tokens hold the same value of `type`: numbers compare by
 // their bits after parsing, text after decoding.
 bool sameValue(std::string_view a, std::string_view b, ValueType type);
