@@ -129,3 +129,23 @@ header_json='{"tag":"raisim_engine_scene","fields":{"version":1}}'
   run -2 --separate-stderr bash -c "ulimit -v 400000; ulimit -t 10; '$FROM' deep.json"
   [[ ${stderr_lines[0]} == "deep.json:1:"*": error: /zz/a/"*"nesting deeper than 32 levels (a scene nests at most 6) [RS8002]" ]]
 }
+
+@test "rscene-from-json(1)'s rename example, run as printed, gives a scene rscene-validate accepts" {
+  command -v jq >/dev/null || skip "jq not installed"
+  [ -x "$BIN/rscene-validate" ] || skip "rscene-validate not built"
+  export PATH="$BIN:$PATH"
+  # The example's lines: the literal display after "Rename a material", with
+  # mdoc's \e turned back into a backslash.
+  awk '/^Rename a material/ { want = 1 } want && /^\.Bd -literal/ { on = 1; next } on && /^\.Ed/ { exit }
+       on { gsub(/\\e/, "\\"); print }' "$ROOT/man/rscene-from-json.1" > rename.sh
+  grep -q '^  | rscene-from-json -o scene.rscene$' rename.sh
+  sed 's/mat_safety/mat_old/g' "$ROOT/examples/warehouse_crates.rscene" > scene.rscene
+  [ "$(grep -c 'mat_old' scene.rscene)" -ge 4 ]
+  run -0 "$BIN/rscene-validate" scene.rscene
+  run -0 bash -e -o pipefail rename.sh
+  run -0 --separate-stderr "$BIN/rscene-validate" scene.rscene
+  ! grep -q mat_old scene.rscene
+  # the material record, its id and every reference
+  grep -q '^material mat_new .* id=mat_new' scene.rscene
+  [ "$(grep -c ' mat_new ' scene.rscene)" -eq "$(sed 's/mat_safety/mat_old/g' "$ROOT/examples/warehouse_crates.rscene" | grep -c ' mat_old ')" ]
+}

@@ -185,3 +185,27 @@ SCENE
     [ -s out.rscene ]
   done
 }
+
+@test "--duration 2s says what a duration looks like; counts must be whole numbers" {
+  run -2 --separate-stderr "$SIM" --duration 2s sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --duration: expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '2s'" ]
+  run -2 --separate-stderr "$SIM" --duration=-1 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --duration: expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '-1'" ]
+  run -2 --separate-stderr "$SIM" --steps 2.5 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --steps: expected a whole number >= 0, not '2.5'" ]
+  run -2 --separate-stderr "$SIM" --every 0 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --every: expected a whole number >= 1, not '0'" ]
+  run -2 --separate-stderr "$SIM" --duraton 2 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "rscene-sim: error: unknown option '--duraton'; did you mean '--duration'?" ]
+  # the forms it takes
+  run -0 "$SIM" --duration 0.5 sim_drop.rscene
+  run -0 "$SIM" --duration 1e-2 sim_drop.rscene
+}
+
+@test "trajectory times are the step count times the step as written: 1.4, not 1.4000000000000001" {
+  sed 's/^time_step .*/time_step 0.1/' sim_drop.rscene > tenth.rscene
+  run -0 "$SIM" --steps 20 --trajectory t.csv --trajectory-format csv tenth.rscene
+  [ "$(cut -d, -f1 t.csv | uniq | tr '\n' ' ')" = "time 0 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9 1 1.1 1.2 1.3 1.4 1.5 1.6 1.7 1.8 1.9 2 " ]
+  run -0 "$SIM" --steps 3 --trajectory t.jsonl tenth.rscene
+  grep -q '^{"time":0.3,' t.jsonl
+}

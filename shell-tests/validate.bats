@@ -175,3 +175,48 @@ setup() {
     grep -q "$code" "$BATS_TEST_DIRNAME/../man/rscene-validate.1" || { echo "missing $code"; return 1; }
   done
 }
+
+@test "a mistyped option gets a suggestion; --max-issues wants a whole number" {
+  run -2 --separate-stderr "$V" --formt json x.rscene
+  [ "${stderr_lines[0]}" = "rscene-validate: error: unknown option '--formt'; did you mean '--format'?" ]
+  run -2 --separate-stderr "$V" --max-issues 0 x.rscene
+  [ "${stderr_lines[0]}" = "rscene-validate: error: --max-issues: expected a whole number >= 1, not '0'" ]
+}
+
+@test "a byte order mark is named, and a trailing backslash gets the no-continuation hint" {
+  printf '\xef\xbb\xbfraisim_engine_scene 1\n' > bom.rscene
+  run -1 --separate-stderr "$V" bom.rscene
+  [ "${lines[0]}" = "bom.rscene:1:1: error: file starts with a UTF-8 byte order mark (EF BB BF); remove it [RS1001]" ]
+  printf 'raisim_engine_scene 1\ngravity 0 0 \\\n  -9.81\n' > cont.rscene
+  run -1 --separate-stderr "$V" cont.rscene
+  [ "${lines[0]}" = "cont.rscene:2:13: error: expected a number, found '\\' [RS2001]" ]
+  [ "${lines[3]}" = '  hint: line 2 ends with `\`, but the format has no continuation lines: write each record on one line' ]
+}
+
+@test "references to nothing get did-you-mean: mat_bx, folder_prop" {
+  {
+    echo 'raisim_engine_scene 1'
+    echo 'material mat_box 1 0.42 0.05 1 0 0.6 0 0 0 0 false - - - - - - id=mat_box'
+    echo 'group /World/Props id=folder_props'
+    echo 'object /World/Props/A box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default mat_bx false true false - dynamic true 1 18446744073709551615 parentGroupId=folder_prop'
+  } > refs.rscene
+  run -1 --separate-stderr "$V" refs.rscene
+  [ "${lines[0]}" = "refs.rscene:4:65: error: material 'mat_bx' does not exist [RS3008]" ]
+  [ "${lines[3]}" = '  hint: did you mean `mat_box`?' ]
+  [ "${lines[4]}" = "refs.rscene:4:141: error: parent 'folder_prop' does not exist [RS3006]" ]
+  [ "${lines[7]}" = '  hint: did you mean `folder_props`?' ]
+}
+
+@test "a directory operand validates every scene under it; hidden folders are skipped" {
+  mkdir -p scenes/sub scenes/.cache empty
+  cp "$DATA/validate_clean.rscene" scenes/a.rscene
+  cp "$DATA/validate_clean.rscene" scenes/sub/b.rscene
+  cp "$DATA/validate_errors.rscene" scenes/.cache/bad.rscene
+  run -0 --separate-stderr "$V" scenes/
+  [ "$stderr" = "no issues in 2 files" ]
+  cp "$DATA/validate_errors.rscene" scenes/sub/c.rscene
+  run -1 --separate-stderr "$V" --format json scenes
+  [[ "$output" == *'"scenes/sub/c.rscene"'* ]]
+  run -0 --separate-stderr "$V" empty
+  [ "${stderr_lines[0]}" = "rscene-validate: warning: no .rscene files under 'empty'" ]
+}

@@ -148,7 +148,8 @@ void addInputOperand(CLI::App& app, std::string& file, const char* what) {
 }
 
 void addInputOperands(CLI::App& app, std::vector<std::string>& files) {
-  app.add_option("files", files, "Scene files; none or - reads standard input")->type_name("FILE");
+  app.add_option("files", files, "Scene files, or folders to search for *.rscene; none or - reads standard input")
+      ->type_name("FILE");
 }
 
 void addOutputOption(CLI::App& app, std::string& output, const char* what) {
@@ -164,27 +165,6 @@ void addStdinFilename(CLI::App& app, std::string& name, bool assets) {
 
 void addBaseDir(CLI::App& app, std::string& dir, const char* help) {
   app.add_option("--base-dir", dir, help)->type_name("DIR");
-}
-
-int parseArgs(CLI::App& app, int argc, char** argv) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    std::cout << app.help();
-    return kSuccess;
-  } catch (const CLI::CallForVersion& e) {
-    std::cout << e.what() << '\n';
-    return kSuccess;
-  } catch (const CLI::ParseError& e) {
-    // CLI11 starts its messages with a capital; ours are lower-case.
-    std::string msg = e.what();
-    if (!msg.empty() && msg[0] >= 'A' && msg[0] <= 'Z' && !(msg.size() > 1 && msg[1] >= 'A' && msg[1] <= 'Z'))
-      msg[0] = static_cast<char>(msg[0] - 'A' + 'a');
-    error(msg);
-    std::cerr << "Try '" << gTool << " --help' for more information.\n";
-    return kTrouble;
-  }
-  return -1;
 }
 
 }  // namespace rscene::cli

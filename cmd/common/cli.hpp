@@ -13,6 +13,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 
 namespace rscene::cli {
@@ -67,6 +68,19 @@ const std::string& toolName();
 // spelling and help stay the same across tools.
 void addInputOperand(CLI::App& app, std::string& file, const char* what = "Scene file");
 void addInputOperands(CLI::App& app, std::vector<std::string>& files);
+
+// The operands of a tool that takes several scenes: `-` and files stay, a
+// directory becomes the *.rscene files under it (core/find_scenes.hpp:
+// sorted, hidden entries and links to folders skipped).  An unreadable
+// folder is printed as an error (ok = false), a folder without scenes as a
+// warning (operands.cpp).
+struct Operands {
+  std::vector<std::string> files;
+  bool hadDirectory = false;
+  bool ok = true;
+};
+Operands expandOperands(const std::vector<std::string>& operands);
+bool anyDirectory(const std::vector<std::string>& operands);
 void addOutputOption(CLI::App& app, std::string& output, const char* what);
 // `assets`: stdin's name also places relative asset paths.
 void addStdinFilename(CLI::App& app, std::string& name, bool assets);
@@ -74,6 +88,12 @@ void addBaseDir(CLI::App& app, std::string& dir, const char* help);
 
 // Runs app.parse(); on --help/--version prints and returns kSuccess, on a
 // usage error prints it and returns kTrouble; -1 when the tool should go on.
+// A mistyped long option gets "did you mean" (args.cpp).
 int parseArgs(CLI::App& app, int argc, char** argv);
+
+// Validators whose messages name the expected form: seconds as a plain
+// number >= 0 (`2`, `0.5`, not `2s`); a whole number >= min.
+CLI::Validator seconds();
+CLI::Validator count(long long min);
 
 }  // namespace rscene::cli

@@ -87,19 +87,25 @@ int main(int argc, char** argv) {
     cli::error("--in-place cannot be combined with --check, --diff or --output");
     return cli::kTrouble;
   }
-  if (!opt.output.empty() && opt.files.size() > 1) {
-    cli::error("--output takes a single input");
-    return cli::kTrouble;
-  }
   if (opt.inPlace)
     for (const std::string& f : opt.files)
       if (f == "-") {
         cli::error("--in-place needs file operands, not standard input");
         return cli::kTrouble;
       }
+  // Many scenes' canonical text on one stdout would be of no use.
+  if (!opt.inPlace && !opt.check && !opt.diff && cli::anyDirectory(opt.files)) {
+    cli::error("a directory operand needs --check, --diff or --in-place");
+    return cli::kTrouble;
+  }
+  cli::Operands operands = cli::expandOperands(opt.files);
+  if (!opt.output.empty() && operands.files.size() > 1) {
+    cli::error("--output takes a single input");
+    return cli::kTrouble;
+  }
 
   bool color = cli::colorFor(2);
-  int status = cli::kSuccess;
-  for (const std::string& f : opt.files) status = std::max(status, formatOne(f, opt, color));
+  int status = operands.ok ? cli::kSuccess : cli::kTrouble;
+  for (const std::string& f : operands.files) status = std::max(status, formatOne(f, opt, color));
   return status;
 }

@@ -135,12 +135,12 @@ int main(int argc, char** argv) {
   cli::addInputOperand(app, opt.file);
   cli::addOutputOption(app, opt.output, "Write the simulated scene to FILE (atomically) instead of standard output");
   auto* duration = app.add_option("--duration", opt.duration, "Simulate S seconds (default 1)")->type_name("S")
-                       ->check(CLI::NonNegativeNumber);
-  app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(CLI::NonNegativeNumber)
+                       ->check(cli::seconds());
+  app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(cli::count(0))
       ->excludes(duration);
   app.add_option("--trajectory", opt.trajectory, "Write body states to FILE")->type_name("FILE");
   app.add_option("--every", opt.every, "Write a trajectory line every K steps (default 1)")->type_name("K")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::count(1));
   app.add_option("--trajectory-format", opt.trajectoryFormat, "Trajectory format: jsonl (default) or csv")
       ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
   app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");

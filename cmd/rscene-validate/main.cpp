@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   app.add_option("--only", opt.only, "Report only these codes")->delimiter(',')->type_name("CODE,...")->allow_extra_args(false);
   app.add_option("--max-issues", opt.maxIssues, "Show at most N findings (the summary counts all)")
       ->type_name("N")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::count(1));
   app.add_flag("--list-checks", opt.listChecks, "List every code with its severity and meaning, then exit");
   app.add_option("--profile", opt.profile, "engine2 (what Engine 2 loads) or raisim (also what RaiSim refuses)")
       ->check(CLI::IsMember({"engine2", "raisim"}))
@@ -128,9 +128,10 @@ int main(int argc, char** argv) {
   std::unique_ptr<validate::Reporter> reporter = opt.format == "json"    ? validate::jsonReporter()
                                                  : opt.format == "sarif" ? validate::sarifReporter()
                                                                          : validate::textReporter(color);
+  cli::Operands operands = cli::expandOperands(opt.files);
   Run run{opt, *reporter, {opt.ignore.begin(), opt.ignore.end()}, {opt.only.begin(), opt.only.end()}, {}, false};
-  bool trouble = false;
-  for (const std::string& f : opt.files) trouble = !run.file(f) || trouble;
+  bool trouble = !operands.ok;
+  for (const std::string& f : operands.files) trouble = !run.file(f) || trouble;
   if (!reporter->finish(run.totals)) {
     cli::error("cannot write standard output");
     return cli::kTrouble;

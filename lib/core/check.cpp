@@ -296,6 +296,7 @@ Diagnostics validateText(std::string text, const CheckOptions& options, Document
   doc = std::move(loaded.document);
   if (!loaded.ok()) return std::move(loaded.diagnostics);
   Diagnostics found = check(doc, options);
+  hintContinuations(loaded.continuedLines, found);
   loaded.diagnostics.insert(loaded.diagnostics.end(), std::make_move_iterator(found.begin()),
                             std::make_move_iterator(found.end()));
   return std::move(loaded.diagnostics);

@@ -164,6 +164,13 @@ class Context {
     std::vector<std::int64_t> textureSlots;
     bool inheritedTransforms = true;
     std::string assetRoot = ".";  // decoded, of the last asset_root
+    // "Did you mean" for references (check_refs.cpp): the names of each
+    // kind of target, gathered on the first miss; the answer per name; and
+    // how many more candidates may be compared, so a file full of broken
+    // references among a million nodes stays linear.
+    std::unordered_map<std::string, std::vector<std::string_view>> refCandidates;
+    std::unordered_map<std::string, std::string> refSuggestions;
+    std::size_t refBudget = std::size_t{1} << 20;
     // Filled while records are visited in order.
     std::vector<std::uint32_t> lastOfKind;  // per kind (index in the schema): record index, kNoRecord when none
     std::vector<std::uint32_t> parentOf;    // kNoRecord when none

@@ -4,6 +4,7 @@
 
 #include "core/assets.hpp"
 #include "core/check_context.hpp"
+#include "core/suggest.hpp"
 #include "core/text.hpp"
 
 namespace rscene::checks {
@@ -18,6 +19,78 @@ bool isUnderWorld(std::string_view path) { return path == "/World" || path.rfind
 
 std::string lineRef(const Document& doc, std::uint32_t index) {
   return "line " + std::to_string(doc.records[index].line);
+}
+
+// The names a reference of kind `what` (material, contact, resource, or a
+// node: `node`, `body`, `terrain`, `node:<tag>` for a child's parent) can
+// name: sorted names for the maps, file order (id, then path) for nodes.
+std::vector<std::string_view> referenceNames(Context& ctx, const std::string& what) {
+  auto& ix = ctx.index;
+  std::vector<std::string_view> names;
+  auto keysOf = [&](const auto& map, std::string_view builtIn) {
+    names.push_back(builtIn);
+    for (const auto& entry : map)
+      if (!entry.first.empty()) names.push_back(entry.first);
+    std::sort(names.begin() + 1, names.end());
+  };
+  if (what == "material") {
+    keysOf(ix.materials, kDefaultMaterial);
+  } else if (what == "contact") {
+    keysOf(ix.contacts, kDefaultContact);
+  } else if (what == "resource") {
+    keysOf(ix.resources, {});
+  } else {
+    std::string_view tag = what == "terrain" ? "terrain_region" : what.rfind("node:", 0) == 0 ? what.substr(5) : "";
+    const Document& doc = ctx.doc;
+    for (std::size_t i = 0; i < doc.records.size(); ++i) {
+      const KindDef* k = doc.records[i].kind;
+      if (!k || !k->isNode() || (!tag.empty() && k->tag != tag)) continue;
+      if (!ix.idOf[i].empty()) names.push_back(ix.idOf[i]);
+      else if (!k->idPrefix.empty()) names.push_back(ix.owned.emplace_back(k->idPrefix + std::string(ix.pathOf[i])));
+      names.push_back(ix.pathOf[i]);
+    }
+  }
+  names.erase(std::remove(names.begin(), names.end(), std::string_view()), names.end());
+  return names;
+}
+
+// How far a name may be from the one meant: a third of what is its own,
+// not counting the `/World/` (and `folder_/World/` ...) every node path and
+// default id starts with, or `/World/Prop` would take `/World/Cart`.
+std::size_t typoLimit(std::string_view name) {
+  std::size_t shared = 0;
+  constexpr std::string_view kWorld = "/World/";
+  for (const KindDef& k : Schema::get().kinds()) {
+    std::string_view rest = name;
+    if (!k.idPrefix.empty() && rest.rfind(k.idPrefix, 0) == 0) rest.remove_prefix(k.idPrefix.size());
+    if (rest.rfind(kWorld, 0) == 0) shared = std::max(shared, name.size() - rest.size() + kWorld.size());
+  }
+  return std::max<std::size_t>(1, (name.size() - shared + 1) / 3);
+}
+
+// The name a reference to nothing most likely meant: the closest one of the
+// same kind (`mat_bx` -> `mat_box`, `folder_prop` -> `folder_props`), or
+// else the one node path that ends in it (`Props` -> `/World/Props`).
+// Empty when nothing is close, or when the comparison budget is spent.
+std::string suggestReference(Context& ctx, const std::string& what, std::string_view name) {
+  auto& ix = ctx.index;
+  std::string key = what + '\n' + std::string(name);
+  if (auto it = ix.refSuggestions.find(key); it != ix.refSuggestions.end()) return it->second;
+  auto [entry, fresh] = ix.refCandidates.try_emplace(what);
+  if (fresh) entry->second = referenceNames(ctx, what);
+  const std::vector<std::string_view>& names = entry->second;
+  std::string best;
+  if (names.size() <= ix.refBudget) {
+    ix.refBudget -= names.size();
+    best = closestName(name, names, typoLimit(name));
+    for (std::string_view n : names) {
+      if (!best.empty()) break;
+      if (n.size() > name.size() && n[0] == '/' && n.substr(n.size() - name.size()) == name && n[n.size() - name.size() - 1] == '/')
+        best = n;
+    }
+  }
+  ix.refSuggestions.emplace(std::move(key), best);
+  return best;
 }
 
 void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, std::string& scratch) {
@@ -37,7 +110,12 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
   std::string_view name = Context::decode(raw, scratch);
   if (name.empty()) return;  // no reference
   const std::string& what = def.arg;
-  auto missing = [&](std::string_view code, std::string_view noun, std::string hint = {}) {
+  // Names the closest existing target instead of the general hint when
+  // there is one; `targets` is the kind of name (see referenceNames).
+  auto missing = [&](std::string_view code, std::string_view noun, std::string hint = {},
+                     const std::string& targets = {}) {
+    std::string best = suggestReference(ctx, targets.empty() ? what : targets, name);
+    if (!best.empty()) hint = "did you mean `" + best + "`?";
     ctx.report(code, r, f.value, def.name, std::string(noun) + " '" + std::string(name) + "' does not exist",
                std::move(hint));
   };
@@ -80,7 +158,7 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
     // A child names its parent record kind (compound_child -> compound ...).
     const std::string& want = r.kind->parentTag;
     if (!target || (!want.empty() && target->kind->tag != want))
-      missing("RS3014", want.empty() ? "node" : want);
+      missing("RS3014", want.empty() ? "node" : want, {}, want.empty() ? "node" : "node:" + want);
   }
 }
 

@@ -51,6 +51,7 @@ class Loader {
       error(0, 0, "RS1010", "input too large (" + std::to_string(text.size()) + " bytes; the limit is 4 GiB)");
       return;
     }
+    if (byteOrderMark(text)) return;
     reserve(text);
     const char* data = text.data();
     std::size_t n = text.size();
@@ -64,6 +65,7 @@ class Loader {
       parseLine(pos, end, line);
       pos = end + 1;
     }
+    hintContinuations(out_.continuedLines, out_.diagnostics);
     if (stop_) return;
     if (doc_.records.empty()) {
       error(line ? line : 1, 1, "RS1001", "missing raisim_engine_scene header", "the first record must be `raisim_engine_scene 1` or `raisim_engine_scene 2`");
@@ -74,6 +76,21 @@ class Loader {
   }
 
  private:
+  // The format has no byte order mark and compat-notes.md names no reader
+  // that skips one: Engine 2 would read it as part of the header's tag.  It
+  // is invisible under a caret, so the message names it.
+  bool byteOrderMark(std::string_view text) {
+    const char* what = text.rfind("\xEF\xBB\xBF", 0) == 0 ? "a UTF-8 byte order mark (EF BB BF); remove it"
+                       : text.rfind("\xFF\xFE", 0) == 0    ? "a UTF-16 byte order mark (FF FE); save it as UTF-8"
+                       : text.rfind("\xFE\xFF", 0) == 0    ? "a UTF-16 byte order mark (FE FF); save it as UTF-8"
+                                                            : nullptr;
+    if (!what) return false;
+    error(1, 1, "RS1001", std::string("file starts with ") + what,
+          "the first bytes must be the header `raisim_engine_scene 1` or `raisim_engine_scene 2`");
+    stop_ = true;
+    return true;
+  }
+
   void reserve(const std::string& text) {
     std::size_t lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
     std::size_t spaces = static_cast<std::size_t>(std::count(text.begin(), text.end(), ' '));
@@ -136,6 +153,9 @@ class Loader {
     while (end > start && (text[end - 1] == '\r' || text[end - 1] == ' ' || text[end - 1] == '\t')) --end;
     while (start < end && (text[start] == ' ' || text[start] == '\t')) ++start;
     if (start == end) return;  // blank line
+    if (text[end - 1] == '\\' && text[start] != '#' &&
+        (end - 1 == start || text[end - 2] == ' ' || text[end - 2] == '\t'))
+      out_.continuedLines.push_back(line);
     if (text[start] == '#') {
       if (!checkToken(start, end, line, lineStart, true)) return;
       doc_.comments.push_back(Span{static_cast<std::uint32_t>(start), static_cast<std::uint32_t>(end - start)});
@@ -261,6 +281,16 @@ class Loader {
 };
 
 }  // namespace
+
+void hintContinuations(const std::vector<std::uint32_t>& continuedLines, Diagnostics& ds) {
+  if (continuedLines.empty()) return;
+  for (Diagnostic& d : ds) {
+    auto it = std::lower_bound(continuedLines.begin(), continuedLines.end(), d.line ? d.line - 1 : 0);
+    if (it == continuedLines.end() || *it > d.line || !d.line) continue;
+    d.hint = "line " + std::to_string(*it) +
+             " ends with `\\`, but the format has no continuation lines: write each record on one line";
+  }
+}
 
 LoadResult parse(std::string text) {
   LoadResult result;

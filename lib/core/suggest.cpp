@@ -58,9 +58,12 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
 }
 
 std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates) {
+  return closestName(word, candidates, std::max<std::size_t>(1, (word.size() + 1) / 3));
+}
+
+std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates, std::size_t limit) {
   // Long unknown words are not typos of anything; skip the quadratic work.
   if (word.empty() || word.size() > 64) return {};
-  std::size_t limit = std::max<std::size_t>(1, (word.size() + 1) / 3);
   std::size_t best = limit + 1;
   std::string_view found;
   for (std::string_view c : candidates) {

@@ -1,4 +1,4 @@
-// "Did you mean" for misspelt record tags and keys.
+// "Did you mean" for misspelt record tags, keys, references and options.
 #pragma once
 #include <string>
 #include <string_view>
@@ -13,5 +13,7 @@ std::size_t editDistance(std::string_view a, std::string_view b);
 // The closest candidate within a distance that still reads as a typo of
 // `word` (about a third of its length), or empty.
 std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates);
+// The same within distance `limit` (ties: the first candidate).
+std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates, std::size_t limit);
 
 }  // namespace rscene

@@ -1,5 +1,6 @@
 #include "core/text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -90,44 +91,72 @@ void encodeBytes(std::string_view value, int version, std::string& out) {
 // from the text alone.  A decimal with at most 15 significant digits reads
 // back from a double digit for digit (DBL_DIG), so no shorter spelling of
 // the same value exists; what remains is to_chars' choice between fixed and
-// scientific notation (the shorter one, fixed on a tie).  This skips
-// from_chars/to_chars for most numbers Engine 2 wrote.
-bool isShortestNumber(std::string_view s) {
-  std::size_t i = 0, n = s.size();
-  bool neg = i < n && s[i] == '-';
-  if (neg) ++i;
-  std::size_t intStart = i;
-  while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
-  std::size_t intLen = i - intStart;
-  if (intLen == 0 || (intLen > 1 && s[intStart] == '0')) return false;
-  std::size_t fracLen = 0, fracStart = 0;
-  if (i < n && s[i] == '.') {
-    fracStart = ++i;
-    while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
-    fracLen = i - fracStart;
-    if (fracLen == 0 || s[i - 1] == '0') return false;
+// scientific notation (the shorter one, fixed on a tie; scientific as
+// `1.5e-07`: a sign and at least two exponent digits).  This skips
+// from_chars/to_chars for nearly every number a writer saved.
+//
+// scanShortest reads the number at `p` up to the first byte that cannot
+// continue it (`end`, a list separator ...) and returns where it stopped,
+// or nullptr when the text is not to_chars' spelling.  Lists are checked
+// in one pass this way.
+const char* scanShortest(const char* p, const char* const end) {
+  const char* const start = p;
+  const bool neg = p != end && *p == '-';
+  p += neg;
+  const char* const intStart = p;
+  while (p != end && static_cast<unsigned>(*p - '0') < 10) ++p;
+  const auto intLen = static_cast<std::size_t>(p - intStart);
+  if (intLen == 0 || (intLen > 1 && *intStart == '0')) return nullptr;
+  const char* fracStart = p;
+  std::size_t fracLen = 0;
+  if (p != end && *p == '.') {
+    fracStart = ++p;
+    while (p != end && static_cast<unsigned>(*p - '0') < 10) ++p;
+    fracLen = static_cast<std::size_t>(p - fracStart);
+    if (fracLen == 0 || p[-1] == '0') return nullptr;
   }
-  if (i != n) return false;
   // Significant digits and the decimal exponent of the first one.
-  int exponent;
   std::size_t sig;
-  if (s[intStart] != '0') {
+  int exponent;
+  if (p != end && *p == 'e') {
+    // Scientific: d[.ddd]e(+|-)XX, chosen only where it is shorter.
+    if (intLen != 1 || *intStart == '0' || end - p < 4 || (p[1] != '+' && p[1] != '-')) return nullptr;
+    const char* const e = p + 2;
+    int value = 0;
+    for (p = e; p != end && static_cast<unsigned>(*p - '0') < 10 && value <= 400; ++p) value = value * 10 + (*p - '0');
+    if (p - e != (value >= 100 ? 3 : 2)) return nullptr;  // no extra leading zeros
+    exponent = e[-1] == '-' ? -value : value;
+    sig = 1 + fracLen;
+    // Subnormals keep fewer digits, and near the top the value may not be
+    // finite: those take the long way.
+    if (sig > 15 || exponent < -307 || exponent > 307) return nullptr;
+    const auto digitsBefore = static_cast<std::size_t>(exponent) + 1;  // when exponent >= 0
+    std::size_t fixedLen = exponent >= 0 ? digitsBefore + (sig > digitsBefore ? 1 + sig - digitsBefore : 0)
+                                         : 2 + static_cast<std::size_t>(-exponent - 1) + sig;
+    return static_cast<std::size_t>(p - start) < fixedLen + (neg ? 1 : 0) ? p : nullptr;
+  }
+  if (*intStart != '0') {
     std::size_t intDigits = intLen;
     if (fracLen == 0)
-      while (intDigits > 1 && s[intStart + intDigits - 1] == '0') --intDigits;
+      while (intDigits > 1 && intStart[intDigits - 1] == '0') --intDigits;
     sig = intDigits + fracLen;
     exponent = static_cast<int>(intLen) - 1;
   } else {
-    if (fracLen == 0) return true;  // "0" or "-0"
+    if (fracLen == 0) return p;  // "0" or "-0"
     std::size_t zeros = 0;
-    while (s[fracStart + zeros] == '0') ++zeros;
+    while (fracStart[zeros] == '0') ++zeros;
     sig = fracLen - zeros;
     exponent = -static_cast<int>(zeros) - 1;
   }
-  if (sig > 15) return false;
+  if (sig > 15) return nullptr;
   int absExp = exponent < 0 ? -exponent : exponent;
   std::size_t sciLen = (neg ? 1 : 0) + sig + (sig > 1 ? 1 : 0) + 2 + (absExp >= 100 ? 3 : 2);
-  return n <= sciLen;
+  return static_cast<std::size_t>(p - start) <= sciLen ? p : nullptr;
+}
+
+bool isShortestNumber(std::string_view s) {
+  const char* end = s.data() + s.size();
+  return scanShortest(s.data(), end) == end;
 }
 
 bool isCanonicalInteger(std::string_view s) {
@@ -323,6 +352,116 @@ void appendInteger(std::string& out, std::int64_t v) {
   char buf[24];
   auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, p);
+}
+
+namespace {
+
+// Bytes that stop a token from being plain text: `%` and what
+// percentEncode escapes (one table with `;`, for version-2 text, and one
+// without), and non-ASCII (looked at more closely).
+struct PlainBytes {
+  bool stop[2][256] = {};
+  PlainBytes() {
+    for (int c = 0; c < 256; ++c)
+      for (int v = 0; v < 2; ++v)
+        stop[v][c] = c == '%' || c >= 0x80 || needsEscape(static_cast<unsigned char>(c), v + 1);
+  }
+};
+const PlainBytes kPlain;
+
+// Plain text that percentEncode leaves as it is: no escape, no byte that
+// needs one (`stringList`: `;` separates elements and is no such byte).
+bool isPlainText(std::string_view raw, int version, bool stringList) {
+  const bool* stop = kPlain.stop[version >= 2 && !stringList ? 1 : 0];
+  const auto* s = reinterpret_cast<const unsigned char*>(raw.data());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!stop[s[i]]) continue;
+    if (s[i] < 0x80) return false;
+    std::size_t len = utf8SequenceLength(raw, i);
+    if (!len) return false;
+    i += len - 1;
+  }
+  return true;
+}
+
+bool isCanonicalNumberList(std::string_view raw, bool integer) {
+  const char* p = raw.data();
+  const char* end = p + raw.size();
+  if (!integer) {
+    for (;;) {
+      p = scanShortest(p, end);
+      if (!p || (p != end && *p != ',' && *p != ';')) return false;
+      if (p++ == end) return true;
+    }
+  }
+  for (;;) {
+    const char* sep = p;
+    while (sep != end && *sep != ',' && *sep != ';') ++sep;
+    std::string_view item(p, static_cast<std::size_t>(sep - p));
+    if (!(integer ? isCanonicalInteger(item) : isShortestNumber(item))) return false;
+    if (sep == end) return true;
+    p = sep + 1;
+  }
+}
+
+}  // namespace
+
+bool isCanonicalToken(std::string_view raw, ValueType type, int version) {
+  switch (type) {
+    case ValueType::Number:
+      return isShortestNumber(raw);
+    case ValueType::Integer:
+      return isCanonicalInteger(raw);
+    case ValueType::Flag:
+      return raw == "true" || raw == "false";
+    case ValueType::StringList:
+      // An element `-` would decode to empty and be written as nothing.
+      if (raw == "-" || raw.rfind("-;", 0) == 0 || raw.find(";-;") != std::string_view::npos ||
+          (raw.size() >= 2 && raw.substr(raw.size() - 2) == ";-"))
+        return false;
+      return isPlainText(raw, version, true);
+    default:
+      if (isNumericList(type)) return raw.empty() || isCanonicalNumberList(raw, type == ValueType::IntegerList);
+      // `-` is the empty text and stays `-`; an empty token becomes `-`.
+      return raw == "-" || (!raw.empty() && raw != "-" && isPlainText(raw, version, false));
+  }
+}
+
+double decimalMultiple(std::uint64_t n, double step) {
+  if (!std::isfinite(step) || step == 0 || n == 0) return static_cast<double>(n) * step;
+  // step = digits x 10^exp with at most 17 digits; n * digits < 2^64 * 10^17
+  // fits in 128 bits, so the product is exact until the one rounding of
+  // from_chars.
+  char buf[40];
+  const char* end = std::to_chars(buf, buf + sizeof buf, step, std::chars_format::scientific).ptr;
+  const char* p = buf;
+  bool negative = *p == '-';
+  p += negative;
+  unsigned __int128 digits = 0;
+  int fraction = 0;
+  for (bool afterPoint = false; *p != 'e'; ++p) {
+    if (*p == '.') {
+      afterPoint = true;
+      continue;
+    }
+    digits = digits * 10 + static_cast<unsigned>(*p - '0');
+    fraction += afterPoint;
+  }
+  int exponent = 0;
+  std::from_chars(p + 1 + (p[1] == '+'), end, exponent);
+  unsigned __int128 product = digits * n;
+  std::string number;
+  do {
+    number.push_back(static_cast<char>('0' + static_cast<unsigned>(product % 10)));
+    product /= 10;
+  } while (product);
+  if (negative) number.push_back('-');
+  std::reverse(number.begin(), number.end());
+  number += 'e' + std::to_string(exponent - fraction);
+  double v = 0;
+  if (std::from_chars(number.data(), number.data() + number.size(), v).ec != std::errc())
+    return static_cast<double>(n) * step;  // beyond double's range
+  return v;
 }
 
 void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version) {

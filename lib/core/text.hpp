@@ -45,10 +45,20 @@ std::vector<std::string> parseStringList(std::string_view raw);
 void appendNumber(std::string& out, double v);
 void appendInteger(std::string& out, std::int64_t v);
 
+// n times `step` as a person would write it: the exact product of n and
+// step's shortest decimal, rounded once to a double.  14 steps of 0.1 are
+// 1.4, where 14 * 0.1 is 1.4000000000000001.
+double decimalMultiple(std::uint64_t n, double step);
+
 // Appends the canonical spelling of the raw token `raw` of type `type`
 // (see DESIGN.md, canonical form).  Text that does not parse as its type is
 // kept, only re-encoded, so formatting never loses what a user wrote.
 void appendCanonical(std::string& out, std::string_view raw, ValueType type, int version);
+
+// Whether appendCanonical(raw, type, version) would append `raw` itself,
+// decided without building anything.  It may say false for a token that is
+// canonical after all (escapes, unusual spellings); callers then format it.
+bool isCanonicalToken(std::string_view raw, ValueType type, int version);
 
 // Whether two raw tokens hold the same value of `type`: numbers compare by
 // their bits after parsing, text after decoding.

@@ -74,10 +74,82 @@ std::vector<std::uint32_t> canonicalOrder(const Document& doc) {
   return order;
 }
 
-void appendCanonicalRecord(const Document& doc, const Record& r, std::string& out) {
+namespace {
+
+// The schema entry of each key of a record, remembered per kind from the
+// record before: records of a kind repeat their keys in the same order, and
+// comparing a short string is cheaper than hashing it.
+class KeyDefs {
+ public:
+  // nullptr for an unknown key (or a record of an unknown kind).
+  const FieldDef* get(const Record& r, std::uint32_t j, std::string_view key) {
+    if (!r.kind) return nullptr;
+    const Schema& schema = Schema::get();
+    auto k = static_cast<std::size_t>(r.kind - schema.kinds().data());
+    if (last_.empty()) last_.resize(schema.kinds().size());
+    std::vector<std::pair<std::string_view, const FieldDef*>>& seen = last_[k];
+    if (j < seen.size() && seen[j].first == key) return seen[j].second;
+    const FieldDef* def = r.kind->key(key);
+    if (j >= seen.size()) seen.resize(j + 1);
+    seen[j] = {key, def};
+    return def;
+  }
+
+ private:
+  std::vector<std::vector<std::pair<std::string_view, const FieldDef*>>> last_;  // per kind, per field index
+};
+
+// The record's line as written when it is canonical already: the tag and
+// the tokens separated by single spaces, nothing before, after or between
+// them, and every token canonical.  Most records of a file a writer saved
+// are, and copying those lines whole is what keeps rscene-fmt as fast as
+// reading.  Empty when the record needs formatting.
+std::string_view canonicalLine(const Document& doc, const Record& r, KeyDefs& keys) {
+  const std::string& text = doc.buffer();
+  if (r.line == 0 || r.tag.offset != r.lineOffset) return {};
+  std::uint32_t end = r.tag.offset + r.tag.length;
+  std::uint32_t p = 0;
+  for (std::uint32_t j = 0; j < r.fieldCount; ++j) {
+    const Field& f = doc.field(r, j);
+    std::uint32_t start = f.isKey() ? f.key.offset : f.value.offset;
+    if (start != end + 1 || text[end] != ' ') return {};
+    // key=value as one token (an edited document may keep them apart)
+    if (f.isKey() && (f.value.offset != f.key.offset + f.key.length + 1 || text[f.value.offset - 1] != '='))
+      return {};
+    std::string_view raw = doc.text(f.value);
+    if (!f.isKey()) {
+      if (!isCanonicalToken(raw, positionalType(r, p++), doc.version)) return {};
+    } else {
+      const FieldDef* def = keys.get(r, j, doc.text(f.key));
+      // An unknown key keeps `key=` as it is.
+      if (!(def ? isCanonicalToken(raw, def->type, doc.version)
+                : raw.empty() || isCanonicalToken(raw, ValueType::Text, doc.version)))
+        return {};
+    }
+    end = f.value.offset + f.value.length;
+  }
+  if (end >= text.size() || text[end] != '\n') return {};
+  return std::string_view(text).substr(r.lineOffset, end - r.lineOffset);
+}
+
+// Appends the record to `out`; a long canonical line goes to `direct`
+// (when given) after what `out` holds, so that a 40 MB height field is not
+// copied into a buffer of its size first.
+void appendRecord(const Document& doc, const Record& r, std::string& out, KeyDefs& keys, Sink* direct = nullptr) {
   for (std::uint32_t c = 0; c < r.commentCount; ++c) {
     out.append(doc.commentText(r.firstComment + c));
     out.push_back('\n');
+  }
+  if (std::string_view line = canonicalLine(doc, r, keys); !line.empty()) {
+    if (direct && line.size() >= kChunk) {
+      if (!out.empty()) direct->write(out);
+      out.clear();
+      direct->write(std::string_view(line.data(), line.size() + 1));  // the line's own '\n'
+      return;
+    }
+    out.append(line);
+    out.push_back('\n');
+    return;
   }
   out.append(doc.tag(r));
   std::uint32_t p = 0;
@@ -92,7 +164,7 @@ void appendCanonicalRecord(const Document& doc, const Record& r, std::string& ou
     std::string_view key = doc.text(f.key);
     out.append(key);
     out.push_back('=');
-    const FieldDef* def = r.kind ? r.kind->key(key) : nullptr;
+    const FieldDef* def = keys.get(r, j, key);
     if (def)
       appendCanonical(out, raw, def->type, doc.version);
     else if (!raw.empty())  // unknown key: keep `key=` and `key=-` apart
@@ -101,11 +173,19 @@ void appendCanonicalRecord(const Document& doc, const Record& r, std::string& ou
   out.push_back('\n');
 }
 
+}  // namespace
+
+void appendCanonicalRecord(const Document& doc, const Record& r, std::string& out) {
+  KeyDefs keys;
+  appendRecord(doc, r, out, keys);
+}
+
 void writeCanonical(const Document& doc, Sink& sink) {
   std::string buf;
   buf.reserve(kChunk * 2);
+  KeyDefs keys;
   for (std::uint32_t i : canonicalOrder(doc)) {
-    appendCanonicalRecord(doc, doc.records[i], buf);
+    appendRecord(doc, doc.records[i], buf, keys, &sink);
     if (buf.size() >= kChunk) {
       sink.write(buf);
       buf.clear();

@@ -535,7 +535,7 @@ void World::step() {
   w.contacts = n;
 }
 
-double World::time() const { return static_cast<double>(impl_->stepCount) * impl_->dt; }
+double World::time() const { return decimalMultiple(impl_->stepCount, impl_->dt); }
 std::uint64_t World::steps() const { return impl_->stepCount; }
 double World::timeStep() const { return impl_->dt; }
 int World::bodyCount() const { return static_cast<int>(impl_->simulated.size()); }

@@ -1,10 +1,12 @@
 #include <gtest/gtest.h>
 
+#include "core/check.hpp"
 #include "core/io.hpp"
 #include "core/text.hpp"
 #include "test_util.hpp"
 
 using namespace rscene;
+using namespace std::string_literals;
 using rscene::test::firstCode;
 using rscene::test::load;
 
@@ -130,4 +132,41 @@ TEST(Loader, StopsAfterManyErrors) {
   for (int i = 0; i < 1000; ++i) text += "gravity 0 0\n";
   LoadResult r = load(text);
   EXPECT_EQ(r.diagnostics.size(), 50u);
+}
+
+TEST(Loader, NamesAByteOrderMarkInsteadOfAnInvisibleCaret) {
+  LoadResult r = load("\xEF\xBB\xBFraisim_engine_scene 1\ngravity 0 0 -9.81\n");
+  ASSERT_EQ(r.diagnostics.size(), 1u);
+  const Diagnostic& d = r.diagnostics[0];
+  EXPECT_EQ(d.code, "RS1001");
+  EXPECT_EQ(d.message, "file starts with a UTF-8 byte order mark (EF BB BF); remove it");
+  EXPECT_EQ(d.line, 1u);
+  EXPECT_EQ(d.column, 1u);
+  EXPECT_EQ(load("\xFF\xFEr\0a"s).diagnostics.at(0).message,
+            "file starts with a UTF-16 byte order mark (FF FE); save it as UTF-8");
+  // The same bytes later in the file are text like any other.
+  EXPECT_TRUE(load("raisim_engine_scene 1\n# \xEF\xBB\xBF\n").ok());
+}
+
+TEST(Loader, HintsThatThereAreNoContinuationLines) {
+  LoadResult r = load("raisim_engine_scene 1\n# a comment may end with \\\ngravity 0 0 \\\n  -9.81\n"
+                      "material m 1 1 1 1 0 0.5 0 0 0 0 false - - - - - path\\\n");
+  EXPECT_EQ(r.continuedLines, (std::vector<std::uint32_t>{3}));  // not a comment, not `path\`
+  // The loader's own errors get the hint (the record on the line, and the
+  // line after it).
+  r = load("raisim_engine_scene 1\nmaterial m 1 1 1 1 0 0.5 0 0 0 0 false - - - - - - \\\n  id=m\n");
+  ASSERT_EQ(r.diagnostics.size(), 1u);
+  EXPECT_EQ(r.diagnostics[0].code, "RS1007");
+  EXPECT_EQ(r.diagnostics[0].hint,
+            "line 2 ends with `\\`, but the format has no continuation lines: write each record on one line");
+  // validate's findings on those lines get it too, others keep theirs.
+  Document doc;
+  Diagnostics ds = validateText("raisim_engine_scene 1\ngravity 0 0 \\\n -9.81\ntime_step x\n", {}, doc);
+  ASSERT_EQ(ds.size(), 3u);
+  EXPECT_EQ(ds[0].line, 2u);
+  EXPECT_EQ(ds[1].line, 3u);
+  EXPECT_NE(ds[0].hint.find("line 2 ends with `\\`"), std::string::npos);
+  EXPECT_EQ(ds[1].hint, ds[0].hint);
+  EXPECT_EQ(ds[2].line, 4u);
+  EXPECT_EQ(ds[2].hint.find("continuation"), std::string::npos);
 }

@@ -194,3 +194,91 @@ TEST(Numbers, FastPathGivesFromCharsDouble) {
     }
   }
 }
+
+TEST(Text, DecimalMultipleIsTheProductOfTheWrittenStep) {
+  auto shortest = [](double v) {
+    std::string s;
+    appendNumber(s, v);
+    return s;
+  };
+  EXPECT_EQ(shortest(14 * 0.1), "1.4000000000000001");  // why this exists
+  EXPECT_EQ(shortest(decimalMultiple(14, 0.1)), "1.4");
+  EXPECT_EQ(shortest(decimalMultiple(3, 0.1)), "0.3");
+  EXPECT_EQ(shortest(decimalMultiple(400, 0.0025)), "1");
+  EXPECT_EQ(shortest(decimalMultiple(12345, 0.001)), "12.345");
+  EXPECT_EQ(shortest(decimalMultiple(7, 1.0 / 3)), "2.333333333333333");  // 7 x 0.3333333333333333
+  EXPECT_EQ(shortest(decimalMultiple(1000000007, 1e-07)), "100.0000007");
+  EXPECT_EQ(shortest(decimalMultiple(2, -0.25)), "-0.5");
+  EXPECT_EQ(decimalMultiple(0, 0.1), 0.0);
+  EXPECT_EQ(decimalMultiple(5, 0.0), 0.0);
+  // The largest count and a large step still give one rounding, no overflow.
+  EXPECT_EQ(decimalMultiple(UINT64_MAX, 1.0), 18446744073709551615.0);
+  EXPECT_EQ(decimalMultiple(10, 1e308), 10 * 1e308);  // inf, as the plain product
+  // Every count of a common step agrees with the decimal product.
+  for (std::uint64_t n = 0; n < 2000; ++n) {
+    double want = 0;
+    std::string text = std::to_string(n) + "e-3";
+    std::from_chars(text.data(), text.data() + text.size(), want);
+    ASSERT_EQ(decimalMultiple(n, 0.001), want) << n;
+  }
+}
+
+// isCanonicalToken lets the writer copy a token (or a whole line) without
+// formatting it, so it must never say yes where appendCanonical would
+// change the text.
+TEST(Canonical, ACanonicalTokenIsOneAppendCanonicalKeepsAsIs) {
+  std::mt19937_64 rng(7);
+  std::vector<std::string> tokens = {
+      "0", "-0", "1", "10", "1e+06", "1e-07", "1.5e-07", "-6e-04", "1e-04", "0.0001", "1e+05", "100000",
+      "123456789012345", "1.23456789012345e+20", "1e+21", "1.5e+00", "1e+5", "1e5", "1E-07", "1e-007",
+      "01e-07", "1.50e-07", "10e-07", "1e+308", "1e+307", "5e-324", "1e-308", "1e-307", "2.5e-320",
+      "29.999999999999996", "0.30000000000000004", "1.0", "007", "-", "", "%31", "1,2", "a=b", "a;b", "x y",
+      "-;a", "a;-", "a;-;b", "a;b", "true", "yes", "1,2;3", "1,,2", "1,2,", "-1e-04,2;3e+05"};
+  const char alphabet[] = "0123456789.-+e,;%=abXY";
+  for (int i = 0; i < 20000; ++i) {
+    std::string t;
+    for (std::size_t n = rng() % 9; n > 0; --n) t.push_back(alphabet[rng() % (sizeof alphabet - 1)]);
+    tokens.push_back(t);
+    double x = std::ldexp(static_cast<double>(rng() >> 11), static_cast<int>(rng() % 2100) - 1100);
+    char buf[40];
+    tokens.emplace_back(buf, std::to_chars(buf, buf + sizeof buf, (rng() & 1) ? -x : x).ptr);
+  }
+  const ValueType types[] = {ValueType::Number, ValueType::Integer,  ValueType::Flag,       ValueType::Text,
+                             ValueType::Name,   ValueType::Group,    ValueType::NumberList, ValueType::Vec3,
+                             ValueType::IntegerList, ValueType::StringList, ValueType::Path};
+  std::size_t yes = 0;
+  for (const std::string& t : tokens)
+    for (ValueType type : types)
+      for (int version : {1, 2})
+        if (isCanonicalToken(t, type, version)) {
+          ++yes;
+          ASSERT_EQ(canon(t, type, version), t) << "type " << typeName(type) << " v" << version;
+        }
+  EXPECT_GT(yes, 20000u);
+}
+
+TEST(Canonical, NumbersToCharsWroteAreRecognisedWithoutParsing) {
+  // Up to 15 significant digits in the normal range: what writers save.
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 20000; ++i) {
+    std::string text = std::to_string(rng() % 1000000000000000ull) + "e" + std::to_string(static_cast<int>(rng() % 580) - 300);  // 1e-300 .. 1e+294
+    double v = 0;
+    std::from_chars(text.data(), text.data() + text.size(), v);
+    char buf[40];
+    std::string shortest(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+    // Big integers in fixed notation show all their digits (5973654460118720512),
+    // more than 15: those are formatted the long way.
+    if (shortest.find('e') == std::string::npos && std::fabs(v) >= 1e15) continue;
+    ASSERT_TRUE(isCanonicalToken(shortest, ValueType::Number, 1)) << shortest;
+  }
+  EXPECT_TRUE(isCanonicalToken("-6e-04,1.5,0.25;1e+20", ValueType::NumberList, 1));
+  EXPECT_FALSE(isCanonicalToken("1e-4", ValueType::Number, 1));    // to_chars writes 1e-04
+  EXPECT_FALSE(isCanonicalToken("1e+03", ValueType::Number, 1));   // 1000 is shorter
+  EXPECT_FALSE(isCanonicalToken("0.0001", ValueType::Number, 1));  // 1e-04 is shorter
+  EXPECT_TRUE(isCanonicalToken("0.001", ValueType::Number, 1));    // a tie: fixed
+  EXPECT_FALSE(isCanonicalToken("a=b", ValueType::Text, 1));
+  EXPECT_FALSE(isCanonicalToken("a;b", ValueType::Text, 2));
+  EXPECT_TRUE(isCanonicalToken("a;b", ValueType::Text, 1));
+  EXPECT_TRUE(isCanonicalToken("-", ValueType::Text, 2));
+  EXPECT_FALSE(isCanonicalToken("", ValueType::Text, 1));  // written as -
+}
