@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--format", format, "Output format: text (default) or json")
       ->type_name("FORMAT")
       ->check(CLI::IsMember({"text", "json"}));
-  app.add_option("--tolerance", opt.tolerance, "Numbers that differ by at most ABS are equal")
+  app.add_option("--tolerance", opt.tolerance, "Numbers (also in vectors and lists) that differ by at most ABS are equal")
       ->type_name("ABS")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--rel-tolerance", opt.relTolerance, "Numbers that differ by at most REL times the larger are equal")
@@ -95,6 +95,11 @@ int main(int argc, char** argv) {
   cli::printDiagnostics(a.loaded.diagnostics, a.in.display, a.loaded.document.buffer(), color);
   cli::printDiagnostics(b.loaded.diagnostics, b.in.display, b.loaded.document.buffer(), color);
   if (!a.loaded.ok() || !b.loaded.ok()) return trouble;
+  for (const std::string& entry : opt.ignore)
+    if (auto problem = checkIgnoreName(entry, a.loaded.document, b.loaded.document)) {
+      cli::error("--ignore: " + *problem);
+      return trouble;
+    }
 
   DiffResult result = diff(a.loaded.document, b.loaded.document, opt);
   if (!quiet) {
