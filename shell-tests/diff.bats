@@ -174,6 +174,38 @@ EOF2
   [ "${lines[2]}" = "- time_step" ]
 }
 
+@test "git mode: a side that does not parse gives a header and a line diff, exit 0" {
+  printf 'raisim_engine_scene 1\ntime_step 0.0025\nobject /World/Box box 0 0\n' >broken.rscene
+  run -0 --separate-stderr "$DIFF" scene.rscene "$OLD" 1111111 100644 broken.rscene 2222222 100644
+  [ "${lines[0]}" = "rscene-diff a/scene.rscene b/scene.rscene" ]
+  [ "${lines[1]}" = "--- a/scene.rscene" ]
+  [ "${lines[2]}" = "+++ b/scene.rscene" ]
+  [[ ${lines[3]} == "@@ "* ]]
+  [[ $output == *$'\n+object /World/Box box 0 0'* ]]
+  [[ $output == *$'\n-solver 80 1e-07 0.2 accurate'* ]]
+  [ "$stderr" = "b/scene.rscene:3:26: warning: object has 4 positional fields, expected 25, 19 or 17; showing a line diff [RS1007]" ]
+  # Outside git's mode a parse error is still trouble.
+  run -2 "$DIFF" "$OLD" broken.rscene
+}
+
+@test "git mode: added or deleted broken scenes, binary junk, nine arguments for a rename" {
+  printf 'not a scene\n' >broken.rscene
+  run -0 --separate-stderr "$DIFF" new.rscene /dev/null . . broken.rscene 2222222 100644
+  [ "$output" = $'rscene-diff a/new.rscene b/new.rscene\n--- /dev/null\n+++ b/new.rscene\n@@ -0,0 +1,1 @@\n+not a scene' ]
+  run -0 --separate-stderr "$DIFF" old.rscene broken.rscene 1111111 100644 /dev/null . .
+  [ "${lines[1]}" = "--- a/old.rscene" ]
+  [ "${lines[2]}" = "+++ /dev/null" ]
+  printf 'junk\0\001\n' >junk.rscene
+  run -0 --separate-stderr "$DIFF" junk.rscene "$OLD" 1111111 100644 junk.rscene 2222222 100644
+  [ "$output" = $'rscene-diff a/junk.rscene b/junk.rscene\nBinary files a/junk.rscene and b/junk.rscene differ' ]
+  run -0 --separate-stderr "$DIFF" junk.rscene junk.rscene 1111111 100644 junk.rscene 2222222 100644
+  [ -z "$output" ]
+  run -0 "$DIFF" old.rscene "$OLD" 1111111 100644 "$NEW" 2222222 100644 new.rscene "similarity index 90%"
+  [ "${lines[0]}" = "rscene-diff a/old.rscene b/new.rscene" ]
+  [ "${lines[1]}" = "~ editor_ux" ]
+  run -2 "$DIFF" a b c d e f g h
+}
+
 @test "git diff and git log -p --ext-diff use it through .gitattributes" {
   command -v git >/dev/null || skip "git not installed"
   git init -q repo
