@@ -204,6 +204,12 @@ EOF2
   [ "${lines[0]}" = "rscene-diff a/old.rscene b/new.rscene" ]
   [ "${lines[1]}" = "~ editor_ux" ]
   run -2 "$DIFF" a b c d e f g h
+  # git's operands may start with `-`: never read as options.
+  hex=0123456789abcdef0123456789abcdef01234567
+  cp "$NEW" ./-new.rscene
+  run -0 "$DIFF" --stat -x.rscene "$OLD" $hex 100644 -new.rscene $hex 100644
+  [ "${lines[0]}" = "rscene-diff a/-x.rscene b/-x.rscene" ]
+  [ "${lines[1]}" = " editor_ux       1 changed" ]
 }
 
 @test "git diff and git log -p --ext-diff use it through .gitattributes" {

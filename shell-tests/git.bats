@@ -114,3 +114,18 @@ setup() {
   run -0 --separate-stderr git diff --ext-diff broken junk -- junk.rscene
   [ "${lines[1]}" = "Binary files /dev/null and b/junk.rscene differ" ]
 }
+
+@test "a scene named like an option (-dash.rscene) at the top of the repository" {
+  cp "$DATA/diff_old.rscene" ./-dash.rscene
+  git add -- -dash.rscene
+  git commit -q -m dash
+  cp "$DATA/diff_new.rscene" ./-dash.rscene
+  run -0 git diff --no-ext-diff -- -dash.rscene  # textconv gets the worktree file: -dash.rscene
+  [[ $output == *"-time_step 0.0025"* || $output == *"+editor_ux multiSelect=false"* ]]
+  run -0 git diff -- -dash.rscene
+  [ "${lines[0]}" = "rscene-diff a/-dash.rscene b/-dash.rscene" ]
+  [ "${lines[1]}" = "~ editor_ux" ]
+  git commit -q -am "dash two"
+  run -0 git log -p --ext-diff --format=%s -2
+  [[ $output == *"mass: 1 -> 3"* ]]
+}

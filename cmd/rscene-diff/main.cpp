@@ -62,6 +62,28 @@ std::string lineDiff(const Side& a, const Side& b, const std::string& oldName, c
   return lines.empty() ? lines : out + lines;
 }
 
+bool isHex(std::string_view s) {
+  return s == "." || ((s.size() == 40 || s.size() == 64) && s.find_first_not_of("0123456789abcdef") == s.npos);
+}
+bool isMode(std::string_view s) { return s == "." || (s.size() == 6 && s.find_first_not_of("01234567") == s.npos); }
+
+// git's operands may start with `-` (a scene named `-x.rscene`), which
+// the option parser would refuse, and git would stop.  When the arguments
+// end in git's 7 or 9 operands, `--` goes before them.
+std::vector<char*> separateGitOperands(int argc, char** argv) {
+  std::vector<char*> args(argv, argv + argc);
+  for (int n : {7, 9}) {
+    int s = argc - n;
+    if (s < 1 || std::string_view(argv[s - 1]) == "--") continue;
+    if (isHex(argv[s + 2]) && isMode(argv[s + 3]) && isHex(argv[s + 5]) && isMode(argv[s + 6])) {
+      static char separator[] = "--";
+      args.insert(args.begin() + s, separator);
+      break;
+    }
+  }
+  return args;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,7 +114,8 @@ int main(int argc, char** argv) {
   app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
   cli::addStdinFilename(app, stdinName, false);
-  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  std::vector<char*> args = separateGitOperands(argc, argv);
+  if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
 
   // git runs an external diff with 7 arguments, 9 for a rename or copy.
   const bool git = files.size() == 7 || files.size() == 9;

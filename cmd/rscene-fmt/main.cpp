@@ -57,6 +57,23 @@ int showAsWritten(std::string_view original, const std::string& display, const D
   return ok ? cli::kSuccess : cli::kTrouble;
 }
 
+// git appends the file to the textconv command; a scene at the top of a
+// repository named `-x.rscene` must not be taken for an option (git would
+// stop), so with --textconv a last argument that is no option gets `--`.
+std::vector<char*> textconvOperand(const CLI::App& app, int argc, char** argv) {
+  std::vector<char*> args(argv, argv + argc);
+  const std::string_view last = argc > 2 ? argv[argc - 1] : "";
+  auto has = [&](std::string_view word) {
+    return std::find_if(argv + 1, argv + argc, [&](const char* a) { return word == a; }) != argv + argc;
+  };
+  const bool textconv = has("--textconv") && !has("--");
+  if (textconv && last.size() > 1 && last[0] == '-' && !app.get_option_no_throw(std::string(last))) {
+    static char separator[] = "--";
+    args.insert(args.end() - 1, separator);
+  }
+  return args;
+}
+
 // Formats one input; returns its exit code.
 int formatOne(const std::string& operand, const Options& opt, bool color) {
   cli::Input in;
@@ -104,7 +121,8 @@ int main(int argc, char** argv) {
                "For git's diff.<driver>.textconv: canonical text, or a file that does not parse as written "
                "(one warning, exit 0)");
   cli::addStdinFilename(app, opt.stdinName, false);
-  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  std::vector<char*> args = textconvOperand(app, argc, argv);
+  if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
 
   if (opt.files.empty()) opt.files.push_back("-");
   if (opt.inPlace && (opt.check || opt.diff || !opt.output.empty())) {
