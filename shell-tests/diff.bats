@@ -120,8 +120,9 @@ EOF2
 @test "formatting is never a difference: every fixture, example and corpus scene against its formatted self" {
   [ -x "$BIN/rscene-fmt" ] || skip "rscene-fmt not built"
   n=0
-  for f in "$DATA"/*.rscene "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene; do
-    [ -f "$f" ] || continue  # ../shared/corpus may be absent
+  # tests/data/**, examples/ and ../shared/corpus/ (which may be absent)
+  for f in $(find "$DATA" -name '*.rscene') "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene; do
+    [ -f "$f" ] || continue
     "$BIN/rscene-fmt" "$f" >formatted.rscene 2>/dev/null || continue  # fixtures of parse errors
     run "$DIFF" "$f" formatted.rscene
     [ "$status" -eq 0 ] || { echo "$f:"; echo "$output"; false; }
