@@ -7,13 +7,14 @@
 namespace rscene {
 namespace {
 
-std::vector<std::string> splitLines(std::string_view text) {
-  std::vector<std::string> lines;
+// Views into the caller's text: a 128 MB scene is not copied line by line.
+std::vector<std::string_view> splitLines(std::string_view text) {
+  std::vector<std::string_view> lines;
   std::size_t pos = 0;
   while (pos < text.size()) {
     std::size_t nl = text.find('\n', pos);
     if (nl == std::string_view::npos) nl = text.size();
-    lines.emplace_back(text.substr(pos, nl - pos));
+    lines.push_back(text.substr(pos, nl - pos));
     pos = nl + 1;
   }
   return lines;
@@ -24,8 +25,8 @@ std::vector<std::string> splitLines(std::string_view text) {
 std::string unifiedDiff(std::string_view before, std::string_view after, std::string_view oldName,
                         std::string_view newName) {
   if (before == after) return {};
-  std::vector<std::string> a = splitLines(before), b = splitLines(after);
-  dtl::Diff<std::string, std::vector<std::string>> diff(a, b);
+  std::vector<std::string_view> a = splitLines(before), b = splitLines(after);
+  dtl::Diff<std::string_view, std::vector<std::string_view>> diff(a, b);
   diff.onHuge();  // keeps memory bounded on very different inputs
   diff.compose();
   diff.composeUnifiedHunks();
