@@ -26,6 +26,8 @@ expected_blocks() {
     locked: false -> true
 ~ terrain_region /World/T
     heights: 25 values, 2 changed, max |delta| 0.03
+    heights[6]: 0 -> 0.03
+    heights[17]: 0 -> 0.01
 + light /World/Sun
 - light /World/Fill
 ~ object /World/Props/Box (moved from /World/Box)
@@ -61,7 +63,7 @@ EOF2
   run -0 bash -c "'$DIFF' --format json '$OLD' '$NEW' | jq -c '.same, .stat, [.records[] | select(.tag == \"object\") | .oldPath // .fields[1].new]'"
   [ "${lines[0]}" = "false" ]
   [ "${lines[1]}" = '{"added":1,"removed":1,"changed":5,"fieldsChanged":5}' ]
-  [ "${lines[2]}" = '["/World/Box","3"]' ]
+  [ "${lines[2]}" = '["/World/Box",3]' ]  # typed values
   run -0 bash -c "'$DIFF' --format=json '$OLD' '$OLD' | jq -c .same"
   [ "$output" = "true" ]
   run -2 "$DIFF" --format yaml "$OLD" "$NEW"
@@ -76,12 +78,28 @@ EOF2
   run -2 "$DIFF" --tolerance -1 "$OLD" "$NEW"
 }
 
+@test "--format json: old and new values typed by the schema" {
+  command -v jq >/dev/null || skip "jq not installed"
+  "$DIFF" --format json "$OLD" "$NEW" >out.json || [ $? -eq 1 ]
+  run -0 jq -c '[.records[].fields[]? | select(.name == "position" or .name == "locked" or .name == "heights[6]")
+    | [.name, .type, .old, .new]]' out.json
+  [ "$output" = '[["locked","flag",false,true],["heights[6]","number",0,0.03],["position","vec3",[1,0,0.5],[1,0,0.5000000001]]]' ]
+}
+
 @test "--ignore-editor-state and --ignore KEY,..." {
   run -1 "$DIFF" --ignore-editor-state "$OLD" "$NEW"
   [[ $output != *"editor_ux"* && $output != *"locked"* ]]
   run -1 "$DIFF" --ignore heights,object.mass,position "$OLD" "$NEW"
   [[ $output != *"heights"* && $output != *"mass"* && $output != *"position"* ]]
   [[ $output == *"multiSelect"* ]]
+}
+
+@test "--ignore NAME that names no field is a usage error with a suggestion" {
+  run -2 --separate-stderr "$DIFF" --ignore heights,colr "$OLD" "$NEW"
+  [ "$stderr" = "rscene-diff: error: --ignore: no field 'colr'; did you mean 'color'?" ]
+  [ -z "$output" ]
+  run -2 --separate-stderr "$DIFF" --ignore objct.mass "$OLD" "$NEW"
+  [ "$stderr" = "rscene-diff: error: --ignore: no record kind 'objct'; did you mean 'object'?" ]
 }
 
 @test "-q and --quiet print nothing; the exit status tells" {
@@ -97,6 +115,46 @@ EOF2
   run -2 --separate-stderr "$DIFF" --stdin-filename old.rscene - "$NEW" <<<"time_step 1"
   [ "${stderr_lines[0]}" = "old.rscene:1:1: error: missing raisim_engine_scene header [RS1001]" ]
   run -2 "$DIFF" - - </dev/null
+}
+
+@test "formatting is never a difference: every fixture, example and corpus scene against its formatted self" {
+  [ -x "$BIN/rscene-fmt" ] || skip "rscene-fmt not built"
+  n=0
+  # tests/data/**, examples/ and ../shared/corpus/ (which may be absent)
+  for f in $(find "$DATA" -name '*.rscene') "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene; do
+    [ -f "$f" ] || continue
+    "$BIN/rscene-fmt" "$f" >formatted.rscene 2>/dev/null || continue  # fixtures of parse errors
+    run "$DIFF" "$f" formatted.rscene
+    [ "$status" -eq 0 ] || { echo "$f:"; echo "$output"; false; }
+    n=$((n + 1))
+  done
+  [ "$n" -ge 15 ]
+}
+
+@test "issue 9: terrain_field.rscene against its formatted self, with a process substitution" {
+  [ -x "$BIN/rscene-fmt" ] || skip "rscene-fmt not built"
+  run -0 bash -c "'$DIFF' '$ROOT/examples/terrain_field.rscene' <('$BIN/rscene-fmt' '$ROOT/examples/terrain_field.rscene')"
+  [ -z "$output" ]
+}
+
+@test "children are named by parent path and place; long lists name changed entries" {
+  { cat "$OLD"; echo "compound /World/Cart 0 0 1 1 0 0 0 1 1 1 5 dynamic true true id=cart"
+    echo "compound_child /World/Cart box 0 0 0 1 0 0 0 1 1 1 size=1.0,0.6,0.10"
+    echo "compound_child /World/Cart sphere 0 0 0.5 1 0 0 0 1 1 1 radius=0.25"
+    echo "deformable /World/Cloth cloth - 0 0 2 1 0 0 0 1 1 1 id=cloth scale=1"
+    printf 'instanced_visual /World/Grass box id=grass instances=0,0,0,1,0,0,0,1,1,1'
+    for i in 1 2 3 4; do printf ';%d,0,0,1,0,0,0,1,1,1' "$i"; done; echo; } >a.rscene
+  sed -e 's/radius=0.25/radius=0.3/' -e 's/size=1.0,0.6,0.10/size=1,0.6,0.1/' -e 's/scale=1$/scale=2/' \
+    -e 's/;3,0,0,1,0,0,0,1,1,1/;3,0,0.5,1,0,0,0,2,2,2/' a.rscene >b.rscene
+  run -1 "$DIFF" a.rscene b.rscene
+  [ "$output" = "~ compound_child /World/Cart[1]
+    radius: 0.25 -> 0.3
+~ deformable /World/Cloth
+    scale (key): 1 -> 2
+~ instanced_visual /World/Grass
+    instances: 5 entries, 1 changed, max |delta| 1
+    instances[3].position: 3,0,0 -> 3,0,0.5
+    instances[3].scale: 1,1,1 -> 2,2,2" ]
 }
 
 @test "trouble is exit 2: unreadable file, wrong operand count" {
@@ -115,6 +173,44 @@ EOF2
   [ "${lines[2]}" = "+ time_step" ]
   run -0 "$DIFF" old.rscene "$OLD" 1111111 100644 /dev/null . .
   [ "${lines[2]}" = "- time_step" ]
+}
+
+@test "git mode: a side that does not parse gives a header and a line diff, exit 0" {
+  printf 'raisim_engine_scene 1\ntime_step 0.0025\nobject /World/Box box 0 0\n' >broken.rscene
+  run -0 --separate-stderr "$DIFF" scene.rscene "$OLD" 1111111 100644 broken.rscene 2222222 100644
+  [ "${lines[0]}" = "rscene-diff a/scene.rscene b/scene.rscene" ]
+  [ "${lines[1]}" = "--- a/scene.rscene" ]
+  [ "${lines[2]}" = "+++ b/scene.rscene" ]
+  [[ ${lines[3]} == "@@ "* ]]
+  [[ $output == *$'\n+object /World/Box box 0 0'* ]]
+  [[ $output == *$'\n-solver 80 1e-07 0.2 accurate'* ]]
+  [ "$stderr" = "b/scene.rscene:3:26: warning: object has 4 positional fields, expected 25, 19 or 17; showing a line diff [RS1007]" ]
+  # Outside git's mode a parse error is still trouble.
+  run -2 "$DIFF" "$OLD" broken.rscene
+}
+
+@test "git mode: added or deleted broken scenes, binary junk, nine arguments for a rename" {
+  printf 'not a scene\n' >broken.rscene
+  run -0 --separate-stderr "$DIFF" new.rscene /dev/null . . broken.rscene 2222222 100644
+  [ "$output" = $'rscene-diff a/new.rscene b/new.rscene\n--- /dev/null\n+++ b/new.rscene\n@@ -0,0 +1,1 @@\n+not a scene' ]
+  run -0 --separate-stderr "$DIFF" old.rscene broken.rscene 1111111 100644 /dev/null . .
+  [ "${lines[1]}" = "--- a/old.rscene" ]
+  [ "${lines[2]}" = "+++ /dev/null" ]
+  printf 'junk\0\001\n' >junk.rscene
+  run -0 --separate-stderr "$DIFF" junk.rscene "$OLD" 1111111 100644 junk.rscene 2222222 100644
+  [ "$output" = $'rscene-diff a/junk.rscene b/junk.rscene\nBinary files a/junk.rscene and b/junk.rscene differ' ]
+  run -0 --separate-stderr "$DIFF" junk.rscene junk.rscene 1111111 100644 junk.rscene 2222222 100644
+  [ -z "$output" ]
+  run -0 "$DIFF" old.rscene "$OLD" 1111111 100644 "$NEW" 2222222 100644 new.rscene "similarity index 90%"
+  [ "${lines[0]}" = "rscene-diff a/old.rscene b/new.rscene" ]
+  [ "${lines[1]}" = "~ editor_ux" ]
+  run -2 "$DIFF" a b c d e f g h
+  # git's operands may start with `-`: never read as options.
+  hex=0123456789abcdef0123456789abcdef01234567
+  cp "$NEW" ./-new.rscene
+  run -0 "$DIFF" --stat -x.rscene "$OLD" $hex 100644 -new.rscene $hex 100644
+  [ "${lines[0]}" = "rscene-diff a/-x.rscene b/-x.rscene" ]
+  [ "${lines[1]}" = " editor_ux       1 changed" ]
 }
 
 @test "git diff and git log -p --ext-diff use it through .gitattributes" {

@@ -245,6 +245,22 @@ EOF
 
 # --- --stdin-filename and messages -------------------------------------------
 
+@test "--textconv: canonical text, or a scene that does not parse as written with one warning, exit 0" {
+  run -0 --separate-stderr "$FMT" --textconv "$DATA/fmt_messy.rscene"
+  [ "$output" = "$(messy_formatted)" ]
+  [ -z "$stderr" ]
+  printf 'raisim_engine_scene 1\r\nobject /World/Box box 0 0\r\n' >broken.rscene
+  "$FMT" --textconv broken.rscene >out 2>err
+  cmp broken.rscene out  # byte for byte, CRLF kept
+  [ "$(cat err)" = "broken.rscene:2:26: warning: object has 4 positional fields, expected 25, 19 or 17; shown as written [RS1007]" ] || { cat err; false; }
+  printf 'junk\0\001\n' >junk.rscene
+  run -0 "$FMT" --textconv junk.rscene
+  "$FMT" --textconv junk.rscene 2>/dev/null | cmp - junk.rscene
+  # Without --textconv a parse error stays exit 2 (pre-commit hooks rely on it).
+  run -2 "$FMT" broken.rscene
+  run -2 "$FMT" --textconv --check broken.rscene
+}
+
 @test "--stdin-filename names standard input in messages" {
   run --separate-stderr "$FMT" --stdin-filename scenes/a.rscene < <(printf 'raisim_engine_scene 1\ntime_step 1\nobject /World/A box 0 0\n')
   [ "$status" -eq 2 ]

@@ -1,11 +1,14 @@
 // rscene-diff: semantic diff of two scenes; also git's external diff driver.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 #include <thread>
 
 #include "common/cli.hpp"
 #include "core/diff.hpp"
+#include "core/diff_lines.hpp"
 #include "core/loader.hpp"
+#include "core/report.hpp"
 #include "rscene-diff/render.hpp"
 
 namespace {
@@ -14,8 +17,10 @@ using namespace rscene;
 
 struct Side {
   cli::Input in;
+  std::size_t size = 0;  // the input's bytes stay at the start of the document's buffer
   LoadResult loaded;
-  bool read = false;
+  bool empty = false;    // git's /dev/null: the file does not exist on this side
+  std::string_view text() const { return std::string_view(loaded.document.buffer()).substr(0, size); }
 };
 
 // Reads one side; git passes /dev/null for a file that does not exist on
@@ -23,16 +28,60 @@ struct Side {
 bool readSide(const std::string& operand, const std::string& stdinName, bool git, Side& s) {
   if (git && operand == "/dev/null") {
     s.in.display = operand;
-    s.read = true;
+    s.empty = true;
     return true;
   }
-  s.read = cli::readInput(operand, stdinName, s.in);
-  return s.read;
+  return cli::readInput(operand, stdinName, s.in);
 }
 
 void load(Side& s) {
-  if (s.in.display == "/dev/null" && s.in.text.empty()) return;  // empty scene
+  if (s.empty) return;
+  s.size = s.in.text.size();
   s.loaded = parse(std::move(s.in.text));
+}
+
+// git mode, a side that does not parse: git must go on (a non-zero exit
+// stops `git diff` and `git log -p` for good), so say why on stderr and
+// show what changed as lines.
+std::string lineDiff(const Side& a, const Side& b, const std::string& oldName, const std::string& newName) {
+  for (const Side* s : {&a, &b}) {
+    const Diagnostics& ds = s->loaded.diagnostics;
+    auto error = std::find_if(ds.begin(), ds.end(), [](const Diagnostic& d) { return d.severity == Severity::Error; });
+    if (s->empty || error == ds.end()) continue;
+    Diagnostic w = *error;
+    w.severity = Severity::Warning;
+    w.message += "; showing a line diff";
+    w.hint.clear();
+    std::cerr << formatDiagnostic(w, s == &a ? oldName : newName, {}, cli::colorFor(2));
+  }
+  std::string from = a.empty ? "/dev/null" : oldName, to = b.empty ? "/dev/null" : newName;
+  std::string out = "rscene-diff " + oldName + " " + newName + "\n";
+  if (looksBinary(a.text()) || looksBinary(b.text()))
+    return a.text() == b.text() ? std::string() : out + "Binary files " + from + " and " + to + " differ\n";
+  std::string lines = unifiedDiff(a.text(), b.text(), from, to);
+  return lines.empty() ? lines : out + lines;
+}
+
+bool isHex(std::string_view s) {
+  return s == "." || ((s.size() == 40 || s.size() == 64) && s.find_first_not_of("0123456789abcdef") == s.npos);
+}
+bool isMode(std::string_view s) { return s == "." || (s.size() == 6 && s.find_first_not_of("01234567") == s.npos); }
+
+// git's operands may start with `-` (a scene named `-x.rscene`), which
+// the option parser would refuse, and git would stop.  When the arguments
+// end in git's 7 or 9 operands, `--` goes before them.
+std::vector<char*> separateGitOperands(int argc, char** argv) {
+  std::vector<char*> args(argv, argv + argc);
+  for (int n : {7, 9}) {
+    int s = argc - n;
+    if (s < 1 || std::string_view(argv[s - 1]) == "--") continue;
+    if (isHex(argv[s + 2]) && isMode(argv[s + 3]) && isHex(argv[s + 5]) && isMode(argv[s + 6])) {
+      static char separator[] = "--";
+      args.insert(args.begin() + s, separator);
+      break;
+    }
+  }
+  return args;
 }
 
 }  // namespace
@@ -46,15 +95,15 @@ int main(int argc, char** argv) {
   DiffOptions opt;
   app.add_option("files", files,
                  "OLD NEW (- reads standard input), or git's seven arguments: PATH OLD-FILE OLD-HEX OLD-MODE "
-                 "NEW-FILE NEW-HEX NEW-MODE")
+                 "NEW-FILE NEW-HEX NEW-MODE (nine for a rename: then NEW-PATH MESSAGE)")
       ->type_name("FILE")
       ->required()
-      ->expected(2, 7);
+      ->expected(2, 9);
   app.add_flag("--stat", statOnly, "Print counts of added, removed and changed records per kind");
   app.add_option("--format", format, "Output format: text (default) or json")
       ->type_name("FORMAT")
       ->check(CLI::IsMember({"text", "json"}));
-  app.add_option("--tolerance", opt.tolerance, "Numbers that differ by at most ABS are equal")
+  app.add_option("--tolerance", opt.tolerance, "Numbers (also in vectors and lists) that differ by at most ABS are equal")
       ->type_name("ABS")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--rel-tolerance", opt.relTolerance, "Numbers that differ by at most REL times the larger are equal")
@@ -65,9 +114,11 @@ int main(int argc, char** argv) {
   app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
   cli::addStdinFilename(app, stdinName, false);
-  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  std::vector<char*> args = separateGitOperands(argc, argv);
+  if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
 
-  bool git = files.size() == 7;
+  // git runs an external diff with 7 arguments, 9 for a rename or copy.
+  const bool git = files.size() == 7 || files.size() == 9;
   if (files.size() != 2 && !git) {
     cli::error("expected OLD NEW, or git's seven external-diff arguments; got " + std::to_string(files.size()));
     return cli::kTrouble;
@@ -91,26 +142,38 @@ int main(int argc, char** argv) {
   std::thread loader([&] { load(a); });
   load(b);
   loader.join();
-  bool color = cli::colorFor(2);
-  cli::printDiagnostics(a.loaded.diagnostics, a.in.display, a.loaded.document.buffer(), color);
-  cli::printDiagnostics(b.loaded.diagnostics, b.in.display, b.loaded.document.buffer(), color);
-  if (!a.loaded.ok() || !b.loaded.ok()) return trouble;
-
-  DiffResult result = diff(a.loaded.document, b.loaded.document, opt);
-  if (!quiet) {
-    std::string out;
+  const std::string oldName = git ? "a/" + files[0] : a.in.display;
+  const std::string newName = git ? "b/" + files[files.size() == 9 ? 7 : 0] : b.in.display;
+  const bool parsed = a.loaded.ok() && b.loaded.ok();
+  std::string out;
+  bool different = false;
+  if (git && !parsed) {
+    out = lineDiff(a, b, oldName, newName);
+  } else {
+    bool color = cli::colorFor(2);
+    cli::printDiagnostics(a.loaded.diagnostics, a.in.display, a.text(), color);
+    cli::printDiagnostics(b.loaded.diagnostics, b.in.display, b.text(), color);
+    if (!parsed) return trouble;
+    for (const std::string& entry : opt.ignore)
+      if (auto problem = checkIgnoreName(entry, a.loaded.document, b.loaded.document)) {
+        cli::error("--ignore: " + *problem);
+        return trouble;
+      }
+    DiffResult result = diff(a.loaded.document, b.loaded.document, opt);
+    different = !result.same();
     if (format == "json") {
       out = diffToJson(result);
-    } else if (!result.same()) {
-      if (git) out = "rscene-diff a/" + files[0] + " b/" + files[0] + "\n";
+    } else if (different) {
+      if (git) out = "rscene-diff " + oldName + " " + newName + "\n";
       out += statOnly ? diffout::stat(result) : diffout::blocks(result, cli::colorFor(1));
     }
+  }
+  if (!quiet) {
     std::cout << out << std::flush;
     if (!std::cout) {
       cli::error("cannot write standard output");
-      return cli::kTrouble;
+      return trouble;
     }
   }
-  if (git) return cli::kSuccess;
-  return result.same() ? cli::kSuccess : cli::kFindings;
+  return git || !different ? cli::kSuccess : cli::kFindings;
 }

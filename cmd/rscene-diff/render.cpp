@@ -19,16 +19,25 @@ std::string number(double v) {
   return buf;
 }
 
+// `heights: 25 values, 2 changed, max |delta| 0.03`; structured lists
+// count entries (a transform, a vec3), number lists values.
 std::string summary(const FieldDiff& f) {
+  const char* unit =
+      f.type == ValueType::NumberList || f.type == ValueType::IntegerList ? " values" : " entries";
+  std::string s;
   if (f.oldCount != f.newCount) {
-    std::string s = std::to_string(f.oldCount) + " -> " + std::to_string(f.newCount) + " values";
-    if (f.changedCount) s += ", " + std::to_string(f.changedCount) + " of the common values changed";
-    return s;
+    s = std::to_string(f.oldCount) + " -> " + std::to_string(f.newCount) + unit;
+    if (f.changedCount) s += ", " + std::to_string(f.changedCount) + " of the common ones changed";
+  } else {
+    s = std::to_string(f.newCount) + unit + ", " + std::to_string(f.changedCount) + " changed";
   }
-  std::string s = std::to_string(f.newCount) + " values, " + std::to_string(f.changedCount) + " changed";
   if (f.maxDelta > 0) s += ", max |delta| " + number(f.maxDelta);
+  std::size_t differing = f.changedCount + (f.oldCount > f.newCount ? f.oldCount - f.newCount : f.newCount - f.oldCount);
+  if (f.listedCount < differing) s += " (the first " + std::to_string(f.listedCount) + " below)";
   return s;
 }
+
+std::string value(const std::string& text, bool isDefault) { return isDefault ? text + " (default)" : text; }
 
 std::string label(const RecordDiff& r) {
   std::string s = r.tag;
@@ -57,11 +66,12 @@ std::string blocks(const DiffResult& result, bool color) {
       out += "    ";
       if (f.change == Change::Added) out += color ? std::string(kGreen) + "+ " + kReset : "+ ";
       if (f.change == Change::Removed) out += color ? std::string(kRed) + "- " + kReset : "- ";
-      out += f.name + ": ";
+      // A key named like a positional field of its kind is another field.
+      out += f.name + (f.keyForm ? " (key): " : ": ");
       if (f.summarized) out += summary(f);
       else if (f.change == Change::Added) out += f.newValue;
       else if (f.change == Change::Removed) out += f.oldValue;
-      else out += f.oldValue + " -> " + f.newValue;
+      else out += value(f.oldValue, f.oldDefault) + " -> " + value(f.newValue, f.newDefault);
       out.push_back('\n');
     }
   }

@@ -1,12 +1,14 @@
 // rscene-fmt: writes scenes in the canonical form (DESIGN.md).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
 #include "common/cli.hpp"
+#include "core/diff_lines.hpp"
 #include "core/io.hpp"
 #include "core/loader.hpp"
+#include "core/report.hpp"
 #include "core/writer.hpp"
-#include "rscene-fmt/unified_diff.hpp"
 
 namespace {
 
@@ -35,7 +37,42 @@ struct Options {
   bool inPlace = false;
   bool check = false;
   bool diff = false;
+  bool textconv = false;
 };
+
+// git's textconv must not fail (git would stop `git log -p` there): a scene
+// that does not parse is shown as written, with one warning.
+int showAsWritten(std::string_view original, const std::string& display, const Diagnostics& ds,
+                  const std::string& output) {
+  auto error = std::find_if(ds.begin(), ds.end(), [](const Diagnostic& d) { return d.severity == Severity::Error; });
+  Diagnostic w = error != ds.end() ? *error : Diagnostic{};
+  w.severity = Severity::Warning;
+  w.message += "; shown as written";
+  w.hint.clear();  // one line per file in `git log -p`
+  std::cerr << formatDiagnostic(w, display, {}, cli::colorFor(2));
+  bool ok = cli::writeOutput(output, [&](Sink& s) {
+    s.write(original);
+    return true;
+  });
+  return ok ? cli::kSuccess : cli::kTrouble;
+}
+
+// git appends the file to the textconv command; a scene at the top of a
+// repository named `-x.rscene` must not be taken for an option (git would
+// stop), so with --textconv a last argument that is no option gets `--`.
+std::vector<char*> textconvOperand(const CLI::App& app, int argc, char** argv) {
+  std::vector<char*> args(argv, argv + argc);
+  const std::string_view last = argc > 2 ? argv[argc - 1] : "";
+  auto has = [&](std::string_view word) {
+    return std::find_if(argv + 1, argv + argc, [&](const char* a) { return word == a; }) != argv + argc;
+  };
+  const bool textconv = has("--textconv") && !has("--");
+  if (textconv && last.size() > 1 && last[0] == '-' && !app.get_option_no_throw(std::string(last))) {
+    static char separator[] = "--";
+    args.insert(args.end() - 1, separator);
+  }
+  return args;
+}
 
 // Formats one input; returns its exit code.
 int formatOne(const std::string& operand, const Options& opt, bool color) {
@@ -47,6 +84,7 @@ int formatOne(const std::string& operand, const Options& opt, bool color) {
   LoadResult loaded = parse(std::move(in.text));
   const Document& doc = loaded.document;
   const std::string_view original = std::string_view(doc.buffer()).substr(0, size);
+  if (opt.textconv && !loaded.ok()) return showAsWritten(original, in.display, loaded.diagnostics, opt.output);
   cli::printDiagnostics(loaded.diagnostics, in.display, original, color);
   if (!loaded.ok()) return cli::kTrouble;
 
@@ -63,7 +101,7 @@ int formatOne(const std::string& operand, const Options& opt, bool color) {
     if (!changed) return cli::kSuccess;  // leave the file (and its mtime) alone
     return cli::writeOutput(in.path, produce) ? cli::kSuccess : cli::kTrouble;
   }
-  if (changed && opt.diff) std::cout << fmt::unifiedDiff(original, canonicalText(doc), in.display);
+  if (changed && opt.diff) std::cout << unifiedDiff(original, canonicalText(doc), in.display, in.display + " (formatted)");
   else if (changed) std::cout << in.display << '\n';
   return changed && opt.check ? cli::kFindings : cli::kSuccess;
 }
@@ -79,12 +117,20 @@ int main(int argc, char** argv) {
   app.add_flag("-i,--in-place", opt.inPlace, "Rewrite each file in place; canonical files are not touched");
   app.add_flag("--check", opt.check, "Write nothing; list files that are not canonical and exit 1 if any");
   app.add_flag("--diff", opt.diff, "Print a unified diff of what formatting would change");
+  app.add_flag("--textconv", opt.textconv,
+               "For git's diff.<driver>.textconv: canonical text, or a file that does not parse as written "
+               "(one warning, exit 0)");
   cli::addStdinFilename(app, opt.stdinName, false);
-  if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  std::vector<char*> args = textconvOperand(app, argc, argv);
+  if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
 
   if (opt.files.empty()) opt.files.push_back("-");
   if (opt.inPlace && (opt.check || opt.diff || !opt.output.empty())) {
     cli::error("--in-place cannot be combined with --check, --diff or --output");
+    return cli::kTrouble;
+  }
+  if (opt.textconv && (opt.inPlace || opt.check || opt.diff)) {
+    cli::error("--textconv cannot be combined with --in-place, --check or --diff");
     return cli::kTrouble;
   }
   if (opt.inPlace)

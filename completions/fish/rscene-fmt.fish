@@ -5,5 +5,6 @@ complete -c rscene-fmt -s o -l output -r -F -d 'Write the result to FILE atomica
 complete -c rscene-fmt -s i -l in-place -d 'Rewrite each file in place'
 complete -c rscene-fmt -l check -d 'List files that are not canonical, exit 1 if any'
 complete -c rscene-fmt -l diff -d 'Print a unified diff of what would change'
+complete -c rscene-fmt -l textconv -d 'For git textconv: a scene that does not parse as written, exit 0'
 complete -c rscene-fmt -l stdin-filename -r -F -d 'Name standard input in messages'
 complete -c rscene-fmt -k -x -a '(__fish_complete_suffix .rscene)'

@@ -1,24 +1,15 @@
 #include "core/diff.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <unordered_map>
 
 #include "core/diff_identity.hpp"
+#include "core/diff_value.hpp"
+#include "core/suggest.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
 namespace {
-
-// One named value of a record: a positional field (one or more tokens) or
-// a key.  `tokens` point into the document's buffer.
-struct Value {
-  std::string_view name;
-  ValueType type = ValueType::Text;
-  std::vector<std::string_view> tokens;
-  const FieldDef* def = nullptr;
-};
 
 bool editorTag(std::string_view tag) { return tag == "snapping" || tag == "editor_ux" || tag == "render_bake"; }
 bool editorField(std::string_view name) {
@@ -93,7 +84,7 @@ class Differ {
     RecordDiff d;
     d.change = c;
     d.tag = doc.tag(r);
-    d.path = nodePath(doc, r);
+    d.path = r.kind && r.kind->role == Role::Child ? childPath(doc, r, key) : nodePath(doc, r);
     d.newLine = r.line;
     // People read the key without the separators used for matching.
     std::string_view k = key;
@@ -113,22 +104,25 @@ class Differ {
     return d;
   }
 
-  static std::vector<Value> values(const Document& doc, const Record& r) {
-    std::vector<Value> vs;
+  static std::vector<DiffValue> values(const Document& doc, const Record& r) {
+    std::vector<DiffValue> vs;
     const Layout* layout = r.kind ? r.kind->layoutFor(r.positionalCount) : nullptr;
     if (layout) {
       std::uint32_t t = 0;
       for (const FieldDef& f : layout->fields) {
-        Value v;
+        DiffValue v;
         v.name = f.name;
-        v.type = f.width > 1 ? ValueType::Number : f.type;
+        v.type = f.type;
         v.def = &f;
+        v.positional = true;
         for (int c = 0; c < f.width; ++c) v.tokens.push_back(doc.positionalText(r, t++));
         vs.push_back(std::move(v));
       }
     } else {
-      Value v;  // an unknown record's positional text, as one value
+      DiffValue v;  // an unknown record's positional text, as one value
       v.name = "tokens";
+      v.positional = true;
+      v.unknownTokens = true;
       for (std::uint32_t j = 0; j < r.fieldCount; ++j)
         if (!doc.field(r, j).isKey()) v.tokens.push_back(doc.text(doc.field(r, j).value));
       vs.push_back(std::move(v));
@@ -136,160 +130,52 @@ class Differ {
     for (std::uint32_t j = 0; j < r.fieldCount; ++j) {
       const Field& f = doc.field(r, j);
       if (!f.isKey()) continue;
-      Value v;
+      DiffValue v;
       v.name = doc.text(f.key);
-      const FieldDef* def = r.kind ? r.kind->key(v.name) : nullptr;
-      v.type = def ? def->type : ValueType::Text;
+      v.def = r.kind ? r.kind->key(v.name) : nullptr;
+      v.type = v.def ? v.def->type : ValueType::Text;
       v.tokens.push_back(doc.text(f.value));
-      auto same = std::find_if(vs.begin(), vs.end(), [&](const Value& o) { return o.name == v.name && !o.def; });
+      // A positional field and a key of the same name are two fields.
+      auto same = std::find_if(vs.begin(), vs.end(), [&](const DiffValue& o) { return o.name == v.name && !o.positional; });
       if (same != vs.end()) *same = std::move(v);  // a repeated key: the last one wins
       else vs.push_back(std::move(v));
     }
     return vs;
   }
 
-  bool closeEnough(double x, double y) const {
-    if (x == y) return true;
-    double d = std::fabs(x - y);
-    return d <= opt_.tolerance || d <= opt_.relTolerance * std::max(std::fabs(x), std::fabs(y));
-  }
-
-  // Items of a list value after decoding (`,` and `;` both separate).
-  static std::vector<std::string> items(std::string_view raw) {
-    std::string v = percentDecode(raw);
-    std::vector<std::string> out;
-    if (v.empty()) return out;
-    std::size_t start = 0;
-    for (std::size_t i = 0; i <= v.size(); ++i)
-      if (i == v.size() || v[i] == ',' || v[i] == ';') {
-        out.push_back(v.substr(start, i - start));
-        start = i + 1;
+  // The value standing in for a field that one side does not write: its
+  // schema default (a key, or a width-1 positional of another layout).
+  static bool defaultFor(const DiffValue& present, DiffValue& out) {
+    if (!present.def || !present.def->defaultValue || present.unknownTokens) return false;
+    out = present;
+    std::string_view text = *present.def->defaultValue;
+    out.tokens.assign(1, text);
+    if (present.tokens.size() > 1) {  // a vector over several positional tokens
+      out.tokens.clear();
+      for (std::size_t start = 0, comma = 0; comma != std::string_view::npos; start = comma + 1) {
+        comma = text.find(',', start);
+        out.tokens.push_back(text.substr(start, comma == std::string_view::npos ? comma : comma - start));
       }
-    return out;
-  }
-
-  bool sameItem(const std::string& x, const std::string& y, double& delta) const {
-    auto px = parseNumber(x), py = parseNumber(y);
-    if (px && py) {
-      delta = std::max(delta, std::fabs(*px - *py));
-      return closeEnough(*px, *py);
     }
-    return x == y;
-  }
-
-  bool sameScalar(std::string_view x, std::string_view y, ValueType type, const FieldDef* def) const {
-    std::string dx = percentDecode(x), dy = percentDecode(y);
-    switch (type) {
-      case ValueType::Number: {
-        auto px = parseNumber(dx), py = parseNumber(dy);
-        if (px && py) return closeEnough(*px, *py);
-        break;
-      }
-      case ValueType::Integer: {
-        auto px = parseInteger(dx), py = parseInteger(dy);
-        if (px && py) return *px == *py;
-        break;
-      }
-      case ValueType::Group: {
-        auto px = parseGroup(dx), py = parseGroup(dy);
-        if (px && py) return *px == *py;
-        break;
-      }
-      case ValueType::Flag: {
-        auto px = parseFlag(dx), py = parseFlag(dy);
-        if (px && py) return *px == *py;
-        break;
-      }
-      case ValueType::Name:
-        if (def && def->enumDef) {
-          auto cx = def->enumDef->canonical(dx), cy = def->enumDef->canonical(dy);
-          if (cx && cy) return *cx == *cy;
-        }
-        break;
-      case ValueType::StringList:
-        return parseStringList(x) == parseStringList(y);
-      default:
-        break;
-    }
-    return dx == dy;
-  }
-
-  std::string display(const Document& doc, const Value& v) const {
-    std::string out;
-    for (std::size_t i = 0; i < v.tokens.size(); ++i) {
-      if (i) out.push_back(v.def ? ',' : ' ');
-      appendCanonical(out, v.tokens[i], v.type, doc.version);
-    }
-    return out;
-  }
-
-  std::string defaultText(const FieldDef* def) const {
-    return def && def->defaultValue ? *def->defaultValue + " (default)" : std::string();
-  }
-
-  // Compares one value present on both sides; adds a FieldDiff if it differs.
-  void compareValue(const Value& va, const Value& vb, const FieldDef* def, RecordDiff& d) {
-    ValueType type = vb.type;
-    bool list = isNumericList(type) && componentCount(type) == 0 && vb.tokens.size() == 1;
-    if (list || type == ValueType::StringList) {
-      std::vector<std::string> ia, ib;
-      if (type == ValueType::StringList) {
-        ia = parseStringList(va.tokens[0]);
-        ib = parseStringList(vb.tokens[0]);
-      } else {
-        ia = items(va.tokens[0]);
-        ib = items(vb.tokens[0]);
-      }
-      double delta = 0;
-      std::size_t changed = 0;
-      std::size_t common = std::min(ia.size(), ib.size());
-      for (std::size_t i = 0; i < common; ++i)
-        if (type == ValueType::StringList ? ia[i] != ib[i] : !sameItem(ia[i], ib[i], delta)) ++changed;
-      if (!changed && ia.size() == ib.size()) return;
-      FieldDiff f;
-      f.name = vb.name;
-      if (std::max(ia.size(), ib.size()) > opt_.summarizeAbove) {
-        f.summarized = true;
-        f.oldCount = ia.size();
-        f.newCount = ib.size();
-        f.changedCount = changed;
-        f.maxDelta = delta;
-      } else {
-        f.oldValue = display(a_, va);
-        f.newValue = display(b_, vb);
-      }
-      d.fields.push_back(std::move(f));
-      return;
-    }
-    if (va.tokens.size() == vb.tokens.size()) {
-      bool same = true;
-      for (std::size_t i = 0; i < vb.tokens.size() && same; ++i)
-        same = sameScalar(va.tokens[i], vb.tokens[i], vb.tokens.size() > 1 ? ValueType::Number : type, def);
-      if (same) return;
-    }
-    FieldDiff f;
-    f.name = vb.name;
-    f.oldValue = display(a_, va);
-    f.newValue = display(b_, vb);
-    d.fields.push_back(std::move(f));
+    return true;
   }
 
   void compare(const Record& ra, const Record& rb, RecordDiff& d) {
-    std::string tag(b_.tag(rb));
-    std::vector<Value> va = values(a_, ra), vb = values(b_, rb);
+    std::string_view tag = b_.tag(rb);
+    std::vector<DiffValue> va = values(a_, ra), vb = values(b_, rb);
     const KindDef* kind = rb.kind;
-    auto lookup = [](std::vector<Value>& vs, std::string_view name) -> Value* {
-      for (Value& v : vs)
-        if (v.name == name) return &v;
+    auto lookup = [](std::vector<DiffValue>& vs, const DiffValue& like) -> DiffValue* {
+      for (DiffValue& v : vs)
+        if (v.name == like.name && v.positional == like.positional) return &v;
       return nullptr;
     };
-    auto schemaDef = [&](std::string_view name) -> const FieldDef* {
-      if (!kind) return nullptr;
-      if (const FieldDef* k = kind->key(name)) return k;
+    // A key whose kind also has a positional field of its name.
+    auto keyForm = [&](const DiffValue& v) {
+      if (v.positional || !kind) return false;
       for (const Layout& l : kind->layouts)
         for (const FieldDef& f : l.fields)
-          if (f.name == name) return &f;
-      return nullptr;
+          if (f.name == v.name) return true;
+      return false;
     };
     if (kind && kind->role == Role::Node) {
       std::string pa = nodePath(a_, ra), pb = nodePath(b_, rb);
@@ -299,57 +185,48 @@ class Differ {
     std::vector<std::string_view> identity;
     for (const IdentityRule& rule : identityRules())
       if (rule.unordered && tag == rule.tag) identity = splitWords(rule.fields);
-    auto isIdentity = [&](std::string_view name) {
-      return std::find(identity.begin(), identity.end(), name) != identity.end();
+    auto skip = [&](const DiffValue& v) {
+      if (ignored(tag, v.name)) return true;
+      if (v.positional && std::find(identity.begin(), identity.end(), v.name) != identity.end()) return true;
+      return d.renamed() && v.positional && v.name == "path";
     };
-    for (Value& b : vb) {
-      if (ignored(tag, b.name) || isIdentity(b.name)) continue;
-      if (d.renamed() && b.name == "path" && b.def) continue;
-      const FieldDef* def = schemaDef(b.name);
-      Value* a = lookup(va, b.name);
-      if (a) {
-        compareValue(*a, b, def, d);
-        continue;
+    auto add = [&](const DiffValue& v, bool isOld) {
+      std::size_t before = d.fields.size();
+      DiffValue dv;
+      if (defaultFor(v, dv)) {
+        if (isOld) values_.compare(v, dv, d.fields);
+        else values_.compare(dv, v, d.fields);
+        if (d.fields.size() > before) (isOld ? d.fields[before].newDefault : d.fields[before].oldDefault) = true;
+      } else {
+        FieldDiff f;
+        f.name = v.name;
+        f.type = v.type;
+        f.change = isOld ? Change::Removed : Change::Added;
+        (isOld ? f.oldValue : f.newValue) = ValueComparer::display(v, isOld ? a_.version : b_.version);
+        d.fields.push_back(std::move(f));
       }
-      FieldDiff f;
-      f.name = b.name;
-      f.newValue = display(b_, b);
-      if (def && def->defaultValue) {
-        Value dv = b;
-        dv.tokens.assign(1, *def->defaultValue);
-        std::size_t before = d.fields.size();
-        compareValue(dv, b, def, d);
-        if (d.fields.size() == before) continue;  // written out, but the default
-        d.fields.back().oldValue = defaultText(def);
-        continue;
-      }
-      f.change = Change::Added;
-      d.fields.push_back(std::move(f));
+      return before;
+    };
+    for (DiffValue& b : vb) {
+      if (skip(b)) continue;
+      std::size_t before = d.fields.size();
+      if (DiffValue* a = lookup(va, b)) values_.compare(*a, b, d.fields);
+      else add(b, false);
+      if (keyForm(b))
+        for (std::size_t i = before; i < d.fields.size(); ++i) d.fields[i].keyForm = true;
     }
-    for (Value& a : va) {
-      if (ignored(tag, a.name) || isIdentity(a.name) || lookup(vb, a.name)) continue;
-      if (d.renamed() && a.name == "path" && a.def) continue;
-      const FieldDef* def = schemaDef(a.name);
-      if (def && def->defaultValue) {
-        Value dv = a;
-        dv.tokens.assign(1, *def->defaultValue);
-        std::size_t before = d.fields.size();
-        compareValue(a, dv, def, d);
-        if (d.fields.size() == before) continue;
-        d.fields.back().newValue = defaultText(def);
-        continue;
-      }
-      FieldDiff f;
-      f.name = a.name;
-      f.change = Change::Removed;
-      f.oldValue = display(a_, a);
-      d.fields.push_back(std::move(f));
+    for (DiffValue& a : va) {
+      if (skip(a) || lookup(vb, a)) continue;
+      std::size_t before = add(a, true);
+      if (keyForm(a))
+        for (std::size_t i = before; i < d.fields.size(); ++i) d.fields[i].keyForm = true;
     }
   }
 
   const Document& a_;
   const Document& b_;
   const DiffOptions& opt_;
+  ValueComparer values_{opt_, a_.version, b_.version};
 };
 
 }  // namespace
@@ -366,6 +243,61 @@ const char* changeName(Change c) {
 std::size_t DiffResult::count(Change c) const {
   return static_cast<std::size_t>(
       std::count_if(records.begin(), records.end(), [c](const RecordDiff& r) { return r.change == c; }));
+}
+
+namespace {
+
+void fieldNames(const KindDef& k, std::vector<std::string_view>& out) {
+  for (const Layout& l : k.layouts)
+    for (const FieldDef& f : l.fields) out.push_back(f.name);
+  for (const FieldDef& f : k.keys) out.push_back(f.name);
+}
+
+// Whether a record of `doc` (of kind `tag`, when given) is of an unknown
+// kind named `name`, or writes a key `name` the schema does not know.
+bool documentUses(const Document& doc, std::string_view tag, std::string_view name, bool asTag) {
+  for (std::size_t i = 1; i < doc.records.size(); ++i) {
+    const Record& r = doc.records[i];
+    if (asTag) {
+      if (doc.tag(r) == name) return true;
+      continue;
+    }
+    if (!tag.empty() && doc.tag(r) != tag) continue;
+    for (std::uint32_t j = r.positionalCount; j < r.fieldCount; ++j)
+      if (doc.field(r, j).isKey() && doc.text(doc.field(r, j).key) == name) return true;
+  }
+  return false;
+}
+
+std::string suggestion(std::string_view word, const std::vector<std::string_view>& candidates) {
+  std::string best = closestName(word, candidates);
+  return best.empty() ? std::string() : "; did you mean '" + best + "'?";
+}
+
+}  // namespace
+
+std::optional<std::string> checkIgnoreName(std::string_view entry, const Document& oldDoc, const Document& newDoc) {
+  const Schema& schema = Schema::get();
+  std::string_view tag, name = entry;
+  if (std::size_t dot = entry.find('.'); dot != std::string_view::npos) {
+    tag = entry.substr(0, dot);
+    name = entry.substr(dot + 1);
+  }
+  std::vector<std::string_view> names{"tokens"};  // an unknown record's positional text
+  const KindDef* kind = tag.empty() ? nullptr : schema.kind(tag);
+  if (!tag.empty() && !kind) {
+    if (documentUses(oldDoc, {}, tag, true) || documentUses(newDoc, {}, tag, true)) return std::nullopt;
+    std::vector<std::string_view> tags;
+    for (const KindDef& k : schema.kinds()) tags.push_back(k.tag);
+    return "no record kind '" + std::string(tag) + "'" + suggestion(tag, tags);
+  }
+  if (kind) fieldNames(*kind, names);
+  else
+    for (const KindDef& k : schema.kinds()) fieldNames(k, names);
+  if (std::find(names.begin(), names.end(), name) != names.end()) return std::nullopt;
+  if (documentUses(oldDoc, tag, name, false) || documentUses(newDoc, tag, name, false)) return std::nullopt;
+  std::string where = kind ? " in " + std::string(tag) + " records" : std::string();
+  return "no field '" + std::string(name) + "'" + where + suggestion(name, names);
 }
 
 DiffResult diff(const Document& oldDoc, const Document& newDoc, const DiffOptions& options) {

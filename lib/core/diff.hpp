@@ -1,9 +1,11 @@
 // Semantic diff of two scenes (rscene-diff): records are matched by their
 // identity (diff_identity.hpp), not by line; reordered records and keys
-// are no change; fields are compared as values of their schema type, with
-// optional tolerances; long lists are summarised.
+// are no change; every value is compared as a value of its schema type
+// (diff_value.hpp), with optional tolerances; long lists name their
+// changed entries.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,31 +14,43 @@
 namespace rscene {
 
 struct DiffOptions {
-  double tolerance = 0;     // |a - b| <= tolerance is no change
+  double tolerance = 0;     // |a - b| <= tolerance is no change, for every number (vector, list item)
   double relTolerance = 0;  // |a - b| <= relTolerance * max(|a|, |b|) is no change
   bool ignoreEditorState = false;  // snapping, editor_ux, render_bake, locked, expanded, selection*
   std::vector<std::string> ignore;  // field names, or tag.field
   std::size_t summarizeAbove = 16;  // lists with more values are summarised
+  std::size_t listEntries = 10;     // changed entries of a summarised list named one by one
 };
 
 enum class Change { Added, Removed, Changed };
 const char* changeName(Change c);
 
 struct FieldDiff {
+  // The schema name; an entry of a long list is `instances[3].position`,
+  // `heights[7]`.  0-based like JSON arrays.
   std::string name;
   Change change = Change::Changed;
-  std::string oldValue, newValue;  // canonical text; "(default)" appended for a schema default
-  // Long lists: counts instead of values.
+  ValueType type = ValueType::Text;  // of oldValue/newValue
+  // A key=value whose kind also has a positional field of this name (the
+  // two are different fields: `deformable` scale vec3 and scale=).
+  bool keyForm = false;
+  bool entry = false;  // an entry of the summarised list before it
+  std::string oldValue, newValue;  // canonical text
+  bool oldDefault = false, newDefault = false;  // not written: the schema default
+  // Long lists: counts of entries (values for number lists); the changed
+  // entries follow as FieldDiffs of their own, the first `listedCount`.
   bool summarized = false;
-  std::size_t oldCount = 0, newCount = 0, changedCount = 0;
-  double maxDelta = 0;  // largest |a - b| over numeric items (same count only)
+  std::size_t oldCount = 0, newCount = 0, changedCount = 0, listedCount = 0;
+  double maxDelta = 0;  // largest |a - b| over numbers of the common entries
 };
 
 struct RecordDiff {
   Change change = Change::Changed;
   std::string tag;
   std::string key;       // identity, as people read it
-  std::string path;      // node path (new side, or old side when removed)
+  // Node path (new side, or old side when removed); a child record's is its
+  // parent's path and its place: `/World/Cart[1]`, `/World/T[slot=2]`.
+  std::string path;
   std::string oldPath;   // when a node kept its id but changed its path
   std::uint32_t oldLine = 0, newLine = 0;
   std::vector<FieldDiff> fields;
@@ -52,7 +66,13 @@ struct DiffResult {
 
 DiffResult diff(const Document& oldDoc, const Document& newDoc, const DiffOptions& options = {});
 
-// The result as JSON ({"same":..., "stat":{...}, "records":[...]}).
+// Checks one --ignore entry (NAME or TAG.NAME) against the schema and the
+// keys the two documents use: nullopt when it names a field, else a message
+// with a suggestion ("no field 'colr'; did you mean 'color'?").
+std::optional<std::string> checkIgnoreName(std::string_view entry, const Document& oldDoc, const Document& newDoc);
+
+// The result as JSON ({"same":..., "stat":{...}, "records":[...]}), values
+// typed like rscene-to-json's (numbers, booleans, arrays, strings).
 std::string diffToJson(const DiffResult& result);
 
 }  // namespace rscene

@@ -74,6 +74,29 @@ std::string fieldText(const Document& doc, const Record& r, std::string_view nam
   return f ? percentDecode(doc.text(f->value)) : std::string();
 }
 
+std::string childPath(const Document& doc, const Record& r, std::string_view key) {
+  std::string out = percentDecode(doc.positionalText(r, 0));
+  out.push_back('[');
+  if (const IdentityRule* rule = ruleFor(doc.tag(r)); rule && *rule->fields) {
+    // The field that gave the key: the first alternative of `id|name` that is set.
+    std::string_view word = splitWords(rule->fields).front();
+    std::string_view name = word.substr(0, word.find('|'));
+    for (std::string_view rest = word; !rest.empty();) {
+      std::size_t bar = rest.find('|');
+      std::string_view alternative = rest.substr(0, bar);
+      if (!fieldText(doc, r, alternative).empty()) {
+        name = alternative;
+        break;
+      }
+      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
+    }
+    out.append(name).push_back('=');
+  }
+  out.append(key.substr(key.rfind(kSep) + 1));
+  out.push_back(']');
+  return out;
+}
+
 std::vector<std::string> identityKeys(const Document& doc) {
   static const std::vector<std::string> parentTags = [] {
     std::vector<std::string> v;
@@ -94,8 +117,9 @@ std::vector<std::string> identityKeys(const Document& doc) {
     if (!r.kind) {
       for (std::uint32_t j = 0; j < r.fieldCount; ++j) {
         const Field& f = doc.field(r, j);
-        if (f.isKey()) key.append(doc.text(f.key)).push_back('=');
-        key.append(doc.text(f.value)).push_back(' ');
+        // Decoded, so that re-encoding (what rscene-fmt does) keeps the key.
+        if (f.isKey()) key.append(percentDecode(doc.text(f.key))).push_back('=');
+        key.append(percentDecode(doc.text(f.value))).push_back(' ');
       }
       continue;
     }

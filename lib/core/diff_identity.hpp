@@ -34,6 +34,11 @@ const std::vector<IdentityRule>& identityRules();
 // One key per record of `doc` (records[0], the header, included).
 std::vector<std::string> identityKeys(const Document& doc);
 
+// How people read a child record's identity: its parent's path and its
+// place among its siblings, `/World/Cart[1]` (0-based), or its own key,
+// `/World/Terrain[slot=2]`.  `key` is the record's from identityKeys().
+std::string childPath(const Document& doc, const Record& r, std::string_view key);
+
 // Text of field `name` of `r`: a width-1 positional field or a key, decoded.
 std::string fieldText(const Document& doc, const Record& r, std::string_view name);
 

@@ -1,0 +1,131 @@
+#!/usr/bin/env bats
+# git integration never makes git fail (issue 9): the documented textconv
+# (`rscene-fmt --textconv`) and external diff driver (`rscene-diff`) in a
+# real temporary repository whose history holds a scene that does not
+# parse, binary junk, a rename with a change, and a deletion.  Before the
+# fix, git stopped at the broken commit with exit 128.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+ROOT="$BATS_TEST_DIRNAME/.."
+DATA="$ROOT/tests/data"
+FMT="$BIN/rscene-fmt"
+DIFF="$BIN/rscene-diff"
+
+bats_require_minimum_version 1.5.0
+
+SUBJECTS="good one
+good two
+broken
+fixed
+renamed and changed
+binary junk
+deleted"
+
+commit() {
+  git add -A
+  git commit -q -m "$1"
+  git tag "$2"
+}
+
+setup() {
+  command -v git >/dev/null || skip "git not installed"
+  [ -x "$FMT" ] && [ -x "$DIFF" ] || skip "rscene-fmt or rscene-diff not built in $BIN"
+  cd "$BATS_TEST_TMPDIR"
+  git init -q repo
+  cd repo
+  git config user.email t@example.com
+  git config user.name t
+  git config diff.rscene.textconv "$FMT --textconv"
+  git config diff.rscene.command "$DIFF"
+  echo '*.rscene diff=rscene' >.gitattributes
+  cp "$DATA/diff_old.rscene" scene.rscene
+  commit "good one" one
+  cp "$DATA/diff_new.rscene" scene.rscene
+  commit "good two" two
+  printf 'raisim_engine_scene 1\nobject /World/Box box 0 0\n' >scene.rscene  # a truncated record
+  commit "broken" broken
+  cp "$DATA/diff_new.rscene" scene.rscene
+  commit "fixed" fixed
+  git mv scene.rscene moved.rscene
+  sed 's/^time_step 0.0025$/time_step 0.002/' "$DATA/diff_new.rscene" >moved.rscene
+  commit "renamed and changed" renamed
+  printf 'junk\0\001\002\n' >junk.rscene
+  commit "binary junk" junk
+  git rm -q moved.rscene
+  commit "deleted" deleted
+}
+
+@test "textconv: git log -p shows every commit and exits 0" {
+  run -0 --separate-stderr git log -p --format=%s
+  while read -r subject; do
+    grep -qx "$subject" <<<"$output" || { echo "missing commit: $subject"; false; }
+  done <<<"$SUBJECTS"
+  # The broken scene as written; canonical text around it.
+  [[ $output == *"+object /World/Box box 0 0"* ]]
+  [[ $output == *"-mass"* || $output == *"-object /World/Crate box 1 0 0.5000000001"* ]]
+  [[ $stderr == *"warning: "*"shown as written [RS"* ]]
+}
+
+@test "textconv: git diff from a good to a broken scene and back exits 0" {
+  # diff.rscene.command is configured too: plain `git diff` would run it.
+  run -0 --separate-stderr git diff --no-ext-diff two broken
+  [[ $output == *"+object /World/Box box 0 0"* ]]
+  [[ $output == *"-time_step 0.0025"* ]]
+  [ "$(grep -c 'shown as written' <<<"$stderr")" -eq 1 ]
+  run -0 git diff --no-ext-diff broken fixed
+  [[ $output == *"-object /World/Box box 0 0"* ]]
+}
+
+@test "textconv: git diff of a broken working copy exits 0" {
+  git checkout -q fixed
+  echo 'object /World/Half' >>scene.rscene
+  run -0 --separate-stderr git diff --no-ext-diff
+  [[ $output == *"+object /World/Half"* ]]
+  [[ $stderr == *"shown as written"* ]]
+  run -0 git diff --no-ext-diff --stat
+  run -0 --separate-stderr git diff  # the external diff: a line diff
+  [[ $output == *"+object /World/Half"* ]]
+  [[ $stderr == *"showing a line diff"* ]]
+}
+
+@test "external diff: git log -p --ext-diff shows every commit and exits 0" {
+  run -0 --separate-stderr git log -p --ext-diff --format=%s
+  while read -r subject; do
+    grep -qx "$subject" <<<"$output" || { echo "missing commit: $subject"; false; }
+  done <<<"$SUBJECTS"
+  # Scenes that parse: a semantic diff.
+  [[ $output == *"rscene-diff a/scene.rscene b/scene.rscene"$'\n'"~ editor_ux"* ]]
+  [[ $output == *"mass: 1 -> 3"* ]]
+  # A side that does not parse: a header and a plain line diff.
+  [[ $output == *$'rscene-diff a/scene.rscene b/scene.rscene\n--- a/scene.rscene\n+++ b/scene.rscene\n@@'* ]]
+  [[ $output == *"+object /World/Box box 0 0"* ]]
+  # A rename (git's nine arguments) names both paths.
+  [[ $output == *$'rscene-diff a/scene.rscene b/moved.rscene\n~ time_step\n    dt: 0.0025 -> 0.002'* ]]
+  # Binary junk, added; a deleted scene.
+  [[ $output == *"Binary files /dev/null and b/junk.rscene differ"* ]]
+  [[ $output == *$'rscene-diff a/moved.rscene b/moved.rscene\n- raisim_engine_scene\n- time_step'* ]]
+  [[ $stderr == *"showing a line diff"* ]]
+}
+
+@test "external diff: git diff between any two commits exits 0" {
+  for range in "one two" "two broken" "broken fixed" "fixed renamed" "renamed junk" "junk deleted" "broken deleted"; do
+    run -0 git diff --ext-diff $range
+  done
+  run -0 --separate-stderr git diff --ext-diff broken junk -- junk.rscene
+  [ "${lines[1]}" = "Binary files /dev/null and b/junk.rscene differ" ]
+}
+
+@test "a scene named like an option (-dash.rscene) at the top of the repository" {
+  cp "$DATA/diff_old.rscene" ./-dash.rscene
+  git add -- -dash.rscene
+  git commit -q -m dash
+  cp "$DATA/diff_new.rscene" ./-dash.rscene
+  run -0 git diff --no-ext-diff -- -dash.rscene  # textconv gets the worktree file: -dash.rscene
+  [[ $output == *"-time_step 0.0025"* || $output == *"+editor_ux multiSelect=false"* ]]
+  run -0 git diff -- -dash.rscene
+  [ "${lines[0]}" = "rscene-diff a/-dash.rscene b/-dash.rscene" ]
+  [ "${lines[1]}" = "~ editor_ux" ]
+  git commit -q -am "dash two"
+  run -0 git log -p --ext-diff --format=%s -2
+  [[ $output == *"mass: 1 -> 3"* ]]
+}
