@@ -40,7 +40,9 @@ std::vector<std::string_view> referenceNames(Context& ctx, const std::string& wh
   } else if (what == "resource") {
     keysOf(ix.resources, {});
   } else {
-    std::string_view tag = what == "terrain" ? "terrain_region" : what.rfind("node:", 0) == 0 ? what.substr(5) : "";
+    std::string_view tag = what == "terrain"                ? "terrain_region"
+                           : what.rfind("node:", 0) == 0 ? std::string_view(what).substr(5)
+                                                         : "";
     const Document& doc = ctx.doc;
     for (std::size_t i = 0; i < doc.records.size(); ++i) {
       const KindDef* k = doc.records[i].kind;

@@ -112,3 +112,26 @@ TEST(Writer, AnOrphanChildKeepsItsPlaceBeforeALaterParent) {
             "wire /World/Tether stiff a b 2\n");
   EXPECT_EQ(fmt(once), once);
 }
+
+// The writer copies a line whole only when it is canonical as written;
+// every way a line can be almost canonical must still be formatted.
+TEST(Writer, OnlyCanonicalLinesAreCopiedWhole) {
+  const std::string h = "raisim_engine_scene 1\n";
+  const std::string g = "gravity 0 0 -9.81\n";
+  for (const char* in : {"gravity  0 0 -9.81\n", "\tgravity 0 0 -9.81\n", " gravity 0 0 -9.81\n",
+                         "gravity 0 0 -9.81  \n", "gravity 0 0 -9.81\r\n", "gravity 0 0\t-9.81\n",
+                         "gravity 0 0 -9.810\n", "gravity 0 0 -9.81"})
+    EXPECT_EQ(fmt(h + in), h + g) << in;
+  // Tokens: escapes, `=` inside a value, flags, empty values.
+  const std::string m = "material m 1 1 1 1 0 0.5 0 0 0 0 false - - - - - -";
+  EXPECT_EQ(fmt(h + m + " id=a=b\n"), h + m + " id=a%3Db\n");
+  EXPECT_EQ(fmt(h + m + " id=a%3db\n"), h + m + " id=a%3Db\n");
+  EXPECT_EQ(fmt(h + "material m 1 1 1 1 0 0.5 0 0 0 0 no - - - - - -\n"), h + m + "\n");
+  EXPECT_EQ(fmt(h + m + " uvScale=1.0,2\n"), h + m + " uvScale=1,2\n");
+  EXPECT_EQ(fmt(h + m + " uvScale=1e-4,2\n"), h + m + " uvScale=1e-04,2\n");
+  EXPECT_EQ(fmt(h + m + " id=\n"), h + m + " id=-\n");
+  EXPECT_EQ(fmt(h + m + " futureKey=\n"), h + m + " futureKey=\n");  // unknown keys keep `key=`
+  // A canonical file is a fixed point, byte for byte.
+  const std::string canonical = h + g + m + " uvScale=1e-04,2.5 id=a%3Db futureKey=x\n";
+  EXPECT_EQ(fmt(canonical), canonical);
+}
