@@ -11,7 +11,7 @@
 
 #include "common/cli.hpp"
 #include "core/loader.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/writer.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/world.hpp"

@@ -1,5 +1,5 @@
 // What the renderer draws, prepared from the typed scene view of lib/core
-// (core/scene.hpp, shared with rscene-sim): materials in the form the
+// (scene/scene.hpp, shared with rscene-sim): materials in the form the
 // shaders take, drawables at physical size in world space, lights, terrain
 // meshes with their colors, instanced batches, point clouds and the look of
 // the environment.  Nothing here reads the Document's fields; the Document
@@ -16,7 +16,7 @@
 
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace rscene::render {
 

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <set>
 
-#include "core/scene_reader.hpp"
+#include "scene/reader.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {

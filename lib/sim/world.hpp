@@ -30,7 +30,7 @@
 
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace rscene::sim {
 

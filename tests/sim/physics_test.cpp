@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "core/loader.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/writer.hpp"
 #include "sim/world.hpp"
 

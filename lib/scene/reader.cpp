@@ -1,8 +1,8 @@
-#include "core/scene_reader.hpp"
+#include "scene/reader.hpp"
 
 #include <cctype>
 
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/text.hpp"
 
 namespace rscene {

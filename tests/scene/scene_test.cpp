@@ -1,6 +1,6 @@
 // The typed scene view: defaults from the schema, aliases resolved to
 // canonical names, world transforms, asset paths, bounded terrain parsing.
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <gtest/gtest.h>
 

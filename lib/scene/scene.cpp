@@ -1,9 +1,9 @@
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <unordered_map>
 
-#include "core/scene_reader.hpp"
+#include "scene/reader.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
