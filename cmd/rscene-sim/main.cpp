@@ -51,10 +51,6 @@ int run(const Options& opt) {
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
   bool ok = buildScene(doc, so, scene, ds) && sim::checkPhysics(doc, scene, ds);
-  if (ok && !(scene.timeStep > 0)) {
-    cli::error("time_step must be positive");
-    return cli::kTrouble;
-  }
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "scene/check.hpp"
+
 namespace rscene::render {
 namespace {
 
@@ -211,17 +213,21 @@ class Preparer {
       d.shape = shapeOf(ch.primitive);
       if (d.shape == Shape::Ground) d.shape = Shape::Box;
       d.material = ch.material.empty() ? fallbackMaterial : materialIndex(ch.material);
-      // Sizes the child does not give: a unit box, radius 0.5, height 1.
-      Vector3d size = ch.size.isZero() ? Vector3d::Ones() : ch.size;
-      double radius = ch.radius > 0 ? ch.radius : 0.5, height = ch.height > 0 ? ch.height : 1;
-      Affine3d local = affine(ch.local);
+      // The physical sizes of the scene model (scene.hpp, childBox ...),
+      // as the simulator collides with them.
+      Affine3d local = affine(childPose(c, ch));
+      double radius = childRadius(c, ch), height = childHeight(c, ch);
       if (d.shape == Shape::Capsule) {
-        d.capsuleRadius = radius * ch.scale.x();
-        d.capsuleHeight = height * ch.scale.z();
+        d.capsuleRadius = radius;
+        d.capsuleHeight = height;
         d.world = pose * local;
       } else {
         if (d.shape == Shape::Mesh) d.meshPath = ch.meshPath;
-        d.world = pose * local * Eigen::Scaling(shapeScale(d.shape, ch.scale, radius, height, size.cwiseProduct(ch.scale)));
+        Vector3d unit = d.shape == Shape::Box    ? childBox(c, ch)
+                        : d.shape == Shape::Mesh ? childScale(c, ch)
+                                                 : Vector3d(radius, radius, height);
+        if (d.shape == Shape::Sphere) unit = Vector3d::Constant(radius);
+        d.world = pose * local * Eigen::Scaling(unit);
       }
       addDrawable(std::move(d));
     }
@@ -367,6 +373,9 @@ void prepareScene(const Document& doc, const Scene& scene, RenderScene& out) { P
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags) {
   Scene scene;
   bool ok = buildScene(doc, options, scene, diags);
+  // The scene model's verdict, as in validate and sim; missing files are
+  // the renderer's to report (RS9001, or placeholders when allowed).
+  ok = checkScene(doc, scene, SceneCheckOptions{}, diags) && ok;
   prepareScene(doc, scene, out);
   return ok;
 }

@@ -1,5 +1,5 @@
-// What the renderer draws, prepared from the typed scene view of lib/core
-// (scene/scene.hpp, shared with rscene-sim): materials in the form the
+// What the renderer draws, prepared from the typed scene model of lib/scene
+// (scene/scene.hpp, shared with rscene-sim and rscene-validate): materials in the form the
 // shaders take, drawables at physical size in world space, lights, terrain
 // meshes with their colors, instanced batches, point clouds and the look of
 // the environment.  Nothing here reads the Document's fields; the Document
@@ -130,9 +130,10 @@ struct RenderScene {
 // record lines for messages only).  Adds no diagnostics of its own.
 void prepareScene(const Document& doc, const Scene& scene, RenderScene& out);
 
-// buildScene() then prepareScene(); false when the scene view reported an
-// error (a value that does not parse, a malformed terrain ...).  `out` is
-// filled as far as possible either way.
+// buildScene(), checkScene() (scene/check.hpp: what validate and sim
+// refuse too) then prepareScene(); false when either reported an error (a
+// value that does not parse, a malformed terrain, a zero-size body ...).
+// `out` is filled as far as possible either way.
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags);
 
 }  // namespace rscene::render

@@ -1,6 +1,9 @@
 #include "scene/reader.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 
 #include "scene/scene.hpp"
 #include "core/text.hpp"
@@ -63,12 +66,14 @@ std::uint32_t RecordReader::columnOf(std::string_view name) const {
     const Field* f = doc_.positional(rec_, static_cast<std::uint32_t>(l.firstToken));
     return f ? doc_.column(rec_, f->value) : 0;
   }
-  if (l.key) return doc_.column(rec_, l.key->key);
+  if (l.key) return doc_.column(rec_, l.key->value);  // where the validator points too
   return 0;
 }
 
-void RecordReader::error(std::string_view name, const char* code, const std::string& message, std::string hint) const {
+void RecordReader::error(std::string_view name, const char* code, const std::string& message, std::string hint,
+                         Severity severity) const {
   Diagnostic d;
+  d.severity = severity;
   d.code = code;
   d.line = rec_.line;
   d.column = name.empty() ? 1 : columnOf(name);
@@ -80,18 +85,29 @@ void RecordReader::error(std::string_view name, const char* code, const std::str
   diags_.push_back(std::move(d));
 }
 
-void RecordReader::bad(std::string_view name, std::string_view value, std::string_view expected) const {
+void RecordReader::bad(std::string_view name, std::string_view value, std::string_view expected, const char* code) const {
   std::string shown(value.substr(0, 60));
-  error(name, scene_code::kBadValue,
+  error(name, code,
         "invalid " + std::string(expected) + " '" + shown + "' for " + std::string(name) +
             (name == doc_.tag(rec_) ? std::string() : " of " + std::string(doc_.tag(rec_))));
+}
+
+// The validator's code for text that is not a number (check_types.cpp):
+// RS2002 when it is a number but not a finite one, RS2009 for a list with an
+// empty entry, else RS2001.
+const char* RecordReader::numberCode(std::string_view s) {
+  double v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (!s.empty() && p == s.data() + s.size() && (ec == std::errc::result_out_of_range || !std::isfinite(v)))
+    return "RS2002";
+  return "RS2001";
 }
 
 double RecordReader::number(std::string_view name, double fallback) const {
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<double> v = parseNumber(*t)) return *v;
-  bad(name, *t, "number");
+  bad(name, *t, "number", numberCode(*t));
   return fallback;
 }
 
@@ -99,7 +115,7 @@ std::int64_t RecordReader::integer(std::string_view name, std::int64_t fallback)
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<std::int64_t> v = parseInteger(*t)) return *v;
-  bad(name, *t, "integer");
+  bad(name, *t, "integer", "RS2003");
   return fallback;
 }
 
@@ -107,7 +123,7 @@ bool RecordReader::flag(std::string_view name, bool fallback) const {
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<bool> v = parseFlag(*t)) return *v;
-  bad(name, *t, "flag");
+  bad(name, *t, "flag", "RS2005");
   return fallback;
 }
 
@@ -115,7 +131,7 @@ std::uint64_t RecordReader::group(std::string_view name, std::uint64_t fallback)
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<std::uint64_t> v = parseGroup(*t)) return *v;
-  bad(name, *t, "collision group");
+  bad(name, *t, "collision group", "RS2004");
   return fallback;
 }
 
@@ -130,7 +146,7 @@ std::string RecordReader::name(std::string_view field, std::string fallback) con
     for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     return lower;
   }
-  bad(field, *t, l.def->enumDef->name + " name");
+  bad(field, *t, l.def->enumDef->name + " name", "RS2006");
   return fallback;
 }
 
@@ -143,7 +159,7 @@ bool RecordReader::components(std::string_view name, std::vector<double>& out) c
       std::string v = f ? percentDecode(doc_.text(f->value)) : std::string();
       std::optional<double> x = parseNumber(v);
       if (!x) {
-        bad(name, v, "number");
+        bad(name, v, "number", numberCode(v));
         if (f) diags_.back().column = doc_.column(rec_, f->value);
         out.clear();
         return false;
@@ -156,7 +172,18 @@ bool RecordReader::components(std::string_view name, std::vector<double>& out) c
   if (!t || t->empty()) return true;
   if (parseNumberList(*t, out)) return true;
   out.clear();
-  bad(name, *t, "numbers");
+  // The first item that is no number decides the code, as in the
+  // validator; else an empty item is RS2009 in a list, RS2008 in a vector.
+  const char* code = nullptr;
+  std::string_view rest = *t;
+  for (std::size_t at; !code; rest.remove_prefix(at + 1)) {
+    at = std::min(rest.find(','), rest.find(';'));
+    std::string_view item = rest.substr(0, at);
+    if (!item.empty() && !parseNumber(item)) code = numberCode(item);
+    if (at == std::string_view::npos) break;
+  }
+  if (!code) code = l.def && componentCount(l.def->type) > 0 ? "RS2008" : "RS2009";
+  bad(name, *t, "numbers", code);
   return false;
 }
 
@@ -164,7 +191,7 @@ Eigen::Vector3d RecordReader::vec3(std::string_view name, const Eigen::Vector3d&
   std::vector<double> v;
   if (!components(name, v) || v.empty()) return fallback;
   if (v.size() != 3) {
-    bad(name, *text(name), "vector of 3 numbers");
+    bad(name, *text(name), "vector of 3 numbers", "RS2008");
     return fallback;
   }
   return {v[0], v[1], v[2]};
@@ -174,7 +201,7 @@ Eigen::Vector4d RecordReader::color(std::string_view name, const Eigen::Vector4d
   std::vector<double> v;
   if (!components(name, v) || v.empty()) return fallback;
   if (v.size() != 3 && v.size() != 4) {
-    bad(name, *text(name), "color of 3 or 4 numbers");
+    bad(name, *text(name), "color of 3 or 4 numbers", "RS2008");
     return fallback;
   }
   return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
@@ -185,12 +212,12 @@ Eigen::Vector4d RecordReader::quat(std::string_view name) const {
   Eigen::Vector4d identity(1, 0, 0, 0);
   if (!components(name, v) || v.empty()) return identity;
   if (v.size() != 4) {
-    bad(name, *text(name), "quaternion of 4 numbers");
+    bad(name, *text(name), "quaternion of 4 numbers", "RS2008");
     return identity;
   }
   Eigen::Vector4d q(v[0], v[1], v[2], v[3]);
   if (q.norm() < 1e-12) {
-    error(name, scene_code::kBadValue, "zero quaternion for " + std::string(name) + " of " + std::string(doc_.tag(rec_)));
+    error(name, "RS4009", "zero quaternion for " + std::string(name) + " of " + std::string(doc_.tag(rec_)));
     return identity;
   }
   return q.normalized();

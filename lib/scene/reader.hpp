@@ -2,7 +2,8 @@
 // scene view.  A field is looked up among the positional fields of the
 // record's layout, then among its keys; an absent field falls back to the
 // schema default, then to the caller's fallback.  A value that does not
-// parse adds an RS7001 error (with line and column) and yields the fallback.
+// parse adds an error with the validator's code for it (RS2xxx, at the
+// value's line and column) and yields the fallback.
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>
@@ -42,7 +43,8 @@ class RecordReader {
   // Positional token index where field `name` starts, or -1.
   int positionalToken(std::string_view name) const;
 
-  void error(std::string_view name, const char* code, const std::string& message, std::string hint = {}) const;
+  void error(std::string_view name, const char* code, const std::string& message, std::string hint = {},
+             Severity severity = Severity::Error) const;
   const Record& record() const { return rec_; }
   std::uint32_t line() const { return rec_.line; }
 
@@ -54,7 +56,8 @@ class RecordReader {
   };
   Located locate(std::string_view name) const;
   std::uint32_t columnOf(std::string_view name) const;
-  void bad(std::string_view name, std::string_view value, std::string_view expected) const;
+  void bad(std::string_view name, std::string_view value, std::string_view expected, const char* code) const;
+  static const char* numberCode(std::string_view s);
   bool components(std::string_view name, std::vector<double>& out) const;
 
   const Document& doc_;

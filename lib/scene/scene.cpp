@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include "scene/reader.hpp"
@@ -29,6 +30,12 @@ bool modelled(std::string_view tag) {
   return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
 }
 
+// Record kinds SceneOptions::bodiesOnly builds.
+bool forBodies(std::string_view tag) {
+  return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
+         tag == "terrain_region" || tag == "wire" || tag == "point_cloud";
+}
+
 Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
 
 Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
@@ -44,14 +51,18 @@ class Builder {
       : doc_(doc), opt_(opt), s_(scene), diags_(diags) {}
 
   void run() {
-    indexNodes();
+    s_.assetRoot = assetRootOf(doc_);
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind) continue;
       const std::string& tag = rec.kind->tag;
+      if (opt_.bodiesOnly && (!forBodies(tag) || (tag == "object" && plainBody(rec)))) continue;
       RecordReader r(doc_, i, diags_);
       int idx = static_cast<int>(i);
-      if (tag == "time_step") s_.timeStep = r.number("dt", 0.0025);
+      if (tag == "time_step") {
+        s_.timeStepRecord = idx;
+        s_.timeStep = r.number("dt", 0.0025);
+      }
       else if (tag == "gravity") s_.gravity = r.vec3("gravity", {0, 0, -9.81});
       else if (tag == "solver") readSolver(r, idx);
       else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms", true);
@@ -67,6 +78,7 @@ class Builder {
       else if (tag == "object") readObject(r, idx);
       else if (tag == "compound") readCompound(r, idx);
       else if (tag == "compound_child") readCompoundChild(r, idx);
+      else if (tag == "terrain_region" && opt_.bodiesOnly) readTerrainNode(r, idx);
       else if (tag == "terrain_region") readTerrain(r, idx);
       else if (tag == "terrain_splat_layer") readSplat(r, idx);
       else if (tag == "wire") readWire(r, idx);
@@ -76,7 +88,8 @@ class Builder {
         s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
     }
     defaults();
-    resolveWorld();
+    if (!opt_.bodiesOnly) resolveWorld();  // checkScene() needs no world poses
+    resolveWires();
   }
 
  private:
@@ -87,8 +100,10 @@ class Builder {
     return out;
   }
 
-  void indexNodes() {
-    s_.assetRoot = assetRootOf(doc_);
+  // The id and path index of every node, built on the first lookup: a
+  // bodiesOnly build of a scene without wires never needs it.
+  void indexNodes() const {
+    indexed_ = true;
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind || rec.kind->role != Role::Node) continue;
@@ -101,6 +116,7 @@ class Builder {
   // Record index of a node named by id or by path, or -1.
   int lookup(const std::string& ref) const {
     if (ref.empty()) return -1;
+    if (!indexed_) indexNodes();
     if (auto it = byId_.find(ref); it != byId_.end()) return static_cast<int>(it->second);
     if (auto it = byPath_.find(ref); it != byPath_.end()) return static_cast<int>(it->second);
     return -1;
@@ -309,24 +325,7 @@ class Builder {
     o.collidable = r.flag("collidable", true);
     o.collisionGroup = r.group("collisionGroup", 1);
     o.collisionMask = r.group("collisionMask", ~std::uint64_t{0});
-    // Body mode: #21 when it names a known mode, else #17 visualOnly / #19
-    // locked (the 19-field layout: #18 fixed), else dynamic.
-    std::optional<std::string_view> mode;
-    if (std::optional<std::string> t = r.text("bodyMode"))
-      if (const EnumDef* e = Schema::get().enumDef("body_mode")) mode = e->canonical(*t);
-    if (mode) {
-      o.bodyMode = *mode == "static"      ? BodyMode::Static
-                   : *mode == "kinematic" ? BodyMode::Kinematic
-                   : *mode == "dynamic"   ? BodyMode::Dynamic
-                                          : BodyMode::VisualOnly;
-    } else if (r.flag("visualOnly", false)) {
-      o.bodyMode = BodyMode::VisualOnly;
-    } else if (r.flag("locked", false) || r.flag("fixed", false)) {
-      o.bodyMode = BodyMode::Static;
-    }
-    if (o.primitive == "ground" || o.primitive == "half_space")
-      if (o.bodyMode != BodyMode::VisualOnly) o.bodyMode = BodyMode::Static;
-    if (!o.collidable) o.bodyMode = BodyMode::VisualOnly;
+    o.bodyMode = objectMode(r, o.primitive, o.collidable);
     o.visible = r.flag("visible", true);
     o.castShadow = r.flag("castShadow", true);
     std::string mesh = r.str("meshPath");
@@ -338,6 +337,71 @@ class Builder {
                                              : r.name("meshCollision", "convex_hull");
     parentOf_[idx] = o.parentId;
     s_.objects.push_back(std::move(o));
+  }
+
+  // Body mode of an object (compat-notes.md, "object record"): #21 when it
+  // names a known mode, else #17 visualOnly / #19 locked (the 19-field
+  // layout: #18 fixed), else dynamic; ground and half_space are static,
+  // collidable=false is visual-only.
+  static BodyMode objectMode(const RecordReader& r, const std::string& primitive, bool collidable) {
+    BodyMode m = BodyMode::Dynamic;
+    std::optional<std::string_view> mode;
+    if (std::optional<std::string> t = r.text("bodyMode"))
+      if (const EnumDef* e = Schema::get().enumDef("body_mode")) mode = e->canonical(*t);
+    if (mode) {
+      m = *mode == "static"      ? BodyMode::Static
+          : *mode == "kinematic" ? BodyMode::Kinematic
+          : *mode == "dynamic"   ? BodyMode::Dynamic
+                                 : BodyMode::VisualOnly;
+    } else if (r.flag("visualOnly", false)) {
+      m = BodyMode::VisualOnly;
+    } else if (r.flag("locked", false) || r.flag("fixed", false)) {
+      m = BodyMode::Static;
+    }
+    if ((primitive == "ground" || primitive == "half_space") && m != BodyMode::VisualOnly) m = BodyMode::Static;
+    return collidable ? m : BodyMode::VisualOnly;
+  }
+
+  // bodiesOnly: whether an object certainly passes checkScene(), so that
+  // building it can be skipped: visual-only by its written #21 or #22, or
+  // a primitive other than a mesh whose mass, scale, radius and height are
+  // all positive numbers, whatever its mode.  Anything less plain is built
+  // and checked in full.
+  bool plainBody(const Record& rec) {
+    const Layout* layout = rec.kind->layoutFor(rec.positionalCount);
+    if (!layout) return false;
+    auto [it, added] = plainSlots_.try_emplace(layout);
+    std::vector<int>& slots = it->second;
+    if (added) {
+      for (const char* name : {"primitive", "scale", "radius", "height", "mass"})
+        for (std::size_t t = 0; t < layout->tokens.size(); ++t) {
+          const FieldDef& f = layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+          if (f.name != name || layout->tokens[t].second != 0) continue;
+          for (int c = 0; c < f.width; ++c) slots.push_back(static_cast<int>(t) + c);
+        }
+      if (slots.size() != 7) slots.clear();  // not the layout this test knows: build in full
+      for (const char* name : {"bodyMode", "collidable"}) {
+        int t = -1;
+        for (std::size_t k = 0; k < layout->tokens.size() && !slots.empty(); ++k)
+          if (layout->fields[static_cast<std::size_t>(layout->tokens[k].first)].name == name) t = static_cast<int>(k);
+        if (!slots.empty()) slots.push_back(t);
+      }
+    }
+    if (slots.empty()) return false;
+    if (slots[7] >= 0) {
+      std::string_view mode = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[7]));
+      if (mode == "visual_only" || mode == "visualonly" || mode == "visual") return true;
+    }
+    if (slots[8] >= 0 && parseFlag(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[8]))) == false) return true;
+    static constexpr std::string_view kPlain[] = {"box",    "cube",   "sphere",    "cylinder",
+                                                  "capsule", "ground", "plane",     "half_space"};
+    std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
+    if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
+    for (std::size_t k = 1; k < 7; ++k) {
+      std::optional<double> v = parseNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])));
+      if (!v || !(*v > 0) || !std::isfinite(*v)) return false;
+    }
+    return true;
   }
 
   void readCompound(const RecordReader& r, int idx) {
@@ -374,7 +438,7 @@ class Builder {
     std::string ref = r.str("compound");
     Compound* owner = lastNamed(s_.compounds, ref);
     if (!owner) {
-      r.error("compound", scene_code::kUnknownRef, "compound_child names unknown compound '" + ref + "'");
+      r.error("compound", "RS3014", "compound '" + ref + "' does not exist");
       return;
     }
     CompoundChild ch;
@@ -396,7 +460,7 @@ class Builder {
                   std::vector<double>& out) {
     if (!r.numbers(name, out)) return false;
     if (out.empty() || out.size() == samples * per) return true;
-    r.error(name, scene_code::kBadTerrain,
+    r.error(name, "RS4003",
             std::string(name) + " has " + std::to_string(out.size() / per) + " entries, expected " +
                 std::to_string(samples) + " (one per sample) or none");
     out.clear();
@@ -415,17 +479,24 @@ class Builder {
     t.center = r.vec3("center", Eigen::Vector3d::Zero());
     // Counts are checked before any list is parsed, so a hostile header
     // cannot ask for an unbounded allocation.
-    if (xs < 2 || ys < 2 || xs > 16384 || ys > 16384 ||
-        static_cast<std::uint64_t>(xs) * static_cast<std::uint64_t>(ys) > kMaxTerrainSamples) {
-      r.error("xSamples", scene_code::kBadTerrain,
-              "terrain samples " + std::to_string(xs) + " x " + std::to_string(ys) +
-                  " out of range (2..16384 per axis, at most 64 Mi in total)");
-      return;
+    // The validator's codes: RS4001 per axis, RS4002 in total, RS4014 sizes.
+    bool countsOk = true;
+    for (auto [name, v] : {std::pair{"xSamples", xs}, std::pair{"ySamples", ys}})
+      if (v < 2 || v > 16384) {
+        r.error(name, "RS4001", std::string(name) + " is " + std::to_string(v) + ", outside 2..16384");
+        countsOk = false;
+      }
+    if (countsOk && static_cast<std::uint64_t>(xs) * static_cast<std::uint64_t>(ys) > kMaxTerrainSamples) {
+      r.error("xSamples", "RS4002", "terrain has " + std::to_string(xs * ys) + " samples, more than 64 Mi");
+      countsOk = false;
     }
-    if (!(t.xSize > 0) || !(t.ySize > 0)) {
-      r.error("xSize", scene_code::kBadTerrain, "terrain size must be positive");
-      return;
-    }
+    bool sizeOk = true;
+    for (auto [name, v] : {std::pair{"xSize", t.xSize}, std::pair{"ySize", t.ySize}})
+      if (!(v > 0)) {
+        r.error(name, "RS4014", std::string(name) + " is not positive");
+        sizeOk = false;
+      }
+    if (!countsOk || !sizeOk) return;
     t.xSamples = static_cast<int>(xs);
     t.ySamples = static_cast<int>(ys);
     std::size_t n = static_cast<std::size_t>(xs * ys);
@@ -449,7 +520,7 @@ class Builder {
     if (r.numbers("vertexColors", colors) && !colors.empty()) {
       int per = colors.size() == n * 4 ? 4 : colors.size() == n * 3 ? 3 : 0;
       if (!per) {
-        r.error("vertexColors", scene_code::kBadTerrain, "vertexColors needs one color per sample or none");
+        r.error("vertexColors", "RS4006", "vertexColors needs one color per sample or none");
       } else {
         t.vertexColors.reserve(n);
         for (std::size_t i = 0; i < n; ++i)
@@ -461,11 +532,22 @@ class Builder {
     s_.terrains.push_back(std::move(t));
   }
 
+  // A terrain as a body wires can name, without its samples (bodiesOnly).
+  void readTerrainNode(const RecordReader& r, int idx) {
+    Terrain t;
+    t.recordIndex = idx;
+    t.path = nodePath(doc_, r.record());
+    t.id = nodeId(doc_, r.record());
+    t.parentId = r.str("parentGroupId");
+    parentOf_[idx] = t.parentId;
+    s_.terrains.push_back(std::move(t));
+  }
+
   void readSplat(const RecordReader& r, int idx) {
     std::string ref = r.str("terrain");
     Terrain* owner = lastNamed(s_.terrains, ref);
     if (!owner) {
-      r.error("terrain", scene_code::kUnknownRef, "terrain_splat_layer names unknown terrain '" + ref + "'");
+      r.error("terrain", "RS3013", "terrain '" + ref + "' does not exist");
       return;
     }
     TerrainSplatLayer l;
@@ -510,7 +592,7 @@ class Builder {
     std::vector<double> xs;
     if (r.numbers("instances", xs)) {
       if (xs.size() % 10) {
-        r.error("instances", scene_code::kBadValue, "instances holds " + std::to_string(xs.size()) +
+        r.error("instances", "RS4004", "instances holds " + std::to_string(xs.size()) +
                                                         " numbers, not a multiple of 10");
       } else {
         v.instances.reserve(xs.size() / 10);
@@ -541,7 +623,7 @@ class Builder {
     std::vector<double> xs;
     if (r.numbers("points", xs)) {
       if (xs.size() % 3) {
-        r.error("points", scene_code::kBadValue, "points holds " + std::to_string(xs.size()) +
+        r.error("points", "RS2008", "points holds " + std::to_string(xs.size()) +
                                                      " numbers, not a multiple of 3");
       } else {
         for (std::size_t i = 0; i < xs.size(); i += 3) p.points.emplace_back(xs[i], xs[i + 1], xs[i + 2]);
@@ -633,11 +715,45 @@ class Builder {
     }
   }
 
+  // What each wire end names: the world, a body the simulator models, a
+  // node it does not (an articulated system, a visual-only object ...), or
+  // nothing (lib/core's validator reports that as RS3012).
+  void resolveWires() {
+    std::unordered_map<int, bool> simulatedBody;
+    for (const Object& o : s_.objects) simulatedBody[o.recordIndex] = o.bodyMode != BodyMode::VisualOnly;
+    for (const Compound& c : s_.compounds) simulatedBody[c.recordIndex] = c.bodyMode != BodyMode::VisualOnly;
+    for (const Terrain& t : s_.terrains) simulatedBody[t.recordIndex] = true;
+    auto classify = [&](const std::string& ref, WireEnd& end, std::string& tag) {
+      if (ref.empty()) return;
+      int target = lookup(ref);
+      if (target < 0) {
+        end = WireEnd::Unknown;
+        return;
+      }
+      tag = doc_.records[static_cast<std::size_t>(target)].kind->tag;
+      auto it = simulatedBody.find(target);
+      if (it == simulatedBody.end() && tag == "object") {  // skipped by a bodiesOnly build
+        RecordReader r(doc_, static_cast<std::size_t>(target), diags_);
+        bool simulated = objectMode(r, r.name("primitive", "box"), r.flag("collidable", true)) != BodyMode::VisualOnly;
+        it = simulatedBody.emplace(target, simulated).first;
+      }
+      end = it != simulatedBody.end() && it->second ? WireEnd::Body : WireEnd::NotSimulated;
+    };
+    for (Wire& w : s_.wires) {
+      classify(w.bodyA, w.endA, w.tagA);
+      classify(w.bodyB, w.endB, w.tagB);
+    }
+  }
+
   const Document& doc_;
   const SceneOptions& opt_;
   Scene& s_;
   Diagnostics& diags_;
-  std::unordered_map<std::string, std::size_t> byId_, byPath_;
+  mutable std::unordered_map<std::string, std::size_t> byId_, byPath_;
+  mutable bool indexed_ = false;
+  // Per object layout, the tokens of primitive, scale x3, radius, height,
+  // mass, then bodyMode and collidable (-1 when the layout has none).
+  std::unordered_map<const Layout*, std::vector<int>> plainSlots_;
   std::unordered_map<int, std::string> parentOf_;
   std::unordered_map<int, const Pose*> poses_;
   std::vector<int> hiddenGroups_;  // record indices of groups with visible=false

@@ -15,8 +15,9 @@
 //   write values back with Document::setValue on the positional tokens.
 //
 // The view is built in one pass and owns its data; it does not point into
-// the Document.  buildScene() never throws on bad input: values that do not
-// parse are reported as RS7001 errors and the default is used instead.
+// the Document.  buildScene() never throws on bad input: a value that does
+// not parse is reported with the validator's code for it (RS2xxx, RS4xxx)
+// and the default is used instead.
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -31,16 +32,22 @@
 
 namespace rscene {
 
-// Diagnostic codes of the scene view and of the simulator (RS5xxx).
+// Diagnostic codes of the scene model.  Where lib/core's validator checks
+// the same condition, the model reports the validator's code at the same
+// field, so validate, sim and render name one problem one way (the registry
+// in core/check_codes.cpp lists every code and who emits it).
 namespace scene_code {
-inline constexpr const char* kBadValue = "RS7001";      // value does not parse as its type, or is not finite
-inline constexpr const char* kBadMass = "RS7002";       // dynamic body with mass <= 0
-inline constexpr const char* kZeroSize = "RS7003";      // shape with a zero or negative size
-inline constexpr const char* kMissingFile = "RS7004";   // mesh file that does not exist (resolved path named)
-inline constexpr const char* kUnknownRef = "RS7005";    // reference to a body that does not exist
-inline constexpr const char* kBadTerrain = "RS7006";    // sample counts, sizes or per-sample list lengths
+inline constexpr const char* kBadValue = "RS7001";      // list whose length the type cannot hold (points, colors)
+inline constexpr const char* kZeroSize = "RS7003";      // body shape with a zero or negative physical size
+inline constexpr const char* kNoMesh = "RS7004";        // mesh body without a mesh path
 inline constexpr const char* kBadMesh = "RS7007";       // mesh file that cannot be read
+inline constexpr const char* kBadTimeStep = "RS7008";   // time_step not positive
 inline constexpr const char* kUnsupported = "RS7010";   // records kept but not simulated (warning)
+inline constexpr const char* kWireSkipped = "RS7011";   // wire to a node sim does not model (warning)
+// Codes shared with lib/core's validator (same condition, same code).
+inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
+inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist
+inline constexpr const char* kUnknownBody = "RS3012";   // wire body that names no node
 }  // namespace scene_code
 
 struct Pose {
@@ -60,6 +67,11 @@ struct SceneOptions {
   std::string sceneDir = ".";  // directory of the scene file (assets resolve against it)
   std::string baseDir;         // when set, replaces sceneDir (e.g. for stdin)
   FileExists exists = fileExistsOnDisk;
+  // Build only what checkScene() reads: time step, groups, objects,
+  // compounds, wires, point clouds, and terrains without their per-sample
+  // lists.  rscene-validate builds this much on top of lib/core's checks,
+  // which already report every value problem of the records left out.
+  bool bodiesOnly = false;
 };
 
 enum class BodyMode { Static, Kinematic, Dynamic, VisualOnly };
@@ -275,6 +287,26 @@ struct Compound {
   int positionToken = 1;
 };
 
+// Physical sizes of a compound child (compat-notes.md "Sizes"; the child's
+// scale times the compound's): box sides are `size` x scale, or the scale
+// itself when `size` is absent or zero; radius `radius` x scale.x, height
+// `height` x scale.z.  An absent radius or height is 0: a sphere child
+// without a radius is a zero-size shape (RS7003), never a guessed size.
+inline Eigen::Vector3d childScale(const Compound& c, const CompoundChild& ch) { return ch.scale.cwiseProduct(c.scale); }
+inline Eigen::Vector3d childBox(const Compound& c, const CompoundChild& ch) {
+  Eigen::Vector3d s = childScale(c, ch);
+  return ch.size.isZero() ? s : Eigen::Vector3d(ch.size.cwiseProduct(s));
+}
+inline double childRadius(const Compound& c, const CompoundChild& ch) { return ch.radius * childScale(c, ch).x(); }
+inline double childHeight(const Compound& c, const CompoundChild& ch) { return ch.height * childScale(c, ch).z(); }
+// The child's pose in the compound's body frame: its position scales with
+// the compound.
+inline Pose childPose(const Compound& c, const CompoundChild& ch) {
+  Pose p = ch.local;
+  p.position = p.position.cwiseProduct(c.scale);
+  return p;
+}
+
 struct TerrainSplatLayer {
   int recordIndex = -1;
   int slot = 0;
@@ -308,6 +340,10 @@ struct Terrain {
   }
 };
 
+// What one end of a wire names (compat-notes.md, "Wire kinds": a body by id
+// or path, a terrain counts as a body; nothing means a point in the world).
+enum class WireEnd { World, Body, NotSimulated, Unknown };
+
 struct Wire {
   int recordIndex = -1;
   std::string path, id;
@@ -318,6 +354,16 @@ struct Wire {
   Eigen::Vector3d localPositionA = Eigen::Vector3d::Zero(), localPositionB = Eigen::Vector3d::Zero();
   double stiffness = 1000, damping = 0, compliance = 0;
   bool enabled = true;
+  WireEnd endA = WireEnd::World, endB = WireEnd::World;
+  std::string tagA, tagB;  // record kind an end names (when it names a node)
+
+  // Whether a simulator attaches this wire: enabled, and each end is the
+  // world or a simulated body (object, compound, terrain).  A wire to an
+  // articulated system or a visual-only object is skipped with RS7011.
+  bool simulated() const {
+    auto ok = [](WireEnd e) { return e == WireEnd::World || e == WireEnd::Body; };
+    return enabled && ok(endA) && ok(endB);
+  }
 };
 
 struct Instance {
@@ -357,6 +403,7 @@ struct SkippedRecord {
 };
 
 struct Scene {
+  int timeStepRecord = -1;  // the time_step record in force, or -1
   double timeStep = 0.0025;
   Eigen::Vector3d gravity{0, 0, -9.81};
   Solver solver;

@@ -46,10 +46,9 @@ struct BodyState {
   bool sleeping = false;
 };
 
-// Checks what Bullet cannot simulate sensibly: dynamic bodies with mass
-// <= 0 (RS7002), zero-size shapes (RS7003), missing mesh files (RS7004),
-// wires naming unknown bodies (RS7005).  Errors point at the record's
-// field.  Returns false when it added an error.
+// Checks what Bullet cannot simulate sensibly: checkScene() of
+// scene/check.hpp (what rscene-validate reports too) with collision mesh
+// files required.  Returns false when it added an error.
 bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 // Records kept but not simulated, named in one warning (RS7010), or none.
