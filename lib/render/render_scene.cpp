@@ -97,22 +97,26 @@ class Preparer {
     return it == materialByRef_.end() ? 0 : it->second;
   }
 
+  // A scene material as the shaders take it.
+  RenderMaterial renderMaterial(const Material& src) const {
+    RenderMaterial m;
+    m.id = src.id;
+    m.color = toF(src.color);
+    m.metallic = float(src.metallic);
+    m.roughness = float(std::clamp(src.roughness, 0.03, 1.0));
+    m.emissive = src.emissive.cast<float>() * float(src.emissiveStrength);
+    m.doubleSided = src.doubleSided;
+    m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
+    m.albedoTexture = src.albedoTexture;
+    m.line = lineOf(src.recordIndex);
+    m.isDefault = src.name == "engine_default";
+    return m;
+  }
+
   void materials() {
-    RenderMaterial base;
-    base.id = "engine_default";
-    out_.materials.push_back(base);
+    out_.materials.push_back(renderMaterial(s_.defaultMaterial));
     for (const Material& src : s_.materials) {
-      RenderMaterial m;
-      m.id = src.id;
-      m.color = toF(src.color);
-      m.metallic = float(src.metallic);
-      m.roughness = float(std::clamp(src.roughness, 0.03, 1.0));
-      m.emissive = src.emissive.cast<float>() * float(src.emissiveStrength);
-      m.doubleSided = src.doubleSided;
-      m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
-      m.albedoTexture = src.albedoTexture;
-      m.line = lineOf(src.recordIndex);
-      m.isDefault = src.name == "engine_default";
+      RenderMaterial m = renderMaterial(src);
       int index = static_cast<int>(out_.materials.size());
       if (m.isDefault) {  // redefines the default in place
         index = 0;

@@ -20,12 +20,14 @@
 
 namespace rscene::render {
 
-// A scene material as the shaders take it.
+// A scene material as the shaders take it.  This struct and Look below are
+// always filled from the scene model (whose defaults are the schema's), so
+// they keep no defaults of their own.
 struct RenderMaterial {
   std::string id;
-  Eigen::Vector4f color{0.55f, 0.62f, 0.72f, 1.f};
+  Eigen::Vector4f color = Eigen::Vector4f::Zero();
   float metallic = 0;
-  float roughness = 0.55f;
+  float roughness = 0;
   Eigen::Vector3f emissive = Eigen::Vector3f::Zero();  // color x strength
   bool doubleSided = false;
   bool blend = false;           // alphaMode=blend or alpha < 1
@@ -97,12 +99,12 @@ enum class Background { PlainColor, Hdr, Sky };
 enum class ToneMap { Linear, Aces, Filmic, AgX, Unreal };
 
 struct Look {
-  Eigen::Vector3f background{0.38f, 0.38f, 0.38f};
-  Eigen::Vector3f ambient{0.15f, 0.16f, 0.20f};
+  Eigen::Vector3f background = Eigen::Vector3f::Zero();
+  Eigen::Vector3f ambient = Eigen::Vector3f::Zero();
   float fogDensity = 0;
-  Eigen::Vector3f fogColor{0.38f, 0.38f, 0.38f};
-  bool shadows = true;
-  float exposure = 1, gamma = 2.2f;
+  Eigen::Vector3f fogColor = Eigen::Vector3f::Zero();
+  bool shadows = false;
+  float exposure = 0, gamma = 0;
   Background mode = Background::Sky;
   std::string hdrPath;  // resolved
   std::uint32_t hdrLine = 0;

@@ -40,7 +40,7 @@ Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1
 
 Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
   Pose p;
-  p.position = r.vec3(pos, Eigen::Vector3d::Zero());
+  p.position = r.vec3(pos);
   p.orientation = toQuat(r.quat(rot));
   return p;
 }
@@ -52,20 +52,21 @@ class Builder {
 
   void run() {
     s_.assetRoot = assetRootOf(doc_);
+    absentSingletons();
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind) continue;
       const std::string& tag = rec.kind->tag;
-      if (opt_.bodiesOnly && (!forBodies(tag) || (tag == "object" && plainBody(rec)))) continue;
+      if (opt_.bodiesOnly && (rec.kind == objectKind_ ? plainBody(rec) : !forBodies(tag))) continue;
       RecordReader r(doc_, i, diags_);
       int idx = static_cast<int>(i);
       if (tag == "time_step") {
         s_.timeStepRecord = idx;
-        s_.timeStep = r.number("dt", 0.0025);
+        s_.timeStep = r.number("dt");
       }
-      else if (tag == "gravity") s_.gravity = r.vec3("gravity", {0, 0, -9.81});
+      else if (tag == "gravity") s_.gravity = r.vec3("gravity");
       else if (tag == "solver") readSolver(r, idx);
-      else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms", true);
+      else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms");
       else if (tag == "environment") readEnvironment(r, idx);
       else if (tag == "weather") readWeather(r, idx);
       else if (tag == "rayrai_render") readRenderSettings(r, idx);
@@ -125,97 +126,115 @@ class Builder {
   void readSolver(const RecordReader& r, int idx) {
     Solver& v = s_.solver;
     v.recordIndex = idx;
-    v.iterations = static_cast<int>(r.integer("iterations", 80));
-    v.tolerance = r.number("tolerance", 1e-7);
-    v.erp = r.number("erp", 0.2);
-    v.mode = r.name("mode", "accurate");
-    v.erp2 = r.number("erp2", 0);
-    v.defaultFriction = r.number("defaultFriction", 0.8);
-    v.defaultRestitution = r.number("defaultRestitution", 0);
-    v.defaultRestitutionThreshold = r.number("defaultRestitutionThreshold", 0.001);
-    v.defaultStaticFriction = r.number("defaultStaticFriction", 0.8);
-    v.defaultStaticFrictionVelocityThreshold = r.number("defaultStaticFrictionVelocityThreshold", 0.001);
-    v.defaultRollingFriction = r.number("defaultRollingFriction", 0);
-    v.defaultSpinningFriction = r.number("defaultSpinningFriction", 0);
-    v.contactMaxIterations = static_cast<int>(r.integer("contactMaxIterations", 80));
-    v.maxContactsPerPair = static_cast<int>(r.integer("maxContactsPerPair", 8));
-    v.sweptCcdEnabled = r.flag("sweptCcdEnabled", false);
-    v.sweptCcdMinSpeed = r.number("sweptCcdMinSpeed", 0);
-    v.sweptCcdSpeculativeMargin = r.number("sweptCcdSpeculativeMargin", 1e-4);
-    v.sleepingEnabled = r.flag("sleepingEnabled", true);
-    v.sleepingLinearVelocityThreshold = r.number("sleepingLinearVelocityThreshold", 0.002);
-    v.sleepingAngularVelocityThreshold = r.number("sleepingAngularVelocityThreshold", 0.01);
-    v.sleepingQuietSteps = static_cast<int>(r.integer("sleepingQuietSteps", 5));
-    v.broadphaseType = r.name("broadphaseType", "sap3_axis");
-    v.broadphaseWorldMin = r.vec3("broadphaseWorldMin", {-100, -100, -100});
-    v.broadphaseWorldMax = r.vec3("broadphaseWorldMax", {100, 100, 100});
-    v.broadphaseUseWorldBounds = r.flag("broadphaseUseWorldBounds", false);
-    v.fixedContactSolverIterationOrder = r.flag("fixedContactSolverIterationOrder", false);
-    v.worldTime = r.number("worldTime", 0);
+    v.iterations = static_cast<int>(r.integer("iterations"));
+    v.tolerance = r.number("tolerance");
+    v.erp = r.number("erp");
+    v.mode = r.name("mode");
+    v.erp2 = r.number("erp2");
+    v.defaultFriction = r.number("defaultFriction");
+    v.defaultRestitution = r.number("defaultRestitution");
+    v.defaultRestitutionThreshold = r.number("defaultRestitutionThreshold");
+    v.defaultStaticFriction = r.number("defaultStaticFriction");
+    v.defaultStaticFrictionVelocityThreshold = r.number("defaultStaticFrictionVelocityThreshold");
+    v.defaultRollingFriction = r.number("defaultRollingFriction");
+    v.defaultSpinningFriction = r.number("defaultSpinningFriction");
+    v.contactMaxIterations = static_cast<int>(r.integer("contactMaxIterations"));
+    v.maxContactsPerPair = static_cast<int>(r.integer("maxContactsPerPair"));
+    v.sweptCcdEnabled = r.flag("sweptCcdEnabled");
+    v.sweptCcdMinSpeed = r.number("sweptCcdMinSpeed");
+    v.sweptCcdSpeculativeMargin = r.number("sweptCcdSpeculativeMargin");
+    v.sleepingEnabled = r.flag("sleepingEnabled");
+    v.sleepingLinearVelocityThreshold = r.number("sleepingLinearVelocityThreshold");
+    v.sleepingAngularVelocityThreshold = r.number("sleepingAngularVelocityThreshold");
+    v.sleepingQuietSteps = static_cast<int>(r.integer("sleepingQuietSteps"));
+    v.broadphaseType = r.name("broadphaseType");
+    v.broadphaseWorldMin = r.vec3("broadphaseWorldMin");
+    v.broadphaseWorldMax = r.vec3("broadphaseWorldMax");
+    v.broadphaseUseWorldBounds = r.flag("broadphaseUseWorldBounds");
+    v.fixedContactSolverIterationOrder = r.flag("fixedContactSolverIterationOrder");
+    v.worldTime = r.number("worldTime");
   }
 
   void readEnvironment(const RecordReader& r, int idx) {
     Environment& e = s_.environment;
     e = Environment{};
     e.recordIndex = idx;
-    e.background = r.color("background", {0.38, 0.38, 0.38, 1}).head<3>();
-    e.ambient = r.color("ambient", {0.15, 0.16, 0.2, 1}).head<3>();
-    e.fogDensity = r.number("fogDensity", 0);
-    e.shadows = r.flag("shadows", true);
+    e.background = r.color("background").head<3>();
+    e.ambient = r.color("ambient").head<3>();
+    e.fogDensity = r.number("fogDensity");
+    e.shadows = r.flag("shadows");
     e.envMapPath = asset(r.str("envMapPath"));
     Eigen::Vector4d bg(e.background.x(), e.background.y(), e.background.z(), 1);
-    e.fogColor = r.color("fogColor", bg);
-    e.exposure = r.number("exposure", 1);
-    e.gamma = r.number("gamma", 2.2);
-    e.backgroundMode = r.name("backgroundMode", "rayrai_sky");
-    e.colorMode = r.name("colorMode", "");
-    e.pbrEnvironmentIntensity = r.number("pbrEnvironmentIntensity", 1);
-    e.heightFogEnabled = r.flag("heightFogEnabled", false);
-    e.heightFogDensity = r.number("heightFogDensity", 0);
-    e.heightFogBaseHeight = r.number("heightFogBaseHeight", 0);
-    e.heightFogFalloff = r.number("heightFogFalloff", 0.35);
+    e.fogColor = r.color("fogColor", bg);  // the background colour when absent (compat-notes.md)
+    e.exposure = r.number("exposure");
+    e.gamma = r.number("gamma");
+    e.backgroundMode = r.name("backgroundMode");
+    e.colorMode = r.name("colorMode", "");  // empty: not written
+    e.pbrEnvironmentIntensity = r.number("pbrEnvironmentIntensity");
+    e.heightFogEnabled = r.flag("heightFogEnabled");
+    e.heightFogDensity = r.number("heightFogDensity");
+    e.heightFogBaseHeight = r.number("heightFogBaseHeight");
+    e.heightFogFalloff = r.number("heightFogFalloff");
   }
 
   void readWeather(const RecordReader& r, int idx) {
     Weather& w = s_.weather;
     w.recordIndex = idx;
-    w.enabled = r.flag("enabled", true);
-    w.preset = r.name("preset", "clear");
-    w.timeOfDay = r.number("timeOfDay", 12);
-    w.useExplicitSunAngles = r.flag("useExplicitSunAngles", false);
-    w.sunAzimuthDegrees = r.number("sunAzimuthDegrees", 180);
-    w.sunElevationDegrees = r.number("sunElevationDegrees", 42);
-    w.fogDensity = r.number("fogDensity", 0);
-    if (r.has("cloudCoverage")) w.cloudCoverage = r.number("cloudCoverage", 0);
+    w.enabled = r.flag("enabled");
+    w.preset = r.name("preset");
+    w.timeOfDay = r.number("timeOfDay");
+    w.useExplicitSunAngles = r.flag("useExplicitSunAngles");
+    w.sunAzimuthDegrees = r.number("sunAzimuthDegrees");
+    w.sunElevationDegrees = r.number("sunElevationDegrees");
+    w.fogDensity = r.number("fogDensity");
+    if (r.has("cloudCoverage")) w.cloudCoverage = r.number("cloudCoverage");
   }
 
   void readRenderSettings(const RecordReader& r, int idx) {
     RenderSettings& v = s_.renderSettings;
     v.recordIndex = idx;
-    v.preset = r.name("preset", "balanced");
-    v.colorMode = r.name("colorMode", "");
+    v.preset = r.name("preset");
+    v.colorMode = r.name("colorMode", "");  // empty: not written
   }
 
-  void readMaterial(const RecordReader& r, int idx) {
+  // Singleton records a scene may leave out hold every field's schema
+  // default: read through a reader of an absent record, so that no struct
+  // keeps a second copy of them.
+  void absentSingletons() {
+    auto absent = [&](const char* tag) { return RecordReader(doc_, *Schema::get().kind(tag), diags_); };
+    s_.timeStep = absent("time_step").number("dt");
+    s_.gravity = absent("gravity").vec3("gravity");
+    s_.inheritedTransforms = absent("scene_graph").flag("inheritedTransforms");
+    readSolver(absent("solver"), -1);
+    readEnvironment(absent("environment"), -1);
+    readWeather(absent("weather"), -1);
+    readRenderSettings(absent("rayrai_render"), -1);
+    s_.defaultMaterial = material(absent("material"), -1);
+    s_.defaultMaterial.id = s_.defaultMaterial.name = "engine_default";
+  }
+
+  void readMaterial(const RecordReader& r, int idx) { s_.materials.push_back(material(r, idx)); }
+
+  Material material(const RecordReader& r, int idx) {
     Material m;
     m.recordIndex = idx;
     m.name = r.str("name");
-    m.id = nodeId(doc_, r.record());
-    m.color = r.color("color", m.color);
-    m.metallic = r.number("metallic", 0);
-    m.roughness = r.number("roughness", 0.55);
-    m.emissive = r.color("emissive", {0, 0, 0, 1}).head<3>();
-    m.emissiveStrength = r.number("emissiveStrength", 0);
-    m.doubleSided = r.flag("doubleSided", false);
-    m.alphaMode = r.name("alphaMode", "opaque");
-    m.alphaCutoff = r.number("alphaCutoff", 0.5);
+    m.id = r.present() ? nodeId(doc_, r.record()) : std::string();
+    m.color = r.color("color");
+    m.metallic = r.number("metallic");
+    m.roughness = r.number("roughness");
+    m.emissive = r.color("emissive").head<3>();
+    m.emissiveStrength = r.number("emissiveStrength");
+    m.doubleSided = r.flag("doubleSided");
+    m.alphaMode = r.name("alphaMode");
+    m.alphaCutoff = r.number("alphaCutoff");
     m.albedoTexture = asset(r.str("albedoTexture"));
     m.normalTexture = asset(r.str("normalTexture"));
     m.metallicTexture = asset(r.str("metallicTexture"));
     m.roughnessTexture = asset(r.str("roughnessTexture"));
     m.aoTexture = asset(r.str("aoTexture"));
     m.emissiveTexture = asset(r.str("emissiveTexture"));
-    s_.materials.push_back(std::move(m));
+    return m;
   }
 
   void readContact(const RecordReader& r, int idx) {
@@ -236,17 +255,23 @@ class Builder {
   }
 
   void readTerrainTexture(const RecordReader& r, int idx) {
-    TerrainTexture t;
+    TerrainTexture t = terrainTexture(r);
     t.recordIndex = idx;
-    t.slot = static_cast<int>(r.integer("slot", 0));
+    t.slot = static_cast<int>(r.integer("slot"));
     t.id = r.str("id");
     t.name = r.str("name");
-    t.color = r.color("color", t.color);
+    s_.terrainTextures.push_back(std::move(t));
+  }
+
+  // What a terrain_texture record holds beside its slot and names.
+  TerrainTexture terrainTexture(const RecordReader& r) {
+    TerrainTexture t;
+    t.color = r.color("color");
     t.albedo = asset(r.str("albedo"));
     t.normal = asset(r.str("normal"));
-    t.uvScale = r.number("uvScale", 1);
-    t.roughness = r.number("roughness", 1);
-    s_.terrainTextures.push_back(std::move(t));
+    t.uvScale = r.number("uvScale");
+    t.roughness = r.number("roughness");
+    return t;
   }
 
   void readGroup(const RecordReader& r, int idx) {
@@ -255,7 +280,7 @@ class Builder {
     g.path = nodePath(doc_, r.record());
     g.id = nodeId(doc_, r.record());
     g.parentId = r.str("parentId");
-    g.visible = r.flag("visible", true);
+    g.visible = r.flag("visible");
     parentOf_[idx] = g.parentId;
     if (!g.visible) hiddenGroups_.push_back(idx);
     s_.groups.push_back(std::move(g));
@@ -266,22 +291,22 @@ class Builder {
     l.recordIndex = idx;
     l.path = nodePath(doc_, r.record());
     l.id = nodeId(doc_, r.record());
-    l.type = r.name("type", "directional");
-    Eigen::Vector3d d = r.vec3("direction", {0, 0, -1});
+    l.type = r.name("type");
+    Eigen::Vector3d d = r.vec3("direction");
     l.direction = d.norm() > 1e-12 ? d.normalized() : Eigen::Vector3d(0, 0, -1);
-    l.intensity = r.number("intensity", 1);
-    l.position = r.vec3("position", {0, 0, 3});
-    l.color = r.color("color", l.color);
-    l.attenuationConstant = r.number("attenuationConstant", 1);
-    l.attenuationLinear = r.number("attenuationLinear", 0.04);
-    l.attenuationQuadratic = r.number("attenuationQuadratic", 0.012);
-    l.range = r.number("range", 0);
-    l.coneAngle = r.number("coneAngle", 30);
-    l.innerConeAngle = r.number("innerConeAngle", 18);
-    l.radius = r.number("radius", 0);
-    l.areaSize = r.vec3("areaSize", Eigen::Vector3d::Zero());
-    l.shadows = r.flag("shadows", true);
-    l.negative = r.flag("negative", false);
+    l.intensity = r.number("intensity");
+    l.position = r.vec3("position");
+    l.color = r.color("color");
+    l.attenuationConstant = r.number("attenuationConstant");
+    l.attenuationLinear = r.number("attenuationLinear");
+    l.attenuationQuadratic = r.number("attenuationQuadratic");
+    l.range = r.number("range");
+    l.coneAngle = r.number("coneAngle");
+    l.innerConeAngle = r.number("innerConeAngle");
+    l.radius = r.number("radius");
+    l.areaSize = r.vec3("areaSize");
+    l.shadows = r.flag("shadows");
+    l.negative = r.flag("negative");
     l.parentId = r.str("parentGroupId");
     parentOf_[idx] = l.parentId;
     s_.lights.push_back(std::move(l));
@@ -293,16 +318,16 @@ class Builder {
     c.path = nodePath(doc_, r.record());
     c.id = nodeId(doc_, r.record());
     c.local = readPose(r, "position", "orientation");
-    c.verticalFov = std::clamp(r.number("verticalFov", 60), 1.0, 175.0);
-    c.horizontalFov = r.number("horizontalFov", 0);
-    c.nearPlane = r.number("nearPlane", 0.05);
-    c.farPlane = r.number("farPlane", 1000);
-    c.width = static_cast<int>(r.integer("width", 640));
-    c.height = static_cast<int>(r.integer("height", 480));
-    c.renderMode = r.name("renderMode", "rgb");
-    c.projection = r.name("projection", "perspective");
-    c.orthoScale = r.number("orthoScale", 10);
-    c.enabled = r.flag("enabled", true);
+    c.verticalFov = std::clamp(r.number("verticalFov"), 1.0, 175.0);
+    c.horizontalFov = r.number("horizontalFov");
+    c.nearPlane = r.number("nearPlane");
+    c.farPlane = r.number("farPlane");
+    c.width = static_cast<int>(r.integer("width"));
+    c.height = static_cast<int>(r.integer("height"));
+    c.renderMode = r.name("renderMode");
+    c.projection = r.name("projection");
+    c.orthoScale = r.number("orthoScale");
+    c.enabled = r.flag("enabled");
     parentOf_[idx] = r.str("parentGroupId");
     s_.cameras.push_back(std::move(c));
   }
@@ -313,28 +338,28 @@ class Builder {
     o.path = nodePath(doc_, r.record());
     o.id = nodeId(doc_, r.record());
     o.parentId = r.str("parentGroupId");
-    o.primitive = r.name("primitive", "box");
+    o.primitive = r.name("primitive");
     o.local = readPose(r, "position", "orientation");
     o.positionToken = r.positionalToken("position");
-    o.scale = r.vec3("scale", {1, 1, 1});
-    o.radius = r.number("radius", 0.5);
-    o.height = r.number("height", 1);
-    o.mass = r.number("mass", 1);
+    o.scale = r.vec3("scale");
+    o.radius = r.number("radius");
+    o.height = r.number("height");
+    o.mass = r.number("mass");
     o.contactMaterial = r.str("contactMaterial");
     o.material = r.str("material");
-    o.collidable = r.flag("collidable", true);
-    o.collisionGroup = r.group("collisionGroup", 1);
-    o.collisionMask = r.group("collisionMask", ~std::uint64_t{0});
+    o.collidable = r.flag("collidable");
+    o.collisionGroup = r.group("collisionGroup");
+    o.collisionMask = r.group("collisionMask");
     o.bodyMode = objectMode(r, o.primitive, o.collidable);
-    o.visible = r.flag("visible", true);
-    o.castShadow = r.flag("castShadow", true);
+    o.visible = r.flag("visible");
+    o.castShadow = r.flag("castShadow");
     std::string mesh = r.str("meshPath");
     if (std::string render = r.str("renderMeshPath"); !render.empty()) mesh = render;
     std::string collision = r.str("collisionMeshPath");
     o.meshPath = asset(mesh);
     o.collisionMeshPath = collision.empty() ? o.meshPath : asset(collision);
-    o.collisionMode = r.has("collisionMode") ? r.name("collisionMode", "convex_hull")
-                                             : r.name("meshCollision", "convex_hull");
+    o.collisionMode = r.has("collisionMode") ? r.name("collisionMode")
+                                             : r.name("meshCollision");
     parentOf_[idx] = o.parentId;
     s_.objects.push_back(std::move(o));
   }
@@ -353,9 +378,9 @@ class Builder {
           : *mode == "kinematic" ? BodyMode::Kinematic
           : *mode == "dynamic"   ? BodyMode::Dynamic
                                  : BodyMode::VisualOnly;
-    } else if (r.flag("visualOnly", false)) {
+    } else if (r.flag("visualOnly")) {
       m = BodyMode::VisualOnly;
-    } else if (r.flag("locked", false) || r.flag("fixed", false)) {
+    } else if (r.flag("locked") || r.flag("fixed")) {
       m = BodyMode::Static;
     }
     if ((primitive == "ground" || primitive == "half_space") && m != BodyMode::VisualOnly) m = BodyMode::Static;
@@ -397,11 +422,25 @@ class Builder {
                                                   "capsule", "ground", "plane",     "half_space"};
     std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
     if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
-    for (std::size_t k = 1; k < 7; ++k) {
-      std::optional<double> v = parseNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])));
-      if (!v || !(*v > 0) || !std::isfinite(*v)) return false;
-    }
+    for (std::size_t k = 1; k < 7; ++k)
+      if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])))) return false;
     return true;
+  }
+
+  // Whether `s` is a finite number > 0.  Plain decimals ("0.5", "12") are
+  // read from their digits, which keeps a bodiesOnly build cheap on scenes
+  // with hundreds of thousands of objects; anything else is parsed.
+  static bool positiveNumber(std::string_view s) {
+    bool digits = !s.empty() && s.size() < 32, nonZero = false;
+    int dots = 0;
+    for (char c : s) {
+      if (c == '.') ++dots;
+      else if (c < '0' || c > '9') digits = false;
+      else nonZero = nonZero || c != '0';
+    }
+    if (digits && dots <= 1 && s.front() != '.') return nonZero;
+    std::optional<double> v = parseNumber(s);
+    return v && *v > 0 && std::isfinite(*v);
   }
 
   void readCompound(const RecordReader& r, int idx) {
@@ -412,22 +451,22 @@ class Builder {
     c.parentId = r.str("parentGroupId");
     c.local = readPose(r, "position", "orientation");
     c.positionToken = r.positionalToken("position");
-    c.scale = r.vec3("scale", {1, 1, 1});
-    c.mass = r.number("mass", 1);
-    std::string mode = r.name("bodyMode", "dynamic");
+    c.scale = r.vec3("scale");
+    c.mass = r.number("mass");
+    std::string mode = r.name("bodyMode");
     c.bodyMode = mode == "static"      ? BodyMode::Static
                  : mode == "kinematic" ? BodyMode::Kinematic
                  : mode == "dynamic"   ? BodyMode::Dynamic
                                        : BodyMode::VisualOnly;
-    c.visible = r.flag("visible", true);
-    c.collidable = r.flag("collidable", true);
+    c.visible = r.flag("visible");
+    c.collidable = r.flag("collidable");
     if (!c.collidable) c.bodyMode = BodyMode::VisualOnly;
     c.hasCenterOfMass = r.has("centerOfMass");
-    c.centerOfMass = r.vec3("centerOfMass", Eigen::Vector3d::Zero());
+    c.centerOfMass = r.vec3("centerOfMass", Eigen::Vector3d::Zero());  // unused when absent
     c.hasInertia = r.has("inertiaDiagonal");
-    c.inertiaDiagonal = r.vec3("inertiaDiagonal", Eigen::Vector3d::Zero());
-    c.collisionGroup = r.group("collisionGroup", 1);
-    c.collisionMask = r.group("collisionMask", ~std::uint64_t{0});
+    c.inertiaDiagonal = r.vec3("inertiaDiagonal", Eigen::Vector3d::Zero());  // unused when absent
+    c.collisionGroup = r.group("collisionGroup");
+    c.collisionMask = r.group("collisionMask");
     c.contactMaterial = r.str("contactMaterial");
     c.material = r.str("material");
     parentOf_[idx] = c.parentId;
@@ -443,12 +482,12 @@ class Builder {
     }
     CompoundChild ch;
     ch.recordIndex = idx;
-    ch.primitive = r.name("primitive", "box");
+    ch.primitive = r.name("primitive");
     ch.local = readPose(r, "position", "orientation");
-    ch.scale = r.vec3("scale", {1, 1, 1});
-    ch.size = r.vec3("size", Eigen::Vector3d::Zero());
-    ch.radius = r.number("radius", 0);
-    ch.height = r.number("height", 0);
+    ch.scale = r.vec3("scale");
+    ch.size = r.vec3("size");
+    ch.radius = r.number("radius");
+    ch.height = r.number("height");
     ch.contactMaterial = r.str("contactMaterial", owner->contactMaterial);
     ch.material = r.str("material", owner->material);
     ch.meshPath = asset(r.str("meshPath"));
@@ -473,10 +512,10 @@ class Builder {
     t.path = nodePath(doc_, r.record());
     t.id = nodeId(doc_, r.record());
     t.parentId = r.str("parentGroupId");
-    std::int64_t xs = r.integer("xSamples", 2), ys = r.integer("ySamples", 2);
-    t.xSize = r.number("xSize", 1);
-    t.ySize = r.number("ySize", 1);
-    t.center = r.vec3("center", Eigen::Vector3d::Zero());
+    std::int64_t xs = r.integer("xSamples"), ys = r.integer("ySamples");
+    t.xSize = r.number("xSize");
+    t.ySize = r.number("ySize");
+    t.center = r.vec3("center");
     // Counts are checked before any list is parsed, so a hostile header
     // cannot ask for an unbounded allocation.
     // The validator's codes: RS4001 per axis, RS4002 in total, RS4014 sizes.
@@ -504,13 +543,13 @@ class Builder {
     if (t.heights.empty()) t.heights.assign(n, 0.0);
     t.material = r.str("material");
     t.contactMaterial = r.str("contactMaterial");
-    t.baseTexture = static_cast<int>(r.integer("baseTexture", 0));
-    t.visible = r.flag("visible", true);
-    t.collidable = r.flag("collidable", true);
-    t.castShadow = r.flag("castShadow", true);
-    t.receiveShadow = r.flag("receiveShadow", true);
-    t.textureSplatting = r.flag("textureSplattingEnabled", true);
-    t.sourceKind = r.name("sourceKind", "samples");
+    t.baseTexture = static_cast<int>(r.integer("baseTexture"));
+    t.visible = r.flag("visible");
+    t.collidable = r.flag("collidable");
+    t.castShadow = r.flag("castShadow");
+    t.receiveShadow = r.flag("receiveShadow");
+    t.textureSplatting = r.flag("textureSplattingEnabled");
+    t.sourceKind = r.name("sourceKind");
     sampleList(r, "texturePrimary", n, 1, t.texturePrimary);
     sampleList(r, "textureSecondary", n, 1, t.textureSecondary);
     sampleList(r, "textureBlend", n, 1, t.textureBlend);
@@ -552,9 +591,9 @@ class Builder {
     }
     TerrainSplatLayer l;
     l.recordIndex = idx;
-    l.slot = static_cast<int>(r.integer("slot", 0));
-    l.enabled = r.flag("enabled", true);
-    l.strength = r.number("strength", 1);
+    l.slot = static_cast<int>(r.integer("slot"));
+    l.enabled = r.flag("enabled");
+    l.strength = r.number("strength");
     sampleList(r, "weights", static_cast<std::size_t>(owner->xSamples) * owner->ySamples, 1, l.weights);
     owner->splatLayers.push_back(std::move(l));
   }
@@ -564,18 +603,18 @@ class Builder {
     w.recordIndex = idx;
     w.path = nodePath(doc_, r.record());
     w.id = nodeId(doc_, r.record());
-    w.kind = r.name("kind", "stiff");
+    w.kind = r.name("kind");
     w.bodyA = r.str("bodyA");
     w.bodyB = r.str("bodyB");
-    w.length = r.number("length", 1);
-    w.localIndexA = static_cast<int>(r.integer("localIndexA", 0));
-    w.localIndexB = static_cast<int>(r.integer("localIndexB", 0));
-    w.localPositionA = r.vec3("localPositionA", Eigen::Vector3d::Zero());
-    w.localPositionB = r.vec3("localPositionB", Eigen::Vector3d::Zero());
-    w.stiffness = r.number("stiffness", 1000);
-    w.damping = r.number("damping", 0);
-    w.compliance = r.number("compliance", 0);
-    w.enabled = r.flag("enabled", true);
+    w.length = r.number("length");
+    w.localIndexA = static_cast<int>(r.integer("localIndexA"));
+    w.localIndexB = static_cast<int>(r.integer("localIndexB"));
+    w.localPositionA = r.vec3("localPositionA");
+    w.localPositionB = r.vec3("localPositionB");
+    w.stiffness = r.number("stiffness");
+    w.damping = r.number("damping");
+    w.compliance = r.number("compliance");
+    w.enabled = r.flag("enabled");
     s_.wires.push_back(std::move(w));
   }
 
@@ -584,11 +623,11 @@ class Builder {
     v.recordIndex = idx;
     v.path = nodePath(doc_, r.record());
     v.id = nodeId(doc_, r.record());
-    v.primitive = r.name("primitive", "box");
+    v.primitive = r.name("primitive");
     v.meshPath = asset(r.str("meshPath"));
-    v.size = r.vec3("size", {1, 1, 1});
-    v.colorA = r.color("colorA", v.colorA);
-    v.colorB = r.color("colorB", v.colorB);
+    v.size = r.vec3("size");
+    v.colorA = r.color("colorA");
+    v.colorB = r.color("colorB");
     std::vector<double> xs;
     if (r.numbers("instances", xs)) {
       if (xs.size() % 10) {
@@ -607,9 +646,9 @@ class Builder {
       }
     }
     r.numbers("colorWeights", v.colorWeights);
-    v.castShadows = r.flag("castShadows", true);
-    v.grassPatch = r.flag("grassPatch", false);
-    v.enabled = r.flag("enabled", true);
+    v.castShadows = r.flag("castShadows");
+    v.grassPatch = r.flag("grassPatch");
+    v.enabled = r.flag("enabled");
     v.parentId = r.str("parentGroupId");
     parentOf_[idx] = v.parentId;
     s_.instancedVisuals.push_back(std::move(v));
@@ -637,28 +676,31 @@ class Builder {
       else
         r.error("colors", scene_code::kBadValue, "colors needs one color per point or none");
     }
-    p.pointSize = r.number("pointSize", 1);
-    p.enabled = r.flag("enabled", true);
+    p.pointSize = r.number("pointSize");
+    p.enabled = r.flag("enabled");
     p.parentId = r.str("parentGroupId");
     parentOf_[idx] = p.parentId;
     s_.pointClouds.push_back(std::move(p));
   }
 
   void defaults() {
-    if (s_.materials.empty()) {
-      Material m;
-      m.id = m.name = "engine_default";
-      s_.materials.push_back(m);
-    }
+    if (s_.materials.empty()) s_.materials.push_back(s_.defaultMaterial);
     if (s_.terrainTextures.empty()) {
-      TerrainTexture grass, rock;
-      grass.slot = 0;
-      grass.id = grass.name = "terrain_grass";
-      grass.color = {0.28, 0.43, 0.20, 1};
-      rock.slot = 1;
-      rock.id = rock.name = "terrain_rock";
-      rock.color = {0.42, 0.40, 0.36, 1};
-      s_.terrainTextures = {grass, rock};
+      // compat-notes.md, "Identity and defaults": two slots of their own
+      // colors; their other fields are the schema's.
+      struct Slot {
+        int slot;
+        const char* name;
+        double r, g, b;
+      };
+      constexpr Slot kSlots[] = {{0, "terrain_grass", 0.28, 0.43, 0.20}, {1, "terrain_rock", 0.42, 0.40, 0.36}};
+      for (const Slot& k : kSlots) {
+        TerrainTexture t = terrainTexture(RecordReader(doc_, *Schema::get().kind("terrain_texture"), diags_));
+        t.slot = k.slot;
+        t.id = t.name = k.name;
+        t.color = {k.r, k.g, k.b, 1};
+        s_.terrainTextures.push_back(std::move(t));
+      }
     }
   }
 
@@ -734,7 +776,7 @@ class Builder {
       auto it = simulatedBody.find(target);
       if (it == simulatedBody.end() && tag == "object") {  // skipped by a bodiesOnly build
         RecordReader r(doc_, static_cast<std::size_t>(target), diags_);
-        bool simulated = objectMode(r, r.name("primitive", "box"), r.flag("collidable", true)) != BodyMode::VisualOnly;
+        bool simulated = objectMode(r, r.name("primitive"), r.flag("collidable")) != BodyMode::VisualOnly;
         it = simulatedBody.emplace(target, simulated).first;
       }
       end = it != simulatedBody.end() && it->second ? WireEnd::Body : WireEnd::NotSimulated;
@@ -751,6 +793,7 @@ class Builder {
   Diagnostics& diags_;
   mutable std::unordered_map<std::string, std::size_t> byId_, byPath_;
   mutable bool indexed_ = false;
+  const KindDef* objectKind_ = Schema::get().kind("object");
   // Per object layout, the tokens of primitive, scale x3, radius, height,
   // mass, then bodyMode and collidable (-1 when the layout has none).
   std::unordered_map<const Layout*, std::vector<int>> plainSlots_;

@@ -1,8 +1,14 @@
-// The typed scene view (DESIGN.md, "Typed scene view"): plain structs with
-// Eigen types for the records that the simulator and the renderer consume.
+// The typed scene model (DESIGN.md, lib/scene): plain structs with Eigen
+// types for the records that validate's scene checks, the simulator and the
+// renderer consume.
 //
-// - Every value is typed and every absent key holds the default of the
-//   schema table (FieldDef::defaultValue) or of compat-notes.md.
+// - Every value is typed.  Every absent field, and every field of an absent
+//   singleton record, holds the default of the schema table
+//   (FieldDef::defaultValue), read by scene/reader.hpp: the structs below
+//   initialise their members to zero, never to a second copy of a default
+//   (tests/scene/defaults_test.cpp).  Rules the schema cannot hold are
+//   compat-notes.md's (fog colour = background, contact pairs = the
+//   solver's defaults, the two default terrain slots).
 // - Enumerations hold their canonical name (EnumDef::canonical), so
 //   `plane`, `fixed`, `sun` arrive as `ground`, `static`, `directional`.
 // - Poses are given twice: `local` as written in the file and `world`
@@ -80,70 +86,70 @@ const char* bodyModeName(BodyMode m);  // canonical enum name
 // solver record (Engine 2 defaults from the schema table).
 struct Solver {
   int recordIndex = -1;  // -1: absent, all defaults
-  int iterations = 80;
-  double tolerance = 1e-7;
-  double erp = 0.2;
-  std::string mode = "accurate";
-  double erp2 = 0;
-  double defaultFriction = 0.8;
-  double defaultRestitution = 0;
-  double defaultRestitutionThreshold = 0.001;
-  double defaultStaticFriction = 0.8;
-  double defaultStaticFrictionVelocityThreshold = 0.001;
-  double defaultRollingFriction = 0;
-  double defaultSpinningFriction = 0;
-  int contactMaxIterations = 80;
-  int maxContactsPerPair = 8;
-  bool sweptCcdEnabled = false;
-  double sweptCcdMinSpeed = 0;
-  double sweptCcdSpeculativeMargin = 1e-4;
-  bool sleepingEnabled = true;
-  double sleepingLinearVelocityThreshold = 0.002;
-  double sleepingAngularVelocityThreshold = 0.01;
-  int sleepingQuietSteps = 5;
-  std::string broadphaseType = "sap3_axis";
-  Eigen::Vector3d broadphaseWorldMin{-100, -100, -100};
-  Eigen::Vector3d broadphaseWorldMax{100, 100, 100};
-  bool broadphaseUseWorldBounds = false;
-  bool fixedContactSolverIterationOrder = false;
-  double worldTime = 0;
+  int iterations{};
+  double tolerance{};
+  double erp{};
+  std::string mode{};
+  double erp2{};
+  double defaultFriction{};
+  double defaultRestitution{};
+  double defaultRestitutionThreshold{};
+  double defaultStaticFriction{};
+  double defaultStaticFrictionVelocityThreshold{};
+  double defaultRollingFriction{};
+  double defaultSpinningFriction{};
+  int contactMaxIterations{};
+  int maxContactsPerPair{};
+  bool sweptCcdEnabled{};
+  double sweptCcdMinSpeed{};
+  double sweptCcdSpeculativeMargin{};
+  bool sleepingEnabled{};
+  double sleepingLinearVelocityThreshold{};
+  double sleepingAngularVelocityThreshold{};
+  int sleepingQuietSteps{};
+  std::string broadphaseType{};
+  Eigen::Vector3d broadphaseWorldMin{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d broadphaseWorldMax{Eigen::Vector3d::Zero()};
+  bool broadphaseUseWorldBounds{};
+  bool fixedContactSolverIterationOrder{};
+  double worldTime{};
 };
 
 // environment record.
 struct Environment {
   int recordIndex = -1;
-  Eigen::Vector3d background{0.38, 0.38, 0.38};
-  Eigen::Vector3d ambient{0.15, 0.16, 0.20};
-  double fogDensity = 0;
-  bool shadows = true;
+  Eigen::Vector3d background{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d ambient{Eigen::Vector3d::Zero()};
+  double fogDensity{};
+  bool shadows{};
   std::string envMapPath;                  // resolved; empty = none
-  Eigen::Vector4d fogColor{0.38, 0.38, 0.38, 1};  // defaults to the background colour
-  double exposure = 1;
-  double gamma = 2.2;
-  std::string backgroundMode = "rayrai_sky";  // plain_color | hdr | rayrai_sky
+  Eigen::Vector4d fogColor{Eigen::Vector4d::Zero()};  // defaults to the background colour
+  double exposure{};
+  double gamma{};
+  std::string backgroundMode{};  // plain_color | hdr | rayrai_sky
   std::string colorMode;                      // empty: renderer's choice
-  double pbrEnvironmentIntensity = 1;
-  bool heightFogEnabled = false;
-  double heightFogDensity = 0, heightFogBaseHeight = 0, heightFogFalloff = 0.35;
+  double pbrEnvironmentIntensity{};
+  bool heightFogEnabled{};
+  double heightFogDensity{}, heightFogBaseHeight{}, heightFogFalloff{};
 };
 
 // weather record (only what a renderer needs for lighting and fog).
 struct Weather {
   int recordIndex = -1;
-  bool enabled = true;
-  std::string preset = "clear";
-  double timeOfDay = 12;  // hours
-  bool useExplicitSunAngles = false;
-  double sunAzimuthDegrees = 180;
-  double sunElevationDegrees = 42;
-  double fogDensity = 0;
+  bool enabled{};
+  std::string preset{};
+  double timeOfDay{};  // hours
+  bool useExplicitSunAngles{};
+  double sunAzimuthDegrees{};
+  double sunElevationDegrees{};
+  double fogDensity{};
   std::optional<double> cloudCoverage;  // absent: the preset's
 };
 
 // rayrai_render record (what a renderer needs of Engine 2's view settings).
 struct RenderSettings {
   int recordIndex = -1;
-  std::string preset = "balanced";
+  std::string preset{};
   std::string colorMode;  // empty: not written (environment colorMode wins when written)
 };
 
@@ -151,14 +157,14 @@ struct Material {
   int recordIndex = -1;  // -1: the implicit engine_default
   std::string id;        // defaults to the name
   std::string name;
-  Eigen::Vector4d color{0.55, 0.62, 0.72, 1};
-  double metallic = 0;
-  double roughness = 0.55;
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
+  double metallic{};
+  double roughness{};
   Eigen::Vector3d emissive = Eigen::Vector3d::Zero();
-  double emissiveStrength = 0;
-  bool doubleSided = false;
-  std::string alphaMode = "opaque";  // opaque | mask | hash | blend
-  double alphaCutoff = 0.5;
+  double emissiveStrength{};
+  bool doubleSided{};
+  std::string alphaMode{};  // opaque | mask | hash | blend
+  double alphaCutoff{};
   // Resolved texture paths; empty = none.
   std::string albedoTexture, normalTexture, metallicTexture, roughnessTexture, aoTexture, emissiveTexture;
 };
@@ -167,47 +173,47 @@ struct Material {
 struct ContactMaterial {
   int recordIndex = -1;
   std::string materialA, materialB;
-  double friction = 0.8;
-  double restitution = 0;
-  double restitutionThreshold = 0.001;
-  double staticFriction = 0.8;
-  double staticFrictionVelocityThreshold = 0.001;
-  double rollingFriction = 0;
-  double spinningFriction = 0;
+  double friction{};
+  double restitution{};
+  double restitutionThreshold{};
+  double staticFriction{};
+  double staticFrictionVelocityThreshold{};
+  double rollingFriction{};
+  double spinningFriction{};
 };
 
 struct TerrainTexture {
   int recordIndex = -1;  // -1: a default slot
-  int slot = 0;
+  int slot{};
   std::string id, name;
-  Eigen::Vector4d color{1, 1, 1, 1};
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
   std::string albedo, normal;  // resolved
-  double uvScale = 1;
-  double roughness = 1;
+  double uvScale{};
+  double roughness{};
 };
 
 struct Group {
   int recordIndex = -1;
   std::string path, id, parentId;
-  bool visible = true;
+  bool visible{};
 };
 
 struct Light {
   int recordIndex = -1;
   std::string path, id, parentId;
-  std::string type = "directional";  // directional | point | spot | area
-  Eigen::Vector3d direction{0, 0, -1};  // the way the light travels, world frame, normalised
-  double intensity = 1;
-  Eigen::Vector3d position{0, 0, 3};    // world frame
-  Eigen::Vector4d color{1, 1, 1, 1};
-  double attenuationConstant = 1, attenuationLinear = 0.04, attenuationQuadratic = 0.012;
-  double range = 0;            // 0: unlimited
-  double coneAngle = 30;       // degrees
-  double innerConeAngle = 18;  // degrees
-  double radius = 0;
+  std::string type{};  // directional | point | spot | area
+  Eigen::Vector3d direction{Eigen::Vector3d::Zero()};  // the way the light travels, world frame, normalised
+  double intensity{};
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};  // world frame
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
+  double attenuationConstant{}, attenuationLinear{}, attenuationQuadratic{};
+  double range{};  // 0: unlimited
+  double coneAngle{};  // degrees
+  double innerConeAngle{};  // degrees
+  double radius{};
   Eigen::Vector3d areaSize = Eigen::Vector3d::Zero();
-  bool shadows = true;
-  bool negative = false;       // subtracts light
+  bool shadows{};
+  bool negative{};  // subtracts light
   bool hiddenByGroup = false;  // an ancestor group has visible=false
 };
 
@@ -215,39 +221,39 @@ struct Camera {
   int recordIndex = -1;
   std::string path, id;
   Pose local, world;  // looks along local +x with local +z up
-  double verticalFov = 60;  // degrees, clamped to [1, 175]
-  double horizontalFov = 0; // > 0 overrides the aspect-derived one
-  double nearPlane = 0.05, farPlane = 1000;
-  int width = 640, height = 480;  // only the aspect ratio
-  std::string renderMode = "rgb";
-  std::string projection = "perspective";
-  double orthoScale = 10;
-  bool enabled = true;
+  double verticalFov{};  // degrees, clamped to [1, 175]
+  double horizontalFov{};  // > 0 overrides the aspect-derived one
+  double nearPlane{}, farPlane{};
+  int width{}, height{};  // only the aspect ratio
+  std::string renderMode{};
+  std::string projection{};
+  double orthoScale{};
+  bool enabled{};
 };
 
 struct Object {
   int recordIndex = -1;
   std::string path, id, parentId;
-  std::string primitive = "box";  // ground box sphere cylinder capsule mesh half_space
+  std::string primitive{};  // ground box sphere cylinder capsule mesh half_space
   Pose local, world;
-  Eigen::Vector3d scale{1, 1, 1};
-  double radius = 0.5, height = 1;  // as written (#12, #13)
-  double mass = 1;                  // as written
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  double radius{}, height{};  // as written (#12, #13)
+  double mass{};  // as written
   std::string contactMaterial;      // contact-material name (may be empty / "default")
   std::string material;             // visual material id
-  bool visible = true;
+  bool visible{};
   bool hiddenByGroup = false;  // an ancestor group has visible=false
-  bool castShadow = true;
-  BodyMode bodyMode = BodyMode::Dynamic;  // resolved from #21, #17, #19, collidable
-  bool collidable = true;
-  std::uint64_t collisionGroup = 1;
-  std::uint64_t collisionMask = ~std::uint64_t{0};
+  bool castShadow{};
+  BodyMode bodyMode{};  // resolved from #21, #17, #19, collidable
+  bool collidable{};
+  std::uint64_t collisionGroup{};
+  std::uint64_t collisionMask{};
   std::string meshPath;           // resolved render mesh (renderMeshPath= overrides #20)
   std::string collisionMeshPath;  // resolved collision mesh (collisionMeshPath= or the render mesh)
-  std::string collisionMode = "convex_hull";  // convex_hull | original_mesh | convexify
+  std::string collisionMode{};  // convex_hull | original_mesh | convexify
   // Positional token of position.x in the record (orientation w follows at +3),
   // for writing poses back.
-  int positionToken = 2;
+  int positionToken = -1;
 
   // Physical sizes per compat-notes.md.
   double physicsRadius() const { return radius * scale.x(); }
@@ -259,11 +265,11 @@ struct Object {
 
 struct CompoundChild {
   int recordIndex = -1;
-  std::string primitive = "box";
+  std::string primitive{};
   Pose local;  // in the compound's frame
-  Eigen::Vector3d scale{1, 1, 1};
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box full side lengths (size x scale)
-  double radius = 0, height = 0;
+  double radius{}, height{};
   std::string contactMaterial, material;
   std::string meshPath;  // resolved
 };
@@ -272,19 +278,19 @@ struct Compound {
   int recordIndex = -1;
   std::string path, id, parentId;
   Pose local, world;
-  Eigen::Vector3d scale{1, 1, 1};
-  double mass = 1;
-  BodyMode bodyMode = BodyMode::Dynamic;
-  bool visible = true, collidable = true;
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  double mass{};
+  BodyMode bodyMode{};
+  bool visible{}, collidable{};
   bool hiddenByGroup = false;
-  bool hasCenterOfMass = false, hasInertia = false;
+  bool hasCenterOfMass{}, hasInertia{};
   Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();  // compound frame
   Eigen::Vector3d inertiaDiagonal = Eigen::Vector3d::Zero();
-  std::uint64_t collisionGroup = 1;
-  std::uint64_t collisionMask = ~std::uint64_t{0};
+  std::uint64_t collisionGroup{};
+  std::uint64_t collisionMask{};
   std::string contactMaterial, material;
   std::vector<CompoundChild> children;
-  int positionToken = 1;
+  int positionToken = -1;
 };
 
 // Physical sizes of a compound child (compat-notes.md "Sizes"; the child's
@@ -309,9 +315,9 @@ inline Pose childPose(const Compound& c, const CompoundChild& ch) {
 
 struct TerrainSplatLayer {
   int recordIndex = -1;
-  int slot = 0;
-  bool enabled = true;
-  double strength = 1;
+  int slot{};
+  bool enabled{};
+  double strength{};
   std::vector<double> weights;  // one per sample or empty
 };
 
@@ -320,16 +326,16 @@ struct TerrainSplatLayer {
 struct Terrain {
   int recordIndex = -1;
   std::string path, id, parentId;
-  int xSamples = 2, ySamples = 2;
-  double xSize = 1, ySize = 1;
+  int xSamples{}, ySamples{};
+  double xSize{}, ySize{};
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   std::vector<double> heights;  // xSamples*ySamples (zeros when the file has none)
   std::string material, contactMaterial;
-  int baseTexture = 0;
-  bool visible = true, collidable = true, castShadow = true, receiveShadow = true;
+  int baseTexture{};
+  bool visible{}, collidable{}, castShadow{}, receiveShadow{};
   bool hiddenByGroup = false;
-  bool textureSplatting = true;  // textureSplattingEnabled
-  std::string sourceKind = "samples";
+  bool textureSplatting{};  // textureSplattingEnabled
+  std::string sourceKind{};
   std::vector<double> texturePrimary, textureSecondary, textureBlend, wetness, holes;  // per sample or empty
   std::vector<Eigen::Vector4d> vertexColors;  // per sample or empty
   std::vector<TerrainSplatLayer> splatLayers;
@@ -347,13 +353,13 @@ enum class WireEnd { World, Body, NotSimulated, Unknown };
 struct Wire {
   int recordIndex = -1;
   std::string path, id;
-  std::string kind = "stiff";  // stiff | compliant | custom
+  std::string kind{};  // stiff | compliant | custom
   std::string bodyA, bodyB;    // as written (id or path), decoded
-  double length = 1;
-  int localIndexA = 0, localIndexB = 0;
+  double length{};
+  int localIndexA{}, localIndexB{};
   Eigen::Vector3d localPositionA = Eigen::Vector3d::Zero(), localPositionB = Eigen::Vector3d::Zero();
-  double stiffness = 1000, damping = 0, compliance = 0;
-  bool enabled = true;
+  double stiffness{}, damping{}, compliance{};
+  bool enabled{};
   WireEnd endA = WireEnd::World, endB = WireEnd::World;
   std::string tagA, tagB;  // record kind an end names (when it names a node)
 
@@ -369,19 +375,19 @@ struct Wire {
 struct Instance {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d scale{1, 1, 1};  // numbers 8..10
+  Eigen::Vector3d scale = Eigen::Vector3d::Zero();  // numbers 8..10
 };
 
 struct InstancedVisual {
   int recordIndex = -1;
   std::string path, id, parentId;
-  std::string primitive = "box";
+  std::string primitive{};
   std::string meshPath;  // resolved
-  Eigen::Vector3d size{1, 1, 1};
-  Eigen::Vector4d colorA{1, 1, 1, 1}, colorB{1, 1, 1, 1};
+  Eigen::Vector3d size{Eigen::Vector3d::Zero()};
+  Eigen::Vector4d colorA{Eigen::Vector4d::Zero()}, colorB{Eigen::Vector4d::Zero()};
   std::vector<Instance> instances;
   std::vector<double> colorWeights;  // one per instance or empty
-  bool castShadows = true, enabled = true, grassPatch = false;
+  bool castShadows{}, enabled{}, grassPatch{};
   bool hiddenByGroup = false;
 };
 
@@ -390,8 +396,8 @@ struct PointCloud {
   std::string path, id, parentId;
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector4d> colors;  // one per point or empty
-  double pointSize = 1;
-  bool enabled = true;
+  double pointSize{};
+  bool enabled{};
   bool hiddenByGroup = false;
 };
 
@@ -404,14 +410,15 @@ struct SkippedRecord {
 
 struct Scene {
   int timeStepRecord = -1;  // the time_step record in force, or -1
-  double timeStep = 0.0025;
-  Eigen::Vector3d gravity{0, 0, -9.81};
+  double timeStep{};
+  Eigen::Vector3d gravity{Eigen::Vector3d::Zero()};
   Solver solver;
-  bool inheritedTransforms = true;
-  std::string assetRoot = ".";
+  bool inheritedTransforms{};
+  std::string assetRoot;  // decoded asset_root (core/assets.hpp: "." when absent)
   Environment environment;
   Weather weather;
   RenderSettings renderSettings;
+  Material defaultMaterial;         // engine_default as Engine 2 assumes it (the material schema's defaults)
   std::vector<Material> materials;  // never empty: engine_default without material records
   std::vector<ContactMaterial> contactMaterials;
   std::vector<TerrainTexture> terrainTextures;  // never empty: slots 0/1 by default
