@@ -31,12 +31,12 @@ unit-test:
 shell-test:
 	RSCENE_BIN="$(CURDIR)/$(BUILD_DIR)/bin" bats shell-tests
 
-# Only core_tests and asset_tests (the image decoders meet hostile input)
-# are built here; ctest lists the other test executables as
-# <target>_NOT_BUILT, which are left out.
+# Only core_tests, scene_tests (the typed scene model) and asset_tests (the
+# image decoders meet hostile input) are built here; ctest lists the other
+# test executables as <target>_NOT_BUILT, which are left out.
 asan-test:
 	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DRSCENE_SANITIZE=ON -DRSCENE_BUILD_TOOLS=OFF
-	cmake --build $(ASAN_DIR) -j$(JOBS) --target core_tests asset_tests
+	cmake --build $(ASAN_DIR) -j$(JOBS) --target core_tests scene_tests asset_tests
 	ctest --test-dir $(ASAN_DIR) --output-on-failure -j$(JOBS) -E '_NOT_BUILT$$'
 
 demo: build

@@ -102,11 +102,11 @@ is_png() {
   cp "$DATA/render_mesh.rscene" scene.rscene
   run "$RENDER" scene.rscene -o out.png
   [ "$status" -eq 2 ]
-  [[ "${lines[0]}" == "scene.rscene:5:1: error: mesh file not found: render_assets/crate.obj [RS9001]" ]]
+  [[ "${lines[0]}" == "scene.rscene:5:1: error: mesh file not found: render_assets/crate.obj [RS5001]" ]]
   [ ! -e out.png ]
   run "$RENDER" scene.rscene --allow-missing-assets -o out.png
   [ "$status" -eq 0 ]
-  [[ "${lines[0]}" == "scene.rscene:5:1: warning: mesh file not found: render_assets/crate.obj [RS9001]" ]]
+  [[ "${lines[0]}" == "scene.rscene:5:1: warning: mesh file not found: render_assets/crate.obj [RS5001]" ]]
   is_png out.png
 }
 

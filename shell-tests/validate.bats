@@ -24,7 +24,7 @@ setup() {
 @test "errors: file:line:col, source line, caret, hint; exit 1" {
   run --separate-stderr "$V" "$DATA/validate_errors.rscene"
   [ "$status" -eq 1 ]
-  [ "${lines[0]}" = "$DATA/validate_errors.rscene:2:47: error: dynamic body has mass 0 [RS4008]" ]
+  [ "${lines[0]}" = "$DATA/validate_errors.rscene:2:47: error: dynamic body '/World/a' needs a mass > 0 [RS4008]" ]
   [ "${lines[2]}" = "                                                ^" ]
   [ "${lines[3]}" = "  hint: give it a positive mass, or make it static or kinematic" ]
   [[ "$output" == *"3:27: warning: unknown key 'colour' for light [RS3002]"* ]]
@@ -78,12 +78,34 @@ setup() {
   [ "$stderr" = "2 errors, 1 warning in 1 file (2 not shown)" ]
 }
 
-@test "--list-checks prints every code with its severity" {
+@test "--list-checks prints every code any tool emits, with severity and tools" {
   run "$V" --list-checks
   [ "$status" -eq 0 ]
-  [[ "${lines[0]}" == "RS1001  error    missing raisim_engine_scene header" ]]
-  [[ "$output" == *"RS3002  warning  unknown key (kept and ignored)"* ]]
-  [[ "$output" == *"RS6001  error    record kind RaiSim does not load"* ]]
+  [[ "${lines[0]}" == "RS1001  error    validate             missing raisim_engine_scene header" ]]
+  [[ "$output" == *"RS3002  warning  validate             unknown key (kept and ignored)"* ]]
+  [[ "$output" == *"RS4008  error    validate sim render  dynamic object or compound without positive mass"* ]]
+  [[ "$output" == *"RS7011  warning  validate sim         wire to a node the simulator does not model, skipped"* ]]
+  [[ "$output" == *"RS8001  error    from-json            invalid JSON"* ]]
+  [[ "$output" == *"RS9001  error    render               mesh file that cannot be read"* ]]
+  # Codes of other tools can be filtered on like the validator's own.
+  run "$V" --only RS9001 "$DATA/validate_clean.rscene"
+  [ "$status" -eq 0 ]
+}
+
+@test "what sim refuses is a validate finding with the same code and line" {
+  printf 'raisim_engine_scene 2\ntime_step 0\nobject /World/a box 0 0 1 1 0 0 0 1 0 1 0.5 1 1 default engine_default false true false - dynamic true 1 1\n' >bad.rscene
+  run -1 --separate-stderr "$V" bad.rscene
+  [ "${lines[0]}" = "bad.rscene:2:11: error: time step must be positive [RS7008]" ]
+  [[ "$output" == *"bad.rscene:3:35: error: box with a zero or negative side ('/World/a') [RS7003]"* ]]
+  [ -x "$BIN/rscene-sim" ] || return 0
+  run -2 --separate-stderr "$BIN/rscene-sim" --steps 1 bad.rscene
+  [[ "$stderr" == *"bad.rscene:2:11: error: time step must be positive [RS7008]"* ]]
+  [[ "$stderr" == *"bad.rscene:3:35: error: box with a zero or negative side ('/World/a') [RS7003]"* ]]
+}
+
+@test "a wire to an articulated system is a warning, and sim still runs" {
+  run -0 --separate-stderr "$V" "$BATS_TEST_DIRNAME/../examples/robot_cell.rscene"
+  [[ "$output" == *"warning: wire '/World/Tether' is not simulated: bodyA 'articulated_anymal' is an articulated, which rscene-sim does not model [RS7011]"* ]]
 }
 
 @test "--format json: one document with findings, counts and truncated" {

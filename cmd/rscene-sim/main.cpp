@@ -11,7 +11,7 @@
 
 #include "common/cli.hpp"
 #include "core/loader.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/writer.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/world.hpp"
@@ -53,10 +53,6 @@ int run(const Options& opt) {
   bool ok = buildScene(doc, so, scene, ds);
   if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
   ok = ok && sim::checkPhysics(doc, scene, ds);
-  if (ok && !(scene.timeStep > 0)) {
-    cli::error("time_step must be positive");
-    return cli::kTrouble;
-  }
   sim::WorldOptions wo;
   wo.assets = &assets;
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;

@@ -2,11 +2,13 @@
 // and reports the findings as text, JSON or SARIF.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <iomanip>
 #include <iostream>
 #include <set>
 
 #include "common/cli.hpp"
 #include "core/check.hpp"
+#include "scene/validate.hpp"
 #include "rscene-validate/output.hpp"
 
 namespace {
@@ -27,10 +29,12 @@ struct Options {
   std::string stdinName;
 };
 
+// Every code any tool emits (the registry in core/check_codes.cpp), with
+// the tools that report it.
 void listChecks() {
   for (const CheckInfo& c : checkTable())
-    std::cout << c.code << "  " << (c.severity == Severity::Error ? "error  " : "warning") << "  " << c.summary
-              << '\n';
+    std::cout << c.code << "  " << (c.severity == Severity::Error ? "error  " : "warning") << "  " << std::left
+              << std::setw(19) << c.tools << "  " << c.summary << '\n';
 }
 
 // Every code named by --ignore/--only must exist, so a typo is not silent.
@@ -64,7 +68,7 @@ struct Run {
     co.checkFiles = opt.checkFiles;
     co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
     Document doc;
-    Diagnostics all = validateText(std::move(in.text), co, doc);
+    Diagnostics all = validateScene(std::move(in.text), co, doc);
     Diagnostics shown;
     validate::FileCounts counts;
     for (Diagnostic& d : all) {
@@ -101,7 +105,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-issues", opt.maxIssues, "Show at most N findings (the summary counts all)")
       ->type_name("N")
       ->check(cli::count(1));
-  app.add_flag("--list-checks", opt.listChecks, "List every code with its severity and meaning, then exit");
+  app.add_flag("--list-checks", opt.listChecks, "List every code any tool emits, with its severity, tools and meaning, then exit");
   app.add_option("--profile", opt.profile, "engine2 (what Engine 2 loads) or raisim (also what RaiSim refuses)")
       ->check(CLI::IsMember({"engine2", "raisim"}))
       ->type_name("PROFILE");

@@ -32,10 +32,23 @@ Diagnostics check(const Document& doc, const CheckOptions& options);
 // (its buffer holds the source lines for carets).
 Diagnostics validateText(std::string text, const CheckOptions& options, Document& doc);
 
-// One row of the code table: used by --list-checks, the man page and tests.
+// Where a condition is checked: the layer that owns the check.
+enum class CheckLayer {
+  Core,    // lib/core's validator (check(), the loader before it)
+  Scene,   // lib/scene: scene/check.hpp, called by validate, sim and render
+  Sim,     // lib/sim: what only building the Bullet world finds
+  Json,    // lib/core's JSON reader (rscene-from-json)
+  Render,  // lib/render: what only drawing finds
+};
+
+// One row of the registry of every diagnostic code any tool emits: used by
+// `rscene-validate --list-checks`, the man pages and the tests (a test
+// greps lib/ and cmd/ for codes and asserts each is here).
 struct CheckInfo {
   std::string_view code;
   Severity severity;
+  CheckLayer layer;
+  std::string_view tools;    // the tools that report it, e.g. "validate sim render"
   std::string_view summary;  // one line, lower-case, no final period
 };
 std::span<const CheckInfo> checkTable();

@@ -1,6 +1,9 @@
-// Every finding the validator (and the loader before it) can report: the
-// code, its severity and one line of explanation.  --list-checks, the man
-// page and the tests all read this one table.
+// The registry of every diagnostic code any tool emits: the code, its
+// severity, the layer that checks it, the tools that report it and one line
+// of explanation.  --list-checks, the man pages and the tests read this one
+// table; tests/scene/code_registry_test.cpp fails when lib/ or cmd/ emits a
+// code that is not here, or when README.md or a man page quotes one that
+// does not exist.
 #include <algorithm>
 
 #include "core/check.hpp"
@@ -10,75 +13,100 @@ namespace {
 
 constexpr Severity E = Severity::Error;
 constexpr Severity W = Severity::Warning;
+constexpr CheckLayer Core = CheckLayer::Core, Scene = CheckLayer::Scene, Sim = CheckLayer::Sim,
+                     Json = CheckLayer::Json, Render = CheckLayer::Render;
+// Who reports a code: the validator alone, or also sim and render, whose
+// scene model (lib/scene/reader.cpp) reads values with the validator's codes.
+constexpr std::string_view V = "validate", VSR = "validate sim render";
 
 constexpr CheckInfo kChecks[] = {
     // RS1xxx syntax (RS1001..RS1010 come from the loader)
-    {"RS1001", E, "missing raisim_engine_scene header"},
-    {"RS1002", E, "unsupported rscene version (only 1 and 2 exist)"},
-    {"RS1003", E, "invalid percent escape"},
-    {"RS1004", E, "scene text contains a NUL byte"},
-    {"RS1005", E, "invalid UTF-8"},
-    {"RS1006", E, "control character in a token"},
-    {"RS1007", E, "wrong number of positional fields for the record kind"},
-    {"RS1008", E, "positional field after key=value fields"},
-    {"RS1009", E, "key=value token without a key"},
-    {"RS1010", E, "input too large"},
-    {"RS1101", W, "key repeated in one record (the last one wins)"},
+    {"RS1001", E, Core, V, "missing raisim_engine_scene header"},
+    {"RS1002", E, Core, V, "unsupported rscene version (only 1 and 2 exist)"},
+    {"RS1003", E, Core, V, "invalid percent escape"},
+    {"RS1004", E, Core, V, "scene text contains a NUL byte"},
+    {"RS1005", E, Core, V, "invalid UTF-8"},
+    {"RS1006", E, Core, V, "control character in a token"},
+    {"RS1007", E, Core, V, "wrong number of positional fields for the record kind"},
+    {"RS1008", E, Core, V, "positional field after key=value fields"},
+    {"RS1009", E, Core, V, "key=value token without a key"},
+    {"RS1010", E, Core, V, "input too large"},
+    {"RS1101", W, Core, V, "key repeated in one record (the last one wins)"},
     // RS2xxx types
-    {"RS2001", E, "value is not a number"},
-    {"RS2002", E, "number is not finite (nan, inf or out of range)"},
-    {"RS2003", E, "value is not an integer in range"},
-    {"RS2004", E, "collision group or mask is not an unsigned 64-bit integer"},
-    {"RS2005", E, "value is not a flag (true/false, 1/0, yes/no, on/off)"},
-    {"RS2006", E, "unknown name for an enumeration"},
-    {"RS2007", W, "name not known for an open enumeration (newer writers may add names)"},
-    {"RS2008", E, "vector, quaternion or color with the wrong number of components"},
-    {"RS2009", E, "number list with an empty entry or a trailing separator"},
+    {"RS2001", E, Core, VSR, "value is not a number"},
+    {"RS2002", E, Core, VSR, "number is not finite (nan, inf or out of range)"},
+    {"RS2003", E, Core, VSR, "value is not an integer in range"},
+    {"RS2004", E, Core, VSR, "collision group or mask is not an unsigned 64-bit integer"},
+    {"RS2005", E, Core, VSR, "value is not a flag (true/false, 1/0, yes/no, on/off)"},
+    {"RS2006", E, Core, VSR, "unknown name for an enumeration"},
+    {"RS2007", W, Core, V, "name not known for an open enumeration (newer writers may add names)"},
+    {"RS2008", E, Core, VSR, "vector, quaternion or color with the wrong number of components"},
+    {"RS2009", E, Core, VSR, "number list with an empty entry or a trailing separator"},
     // RS3xxx names and references
-    {"RS3001", W, "unknown record tag (kept and ignored)"},
-    {"RS3002", W, "unknown key (kept and ignored)"},
-    {"RS3003", E, "duplicate node path"},
-    {"RS3004", E, "duplicate id (explicit or default)"},
-    {"RS3005", W, "node path not rooted at /World"},
-    {"RS3006", E, "parent (parentGroupId or parentId) names no node"},
-    {"RS3007", W, "node parented to a non-group node inherits its transform"},
-    {"RS3008", E, "material names no material record"},
-    {"RS3009", W, "contact material named by no contact_material record"},
-    {"RS3010", E, "articulated resource names no articulated_resource record"},
-    {"RS3011", E, "terrain texture slot names no terrain_texture record"},
-    {"RS3012", E, "body reference names no node"},
-    {"RS3013", E, "terrain reference names no terrain_region"},
-    {"RS3014", E, "node reference names no node of the right kind"},
-    {"RS3015", E, "child record with no parent record before it"},
-    {"RS3016", W, "repeated singleton record replaces the earlier one"},
-    {"RS3017", E, "parent chain forms a cycle"},
+    {"RS3001", W, Core, V, "unknown record tag (kept and ignored)"},
+    {"RS3002", W, Core, V, "unknown key (kept and ignored)"},
+    {"RS3003", E, Core, V, "duplicate node path"},
+    {"RS3004", E, Core, V, "duplicate id (explicit or default)"},
+    {"RS3005", W, Core, V, "node path not rooted at /World"},
+    {"RS3006", E, Core, V, "parent (parentGroupId or parentId) names no node"},
+    {"RS3007", W, Core, V, "node parented to a non-group node inherits its transform"},
+    {"RS3008", E, Core, V, "material names no material record"},
+    {"RS3009", W, Core, V, "contact material named by no contact_material record"},
+    {"RS3010", E, Core, V, "articulated resource names no articulated_resource record"},
+    {"RS3011", E, Core, V, "terrain texture slot names no terrain_texture record"},
+    {"RS3012", E, Core, VSR, "body reference names no node"},
+    {"RS3013", E, Core, VSR, "terrain reference names no terrain_region"},
+    {"RS3014", E, Core, VSR, "node reference names no node of the right kind"},
+    {"RS3015", E, Core, V, "child record with no parent record before it"},
+    {"RS3016", W, Core, V, "repeated singleton record replaces the earlier one"},
+    {"RS3017", E, Core, V, "parent chain forms a cycle"},
     // RS4xxx sizes and values
-    {"RS4001", E, "terrain sample count per axis outside 2..16384"},
-    {"RS4002", E, "terrain has more than 64 Mi samples"},
-    {"RS4003", E, "per-sample list length differs from the terrain's sample count"},
-    {"RS4004", E, "instance list length is not a multiple of 10"},
-    {"RS4005", E, "colorWeights count differs from the instance count"},
-    {"RS4006", E, "vertexColors count differs from the terrain's sample count"},
-    {"RS4007", E, "generalizedCoordinate and generalizedVelocity lengths disagree"},
-    {"RS4008", E, "dynamic body without positive mass"},
-    {"RS4009", E, "zero quaternion"},
-    {"RS4010", W, "quaternion not of unit length (off by more than 1e-3)"},
-    {"RS4011", E, "negative size, radius or length"},
-    {"RS4012", E, "camera near plane not positive or not below the far plane"},
-    {"RS4013", W, "field of view outside the range it is clamped to"},
-    {"RS4014", E, "terrain size not positive"},
+    {"RS4001", E, Core, VSR, "terrain sample count per axis outside 2..16384"},
+    {"RS4002", E, Core, VSR, "terrain has more than 64 Mi samples"},
+    {"RS4003", E, Core, VSR, "per-sample list length differs from the terrain's sample count"},
+    {"RS4004", E, Core, VSR, "instance list length is not a multiple of 10"},
+    {"RS4005", E, Core, V, "colorWeights count differs from the instance count"},
+    {"RS4006", E, Core, VSR, "vertexColors count differs from the terrain's sample count"},
+    {"RS4007", E, Core, V, "generalizedCoordinate and generalizedVelocity lengths disagree"},
+    {"RS4008", E, Scene, VSR, "dynamic object or compound without positive mass (ground and half_space are static)"},
+    {"RS4009", E, Core, VSR, "zero quaternion"},
+    {"RS4010", W, Core, V, "quaternion not of unit length (off by more than 1e-3)"},
+    {"RS4011", E, Core, V, "negative size, radius or length"},
+    {"RS4012", E, Core, V, "camera near plane not positive or not below the far plane"},
+    {"RS4013", W, Core, V, "field of view outside the range it is clamped to"},
+    {"RS4014", E, Core, VSR, "terrain size not positive"},
     // RS5xxx files (--check-files)
-    {"RS5001", E, "asset file does not exist"},
+    {"RS5001", E, Core, "validate sim render", "asset file does not exist (validate --check-files; sim for collision meshes; render for meshes and textures)"},
     // RS6xxx what RaiSim 2.7.1 refuses (--profile raisim)
-    {"RS6001", E, "record kind RaiSim does not load"},
-    {"RS6002", E, "key repeated in one record"},
-    {"RS6003", E, "version-1 asset_root other than . or an absolute path"},
-    {"RS6004", E, "node parented to a non-group node while transforms are inherited"},
-    {"RS6005", E, "terrain not sampled, hidden or not collidable"},
-    {"RS6006", E, "terrain layer before its terrain"},
-    {"RS6007", E, "enabled instanced visual that is a grass patch or a ground"},
-    {"RS6008", E, "enabled wire with a negative length or body index"},
-    {"RS6009", E, "name not known to RaiSim"},
+    {"RS6001", E, Core, V, "record kind RaiSim does not load"},
+    {"RS6002", E, Core, V, "key repeated in one record"},
+    {"RS6003", E, Core, V, "version-1 asset_root other than . or an absolute path"},
+    {"RS6004", E, Core, V, "node parented to a non-group node while transforms are inherited"},
+    {"RS6005", E, Core, V, "terrain not sampled, hidden or not collidable"},
+    {"RS6006", E, Core, V, "terrain layer before its terrain"},
+    {"RS6007", E, Core, V, "enabled instanced visual that is a grass patch or a ground"},
+    {"RS6008", E, Core, V, "enabled wire with a negative length or body index"},
+    {"RS6009", E, Core, V, "name not known to RaiSim"},
+    // RS7xxx the scene model (lib/scene) and the simulator
+    {"RS7001", E, Scene, VSR, "point cloud colors that are not one per point"},
+    {"RS7003", E, Scene, VSR, "body shape with a zero or negative physical size"},
+    {"RS7004", E, Scene, VSR, "mesh body without a mesh path"},
+    {"RS7007", E, Sim, "sim", "mesh file that cannot be read or has no triangles"},
+    {"RS7008", E, Scene, VSR, "time_step not positive"},
+    {"RS7010", W, Sim, "sim", "records kept but not simulated (articulated, deformable, granular, sensor)"},
+    {"RS7011", W, Scene, "validate sim", "wire to a node the simulator does not model, skipped"},
+    {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
+    // RS8xxx JSON input (rscene-from-json)
+    {"RS8001", E, Json, "from-json", "invalid JSON"},
+    {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
+    // RS9xxx rendering (rscene-render)
+    {"RS9001", E, Render, "render", "mesh file that cannot be read (a warning with --allow-missing-assets)"},
+    {"RS9002", W, Render, "render", "texture not drawn"},
+    {"RS9003", W, Render, "render", "background image (HDR) missing; the sky is drawn instead"},
+    {"RS9004", W, Render, "render", "more than 8 lights; the rest are not drawn"},
+    {"RS9010", E, Render, "render", "shader build failed"},
+    {"RS9011", E, Render, "render", "cannot create the framebuffer"},
+    {"RS9012", E, Render, "render", "an OpenGL call failed"},
 };
 
 }  // namespace

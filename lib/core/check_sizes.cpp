@@ -105,39 +105,22 @@ void articulated(Context& ctx, const Record& r) {
              "a floating base has one more coordinate than velocities (its quaternion); a fixed base as many");
 }
 
-// Whether an object or compound simulates as a dynamic body
-// (compat-notes.md, "object record": the mode decides, then the flags).
-bool isDynamic(Context& ctx, const Record& r) {
-  if (auto collidable = ctx.flag(r, "collidable"); collidable && !*collidable) return false;
-  FieldRef prim = ctx.get(r, "primitive");
-  if (prim && prim.def->enumDef) {
-    auto p = prim.def->enumDef->canonical(ctx.doc.text(prim.first->value));
-    if (p && *p == "ground") return false;
-  }
-  FieldRef mode = ctx.get(r, "bodyMode");
-  if (mode && mode.def->enumDef) {
-    if (auto m = mode.def->enumDef->canonical(percentDecode(ctx.doc.text(mode.first->value)))) return *m == "dynamic";
-  }
-  if (r.kind->tag != "object") return false;
-  if (r.positionalCount == 17) return true;
-  if (ctx.get(r, "fixed")) return ctx.flag(r, "fixed") == std::optional<bool>(false);
-  return ctx.flag(r, "visualOnly") == std::optional<bool>(false) && ctx.flag(r, "locked") == std::optional<bool>(false);
-}
-
-void mass(Context& ctx, const Record& r) {
-  auto m = ctx.number(r, "mass");
-  if (!m || *m > 0 || !isDynamic(ctx, r)) return;
-  ctx.report("RS4008", r, ctx.spanOf(r, ctx.get(r, "mass")), "mass", "dynamic body has mass " + str(*m),
-             "give it a positive mass, or make it static or kinematic");
-}
-
 // Sizes that are lengths by their meaning; negative values draw and
 // collide as nothing sensible.
 constexpr std::string_view kLengthFields[] = {"radius", "length", "thickness", "collisionRadius", "range",
                                               "pointSize", "size", "halfExtents", "areaSize"};
 
+// Whether `name` is a size of a body's shape.  The scene model checks those
+// at physical size, scale included (lib/scene/check.cpp, RS7003), with the
+// same verdict in validate, sim and render; a second check here would name
+// the same problem twice.
+bool bodySize(const std::string& tag, std::string_view name) {
+  return (tag == "object" || tag == "compound_child") && (name == "radius" || name == "size");
+}
+
 void negativeSizes(Context& ctx, const Record& r) {
   for (std::string_view name : kLengthFields) {
+    if (bodySize(r.kind->tag, name)) continue;
     FieldRef f = ctx.get(r, name);
     if (!f) continue;
     int n = f.def->type == ValueType::Number ? 1 : componentCount(f.def->type);
@@ -149,11 +132,6 @@ void negativeSizes(Context& ctx, const Record& r) {
       ctx.report("RS4011", r, f.first->value, name, std::string(name) + " is negative (" + str(v[c]) + ")");
       break;
     }
-  }
-  if (r.kind->tag == "object") {
-    auto h = ctx.number(r, "height");
-    if (h && *h < 0)
-      ctx.report("RS4011", r, ctx.spanOf(r, ctx.get(r, "height")), "height", "height is negative (" + str(*h) + ")");
   }
 }
 
@@ -194,7 +172,6 @@ void checkSizes(Context& ctx, const Record& r) {
   else if (tag == "instanced_visual") instances(ctx, r);
   else if (tag == "articulated") articulated(ctx, r);
   else if (tag == "camera" || tag == "sensor") camera(ctx, r);
-  if (tag == "object" || tag == "compound") mass(ctx, r);
   negativeSizes(ctx, r);
 }
 

@@ -65,7 +65,7 @@ const KindRow kKinds[] = {
  "enabled:flag=true",
  "preset:name@weather_preset=clear quality:name@weather_quality seed:int timeOfDay:num=12 latitude:num longitude:num "
  "year:int month:int day:int windDirection:vec3 windSpeed:num transitionSeconds:num affectSensors:flag "
- "cloudCoverage:num cloudDensity:num precipitationRate:num rainOcclusionStrength:num fogDensity:num "
+ "cloudCoverage:num cloudDensity:num precipitationRate:num rainOcclusionStrength:num fogDensity:num=0 "
  "visibilityMeters:num fogColor:color fogAnisotropy:num humidity:num wetness:num "
  "wetnessAccumulationEnabled:flag wetnessAccumulationRate:num wetnessDryingRate:num snowCoverage:num "
  "lightningRate:num lightningLocalPointLightEnabled:flag lightningLocalPointDistance:num "
@@ -137,8 +137,8 @@ const KindRow kKinds[] = {
  "id:id"},
 {"terrain_texture", 15, Role::Plain, "", "",
  "slot:int id:text name:text",
- "color:color albedo:path normal:path displacementTexture:path uvScale:num normalDepth:num aoStrength:num "
- "roughness:num detile:vec2 displacement:vec2"},
+ "color:color=1,1,1,1 albedo:path normal:path displacementTexture:path uvScale:num=1 normalDepth:num aoStrength:num "
+ "roughness:num=1 detile:vec2 displacement:vec2"},
 {"asset", 16, Role::Plain, "", "",
  "label:text primitive:name@primitive path:path",
  "id:id defaultMaterial:ref@material contactMaterial:ref@contact collisionPath:path "
@@ -157,15 +157,15 @@ const KindRow kKinds[] = {
 {"terrain_region", 19, Role::Node, "terrain_", "",
  "path:text xSamples:int ySamples:int xSize:num ySize:num center:vec3",
  "id:id parentGroupId:ref@node location:vec2 material:ref@material contactMaterial:ref@contact "
- "baseTexture:int@texslot visible:flag=true collidable:flag=true castShadow:flag=true receiveShadow:flag=true "
+ "baseTexture:int@texslot=0 visible:flag=true collidable:flag=true castShadow:flag=true receiveShadow:flag=true "
  "sourceKind:name@terrain_source=samples sourcePath:path cloneSource:ref@terrain pngHeightScale:num "
  "pngHeightOffset:num proceduralFrequency:num proceduralZScale:num proceduralOctaves:int "
  "proceduralLacunarity:num proceduralGain:num proceduralStepSize:num proceduralHeightOffset:num "
- "proceduralSeed:int lodLevels:int collisionShapeSize:int textureSplattingEnabled:flag heights:nums "
+ "proceduralSeed:int lodLevels:int collisionShapeSize:int textureSplattingEnabled:flag=true heights:nums "
  "texturePrimary:ints textureSecondary:ints textureBlend:nums wetness:nums holes:nums vertexColors:colors"},
 {"terrain_splat_layer", 19, Role::Child, "", "terrain_region",
  "terrain:ref@terrain",
- "slot:int@texslot enabled:flag=true strength:num=1 weights:nums"},
+ "slot:int@texslot=0 enabled:flag=true strength:num=1 weights:nums"},
 {"terrain_foliage_layer", 19, Role::Child, "", "terrain_region",
  "terrain:ref@terrain",
  "id:id name:text enabled:flag=true primitive:name meshPath:path size:vec3 colorA:color colorB:color "
@@ -178,9 +178,9 @@ const KindRow kKinds[] = {
  "path:text direction:vec3 intensity:num",
  "id:id parentGroupId:ref@node type:name@light_type=directional position:vec3=0,0,3 color:color=1,1,1 "
  "ambientColor:color specularColor:color specularIntensity:num attenuationConstant:num=1 "
- "attenuationLinear:num=0.04 attenuationQuadratic:num=0.012 range:num coneAngle:num=30 innerConeAngle:num=18 "
- "radius:num areaSize:vec3 areaRight:vec3 areaUp:vec3 projectorTexture:path projectorStrength:num "
- "projectorUvScale:vec2 projectorUvOffset:vec2 negative:flag temperatureEnabled:flag shadows:flag "
+ "attenuationLinear:num=0.04 attenuationQuadratic:num=0.012 range:num=0 coneAngle:num=30 innerConeAngle:num=18 "
+ "radius:num=0 areaSize:vec3=0,0,0 areaRight:vec3 areaUp:vec3 projectorTexture:path projectorStrength:num "
+ "projectorUvScale:vec2 projectorUvOffset:vec2 negative:flag=false temperatureEnabled:flag shadows:flag=true "
  "colorTemperature:num distanceFadeEnabled:flag distanceFadeBegin:num distanceFadeShadow:num "
  "distanceFadeLength:num shadowResolution:int shadowBias:num shadowStrength:num shadowPcfRadius:num "
  "shadowOrthoHalfSize:num shadowNear:num shadowFar:num shadowCenter:vec3 shadowPosition:vec3 "
@@ -193,20 +193,20 @@ const KindRow kKinds[] = {
  "previewFocusDistance:num previewAperture:num outputPath:path"},
 {"object", 22, Role::Node, "object_", "",
  "path:text primitive:name@primitive position:vec3 orientation:quat scale:vec3 radius:num height:num mass:num "
- "contactMaterial:ref@contact material:ref@material visualOnly:flag visible:flag locked:flag meshPath:path "
- "bodyMode:name@body_mode collidable:flag collisionGroup:u64 collisionMask:u64",
+ "contactMaterial:ref@contact material:ref@material visualOnly:flag=false visible:flag=true locked:flag=false meshPath:path "
+ "bodyMode:name@body_mode collidable:flag=true collisionGroup:u64=1 collisionMask:u64=18446744073709551615",
  "id:id parentGroupId:ref@node semanticClass:text instanceId:int segmentationColor:color materialRemaps:strs "
- "renderMeshPath:path collisionMeshPath:path collisionMode:name@collision_mode meshCollision:name@collision_mode "
- "castShadow:flag visualUseMeshColor:flag visualTwoSided:flag visualShadowCasting:name customInertia:flag "
+ "renderMeshPath:path collisionMeshPath:path collisionMode:name@collision_mode=convex_hull "
+ "meshCollision:name@collision_mode=convex_hull castShadow:flag=true visualUseMeshColor:flag visualTwoSided:flag visualShadowCasting:name customInertia:flag "
  "inertiaDiagonal:vec3 centerOfMass:vec3 coacdThreshold:num coacdMaxConvexHull:int coacdPreprocess:name "
  "coacdSampleResolution:int"},
 {"compound", 23, Role::Node, "", "",
  "path:text position:vec3 orientation:quat scale:vec3 mass:num bodyMode:name@body_mode visible:flag collidable:flag",
- "id:id parentGroupId:ref@node centerOfMass:vec3 inertiaDiagonal:vec3 collisionGroup:u64 collisionMask:u64 "
- "contactMaterial:ref@contact material:ref@material semanticClass:text"},
+ "id:id parentGroupId:ref@node centerOfMass:vec3 inertiaDiagonal:vec3 collisionGroup:u64=1 "
+ "collisionMask:u64=18446744073709551615 contactMaterial:ref@contact material:ref@material semanticClass:text"},
 {"compound_child", 23, Role::Child, "", "compound",
  "compound:ref@node primitive:name@primitive position:vec3 orientation:quat scale:vec3",
- "size:vec3 radius:num height:num contactMaterial:ref@contact material:ref@material meshPath:path"},
+ "size:vec3=0,0,0 radius:num=0 height:num=0 contactMaterial:ref@contact material:ref@material meshPath:path"},
 {"deformable", 24, Role::Node, "", "",
  "path:text kind:name@deformable_kind meshPath:path position:vec3 orientation:quat scale:vec3",
  "id:id parentGroupId:ref@node pinnedVertices:ints scale:num totalMass:num distanceCompliance:num "
@@ -272,9 +272,9 @@ const KindRow kKinds[] = {
 {"instanced_visual", 34, Role::Node, "", "",
  "path:text primitive:name@primitive",
  "id:id parentGroupId:ref@node meshPath:path size:vec3=1,1,1 colorA:color=1,1,1,1 colorB:color=1,1,1,1 "
- "instances:xforms colorWeights:nums castShadows:flag detectable:flag automaticMeshLod:flag "
+ "instances:xforms colorWeights:nums castShadows:flag=true detectable:flag automaticMeshLod:flag "
  "maxRenderedInstances:int renderedInstanceStride:int projectedLod:flag projectedLodMinRadiusPixels:num "
- "projectedLodMaxStride:int doubleBufferedInstanceUploads:flag sortTransparentInstances:flag grassPatch:flag "
+ "projectedLodMaxStride:int doubleBufferedInstanceUploads:flag sortTransparentInstances:flag grassPatch:flag=false "
  "terrainBinding:ref@terrain terrainFoliageLayer:int densityPreview:flag foliageWindEnabled:flag "
  "grassBladeRootHeight:num grassBladeTipHeight:num grassWindStrength:num grassStiffness:num "
  "grassFlutterWeight:num shadowFoliageLod:flag enabled:flag=true"},
@@ -285,7 +285,7 @@ const KindRow kKinds[] = {
 const LayoutRow kAltLayouts[] = {
 {"object",
  "path:text primitive:name@primitive position:vec3 orientation:quat scale:vec3 radius:num height:num mass:num "
- "contactMaterial:ref@contact material:ref@material visible:flag fixed:flag"},
+ "contactMaterial:ref@contact material:ref@material visible:flag=true fixed:flag=false"},
 {"object",
  "path:text primitive:name@primitive position:vec3 orientation:quat scale:vec3 radius:num height:num mass:num "
  "contactMaterial:ref@contact material:ref@material"},

@@ -1,6 +1,6 @@
 // Camera choice and projection: the scene's first enabled camera, one named
 // by path or id, or an automatic three-quarter view framing everything
-// visible.  Cameras are the scene view's (core/scene.hpp): world pose,
+// visible.  Cameras are the scene view's (scene/scene.hpp): world pose,
 // looking along local +x with local +z up (compat-notes.md).
 #pragma once
 #include <Eigen/Geometry>

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "scene/check.hpp"
+
 namespace rscene::render {
 namespace {
 
@@ -95,22 +97,26 @@ class Preparer {
     return it == materialByRef_.end() ? 0 : it->second;
   }
 
+  // A scene material as the shaders take it.
+  RenderMaterial renderMaterial(const Material& src) const {
+    RenderMaterial m;
+    m.id = src.id;
+    m.color = toF(src.color);
+    m.metallic = float(src.metallic);
+    m.roughness = float(std::clamp(src.roughness, 0.03, 1.0));
+    m.emissive = src.emissive.cast<float>() * float(src.emissiveStrength);
+    m.doubleSided = src.doubleSided;
+    m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
+    m.albedoTexture = src.albedoTexture;
+    m.line = lineOf(src.recordIndex);
+    m.isDefault = src.name == "engine_default";
+    return m;
+  }
+
   void materials() {
-    RenderMaterial base;
-    base.id = "engine_default";
-    out_.materials.push_back(base);
+    out_.materials.push_back(renderMaterial(s_.defaultMaterial));
     for (const Material& src : s_.materials) {
-      RenderMaterial m;
-      m.id = src.id;
-      m.color = toF(src.color);
-      m.metallic = float(src.metallic);
-      m.roughness = float(std::clamp(src.roughness, 0.03, 1.0));
-      m.emissive = src.emissive.cast<float>() * float(src.emissiveStrength);
-      m.doubleSided = src.doubleSided;
-      m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
-      m.albedoTexture = src.albedoTexture;
-      m.line = lineOf(src.recordIndex);
-      m.isDefault = src.name == "engine_default";
+      RenderMaterial m = renderMaterial(src);
       int index = static_cast<int>(out_.materials.size());
       if (m.isDefault) {  // redefines the default in place
         index = 0;
@@ -211,17 +217,21 @@ class Preparer {
       d.shape = shapeOf(ch.primitive);
       if (d.shape == Shape::Ground) d.shape = Shape::Box;
       d.material = ch.material.empty() ? fallbackMaterial : materialIndex(ch.material);
-      // Sizes the child does not give: a unit box, radius 0.5, height 1.
-      Vector3d size = ch.size.isZero() ? Vector3d::Ones() : ch.size;
-      double radius = ch.radius > 0 ? ch.radius : 0.5, height = ch.height > 0 ? ch.height : 1;
-      Affine3d local = affine(ch.local);
+      // The physical sizes of the scene model (scene.hpp, childBox ...),
+      // as the simulator collides with them.
+      Affine3d local = affine(childPose(c, ch));
+      double radius = childRadius(c, ch), height = childHeight(c, ch);
       if (d.shape == Shape::Capsule) {
-        d.capsuleRadius = radius * ch.scale.x();
-        d.capsuleHeight = height * ch.scale.z();
+        d.capsuleRadius = radius;
+        d.capsuleHeight = height;
         d.world = pose * local;
       } else {
         if (d.shape == Shape::Mesh) d.meshPath = ch.meshPath;
-        d.world = pose * local * Eigen::Scaling(shapeScale(d.shape, ch.scale, radius, height, size.cwiseProduct(ch.scale)));
+        Vector3d unit = d.shape == Shape::Box    ? childBox(c, ch)
+                        : d.shape == Shape::Mesh ? childScale(c, ch)
+                                                 : Vector3d(radius, radius, height);
+        if (d.shape == Shape::Sphere) unit = Vector3d::Constant(radius);
+        d.world = pose * local * Eigen::Scaling(unit);
       }
       addDrawable(std::move(d));
     }
@@ -367,6 +377,9 @@ void prepareScene(const Document& doc, const Scene& scene, RenderScene& out) { P
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags) {
   Scene scene;
   bool ok = buildScene(doc, options, scene, diags);
+  // The scene model's verdict, as in validate and sim; missing files are
+  // the renderer's to report (RS9001, or placeholders when allowed).
+  ok = checkScene(doc, scene, SceneCheckOptions{}, diags) && ok;
   prepareScene(doc, scene, out);
   return ok;
 }

@@ -1,5 +1,5 @@
-// What the renderer draws, prepared from the typed scene view of lib/core
-// (core/scene.hpp, shared with rscene-sim): materials in the form the
+// What the renderer draws, prepared from the typed scene model of lib/scene
+// (scene/scene.hpp, shared with rscene-sim and rscene-validate): materials in the form the
 // shaders take, drawables at physical size in world space, lights, terrain
 // meshes with their colors, instanced batches, point clouds and the look of
 // the environment.  Nothing here reads the Document's fields; the Document
@@ -16,16 +16,18 @@
 
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace rscene::render {
 
-// A scene material as the shaders take it.
+// A scene material as the shaders take it.  This struct and Look below are
+// always filled from the scene model (whose defaults are the schema's), so
+// they keep no defaults of their own.
 struct RenderMaterial {
   std::string id;
-  Eigen::Vector4f color{0.55f, 0.62f, 0.72f, 1.f};
+  Eigen::Vector4f color = Eigen::Vector4f::Zero();
   float metallic = 0;
-  float roughness = 0.55f;
+  float roughness = 0;
   Eigen::Vector3f emissive = Eigen::Vector3f::Zero();  // color x strength
   bool doubleSided = false;
   bool blend = false;           // alphaMode=blend or alpha < 1
@@ -97,12 +99,12 @@ enum class Background { PlainColor, Hdr, Sky };
 enum class ToneMap { Linear, Aces, Filmic, AgX, Unreal };
 
 struct Look {
-  Eigen::Vector3f background{0.38f, 0.38f, 0.38f};
-  Eigen::Vector3f ambient{0.15f, 0.16f, 0.20f};
+  Eigen::Vector3f background = Eigen::Vector3f::Zero();
+  Eigen::Vector3f ambient = Eigen::Vector3f::Zero();
   float fogDensity = 0;
-  Eigen::Vector3f fogColor{0.38f, 0.38f, 0.38f};
-  bool shadows = true;
-  float exposure = 1, gamma = 2.2f;
+  Eigen::Vector3f fogColor = Eigen::Vector3f::Zero();
+  bool shadows = false;
+  float exposure = 0, gamma = 0;
   Background mode = Background::Sky;
   std::string hdrPath;  // resolved
   std::uint32_t hdrLine = 0;
@@ -130,9 +132,10 @@ struct RenderScene {
 // record lines for messages only).  Adds no diagnostics of its own.
 void prepareScene(const Document& doc, const Scene& scene, RenderScene& out);
 
-// buildScene() then prepareScene(); false when the scene view reported an
-// error (a value that does not parse, a malformed terrain ...).  `out` is
-// filled as far as possible either way.
+// buildScene(), checkScene() (scene/check.hpp: what validate and sim
+// refuse too) then prepareScene(); false when either reported an error (a
+// value that does not parse, a malformed terrain, a zero-size body ...).
+// `out` is filled as far as possible either way.
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags);
 
 }  // namespace rscene::render

@@ -111,9 +111,10 @@ class Frame {
     d.message = std::move(message);
     diags_.push_back(std::move(d));
   }
-  // Missing/unreadable asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, const std::string& message) {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, "RS9001", line, message);
+  // Missing (RS5001, the code validate --check-files and rscene-sim give the
+  // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
+  bool assetProblem(std::uint32_t line, const std::string& message, const char* code = "RS9001") {
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -261,7 +262,7 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   }
   textures_[m.albedoTexture] = 0;
   if (!assets_.fileSystem().exists(m.albedoTexture))
-    return assetProblem(m.line, "texture file not found: " + m.albedoTexture);
+    return assetProblem(m.line, "texture file not found: " + m.albedoTexture, scene_code::kMissingFile);
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
@@ -278,7 +279,8 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
   if (path.empty() || !assets_.fileSystem().exists(path)) {
-    failed = !assetProblem(line, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path));
+    failed = !assetProblem(line, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path),
+                           path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
   }
   std::string err;

@@ -4,7 +4,7 @@
 #include <set>
 #include <vector>
 
-#include "core/scene_reader.hpp"
+#include "scene/reader.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {
@@ -22,7 +22,7 @@ void warn(const Document& doc, int recordIndex, const char* field, const char* c
 // Why `path` gives no collision mesh ("does not exist", or the reader's
 // reason), with its code; empty when it does.
 std::pair<std::string, const char*> meshProblem(const std::string& path, asset::AssetCache& assets) {
-  if (path.empty()) return {"no mesh file", scene_code::kMissingFile};
+  if (path.empty()) return {"no mesh file", scene_code::kNoMesh};
   if (!assets.fileSystem().exists(path)) return {"mesh file '" + path + "' does not exist", scene_code::kMissingFile};
   std::string why;
   if (!assets.mesh(path, asset::MeshContent::Geometry, &why))

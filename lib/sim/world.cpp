@@ -472,7 +472,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   }
 
   for (const Wire& wire : scene.wires) {
-    if (!wire.enabled) continue;
+    if (!wire.simulated()) continue;  // disabled, or to a node not modelled (RS7011)
     auto find = [&](const std::string& ref) -> btRigidBody* {
       auto it = w.byName.find(ref);
       return it == w.byName.end() ? nullptr : it->second;

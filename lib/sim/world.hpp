@@ -32,13 +32,13 @@
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace rscene::sim {
 
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
-inline constexpr const char* kLeftWorld = "RS7011";  // a dynamic body left the world (warning)
+inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
 }  // namespace sim_code
 
 // State of one simulated body (dynamic or kinematic), in the world frame.
@@ -54,10 +54,9 @@ struct BodyState {
   bool departed = false;  // left the world (see Departure): frozen at its last pose
 };
 
-// Checks what Bullet cannot simulate sensibly: dynamic bodies with mass
-// <= 0 (RS7002), zero-size shapes (RS7003), missing mesh files (RS7004),
-// wires naming unknown bodies (RS7005).  Errors point at the record's
-// field.  Returns false when it added an error.
+// Checks what Bullet cannot simulate sensibly: checkScene() of
+// scene/check.hpp (what rscene-validate reports too) with collision mesh
+// files required.  Returns false when it added an error.
 bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 // Records kept but not simulated, named in one warning (RS7010), or none.
@@ -95,7 +94,7 @@ struct Departure {
   std::string reason;  // "fell below z = -10 (10 m under the lowest static geometry)"
 };
 
-// The warning (RS7011) for a departure, at its record's line.
+// The warning (RS7012) for a departure, at its record's line.
 Diagnostic departureWarning(const Document& doc, const Departure& departure);
 
 class World {

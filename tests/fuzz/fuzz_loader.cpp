@@ -5,9 +5,11 @@
 // libFuzzer saves the input as a crash artifact.
 //
 // Every input that loads is also validated (rscene::check with the engine2
-// and raisim profiles, file checks off, and validateText from the bytes):
-// the validator must not crash, and each finding must carry a known code,
-// a line of the input and a column inside that line, and render.
+// and raisim profiles, file checks off, and validateScene from the bytes,
+// which adds the scene model's checks as rscene-validate runs them), and
+// the full scene model is built and checked as sim and render do: none may
+// crash or throw, and each finding must carry a known code, a line of the
+// input and a column inside that line, and render.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +20,9 @@
 #include "core/check.hpp"
 #include "core/io.hpp"
 #include "core/loader.hpp"
+#include "scene/check.hpp"
+#include "scene/scene.hpp"
+#include "scene/validate.hpp"
 #include "core/report.hpp"
 #include "core/writer.hpp"
 
@@ -76,7 +81,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     rscene::Document doc;
     rscene::CheckOptions options;
-    rscene::validateText(std::string(reinterpret_cast<const char*>(data), size), options, doc);
+    rscene::validateScene(std::string(reinterpret_cast<const char*>(data), size), options, doc);
+    rscene::SceneOptions sceneOptions;
+    sceneOptions.exists = [](const std::string&) { return false; };
+    rscene::Scene scene;
+    rscene::Diagnostics diagnostics;
+    rscene::buildScene(first.document, sceneOptions, scene, diagnostics);
+    rscene::checkScene(first.document, scene, {}, diagnostics);
+    for (const rscene::Diagnostic& d : diagnostics)
+      if (!rscene::checkInfo(d.code)) fail("scene model codes are registered", d.code + ": " + d.message);
   }
   std::string once = rscene::canonicalText(first.document);
   rscene::LoadResult second = rscene::parse(once);

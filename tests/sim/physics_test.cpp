@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "core/loader.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/writer.hpp"
 #include "sim/world.hpp"
 
@@ -263,10 +263,10 @@ TEST(Physics, RefusesBadBodies) {
   ASSERT_TRUE(buildScene(loaded.document, {}, scene, ds));
   EXPECT_FALSE(checkPhysics(loaded.document, scene, ds));
   ASSERT_EQ(ds.size(), 3u);
-  EXPECT_EQ(ds[0].code, "RS7002");
+  EXPECT_EQ(ds[0].code, "RS4008");  // rscene-validate's codes for the same problems
   EXPECT_EQ(ds[0].line, 2u);
   EXPECT_EQ(ds[1].code, "RS7003");
-  EXPECT_EQ(ds[2].code, "RS7004");
+  EXPECT_EQ(ds[2].code, "RS5001");
   EXPECT_NE(ds[2].message.find("/nonexistent/x.obj"), std::string::npos);
 }
 

@@ -7,7 +7,7 @@
 
 #include "asset/cache.hpp"
 #include "core/loader.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 #include "core/writer.hpp"
 #include "sim/world.hpp"
 
@@ -105,7 +105,7 @@ TEST(SimAssets, MissingAndUnreadableMeshesAreLeftOutWithAWarning) {
   ASSERT_EQ(r->diags.size(), 3u);
   const Diagnostic& rock = r->diags[0];
   EXPECT_EQ(rock.severity, Severity::Warning);
-  EXPECT_EQ(rock.code, "RS7004");
+  EXPECT_EQ(rock.code, "RS5001");
   EXPECT_EQ(rock.line, 4u);
   EXPECT_GT(rock.column, 0u);  // at the collisionMeshPath key
   // One warning per file, at the first body naming it.
@@ -193,7 +193,7 @@ TEST(SimAssets, ABodyFallingOffTheEdgeLeavesTheWorldAndTheRestComesToRest) {
   EXPECT_EQ(state(*r->world, "/World/Off").position.z(), d.position.z());
   Diagnostic w = departureWarning(r->doc, d);
   EXPECT_EQ(w.severity, Severity::Warning);
-  EXPECT_EQ(w.code, "RS7011");
+  EXPECT_EQ(w.code, "RS7012");
   EXPECT_EQ(w.line, 4u);
   EXPECT_EQ(w.message.rfind("dynamic body '/World/Off' left the world at step " + std::to_string(d.step), 0), 0u)
       << w.message;

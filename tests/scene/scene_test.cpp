@@ -1,6 +1,6 @@
 // The typed scene view: defaults from the schema, aliases resolved to
 // canonical names, world transforms, asset paths, bounded terrain parsing.
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -139,7 +139,7 @@ TEST(Scene, BadNumbersAreErrorsWithLocation) {
       "object /World/A box 0 0 zz 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1\n");
   EXPECT_FALSE(b.ok);
   ASSERT_EQ(b.diags.size(), 1u);
-  EXPECT_EQ(b.diags[0].code, "RS7001");
+  EXPECT_EQ(b.diags[0].code, "RS2001");  // the validator's code for it
   EXPECT_EQ(b.diags[0].line, 2u);
   EXPECT_EQ(b.diags[0].column, 25u);
 }
@@ -160,10 +160,12 @@ TEST(Scene, TerrainSamplesAndLayers) {
 TEST(Scene, HugeTerrainIsRefusedBeforeParsing) {
   Built b = build("raisim_engine_scene 1\nterrain_region /World/T 16384 16384 4 2 0 0 0 heights=1\n");
   EXPECT_FALSE(b.ok);
-  EXPECT_EQ(codes(b.diags), "RS7006 ");
+  EXPECT_EQ(codes(b.diags), "RS4002 ");
   EXPECT_TRUE(b.scene.terrains.empty());
+  Built axis = build("raisim_engine_scene 1\nterrain_region /World/T 1 20000 4 2 0 0 0 heights=1\n");
+  EXPECT_EQ(codes(axis.diags), "RS4001 RS4001 ");
   Built wrong = build("raisim_engine_scene 1\nterrain_region /World/T 2 2 4 2 0 0 0 heights=1,2,3\n");
-  EXPECT_EQ(codes(wrong.diags), "RS7006 ");
+  EXPECT_EQ(codes(wrong.diags), "RS4003 ");
 }
 
 TEST(Scene, CompoundsWiresAndSkippedRecords) {

@@ -1,0 +1,138 @@
+#include "scene/check.hpp"
+
+#include <cmath>
+#include <tuple>
+
+#include "scene/reader.hpp"
+
+namespace rscene {
+namespace {
+
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+// Size problem of a primitive at physical size, or empty.
+std::string sizeProblem(const std::string& prim, const Eigen::Vector3d& box, double radius, double height) {
+  if (prim == "box" && !(positive(box.x()) && positive(box.y()) && positive(box.z())))
+    return "box with a zero or negative side";
+  if ((prim == "sphere" || prim == "cylinder" || prim == "capsule") && !positive(radius))
+    return prim + " with a zero or negative radius";
+  if (prim == "cylinder" && !positive(height)) return "cylinder with a zero or negative height";
+  if (prim == "capsule" && !(height >= 0)) return "capsule with a negative height";
+  return {};
+}
+
+// The field a size problem is reported at: what the user would change.
+const char* sizeField(const std::string& prim, const std::string& problem, bool child, const RecordReader& r) {
+  if (prim == "box") return child && r.has("size") ? "size" : "scale";
+  if (prim == "mesh") return "scale";
+  if (problem.find("height") != std::string::npos) return "height";
+  return child && !r.has("radius") ? "primitive" : "radius";
+}
+
+class Checker {
+ public:
+  Checker(const Document& doc, const Scene& scene, const SceneCheckOptions& opt, Diagnostics& out)
+      : doc_(doc), s_(scene), opt_(opt), out_(out) {}
+
+  void run() {
+    timeStep();
+    for (const Object& o : s_.objects) object(o);
+    for (const Compound& c : s_.compounds) compound(c);
+    for (const Wire& w : s_.wires) wire(w);
+  }
+
+ private:
+  RecordReader reader(int recordIndex) const { return {doc_, static_cast<std::size_t>(recordIndex), out_}; }
+
+  void timeStep() {
+    if (s_.timeStepRecord < 0 || positive(s_.timeStep)) return;
+    reader(s_.timeStepRecord)
+        .error("dt", scene_code::kBadTimeStep, "time step must be positive", "Engine 2 writes 0.0025 (400 Hz)");
+  }
+
+  void mass(const RecordReader& r, BodyMode mode, double mass, const std::string& path) {
+    if (mode == BodyMode::Dynamic && !(mass > 0))
+      r.error("mass", scene_code::kBadMass, "dynamic body '" + path + "' needs a mass > 0",
+              "give it a positive mass, or make it static or kinematic");
+  }
+
+  void meshFile(const RecordReader& r, const std::string& resolved, const char* field, const std::string& path) {
+    if (resolved.empty()) {
+      r.error(field, scene_code::kNoMesh, "mesh body '" + path + "' has no mesh file");
+      return;
+    }
+    if (opt_.checkFiles && !opt_.exists(resolved))
+      r.error(field, scene_code::kMissingFile, "mesh file '" + resolved + "' does not exist",
+              "paths resolve against the scene's directory, then against asset_root");
+  }
+
+  void object(const Object& o) {
+    if (o.bodyMode == BodyMode::VisualOnly || o.primitive == "ground" || o.primitive == "half_space") return;
+    RecordReader r = reader(o.recordIndex);
+    mass(r, o.bodyMode, o.mass, o.path);
+    std::string problem = sizeProblem(o.primitive, o.scale, o.physicsRadius(), o.physicsHeight());
+    if (o.primitive == "mesh" && !positive(o.meshScale())) problem = "mesh with a zero or negative scale";
+    if (!problem.empty())
+      r.error(sizeField(o.primitive, problem, false, r), scene_code::kZeroSize, problem + " ('" + o.path + "')",
+              "sizes are box sides, radius x scale.x and height x scale.z (compat-notes.md)");
+    if (o.primitive == "mesh") {
+      const char* field = r.has("collisionMeshPath") ? "collisionMeshPath"
+                          : r.has("renderMeshPath")  ? "renderMeshPath"
+                                                     : "meshPath";
+      meshFile(r, o.collisionMeshPath, field, o.path);
+    }
+  }
+
+  void compound(const Compound& c) {
+    if (c.bodyMode == BodyMode::VisualOnly) return;
+    mass(reader(c.recordIndex), c.bodyMode, c.mass, c.path);
+    for (const CompoundChild& ch : c.children) {
+      RecordReader r = reader(ch.recordIndex);
+      std::string problem = sizeProblem(ch.primitive, childBox(c, ch), childRadius(c, ch), childHeight(c, ch));
+      if (ch.primitive == "mesh" && !positive(childScale(c, ch).mean())) problem = "mesh with a zero or negative scale";
+      if (!problem.empty())
+        r.error(sizeField(ch.primitive, problem, true, r), scene_code::kZeroSize,
+                problem + " in compound '" + c.path + "'",
+                r.has("radius") || ch.primitive == "box" ? "" : "a child's radius and height default to 0");
+      if (ch.primitive == "mesh") meshFile(r, ch.meshPath, "meshPath", c.path);
+    }
+  }
+
+  void wire(const Wire& w) {
+    if (!w.enabled) return;
+    for (auto [end, field, ref] : {std::tuple{w.endA, "bodyA", &w.bodyA}, std::tuple{w.endB, "bodyB", &w.bodyB}})
+      if (end == WireEnd::Unknown)
+        reader(w.recordIndex)
+            .error(field, scene_code::kUnknownBody, "body '" + *ref + "' does not exist", "name a node by its id or path");
+    bool a = w.endA == WireEnd::NotSimulated;
+    if (!a && w.endB != WireEnd::NotSimulated) return;
+    const char* field = a ? "bodyA" : "bodyB";
+    const std::string& ref = a ? w.bodyA : w.bodyB;
+    const std::string& tag = a ? w.tagA : w.tagB;
+    std::string what = tag == "object" || tag == "compound" ? "a visual-only " + tag
+                       : tag.find_first_of("aeiou") == 0          ? "an " + tag
+                                                                  : "a " + tag;
+    reader(w.recordIndex)
+        .error(field, scene_code::kWireSkipped,
+               "wire '" + w.path + "' is not simulated: " + field + " '" + ref + "' is " + what +
+                   ", which rscene-sim does not model",
+               "", Severity::Warning);
+  }
+
+  const Document& doc_;
+  const Scene& s_;
+  const SceneCheckOptions& opt_;
+  Diagnostics& out_;
+};
+
+}  // namespace
+
+bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics) {
+  std::size_t before = diagnostics.size();
+  Checker(doc, scene, options, diagnostics).run();
+  for (std::size_t i = before; i < diagnostics.size(); ++i)
+    if (diagnostics[i].severity == Severity::Error) return false;
+  return true;
+}
+
+}  // namespace rscene

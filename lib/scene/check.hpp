@@ -1,0 +1,36 @@
+// What a scene must satisfy before a tool interprets its bodies: the one
+// list of conditions that rscene-validate reports and rscene-sim and
+// rscene-render refuse, so that the three cannot disagree about a body.
+// Errors point at the record's field, with the validator's code where
+// lib/core checks the same thing.
+#pragma once
+#include "core/assets.hpp"
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "scene/scene.hpp"
+
+namespace rscene {
+
+struct SceneCheckOptions {
+  // RS5001: mesh files bodies collide with must exist (sim; validate with
+  // --check-files).  Off where missing assets are allowed or drawn
+  // as placeholders.
+  bool checkFiles = false;
+  FileExists exists = fileExistsOnDisk;
+};
+
+// Appends the findings about `scene` (built from `doc`):
+//   RS7008  time_step not positive
+//   RS4008  dynamic object or compound with mass <= 0 (ground and
+//           half_space are static, compat-notes.md "object record")
+//   RS7003  body shape with a zero or negative physical size (box sides,
+//           radius x scale.x, height x scale.z, mesh scale; compound
+//           children in the compound's scale)
+//   RS7004  mesh body without a mesh path
+//   RS5001  collision mesh file missing (when options.checkFiles)
+//   RS3012  enabled wire whose body names no node
+//   RS7011  warning: wire to a node the simulator does not model, skipped
+// Returns false when it added an error.
+bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
+
+}  // namespace rscene

@@ -1,0 +1,840 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "scene/reader.hpp"
+#include "core/text.hpp"
+
+namespace rscene {
+namespace {
+
+// The last node of `nodes` whose id or path is `ref` (a child record
+// belongs to the most recent parent of that name), or nullptr.
+template <class Node>
+Node* lastNamed(std::vector<Node>& nodes, const std::string& ref) {
+  Node* found = nullptr;
+  for (Node& n : nodes)
+    if (n.id == ref || n.path == ref) found = &n;
+  return found;
+}
+
+// Record kinds the view turns into structs; other node and child kinds are
+// listed in Scene::skipped.
+constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
+                                          "camera", "object",         "compound",            "compound_child",
+                                          "wire",   "instanced_visual", "point_cloud"};
+
+bool modelled(std::string_view tag) {
+  return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
+}
+
+// Record kinds SceneOptions::bodiesOnly builds.
+bool forBodies(std::string_view tag) {
+  return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
+         tag == "terrain_region" || tag == "wire" || tag == "point_cloud";
+}
+
+Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
+
+Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
+  Pose p;
+  p.position = r.vec3(pos);
+  p.orientation = toQuat(r.quat(rot));
+  return p;
+}
+
+class Builder {
+ public:
+  Builder(const Document& doc, const SceneOptions& opt, Scene& scene, Diagnostics& diags)
+      : doc_(doc), opt_(opt), s_(scene), diags_(diags) {}
+
+  void run() {
+    s_.assetRoot = assetRootOf(doc_);
+    absentSingletons();
+    for (std::size_t i = 1; i < doc_.records.size(); ++i) {
+      const Record& rec = doc_.records[i];
+      if (!rec.kind) continue;
+      const std::string& tag = rec.kind->tag;
+      if (opt_.bodiesOnly && (rec.kind == objectKind_ ? plainBody(rec) : !forBodies(tag))) continue;
+      RecordReader r(doc_, i, diags_);
+      int idx = static_cast<int>(i);
+      if (tag == "time_step") {
+        s_.timeStepRecord = idx;
+        s_.timeStep = r.number("dt");
+      }
+      else if (tag == "gravity") s_.gravity = r.vec3("gravity");
+      else if (tag == "solver") readSolver(r, idx);
+      else if (tag == "scene_graph") s_.inheritedTransforms = r.flag("inheritedTransforms");
+      else if (tag == "environment") readEnvironment(r, idx);
+      else if (tag == "weather") readWeather(r, idx);
+      else if (tag == "rayrai_render") readRenderSettings(r, idx);
+      else if (tag == "material") readMaterial(r, idx);
+      else if (tag == "contact_material") readContact(r, idx);
+      else if (tag == "terrain_texture") readTerrainTexture(r, idx);
+      else if (tag == "group") readGroup(r, idx);
+      else if (tag == "light") readLight(r, idx);
+      else if (tag == "camera") readCamera(r, idx);
+      else if (tag == "object") readObject(r, idx);
+      else if (tag == "compound") readCompound(r, idx);
+      else if (tag == "compound_child") readCompoundChild(r, idx);
+      else if (tag == "terrain_region" && opt_.bodiesOnly) readTerrainNode(r, idx);
+      else if (tag == "terrain_region") readTerrain(r, idx);
+      else if (tag == "terrain_splat_layer") readSplat(r, idx);
+      else if (tag == "wire") readWire(r, idx);
+      else if (tag == "instanced_visual") readInstanced(r, idx);
+      else if (tag == "point_cloud") readPointCloud(r, idx);
+      else if ((rec.kind->role == Role::Node || rec.kind->role == Role::Child) && !modelled(tag))
+        s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
+    }
+    defaults();
+    if (!opt_.bodiesOnly) resolveWorld();  // checkScene() needs no world poses
+    resolveWires();
+  }
+
+ private:
+  std::string asset(const std::string& path) const {
+    if (path.empty()) return path;
+    std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, opt_.exists);
+    for (std::size_t at; (at = out.find("/./")) != std::string::npos;) out.erase(at, 2);  // "dir/./x" -> "dir/x"
+    return out;
+  }
+
+  // The id and path index of every node, built on the first lookup: a
+  // bodiesOnly build of a scene without wires never needs it.
+  void indexNodes() const {
+    indexed_ = true;
+    for (std::size_t i = 1; i < doc_.records.size(); ++i) {
+      const Record& rec = doc_.records[i];
+      if (!rec.kind || rec.kind->role != Role::Node) continue;
+      std::string id = nodeId(doc_, rec), path = nodePath(doc_, rec);
+      if (!id.empty()) byId_.emplace(id, i);
+      if (!path.empty()) byPath_.emplace(path, i);
+    }
+  }
+
+  // Record index of a node named by id or by path, or -1.
+  int lookup(const std::string& ref) const {
+    if (ref.empty()) return -1;
+    if (!indexed_) indexNodes();
+    if (auto it = byId_.find(ref); it != byId_.end()) return static_cast<int>(it->second);
+    if (auto it = byPath_.find(ref); it != byPath_.end()) return static_cast<int>(it->second);
+    return -1;
+  }
+
+  void readSolver(const RecordReader& r, int idx) {
+    Solver& v = s_.solver;
+    v.recordIndex = idx;
+    v.iterations = static_cast<int>(r.integer("iterations"));
+    v.tolerance = r.number("tolerance");
+    v.erp = r.number("erp");
+    v.mode = r.name("mode");
+    v.erp2 = r.number("erp2");
+    v.defaultFriction = r.number("defaultFriction");
+    v.defaultRestitution = r.number("defaultRestitution");
+    v.defaultRestitutionThreshold = r.number("defaultRestitutionThreshold");
+    v.defaultStaticFriction = r.number("defaultStaticFriction");
+    v.defaultStaticFrictionVelocityThreshold = r.number("defaultStaticFrictionVelocityThreshold");
+    v.defaultRollingFriction = r.number("defaultRollingFriction");
+    v.defaultSpinningFriction = r.number("defaultSpinningFriction");
+    v.contactMaxIterations = static_cast<int>(r.integer("contactMaxIterations"));
+    v.maxContactsPerPair = static_cast<int>(r.integer("maxContactsPerPair"));
+    v.sweptCcdEnabled = r.flag("sweptCcdEnabled");
+    v.sweptCcdMinSpeed = r.number("sweptCcdMinSpeed");
+    v.sweptCcdSpeculativeMargin = r.number("sweptCcdSpeculativeMargin");
+    v.sleepingEnabled = r.flag("sleepingEnabled");
+    v.sleepingLinearVelocityThreshold = r.number("sleepingLinearVelocityThreshold");
+    v.sleepingAngularVelocityThreshold = r.number("sleepingAngularVelocityThreshold");
+    v.sleepingQuietSteps = static_cast<int>(r.integer("sleepingQuietSteps"));
+    v.broadphaseType = r.name("broadphaseType");
+    v.broadphaseWorldMin = r.vec3("broadphaseWorldMin");
+    v.broadphaseWorldMax = r.vec3("broadphaseWorldMax");
+    v.broadphaseUseWorldBounds = r.flag("broadphaseUseWorldBounds");
+    v.fixedContactSolverIterationOrder = r.flag("fixedContactSolverIterationOrder");
+    v.worldTime = r.number("worldTime");
+  }
+
+  void readEnvironment(const RecordReader& r, int idx) {
+    Environment& e = s_.environment;
+    e = Environment{};
+    e.recordIndex = idx;
+    e.background = r.color("background").head<3>();
+    e.ambient = r.color("ambient").head<3>();
+    e.fogDensity = r.number("fogDensity");
+    e.shadows = r.flag("shadows");
+    e.envMapPath = asset(r.str("envMapPath"));
+    Eigen::Vector4d bg(e.background.x(), e.background.y(), e.background.z(), 1);
+    e.fogColor = r.color("fogColor", bg);  // the background colour when absent (compat-notes.md)
+    e.exposure = r.number("exposure");
+    e.gamma = r.number("gamma");
+    e.backgroundMode = r.name("backgroundMode");
+    e.colorMode = r.name("colorMode", "");  // empty: not written
+    e.pbrEnvironmentIntensity = r.number("pbrEnvironmentIntensity");
+    e.heightFogEnabled = r.flag("heightFogEnabled");
+    e.heightFogDensity = r.number("heightFogDensity");
+    e.heightFogBaseHeight = r.number("heightFogBaseHeight");
+    e.heightFogFalloff = r.number("heightFogFalloff");
+  }
+
+  void readWeather(const RecordReader& r, int idx) {
+    Weather& w = s_.weather;
+    w.recordIndex = idx;
+    w.enabled = r.flag("enabled");
+    w.preset = r.name("preset");
+    w.timeOfDay = r.number("timeOfDay");
+    w.useExplicitSunAngles = r.flag("useExplicitSunAngles");
+    w.sunAzimuthDegrees = r.number("sunAzimuthDegrees");
+    w.sunElevationDegrees = r.number("sunElevationDegrees");
+    w.fogDensity = r.number("fogDensity");
+    if (r.has("cloudCoverage")) w.cloudCoverage = r.number("cloudCoverage");
+  }
+
+  void readRenderSettings(const RecordReader& r, int idx) {
+    RenderSettings& v = s_.renderSettings;
+    v.recordIndex = idx;
+    v.preset = r.name("preset");
+    v.colorMode = r.name("colorMode", "");  // empty: not written
+  }
+
+  // Singleton records a scene may leave out hold every field's schema
+  // default: read through a reader of an absent record, so that no struct
+  // keeps a second copy of them.
+  void absentSingletons() {
+    auto absent = [&](const char* tag) { return RecordReader(doc_, *Schema::get().kind(tag), diags_); };
+    s_.timeStep = absent("time_step").number("dt");
+    s_.gravity = absent("gravity").vec3("gravity");
+    s_.inheritedTransforms = absent("scene_graph").flag("inheritedTransforms");
+    readSolver(absent("solver"), -1);
+    readEnvironment(absent("environment"), -1);
+    readWeather(absent("weather"), -1);
+    readRenderSettings(absent("rayrai_render"), -1);
+    s_.defaultMaterial = material(absent("material"), -1);
+    s_.defaultMaterial.id = s_.defaultMaterial.name = "engine_default";
+  }
+
+  void readMaterial(const RecordReader& r, int idx) { s_.materials.push_back(material(r, idx)); }
+
+  Material material(const RecordReader& r, int idx) {
+    Material m;
+    m.recordIndex = idx;
+    m.name = r.str("name");
+    m.id = r.present() ? nodeId(doc_, r.record()) : std::string();
+    m.color = r.color("color");
+    m.metallic = r.number("metallic");
+    m.roughness = r.number("roughness");
+    m.emissive = r.color("emissive").head<3>();
+    m.emissiveStrength = r.number("emissiveStrength");
+    m.doubleSided = r.flag("doubleSided");
+    m.alphaMode = r.name("alphaMode");
+    m.alphaCutoff = r.number("alphaCutoff");
+    m.albedoTexture = asset(r.str("albedoTexture"));
+    m.normalTexture = asset(r.str("normalTexture"));
+    m.metallicTexture = asset(r.str("metallicTexture"));
+    m.roughnessTexture = asset(r.str("roughnessTexture"));
+    m.aoTexture = asset(r.str("aoTexture"));
+    m.emissiveTexture = asset(r.str("emissiveTexture"));
+    return m;
+  }
+
+  void readContact(const RecordReader& r, int idx) {
+    ContactMaterial c;
+    const Solver& sv = s_.solver;
+    c.recordIndex = idx;
+    c.materialA = r.str("materialA");
+    c.materialB = r.str("materialB");
+    c.friction = r.number("friction", sv.defaultFriction);
+    c.restitution = r.number("restitution", sv.defaultRestitution);
+    c.restitutionThreshold = r.number("restitutionThreshold", sv.defaultRestitutionThreshold);
+    c.staticFriction = r.number("staticFriction", sv.defaultStaticFriction);
+    c.staticFrictionVelocityThreshold =
+        r.number("staticFrictionVelocityThreshold", sv.defaultStaticFrictionVelocityThreshold);
+    c.rollingFriction = r.number("rollingFriction", sv.defaultRollingFriction);
+    c.spinningFriction = r.number("spinningFriction", sv.defaultSpinningFriction);
+    s_.contactMaterials.push_back(std::move(c));
+  }
+
+  void readTerrainTexture(const RecordReader& r, int idx) {
+    TerrainTexture t = terrainTexture(r);
+    t.recordIndex = idx;
+    t.slot = static_cast<int>(r.integer("slot"));
+    t.id = r.str("id");
+    t.name = r.str("name");
+    s_.terrainTextures.push_back(std::move(t));
+  }
+
+  // What a terrain_texture record holds beside its slot and names.
+  TerrainTexture terrainTexture(const RecordReader& r) {
+    TerrainTexture t;
+    t.color = r.color("color");
+    t.albedo = asset(r.str("albedo"));
+    t.normal = asset(r.str("normal"));
+    t.uvScale = r.number("uvScale");
+    t.roughness = r.number("roughness");
+    return t;
+  }
+
+  void readGroup(const RecordReader& r, int idx) {
+    Group g;
+    g.recordIndex = idx;
+    g.path = nodePath(doc_, r.record());
+    g.id = nodeId(doc_, r.record());
+    g.parentId = r.str("parentId");
+    g.visible = r.flag("visible");
+    parentOf_[idx] = g.parentId;
+    if (!g.visible) hiddenGroups_.push_back(idx);
+    s_.groups.push_back(std::move(g));
+  }
+
+  void readLight(const RecordReader& r, int idx) {
+    Light l;
+    l.recordIndex = idx;
+    l.path = nodePath(doc_, r.record());
+    l.id = nodeId(doc_, r.record());
+    l.type = r.name("type");
+    Eigen::Vector3d d = r.vec3("direction");
+    l.direction = d.norm() > 1e-12 ? d.normalized() : Eigen::Vector3d(0, 0, -1);
+    l.intensity = r.number("intensity");
+    l.position = r.vec3("position");
+    l.color = r.color("color");
+    l.attenuationConstant = r.number("attenuationConstant");
+    l.attenuationLinear = r.number("attenuationLinear");
+    l.attenuationQuadratic = r.number("attenuationQuadratic");
+    l.range = r.number("range");
+    l.coneAngle = r.number("coneAngle");
+    l.innerConeAngle = r.number("innerConeAngle");
+    l.radius = r.number("radius");
+    l.areaSize = r.vec3("areaSize");
+    l.shadows = r.flag("shadows");
+    l.negative = r.flag("negative");
+    l.parentId = r.str("parentGroupId");
+    parentOf_[idx] = l.parentId;
+    s_.lights.push_back(std::move(l));
+  }
+
+  void readCamera(const RecordReader& r, int idx) {
+    Camera c;
+    c.recordIndex = idx;
+    c.path = nodePath(doc_, r.record());
+    c.id = nodeId(doc_, r.record());
+    c.local = readPose(r, "position", "orientation");
+    c.verticalFov = std::clamp(r.number("verticalFov"), 1.0, 175.0);
+    c.horizontalFov = r.number("horizontalFov");
+    c.nearPlane = r.number("nearPlane");
+    c.farPlane = r.number("farPlane");
+    c.width = static_cast<int>(r.integer("width"));
+    c.height = static_cast<int>(r.integer("height"));
+    c.renderMode = r.name("renderMode");
+    c.projection = r.name("projection");
+    c.orthoScale = r.number("orthoScale");
+    c.enabled = r.flag("enabled");
+    parentOf_[idx] = r.str("parentGroupId");
+    s_.cameras.push_back(std::move(c));
+  }
+
+  void readObject(const RecordReader& r, int idx) {
+    Object o;
+    o.recordIndex = idx;
+    o.path = nodePath(doc_, r.record());
+    o.id = nodeId(doc_, r.record());
+    o.parentId = r.str("parentGroupId");
+    o.primitive = r.name("primitive");
+    o.local = readPose(r, "position", "orientation");
+    o.positionToken = r.positionalToken("position");
+    o.scale = r.vec3("scale");
+    o.radius = r.number("radius");
+    o.height = r.number("height");
+    o.mass = r.number("mass");
+    o.contactMaterial = r.str("contactMaterial");
+    o.material = r.str("material");
+    o.collidable = r.flag("collidable");
+    o.collisionGroup = r.group("collisionGroup");
+    o.collisionMask = r.group("collisionMask");
+    o.bodyMode = objectMode(r, o.primitive, o.collidable);
+    o.visible = r.flag("visible");
+    o.castShadow = r.flag("castShadow");
+    std::string mesh = r.str("meshPath");
+    if (std::string render = r.str("renderMeshPath"); !render.empty()) mesh = render;
+    std::string collision = r.str("collisionMeshPath");
+    o.meshPath = asset(mesh);
+    o.collisionMeshPath = collision.empty() ? o.meshPath : asset(collision);
+    o.collisionMode = r.has("collisionMode") ? r.name("collisionMode")
+                                             : r.name("meshCollision");
+    parentOf_[idx] = o.parentId;
+    s_.objects.push_back(std::move(o));
+  }
+
+  // Body mode of an object (compat-notes.md, "object record"): #21 when it
+  // names a known mode, else #17 visualOnly / #19 locked (the 19-field
+  // layout: #18 fixed), else dynamic; ground and half_space are static,
+  // collidable=false is visual-only.
+  static BodyMode objectMode(const RecordReader& r, const std::string& primitive, bool collidable) {
+    BodyMode m = BodyMode::Dynamic;
+    std::optional<std::string_view> mode;
+    if (std::optional<std::string> t = r.text("bodyMode"))
+      if (const EnumDef* e = Schema::get().enumDef("body_mode")) mode = e->canonical(*t);
+    if (mode) {
+      m = *mode == "static"      ? BodyMode::Static
+          : *mode == "kinematic" ? BodyMode::Kinematic
+          : *mode == "dynamic"   ? BodyMode::Dynamic
+                                 : BodyMode::VisualOnly;
+    } else if (r.flag("visualOnly")) {
+      m = BodyMode::VisualOnly;
+    } else if (r.flag("locked") || r.flag("fixed")) {
+      m = BodyMode::Static;
+    }
+    if ((primitive == "ground" || primitive == "half_space") && m != BodyMode::VisualOnly) m = BodyMode::Static;
+    return collidable ? m : BodyMode::VisualOnly;
+  }
+
+  // bodiesOnly: whether an object certainly passes checkScene(), so that
+  // building it can be skipped: visual-only by its written #21 or #22, or
+  // a primitive other than a mesh whose mass, scale, radius and height are
+  // all positive numbers, whatever its mode.  Anything less plain is built
+  // and checked in full.
+  bool plainBody(const Record& rec) {
+    const Layout* layout = rec.kind->layoutFor(rec.positionalCount);
+    if (!layout) return false;
+    auto [it, added] = plainSlots_.try_emplace(layout);
+    std::vector<int>& slots = it->second;
+    if (added) {
+      for (const char* name : {"primitive", "scale", "radius", "height", "mass"})
+        for (std::size_t t = 0; t < layout->tokens.size(); ++t) {
+          const FieldDef& f = layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+          if (f.name != name || layout->tokens[t].second != 0) continue;
+          for (int c = 0; c < f.width; ++c) slots.push_back(static_cast<int>(t) + c);
+        }
+      if (slots.size() != 7) slots.clear();  // not the layout this test knows: build in full
+      for (const char* name : {"bodyMode", "collidable"}) {
+        int t = -1;
+        for (std::size_t k = 0; k < layout->tokens.size() && !slots.empty(); ++k)
+          if (layout->fields[static_cast<std::size_t>(layout->tokens[k].first)].name == name) t = static_cast<int>(k);
+        if (!slots.empty()) slots.push_back(t);
+      }
+    }
+    if (slots.empty()) return false;
+    if (slots[7] >= 0) {
+      std::string_view mode = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[7]));
+      if (mode == "visual_only" || mode == "visualonly" || mode == "visual") return true;
+    }
+    if (slots[8] >= 0 && parseFlag(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[8]))) == false) return true;
+    static constexpr std::string_view kPlain[] = {"box",    "cube",   "sphere",    "cylinder",
+                                                  "capsule", "ground", "plane",     "half_space"};
+    std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
+    if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
+    for (std::size_t k = 1; k < 7; ++k)
+      if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])))) return false;
+    return true;
+  }
+
+  // Whether `s` is a finite number > 0.  Plain decimals ("0.5", "12") are
+  // read from their digits, which keeps a bodiesOnly build cheap on scenes
+  // with hundreds of thousands of objects; anything else is parsed.
+  static bool positiveNumber(std::string_view s) {
+    bool digits = !s.empty() && s.size() < 32, nonZero = false;
+    int dots = 0;
+    for (char c : s) {
+      if (c == '.') ++dots;
+      else if (c < '0' || c > '9') digits = false;
+      else nonZero = nonZero || c != '0';
+    }
+    if (digits && dots <= 1 && s.front() != '.') return nonZero;
+    std::optional<double> v = parseNumber(s);
+    return v && *v > 0 && std::isfinite(*v);
+  }
+
+  void readCompound(const RecordReader& r, int idx) {
+    Compound c;
+    c.recordIndex = idx;
+    c.path = nodePath(doc_, r.record());
+    c.id = nodeId(doc_, r.record());
+    c.parentId = r.str("parentGroupId");
+    c.local = readPose(r, "position", "orientation");
+    c.positionToken = r.positionalToken("position");
+    c.scale = r.vec3("scale");
+    c.mass = r.number("mass");
+    std::string mode = r.name("bodyMode");
+    c.bodyMode = mode == "static"      ? BodyMode::Static
+                 : mode == "kinematic" ? BodyMode::Kinematic
+                 : mode == "dynamic"   ? BodyMode::Dynamic
+                                       : BodyMode::VisualOnly;
+    c.visible = r.flag("visible");
+    c.collidable = r.flag("collidable");
+    if (!c.collidable) c.bodyMode = BodyMode::VisualOnly;
+    c.hasCenterOfMass = r.has("centerOfMass");
+    c.centerOfMass = r.vec3("centerOfMass", Eigen::Vector3d::Zero());  // unused when absent
+    c.hasInertia = r.has("inertiaDiagonal");
+    c.inertiaDiagonal = r.vec3("inertiaDiagonal", Eigen::Vector3d::Zero());  // unused when absent
+    c.collisionGroup = r.group("collisionGroup");
+    c.collisionMask = r.group("collisionMask");
+    c.contactMaterial = r.str("contactMaterial");
+    c.material = r.str("material");
+    parentOf_[idx] = c.parentId;
+    s_.compounds.push_back(std::move(c));
+  }
+
+  void readCompoundChild(const RecordReader& r, int idx) {
+    std::string ref = r.str("compound");
+    Compound* owner = lastNamed(s_.compounds, ref);
+    if (!owner) {
+      r.error("compound", "RS3014", "compound '" + ref + "' does not exist");
+      return;
+    }
+    CompoundChild ch;
+    ch.recordIndex = idx;
+    ch.primitive = r.name("primitive");
+    ch.local = readPose(r, "position", "orientation");
+    ch.scale = r.vec3("scale");
+    ch.size = r.vec3("size");
+    ch.radius = r.number("radius");
+    ch.height = r.number("height");
+    ch.contactMaterial = r.str("contactMaterial", owner->contactMaterial);
+    ch.material = r.str("material", owner->material);
+    ch.meshPath = asset(r.str("meshPath"));
+    owner->children.push_back(std::move(ch));
+  }
+
+  // Parses a per-sample list: empty, or exactly `per * samples` numbers.
+  bool sampleList(const RecordReader& r, std::string_view name, std::size_t samples, int per,
+                  std::vector<double>& out) {
+    if (!r.numbers(name, out)) return false;
+    if (out.empty() || out.size() == samples * per) return true;
+    r.error(name, "RS4003",
+            std::string(name) + " has " + std::to_string(out.size() / per) + " entries, expected " +
+                std::to_string(samples) + " (one per sample) or none");
+    out.clear();
+    return false;
+  }
+
+  void readTerrain(const RecordReader& r, int idx) {
+    Terrain t;
+    t.recordIndex = idx;
+    t.path = nodePath(doc_, r.record());
+    t.id = nodeId(doc_, r.record());
+    t.parentId = r.str("parentGroupId");
+    std::int64_t xs = r.integer("xSamples"), ys = r.integer("ySamples");
+    t.xSize = r.number("xSize");
+    t.ySize = r.number("ySize");
+    t.center = r.vec3("center");
+    // Counts are checked before any list is parsed, so a hostile header
+    // cannot ask for an unbounded allocation.
+    // The validator's codes: RS4001 per axis, RS4002 in total, RS4014 sizes.
+    bool countsOk = true;
+    for (auto [name, v] : {std::pair{"xSamples", xs}, std::pair{"ySamples", ys}})
+      if (v < 2 || v > 16384) {
+        r.error(name, "RS4001", std::string(name) + " is " + std::to_string(v) + ", outside 2..16384");
+        countsOk = false;
+      }
+    if (countsOk && static_cast<std::uint64_t>(xs) * static_cast<std::uint64_t>(ys) > kMaxTerrainSamples) {
+      r.error("xSamples", "RS4002", "terrain has " + std::to_string(xs * ys) + " samples, more than 64 Mi");
+      countsOk = false;
+    }
+    bool sizeOk = true;
+    for (auto [name, v] : {std::pair{"xSize", t.xSize}, std::pair{"ySize", t.ySize}})
+      if (!(v > 0)) {
+        r.error(name, "RS4014", std::string(name) + " is not positive");
+        sizeOk = false;
+      }
+    if (!countsOk || !sizeOk) return;
+    t.xSamples = static_cast<int>(xs);
+    t.ySamples = static_cast<int>(ys);
+    std::size_t n = static_cast<std::size_t>(xs * ys);
+    if (!sampleList(r, "heights", n, 1, t.heights)) return;
+    if (t.heights.empty()) t.heights.assign(n, 0.0);
+    t.material = r.str("material");
+    t.contactMaterial = r.str("contactMaterial");
+    t.baseTexture = static_cast<int>(r.integer("baseTexture"));
+    t.visible = r.flag("visible");
+    t.collidable = r.flag("collidable");
+    t.castShadow = r.flag("castShadow");
+    t.receiveShadow = r.flag("receiveShadow");
+    t.textureSplatting = r.flag("textureSplattingEnabled");
+    t.sourceKind = r.name("sourceKind");
+    sampleList(r, "texturePrimary", n, 1, t.texturePrimary);
+    sampleList(r, "textureSecondary", n, 1, t.textureSecondary);
+    sampleList(r, "textureBlend", n, 1, t.textureBlend);
+    sampleList(r, "wetness", n, 1, t.wetness);
+    sampleList(r, "holes", n, 1, t.holes);
+    std::vector<double> colors;
+    if (r.numbers("vertexColors", colors) && !colors.empty()) {
+      int per = colors.size() == n * 4 ? 4 : colors.size() == n * 3 ? 3 : 0;
+      if (!per) {
+        r.error("vertexColors", "RS4006", "vertexColors needs one color per sample or none");
+      } else {
+        t.vertexColors.reserve(n);
+        for (std::size_t i = 0; i < n; ++i)
+          t.vertexColors.emplace_back(colors[i * per], colors[i * per + 1], colors[i * per + 2],
+                                      per == 4 ? colors[i * per + 3] : 1.0);
+      }
+    }
+    parentOf_[idx] = t.parentId;
+    s_.terrains.push_back(std::move(t));
+  }
+
+  // A terrain as a body wires can name, without its samples (bodiesOnly).
+  void readTerrainNode(const RecordReader& r, int idx) {
+    Terrain t;
+    t.recordIndex = idx;
+    t.path = nodePath(doc_, r.record());
+    t.id = nodeId(doc_, r.record());
+    t.parentId = r.str("parentGroupId");
+    parentOf_[idx] = t.parentId;
+    s_.terrains.push_back(std::move(t));
+  }
+
+  void readSplat(const RecordReader& r, int idx) {
+    std::string ref = r.str("terrain");
+    Terrain* owner = lastNamed(s_.terrains, ref);
+    if (!owner) {
+      r.error("terrain", "RS3013", "terrain '" + ref + "' does not exist");
+      return;
+    }
+    TerrainSplatLayer l;
+    l.recordIndex = idx;
+    l.slot = static_cast<int>(r.integer("slot"));
+    l.enabled = r.flag("enabled");
+    l.strength = r.number("strength");
+    sampleList(r, "weights", static_cast<std::size_t>(owner->xSamples) * owner->ySamples, 1, l.weights);
+    owner->splatLayers.push_back(std::move(l));
+  }
+
+  void readWire(const RecordReader& r, int idx) {
+    Wire w;
+    w.recordIndex = idx;
+    w.path = nodePath(doc_, r.record());
+    w.id = nodeId(doc_, r.record());
+    w.kind = r.name("kind");
+    w.bodyA = r.str("bodyA");
+    w.bodyB = r.str("bodyB");
+    w.length = r.number("length");
+    w.localIndexA = static_cast<int>(r.integer("localIndexA"));
+    w.localIndexB = static_cast<int>(r.integer("localIndexB"));
+    w.localPositionA = r.vec3("localPositionA");
+    w.localPositionB = r.vec3("localPositionB");
+    w.stiffness = r.number("stiffness");
+    w.damping = r.number("damping");
+    w.compliance = r.number("compliance");
+    w.enabled = r.flag("enabled");
+    s_.wires.push_back(std::move(w));
+  }
+
+  void readInstanced(const RecordReader& r, int idx) {
+    InstancedVisual v;
+    v.recordIndex = idx;
+    v.path = nodePath(doc_, r.record());
+    v.id = nodeId(doc_, r.record());
+    v.primitive = r.name("primitive");
+    v.meshPath = asset(r.str("meshPath"));
+    v.size = r.vec3("size");
+    v.colorA = r.color("colorA");
+    v.colorB = r.color("colorB");
+    std::vector<double> xs;
+    if (r.numbers("instances", xs)) {
+      if (xs.size() % 10) {
+        r.error("instances", "RS4004", "instances holds " + std::to_string(xs.size()) +
+                                                        " numbers, not a multiple of 10");
+      } else {
+        v.instances.reserve(xs.size() / 10);
+        for (std::size_t i = 0; i < xs.size(); i += 10) {
+          Instance in;
+          in.position = {xs[i], xs[i + 1], xs[i + 2]};
+          Eigen::Quaterniond q(xs[i + 3], xs[i + 4], xs[i + 5], xs[i + 6]);
+          in.orientation = q.norm() > 1e-12 ? q.normalized() : Eigen::Quaterniond::Identity();
+          in.scale = {xs[i + 7], xs[i + 8], xs[i + 9]};
+          v.instances.push_back(in);
+        }
+      }
+    }
+    r.numbers("colorWeights", v.colorWeights);
+    v.castShadows = r.flag("castShadows");
+    v.grassPatch = r.flag("grassPatch");
+    v.enabled = r.flag("enabled");
+    v.parentId = r.str("parentGroupId");
+    parentOf_[idx] = v.parentId;
+    s_.instancedVisuals.push_back(std::move(v));
+  }
+
+  void readPointCloud(const RecordReader& r, int idx) {
+    PointCloud p;
+    p.recordIndex = idx;
+    p.path = nodePath(doc_, r.record());
+    p.id = nodeId(doc_, r.record());
+    std::vector<double> xs;
+    if (r.numbers("points", xs)) {
+      if (xs.size() % 3) {
+        r.error("points", "RS2008", "points holds " + std::to_string(xs.size()) +
+                                                     " numbers, not a multiple of 3");
+      } else {
+        for (std::size_t i = 0; i < xs.size(); i += 3) p.points.emplace_back(xs[i], xs[i + 1], xs[i + 2]);
+      }
+    }
+    if (r.numbers("colors", xs) && !xs.empty() && !p.points.empty()) {
+      std::size_t per = xs.size() == p.points.size() * 4 ? 4 : xs.size() == p.points.size() * 3 ? 3 : 0;
+      if (per)
+        for (std::size_t i = 0; i < p.points.size(); ++i)
+          p.colors.emplace_back(xs[i * per], xs[i * per + 1], xs[i * per + 2], per == 4 ? xs[i * per + 3] : 1.0);
+      else
+        r.error("colors", scene_code::kBadValue, "colors needs one color per point or none");
+    }
+    p.pointSize = r.number("pointSize");
+    p.enabled = r.flag("enabled");
+    p.parentId = r.str("parentGroupId");
+    parentOf_[idx] = p.parentId;
+    s_.pointClouds.push_back(std::move(p));
+  }
+
+  void defaults() {
+    if (s_.materials.empty()) s_.materials.push_back(s_.defaultMaterial);
+    if (s_.terrainTextures.empty()) {
+      // compat-notes.md, "Identity and defaults": two slots of their own
+      // colors; their other fields are the schema's.
+      struct Slot {
+        int slot;
+        const char* name;
+        double r, g, b;
+      };
+      constexpr Slot kSlots[] = {{0, "terrain_grass", 0.28, 0.43, 0.20}, {1, "terrain_rock", 0.42, 0.40, 0.36}};
+      for (const Slot& k : kSlots) {
+        TerrainTexture t = terrainTexture(RecordReader(doc_, *Schema::get().kind("terrain_texture"), diags_));
+        t.slot = k.slot;
+        t.id = t.name = k.name;
+        t.color = {k.r, k.g, k.b, 1};
+        s_.terrainTextures.push_back(std::move(t));
+      }
+    }
+  }
+
+  // Local pose of a node that has one (object, compound, camera), or nullptr.
+  const Pose* localPose(int idx) const {
+    auto it = poses_.find(idx);
+    return it == poses_.end() ? nullptr : it->second;
+  }
+
+  // World pose of the frame a node's pose is written in.
+  Pose parentFrame(int idx, int depth) {
+    Pose identity;
+    if (!s_.inheritedTransforms || depth > 64) return identity;
+    auto it = parentOf_.find(idx);
+    if (it == parentOf_.end()) return identity;
+    int parent = lookup(it->second);
+    if (parent < 0 || parent == idx) return identity;
+    const Pose* p = localPose(parent);
+    if (!p) return identity;  // groups and pose-less nodes are folders in the world frame
+    return parentFrame(parent, depth + 1) * *p;
+  }
+
+  // Whether a group with visible=false is among the node's ancestors.
+  bool hiddenByGroup(int idx) const {
+    if (hiddenGroups_.empty()) return false;
+    for (int depth = 0; depth < 64; ++depth) {
+      auto it = parentOf_.find(idx);
+      if (it == parentOf_.end()) return false;
+      int parent = lookup(it->second);
+      if (parent < 0 || parent == idx) return false;
+      if (std::find(hiddenGroups_.begin(), hiddenGroups_.end(), parent) != hiddenGroups_.end()) return true;
+      idx = parent;
+    }
+    return false;
+  }
+
+  void resolveWorld() {
+    for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
+    for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
+    for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
+    for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex, 0) * o.local;
+    for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    for (Object& o : s_.objects) o.hiddenByGroup = hiddenByGroup(o.recordIndex);
+    for (Compound& c : s_.compounds) c.hiddenByGroup = hiddenByGroup(c.recordIndex);
+    for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);
+    for (InstancedVisual& v : s_.instancedVisuals) v.hiddenByGroup = hiddenByGroup(v.recordIndex);
+    for (PointCloud& p : s_.pointClouds) p.hiddenByGroup = hiddenByGroup(p.recordIndex);
+    for (Light& l : s_.lights) {
+      l.hiddenByGroup = hiddenByGroup(l.recordIndex);
+      Pose f = parentFrame(l.recordIndex, 0);
+      l.position = f.position + f.orientation * l.position;
+      l.direction = f.orientation * l.direction;
+    }
+  }
+
+  // What each wire end names: the world, a body the simulator models, a
+  // node it does not (an articulated system, a visual-only object ...), or
+  // nothing (lib/core's validator reports that as RS3012).
+  void resolveWires() {
+    std::unordered_map<int, bool> simulatedBody;
+    for (const Object& o : s_.objects) simulatedBody[o.recordIndex] = o.bodyMode != BodyMode::VisualOnly;
+    for (const Compound& c : s_.compounds) simulatedBody[c.recordIndex] = c.bodyMode != BodyMode::VisualOnly;
+    for (const Terrain& t : s_.terrains) simulatedBody[t.recordIndex] = true;
+    auto classify = [&](const std::string& ref, WireEnd& end, std::string& tag) {
+      if (ref.empty()) return;
+      int target = lookup(ref);
+      if (target < 0) {
+        end = WireEnd::Unknown;
+        return;
+      }
+      tag = doc_.records[static_cast<std::size_t>(target)].kind->tag;
+      auto it = simulatedBody.find(target);
+      if (it == simulatedBody.end() && tag == "object") {  // skipped by a bodiesOnly build
+        RecordReader r(doc_, static_cast<std::size_t>(target), diags_);
+        bool simulated = objectMode(r, r.name("primitive"), r.flag("collidable")) != BodyMode::VisualOnly;
+        it = simulatedBody.emplace(target, simulated).first;
+      }
+      end = it != simulatedBody.end() && it->second ? WireEnd::Body : WireEnd::NotSimulated;
+    };
+    for (Wire& w : s_.wires) {
+      classify(w.bodyA, w.endA, w.tagA);
+      classify(w.bodyB, w.endB, w.tagB);
+    }
+  }
+
+  const Document& doc_;
+  const SceneOptions& opt_;
+  Scene& s_;
+  Diagnostics& diags_;
+  mutable std::unordered_map<std::string, std::size_t> byId_, byPath_;
+  mutable bool indexed_ = false;
+  const KindDef* objectKind_ = Schema::get().kind("object");
+  // Per object layout, the tokens of primitive, scale x3, radius, height,
+  // mass, then bodyMode and collidable (-1 when the layout has none).
+  std::unordered_map<const Layout*, std::vector<int>> plainSlots_;
+  std::unordered_map<int, std::string> parentOf_;
+  std::unordered_map<int, const Pose*> poses_;
+  std::vector<int> hiddenGroups_;  // record indices of groups with visible=false
+};
+
+}  // namespace
+
+const char* bodyModeName(BodyMode m) {
+  switch (m) {
+    case BodyMode::Static: return "static";
+    case BodyMode::Kinematic: return "kinematic";
+    case BodyMode::Dynamic: return "dynamic";
+    case BodyMode::VisualOnly: return "visual_only";
+  }
+  return "dynamic";
+}
+
+const Material* Scene::findMaterial(const std::string& id) const {
+  for (const Material& m : materials)
+    if (m.id == id || m.name == id) return &m;
+  return nullptr;
+}
+
+const ContactMaterial* Scene::findContact(const std::string& a, const std::string& b) const {
+  const ContactMaterial* found = nullptr;
+  for (const ContactMaterial& c : contactMaterials)
+    if ((c.materialA == a && c.materialB == b) || (c.materialA == b && c.materialB == a)) found = &c;
+  return found;  // the last record of a pair wins
+}
+
+bool buildScene(const Document& doc, const SceneOptions& options, Scene& scene, Diagnostics& diagnostics) {
+  std::size_t before = diagnostics.size();
+  Scene built;
+  Builder(doc, options, built, diagnostics).run();
+  scene = std::move(built);
+  for (std::size_t i = before; i < diagnostics.size(); ++i)
+    if (diagnostics[i].severity == Severity::Error) return false;
+  return true;
+}
+
+}  // namespace rscene

@@ -1,0 +1,448 @@
+// The typed scene model (DESIGN.md, lib/scene): plain structs with Eigen
+// types for the records that validate's scene checks, the simulator and the
+// renderer consume.
+//
+// - Every value is typed.  Every absent field, and every field of an absent
+//   singleton record, holds the default of the schema table
+//   (FieldDef::defaultValue), read by scene/reader.hpp: the structs below
+//   initialise their members to zero, never to a second copy of a default
+//   (tests/scene/defaults_test.cpp).  Rules the schema cannot hold are
+//   compat-notes.md's (fog colour = background, contact pairs = the
+//   solver's defaults, the two default terrain slots).
+// - Enumerations hold their canonical name (EnumDef::canonical), so
+//   `plane`, `fixed`, `sun` arrive as `ground`, `static`, `directional`.
+// - Poses are given twice: `local` as written in the file and `world`
+//   resolved (groups are folders in the world frame; a node parented to a
+//   non-group node inherits that node's world pose when
+//   scene_graph inheritedTransforms=true, the default).  Only position and
+//   orientation are inherited, never scale.
+// - Asset paths are resolved with the rule of assets.hpp.
+// - Every struct keeps `recordIndex` into Document::records, so a tool can
+//   write values back with Document::setValue on the positional tokens.
+//
+// The view is built in one pass and owns its data; it does not point into
+// the Document.  buildScene() never throws on bad input: a value that does
+// not parse is reported with the validator's code for it (RS2xxx, RS4xxx)
+// and the default is used instead.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/assets.hpp"
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+
+namespace rscene {
+
+// Diagnostic codes of the scene model.  Where lib/core's validator checks
+// the same condition, the model reports the validator's code at the same
+// field, so validate, sim and render name one problem one way (the registry
+// in core/check_codes.cpp lists every code and who emits it).
+namespace scene_code {
+inline constexpr const char* kBadValue = "RS7001";      // list whose length the type cannot hold (points, colors)
+inline constexpr const char* kZeroSize = "RS7003";      // body shape with a zero or negative physical size
+inline constexpr const char* kNoMesh = "RS7004";        // mesh body without a mesh path
+inline constexpr const char* kBadMesh = "RS7007";       // mesh file that cannot be read
+inline constexpr const char* kBadTimeStep = "RS7008";   // time_step not positive
+inline constexpr const char* kUnsupported = "RS7010";   // records kept but not simulated (warning)
+inline constexpr const char* kWireSkipped = "RS7011";   // wire to a node sim does not model (warning)
+// Codes shared with lib/core's validator (same condition, same code).
+inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
+inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist
+inline constexpr const char* kUnknownBody = "RS3012";   // wire body that names no node
+}  // namespace scene_code
+
+struct Pose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // normalised
+
+  Pose operator*(const Pose& child) const {
+    return {position + orientation * child.position, (orientation * child.orientation).normalized()};
+  }
+  Pose inverse() const {
+    Eigen::Quaterniond q = orientation.conjugate();
+    return {q * -position, q};
+  }
+};
+
+struct SceneOptions {
+  std::string sceneDir = ".";  // directory of the scene file (assets resolve against it)
+  std::string baseDir;         // when set, replaces sceneDir (e.g. for stdin)
+  FileExists exists = fileExistsOnDisk;
+  // Build only what checkScene() reads: time step, groups, objects,
+  // compounds, wires, point clouds, and terrains without their per-sample
+  // lists.  rscene-validate builds this much on top of lib/core's checks,
+  // which already report every value problem of the records left out.
+  bool bodiesOnly = false;
+};
+
+enum class BodyMode { Static, Kinematic, Dynamic, VisualOnly };
+const char* bodyModeName(BodyMode m);  // canonical enum name
+
+// solver record (Engine 2 defaults from the schema table).
+struct Solver {
+  int recordIndex = -1;  // -1: absent, all defaults
+  int iterations{};
+  double tolerance{};
+  double erp{};
+  std::string mode{};
+  double erp2{};
+  double defaultFriction{};
+  double defaultRestitution{};
+  double defaultRestitutionThreshold{};
+  double defaultStaticFriction{};
+  double defaultStaticFrictionVelocityThreshold{};
+  double defaultRollingFriction{};
+  double defaultSpinningFriction{};
+  int contactMaxIterations{};
+  int maxContactsPerPair{};
+  bool sweptCcdEnabled{};
+  double sweptCcdMinSpeed{};
+  double sweptCcdSpeculativeMargin{};
+  bool sleepingEnabled{};
+  double sleepingLinearVelocityThreshold{};
+  double sleepingAngularVelocityThreshold{};
+  int sleepingQuietSteps{};
+  std::string broadphaseType{};
+  Eigen::Vector3d broadphaseWorldMin{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d broadphaseWorldMax{Eigen::Vector3d::Zero()};
+  bool broadphaseUseWorldBounds{};
+  bool fixedContactSolverIterationOrder{};
+  double worldTime{};
+};
+
+// environment record.
+struct Environment {
+  int recordIndex = -1;
+  Eigen::Vector3d background{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d ambient{Eigen::Vector3d::Zero()};
+  double fogDensity{};
+  bool shadows{};
+  std::string envMapPath;                  // resolved; empty = none
+  Eigen::Vector4d fogColor{Eigen::Vector4d::Zero()};  // defaults to the background colour
+  double exposure{};
+  double gamma{};
+  std::string backgroundMode{};  // plain_color | hdr | rayrai_sky
+  std::string colorMode;                      // empty: renderer's choice
+  double pbrEnvironmentIntensity{};
+  bool heightFogEnabled{};
+  double heightFogDensity{}, heightFogBaseHeight{}, heightFogFalloff{};
+};
+
+// weather record (only what a renderer needs for lighting and fog).
+struct Weather {
+  int recordIndex = -1;
+  bool enabled{};
+  std::string preset{};
+  double timeOfDay{};  // hours
+  bool useExplicitSunAngles{};
+  double sunAzimuthDegrees{};
+  double sunElevationDegrees{};
+  double fogDensity{};
+  std::optional<double> cloudCoverage;  // absent: the preset's
+};
+
+// rayrai_render record (what a renderer needs of Engine 2's view settings).
+struct RenderSettings {
+  int recordIndex = -1;
+  std::string preset{};
+  std::string colorMode;  // empty: not written (environment colorMode wins when written)
+};
+
+struct Material {
+  int recordIndex = -1;  // -1: the implicit engine_default
+  std::string id;        // defaults to the name
+  std::string name;
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
+  double metallic{};
+  double roughness{};
+  Eigen::Vector3d emissive = Eigen::Vector3d::Zero();
+  double emissiveStrength{};
+  bool doubleSided{};
+  std::string alphaMode{};  // opaque | mask | hash | blend
+  double alphaCutoff{};
+  // Resolved texture paths; empty = none.
+  std::string albedoTexture, normalTexture, metallicTexture, roughnessTexture, aoTexture, emissiveTexture;
+};
+
+// contact_material: properties of one pair of contact-material names.
+struct ContactMaterial {
+  int recordIndex = -1;
+  std::string materialA, materialB;
+  double friction{};
+  double restitution{};
+  double restitutionThreshold{};
+  double staticFriction{};
+  double staticFrictionVelocityThreshold{};
+  double rollingFriction{};
+  double spinningFriction{};
+};
+
+struct TerrainTexture {
+  int recordIndex = -1;  // -1: a default slot
+  int slot{};
+  std::string id, name;
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
+  std::string albedo, normal;  // resolved
+  double uvScale{};
+  double roughness{};
+};
+
+struct Group {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  bool visible{};
+};
+
+struct Light {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::string type{};  // directional | point | spot | area
+  Eigen::Vector3d direction{Eigen::Vector3d::Zero()};  // the way the light travels, world frame, normalised
+  double intensity{};
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};  // world frame
+  Eigen::Vector4d color{Eigen::Vector4d::Zero()};
+  double attenuationConstant{}, attenuationLinear{}, attenuationQuadratic{};
+  double range{};  // 0: unlimited
+  double coneAngle{};  // degrees
+  double innerConeAngle{};  // degrees
+  double radius{};
+  Eigen::Vector3d areaSize = Eigen::Vector3d::Zero();
+  bool shadows{};
+  bool negative{};  // subtracts light
+  bool hiddenByGroup = false;  // an ancestor group has visible=false
+};
+
+struct Camera {
+  int recordIndex = -1;
+  std::string path, id;
+  Pose local, world;  // looks along local +x with local +z up
+  double verticalFov{};  // degrees, clamped to [1, 175]
+  double horizontalFov{};  // > 0 overrides the aspect-derived one
+  double nearPlane{}, farPlane{};
+  int width{}, height{};  // only the aspect ratio
+  std::string renderMode{};
+  std::string projection{};
+  double orthoScale{};
+  bool enabled{};
+};
+
+struct Object {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::string primitive{};  // ground box sphere cylinder capsule mesh half_space
+  Pose local, world;
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  double radius{}, height{};  // as written (#12, #13)
+  double mass{};  // as written
+  std::string contactMaterial;      // contact-material name (may be empty / "default")
+  std::string material;             // visual material id
+  bool visible{};
+  bool hiddenByGroup = false;  // an ancestor group has visible=false
+  bool castShadow{};
+  BodyMode bodyMode{};  // resolved from #21, #17, #19, collidable
+  bool collidable{};
+  std::uint64_t collisionGroup{};
+  std::uint64_t collisionMask{};
+  std::string meshPath;           // resolved render mesh (renderMeshPath= overrides #20)
+  std::string collisionMeshPath;  // resolved collision mesh (collisionMeshPath= or the render mesh)
+  std::string collisionMode{};  // convex_hull | original_mesh | convexify
+  // Positional token of position.x in the record (orientation w follows at +3),
+  // for writing poses back.
+  int positionToken = -1;
+
+  // Physical sizes per compat-notes.md.
+  double physicsRadius() const { return radius * scale.x(); }
+  double physicsHeight() const { return height * scale.z(); }
+  double meshScale() const { return (scale.x() + scale.y() + scale.z()) / 3; }
+  // A dynamic body needs mass > 0; other modes treat mass <= 0 as 1 kg.
+  double effectiveMass() const { return bodyMode != BodyMode::Dynamic && mass <= 0 ? 1.0 : mass; }
+};
+
+struct CompoundChild {
+  int recordIndex = -1;
+  std::string primitive{};
+  Pose local;  // in the compound's frame
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box full side lengths (size x scale)
+  double radius{}, height{};
+  std::string contactMaterial, material;
+  std::string meshPath;  // resolved
+};
+
+struct Compound {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  Pose local, world;
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  double mass{};
+  BodyMode bodyMode{};
+  bool visible{}, collidable{};
+  bool hiddenByGroup = false;
+  bool hasCenterOfMass{}, hasInertia{};
+  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();  // compound frame
+  Eigen::Vector3d inertiaDiagonal = Eigen::Vector3d::Zero();
+  std::uint64_t collisionGroup{};
+  std::uint64_t collisionMask{};
+  std::string contactMaterial, material;
+  std::vector<CompoundChild> children;
+  int positionToken = -1;
+};
+
+// Physical sizes of a compound child (compat-notes.md "Sizes"; the child's
+// scale times the compound's): box sides are `size` x scale, or the scale
+// itself when `size` is absent or zero; radius `radius` x scale.x, height
+// `height` x scale.z.  An absent radius or height is 0: a sphere child
+// without a radius is a zero-size shape (RS7003), never a guessed size.
+inline Eigen::Vector3d childScale(const Compound& c, const CompoundChild& ch) { return ch.scale.cwiseProduct(c.scale); }
+inline Eigen::Vector3d childBox(const Compound& c, const CompoundChild& ch) {
+  Eigen::Vector3d s = childScale(c, ch);
+  return ch.size.isZero() ? s : Eigen::Vector3d(ch.size.cwiseProduct(s));
+}
+inline double childRadius(const Compound& c, const CompoundChild& ch) { return ch.radius * childScale(c, ch).x(); }
+inline double childHeight(const Compound& c, const CompoundChild& ch) { return ch.height * childScale(c, ch).z(); }
+// The child's pose in the compound's body frame: its position scales with
+// the compound.
+inline Pose childPose(const Compound& c, const CompoundChild& ch) {
+  Pose p = ch.local;
+  p.position = p.position.cwiseProduct(c.scale);
+  return p;
+}
+
+struct TerrainSplatLayer {
+  int recordIndex = -1;
+  int slot{};
+  bool enabled{};
+  double strength{};
+  std::vector<double> weights;  // one per sample or empty
+};
+
+// terrain_region: sample (x, y) is heights[y * xSamples + x], located at
+// center.xy - size/2 + (x, y) * size / (samples - 1), height relative to center.z.
+struct Terrain {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  int xSamples{}, ySamples{};
+  double xSize{}, ySize{};
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  std::vector<double> heights;  // xSamples*ySamples (zeros when the file has none)
+  std::string material, contactMaterial;
+  int baseTexture{};
+  bool visible{}, collidable{}, castShadow{}, receiveShadow{};
+  bool hiddenByGroup = false;
+  bool textureSplatting{};  // textureSplattingEnabled
+  std::string sourceKind{};
+  std::vector<double> texturePrimary, textureSecondary, textureBlend, wetness, holes;  // per sample or empty
+  std::vector<Eigen::Vector4d> vertexColors;  // per sample or empty
+  std::vector<TerrainSplatLayer> splatLayers;
+
+  Eigen::Vector3d samplePosition(int x, int y) const {
+    return {center.x() - xSize / 2 + x * xSize / (xSamples - 1), center.y() - ySize / 2 + y * ySize / (ySamples - 1),
+            center.z() + heights[static_cast<std::size_t>(y) * xSamples + x]};
+  }
+};
+
+// What one end of a wire names (compat-notes.md, "Wire kinds": a body by id
+// or path, a terrain counts as a body; nothing means a point in the world).
+enum class WireEnd { World, Body, NotSimulated, Unknown };
+
+struct Wire {
+  int recordIndex = -1;
+  std::string path, id;
+  std::string kind{};  // stiff | compliant | custom
+  std::string bodyA, bodyB;    // as written (id or path), decoded
+  double length{};
+  int localIndexA{}, localIndexB{};
+  Eigen::Vector3d localPositionA = Eigen::Vector3d::Zero(), localPositionB = Eigen::Vector3d::Zero();
+  double stiffness{}, damping{}, compliance{};
+  bool enabled{};
+  WireEnd endA = WireEnd::World, endB = WireEnd::World;
+  std::string tagA, tagB;  // record kind an end names (when it names a node)
+
+  // Whether a simulator attaches this wire: enabled, and each end is the
+  // world or a simulated body (object, compound, terrain).  A wire to an
+  // articulated system or a visual-only object is skipped with RS7011.
+  bool simulated() const {
+    auto ok = [](WireEnd e) { return e == WireEnd::World || e == WireEnd::Body; };
+    return enabled && ok(endA) && ok(endB);
+  }
+};
+
+struct Instance {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d scale = Eigen::Vector3d::Zero();  // numbers 8..10
+};
+
+struct InstancedVisual {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::string primitive{};
+  std::string meshPath;  // resolved
+  Eigen::Vector3d size{Eigen::Vector3d::Zero()};
+  Eigen::Vector4d colorA{Eigen::Vector4d::Zero()}, colorB{Eigen::Vector4d::Zero()};
+  std::vector<Instance> instances;
+  std::vector<double> colorWeights;  // one per instance or empty
+  bool castShadows{}, enabled{}, grassPatch{};
+  bool hiddenByGroup = false;
+};
+
+struct PointCloud {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector4d> colors;  // one per point or empty
+  double pointSize{};
+  bool enabled{};
+  bool hiddenByGroup = false;
+};
+
+// A scene-content record the view does not model (articulated, deformable,
+// granular, sensor, decals, fog volumes, probes, foliage layers ...).
+struct SkippedRecord {
+  int recordIndex = -1;
+  std::string tag, path;
+};
+
+struct Scene {
+  int timeStepRecord = -1;  // the time_step record in force, or -1
+  double timeStep{};
+  Eigen::Vector3d gravity{Eigen::Vector3d::Zero()};
+  Solver solver;
+  bool inheritedTransforms{};
+  std::string assetRoot;  // decoded asset_root (core/assets.hpp: "." when absent)
+  Environment environment;
+  Weather weather;
+  RenderSettings renderSettings;
+  Material defaultMaterial;         // engine_default as Engine 2 assumes it (the material schema's defaults)
+  std::vector<Material> materials;  // never empty: engine_default without material records
+  std::vector<ContactMaterial> contactMaterials;
+  std::vector<TerrainTexture> terrainTextures;  // never empty: slots 0/1 by default
+  std::vector<Group> groups;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  std::vector<Object> objects;
+  std::vector<Compound> compounds;
+  std::vector<Terrain> terrains;
+  std::vector<Wire> wires;
+  std::vector<InstancedVisual> instancedVisuals;
+  std::vector<PointCloud> pointClouds;
+  std::vector<SkippedRecord> skipped;
+
+  const Material* findMaterial(const std::string& id) const;
+  // The contact_material record of a pair of names (either order), or nullptr.
+  const ContactMaterial* findContact(const std::string& a, const std::string& b) const;
+};
+
+// Builds the view.  Returns false when an error diagnostic was added; the
+// scene is still filled as far as possible.
+bool buildScene(const Document& doc, const SceneOptions& options, Scene& scene, Diagnostics& diagnostics);
+
+// Most samples a terrain may hold (compat-notes.md: 64 Mi in total).
+inline constexpr std::uint64_t kMaxTerrainSamples = 64ull * 1024 * 1024;
+
+}  // namespace rscene

@@ -1,0 +1,186 @@
+// The scene model's checks (scene/check.hpp) through rscene-validate's full
+// check (scene/validate.hpp): each code triggers on its scene and not on a
+// fine one, and a condition core and scene both see is reported once.
+#include "scene/check.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "core/loader.hpp"
+#include "scene/validate.hpp"
+
+namespace rscene {
+namespace {
+
+const std::string H = "raisim_engine_scene 2\n";
+
+// An object in the 25-field layout.
+std::string object(const std::string& prim, const std::string& scale = "1 1 1", const std::string& radius = "0.5",
+                   const std::string& mass = "1", const std::string& mode = "dynamic", const std::string& keys = "",
+                   const std::string& path = "/World/a", const std::string& mesh = "-") {
+  return "object " + path + " " + prim + " 0 0 1 1 0 0 0 " + scale + " " + radius + " 1 " + mass +
+         " default engine_default false true false " + mesh + " " + mode + " true 1 18446744073709551615" +
+         (keys.empty() ? "" : " " + keys) + "\n";
+}
+const std::string K = "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true\n";
+std::string child(const std::string& prim, const std::string& keys) {
+  return "compound_child /World/k " + prim + " 0 0 0 1 0 0 0 1 1 1 " + keys + "\n";
+}
+
+Diagnostics validate(const std::string& text, bool files = false) {
+  CheckOptions o;
+  o.checkFiles = files;
+  o.fileExists = [](const std::string& p) { return p.find("present") != std::string::npos; };
+  Document doc;
+  return validateScene(text, o, doc);
+}
+
+std::string describe(const Diagnostics& ds) {
+  std::string s;
+  for (const Diagnostic& d : ds)
+    s += d.code + " " + std::to_string(d.line) + ":" + std::to_string(d.column) + " " + d.message + "\n";
+  return s;
+}
+
+std::vector<std::string> codes(const Diagnostics& ds) {
+  std::vector<std::string> out;
+  for (const Diagnostic& d : ds) out.push_back(d.code);
+  return out;
+}
+
+struct Case {
+  const char* code;
+  std::string bad, good;
+  bool files = false;
+};
+
+std::vector<Case> cases() {
+  return {
+      {"RS4008", H + object("box", "1 1 1", "0.5", "0"), H + object("box", "1 1 1", "0.5", "0", "static")},
+      {"RS7001", H + "point_cloud /World/p points=0,0,0;1,1,1 colors=1,0,0\n",
+       H + "point_cloud /World/p points=0,0,0;1,1,1 colors=1,0,0;0,1,0\n"},
+      {"RS7003", H + object("box", "1 0 1"), H + object("box", "1 2 1")},
+      {"RS7004", H + object("mesh"), H + object("mesh", "1 1 1", "0.5", "1", "dynamic", "", "/World/a", "present.obj")},
+      {"RS7008", H + "time_step 0\n", H + "time_step 0.001\n"},
+      {"RS7011",
+       H + object("box") + "articulated_resource arm arm arm.urdf\narticulated /World/r arm 0 0 0 1 0 0 0 true true\n" +
+           "wire /World/w stiff /World/a /World/r 1\n",
+       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
+           "wire /World/w stiff /World/a /World/b 1\n"},
+  };
+}
+
+TEST(SceneCheck, EachCodeTriggersOnItsSceneAndNotOnTheFineOne) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.code);
+    Diagnostics bad = validate(c.bad, c.files);
+    EXPECT_EQ(codes(bad), std::vector<std::string>{c.code}) << describe(bad);
+    for (const Diagnostic& d : bad) {
+      const CheckInfo* info = checkInfo(d.code);
+      ASSERT_NE(info, nullptr) << d.code;
+      EXPECT_EQ(d.severity, info->severity);
+      EXPECT_GT(d.line, 0u);
+      EXPECT_GT(d.column, 0u);
+    }
+    Diagnostics good = validate(c.good, c.files);
+    EXPECT_TRUE(good.empty()) << describe(good);
+  }
+}
+
+TEST(SceneCheck, EveryCodeOfTheSceneLayerHasACase) {
+  std::set<std::string> covered{"RS5001"};  // MissingCollisionMeshIsReportedOnceWithCheckFiles
+  for (const Case& c : cases()) covered.insert(c.code);
+  for (const CheckInfo& info : checkTable()) {
+    if (info.layer != CheckLayer::Scene) continue;
+    EXPECT_TRUE(covered.count(std::string(info.code))) << info.code;
+  }
+}
+
+TEST(SceneCheck, ReportsAtTheFieldAUserWouldChange) {
+  Diagnostics ds = validate(H + object("box", "1 1 1", "0.5", "0"));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].line, 2u);
+  EXPECT_EQ(ds[0].field, "mass");
+  EXPECT_EQ(ds[0].message, "dynamic body '/World/a' needs a mass > 0");
+  ds = validate(H + object("sphere", "-1 1 1"));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7003");
+  EXPECT_EQ(ds[0].field, "radius");
+}
+
+TEST(SceneCheck, IssueCasesHaveOneVerdict) {
+  // Negative scale and zero box sides are zero or negative physical sizes.
+  EXPECT_EQ(codes(validate(H + object("box", "-1 1 1"))), std::vector<std::string>{"RS7003"});
+  EXPECT_EQ(codes(validate(H + object("sphere", "1 1 1", "-0.5"))), std::vector<std::string>{"RS7003"});
+  EXPECT_EQ(codes(validate(H + "time_step -0.01\n")), std::vector<std::string>{"RS7008"});
+  // A half_space is static like a ground (compat-notes.md): its mass is unused.
+  EXPECT_TRUE(validate(H + object("half_space", "1 1 1", "0.5", "0")).empty());
+  EXPECT_EQ(codes(validate(H + K + child("sphere", ""))), std::vector<std::string>{"RS7003"});
+  EXPECT_TRUE(validate(H + K + child("sphere", "radius=0.2")).empty());
+}
+
+TEST(SceneCheck, CompoundChildSizesAreInTheCompoundsScale) {
+  // A box child without a size is its scale: a zero compound scale is a
+  // zero side, as the simulator would build it.
+  std::string k0 = "compound /World/k 0 0 1 1 0 0 0 1 0 1 2 dynamic true true\n";
+  EXPECT_EQ(codes(validate(H + k0 + child("box", ""))), std::vector<std::string>{"RS7003"});
+  EXPECT_TRUE(validate(H + K + child("box", "")).empty());
+}
+
+TEST(SceneCheck, MissingCollisionMeshIsReportedOnceWithCheckFiles) {
+  std::string text = H + object("mesh", "1 1 1", "0.5", "1", "dynamic", "", "/World/a", "gone.obj");
+  EXPECT_TRUE(validate(text).empty());
+  Diagnostics ds = validate(text, true);
+  EXPECT_EQ(codes(ds), std::vector<std::string>{"RS5001"}) << describe(ds);
+}
+
+TEST(SceneCheck, WireToAMissingBodyIsReportedOnce) {
+  Diagnostics ds = validate(H + object("box") + "wire /World/w stiff /World/a nobody 1\n");
+  EXPECT_EQ(codes(ds), std::vector<std::string>{"RS3012"}) << describe(ds);
+}
+
+TEST(SceneCheck, CheckSceneAloneFindsWhatSimRefuses) {
+  LoadResult loaded = parse(H + object("box", "1 1 1", "0.5", "0") + object("box", "1 0 1", "0.5", "1", "dynamic", "", "/World/b"));
+  ASSERT_TRUE(loaded.ok());
+  Scene scene;
+  Diagnostics ds;
+  ASSERT_TRUE(buildScene(loaded.document, {}, scene, ds));
+  EXPECT_FALSE(checkScene(loaded.document, scene, {}, ds));
+  EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS4008", "RS7003"}));
+}
+
+// rscene-validate builds only the bodies checkScene() needs, and skips
+// objects that cannot fail it; wires to them still resolve.
+TEST(SceneCheck, BodiesOnlyBuildKeepsWhatWiresName) {
+  std::string visual = object("box", "1 1 1", "0.5", "1", "visual_only", "", "/World/v");
+  std::string hidden = object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/h");
+  hidden.replace(hidden.find(" true 1 "), 8, " false 1 ");  // collidable=false: visual-only
+  std::string wires = "wire /World/w1 stiff /World/a /World/v 1\nwire /World/w2 stiff /World/a /World/h 1\n"
+                      "wire /World/w3 stiff /World/a - 1\n";
+  Diagnostics ds = validate(H + object("box") + visual + hidden + wires);
+  EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS7011", "RS7011"})) << describe(ds);
+  LoadResult loaded = parse(H + object("box") + visual + hidden + wires);
+  for (bool bodiesOnly : {false, true}) {
+    SceneOptions so;
+    so.bodiesOnly = bodiesOnly;
+    Scene scene;
+    Diagnostics built;
+    ASSERT_TRUE(buildScene(loaded.document, so, scene, built));
+    ASSERT_EQ(scene.wires.size(), 3u);
+    EXPECT_EQ(scene.wires[0].endB, WireEnd::NotSimulated);
+    EXPECT_EQ(scene.wires[1].endB, WireEnd::NotSimulated);
+    EXPECT_EQ(scene.wires[2].endB, WireEnd::World);
+    EXPECT_EQ(scene.wires[2].endA, WireEnd::Body);
+    EXPECT_TRUE(scene.wires[2].simulated());
+    EXPECT_EQ(scene.objects.size(), bodiesOnly ? 0u : 3u);  // all three are plain
+  }
+}
+
+TEST(SceneCheck, FindingsMergeInLineOrder) {
+  Diagnostics ds = validate(H + object("box", "1 1 1", "0.5", "0") + "objcet /World/x\n");
+  EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS4008", "RS3001"})) << describe(ds);
+}
+
+}  // namespace
+}  // namespace rscene
