@@ -34,6 +34,7 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
   if (!loaded.ok()) return std::move(loaded.diagnostics);
   Diagnostics out = std::move(loaded.diagnostics);
   Diagnostics found = check(doc, options);
+  hintContinuations(loaded.continuedLines, found);
   out.insert(out.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
 
   SceneOptions so;
@@ -47,6 +48,7 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
   sc.checkFiles = options.checkFiles;
   sc.exists = options.fileExists;
   checkScene(doc, scene, sc, model);
+  hintContinuations(loaded.continuedLines, model);
   merge(out, std::move(model));
   return out;
 }
