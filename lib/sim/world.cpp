@@ -38,11 +38,28 @@ struct BodyInfo {
 };
 
 // 64-bit group/mask test.  Bullet's own broadphase filter is 32-bit.
+// Replacing it must keep what it does first: a pair of static or kinematic
+// bodies never collides.  Letting those through makes n co-located static
+// boxes n^2/2 pairs in the pair cache (12,000 of them: gigabytes).
 struct Filter : btOverlapFilterCallback {
   const std::vector<BodyInfo>* info = nullptr;
+  btOverlappingPairCache* cache = nullptr;
+  std::uint64_t maxPairs = 0;  // 0: no cap
+  mutable bool overflowed = false;
   bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
     auto* oa = static_cast<btCollisionObject*>(a->m_clientObject);
     auto* ob = static_cast<btCollisionObject*>(b->m_clientObject);
+    if (oa->isStaticOrKinematicObject() && ob->isStaticOrKinematicObject()) return false;
+    if (!groupsMeet(oa, ob)) return false;
+    // At the cap a pair already kept stays; a new one is refused and noted.
+    if (maxPairs && static_cast<std::uint64_t>(cache->getNumOverlappingPairs()) >= maxPairs &&
+        !cache->findPair(a, b)) {
+      overflowed = true;
+      return false;
+    }
+    return true;
+  }
+  bool groupsMeet(const btCollisionObject* oa, const btCollisionObject* ob) const {
     const BodyInfo& x = (*info)[static_cast<std::size_t>(oa->getUserIndex())];
     const BodyInfo& y = (*info)[static_cast<std::size_t>(ob->getUserIndex())];
     return (x.group & y.mask) != 0 && (y.group & x.mask) != 0;
@@ -344,6 +361,10 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.broadphase = std::make_unique<btDbvtBroadphase>();
   w.world = std::make_unique<btDiscreteDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
   w.world->setGravity(bt(scene.gravity));
+  // Static bodies do not move: Bullet's default re-sets every AABB each
+  // step, which keeps statics in the broadphase's dynamic tree and
+  // collides them with each other there, every step.
+  w.world->setForceUpdateAllAabbs(false);
   btContactSolverInfo& si = w.world->getSolverInfo();
   si.m_numIterations = std::max(1, sv.iterations);
   si.m_erp = sv.erp;
@@ -361,6 +382,8 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   si.m_splitImpulse = true;
   si.m_splitImpulsePenetrationThreshold = 0;
   w.filter.info = &w.info;
+  w.filter.cache = w.world->getPairCache();
+  w.filter.maxPairs = options.maxPairs;
   w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
   // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
   gDeactivationTime = std::max(1, sv.sleepingQuietSteps) * w.dt;
@@ -548,6 +571,31 @@ bool World::atRest() const {
 }
 
 const std::vector<Departure>& World::departures() const { return impl_->departures; }
+
+bool World::pairsOverflowed() const { return impl_->filter.overflowed; }
+
+std::optional<NonFinite> World::nonFinite() const {
+  const Impl& w = *impl_;
+  auto finite = [](const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); };
+  for (const Simulated& s : w.simulated) {
+    const btTransform& t = s.body->getWorldTransform();
+    const btMatrix3x3& m = t.getBasis();
+    const char* what = !finite(t.getOrigin())                                     ? "position"
+                       : !(finite(m[0]) && finite(m[1]) && finite(m[2]))          ? "orientation"
+                       : !finite(s.body->getLinearVelocity())                     ? "linear velocity"
+                       : !finite(s.body->getAngularVelocity())                    ? "angular velocity"
+                                                                                  : nullptr;
+    if (!what) continue;
+    NonFinite bad;
+    bad.recordIndex = s.recordIndex;
+    bad.path = s.path;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = what;
+    return bad;
+  }
+  return std::nullopt;
+}
 
 Diagnostic departureWarning(const Document& doc, const Departure& d) {
   Diagnostic w;

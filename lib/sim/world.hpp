@@ -13,7 +13,9 @@
 //                    kinematic) or triangle mesh (static), read through
 //                    lib/asset's cache (one import and one shape per file)
 //   group/mask       full 64-bit test in an overlap filter: a pair collides
-//                    when (groupA & maskB) != 0 and (groupB & maskA) != 0
+//                    when (groupA & maskB) != 0 and (groupB & maskA) != 0;
+//                    pairs of static or kinematic bodies never do (as in
+//                    Bullet's own filter), whatever their groups
 //   contact_material per-pair friction/restitution/rolling/spinning,
 //                    combined by name when a contact point is created
 //   compound         one btCompoundShape body about its centre of mass
@@ -79,6 +81,19 @@ struct WorldOptions {
   // A dynamic body more than this far below the lowest static geometry
   // has left the world (it fell off the edge or through the floor).
   double leaveMargin = 10;
+  // Cap on the overlapping body pairs the broadphase keeps (each costs a
+  // contact manifold, about 8.5 KB): n dynamic bodies in one spot make n^2/2.
+  // Past it no pair is added and pairsOverflowed() turns true.  0: no cap.
+  std::uint64_t maxPairs = 0;
+};
+
+// A simulated body whose state is no longer finite (World::nonFinite()).
+struct NonFinite {
+  int recordIndex = -1;
+  std::string path;
+  std::uint64_t step = 0;
+  double time = 0;
+  std::string what;  // "position", "orientation", "linear velocity", "angular velocity"
 };
 
 // A dynamic body that left the world: below the lowest static geometry
@@ -117,6 +132,12 @@ class World {
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
   const std::vector<Departure>& departures() const;  // in the order they happened
+  // The first body in record order whose pose or velocity is not finite
+  // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
+  std::optional<NonFinite> nonFinite() const;
+  // Whether the broadphase met more pairs than WorldOptions::maxPairs; the
+  // world is then missing contacts and should not be trusted.
+  bool pairsOverflowed() const;
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or
