@@ -319,3 +319,20 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   [ "$(cat lines)" = $((200 * 5001)) ]
   [ -s out.rscene ]
 }
+
+@test "limits: SIGINT while a trajectory streams: exit 130, the old trajectory kept, no temporary file" {
+  command -v env > /dev/null && env --default-signal=INT true || skip "env --default-signal unsupported"
+  echo keep > t.jsonl
+  env --default-signal=INT "$SIM" --steps 5000000 --trajectory t.jsonl -o out.rscene sim_drop.rscene &
+  pid=$!
+  # Wait until the temporary trajectory file exists, so the signal lands mid-write.
+  for _ in $(seq 100); do compgen -G '.t.jsonl.tmp*' > /dev/null && break; sleep 0.05; done
+  compgen -G '.t.jsonl.tmp*' > /dev/null
+  kill -INT "$pid"
+  status=0
+  wait "$pid" || status=$?
+  [ "$status" -eq 130 ]
+  [ "$(cat t.jsonl)" = keep ]
+  [ ! -e out.rscene ]
+  ! compgen -G '.t.jsonl.tmp*'
+}
