@@ -98,7 +98,7 @@ int run(const Options& opt) {
   bool rested = false;
   auto healthy = [&] {
     if (auto bad = world->nonFinite()) failure = sim::nonFiniteError(doc, *bad);
-    else if (world->pairsOverflowed()) failure = sim::tooManyPairs(world->steps(), wo.maxPairs);
+    else if (auto record = world->pairOverflow()) failure = sim::tooManyPairs(doc, *record, world->steps(), wo.maxPairs);
     return !failure;
   };
   auto simulate = [&](Sink* traj) {

@@ -119,11 +119,17 @@ Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad) {
   return d;
 }
 
-Diagnostic tooManyPairs(std::uint64_t step, std::uint64_t maxPairs) {
+Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step, std::uint64_t maxPairs) {
   Diagnostic d;
   d.code = limit_code::kTooManyPairs;
+  if (recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc.records.size()) {
+    const Record& r = doc.records[static_cast<std::size_t>(recordIndex)];
+    d.line = r.line;
+    d.column = 1;
+    d.tag = std::string(doc.tag(r));
+  }
   d.message = "more than " + std::to_string(maxPairs) + " overlapping body pairs at step " + std::to_string(step) +
-              "; the simulation stopped and nothing was written";
+              ", this body in one of them; the simulation stopped and nothing was written";
   d.hint = "raise the limit with --max-pairs N (each pair costs about 8.5 KB), or spread the bodies out";
   return d;
 }

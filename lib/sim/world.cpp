@@ -35,6 +35,7 @@ constexpr std::uint64_t kAll = ~std::uint64_t{0};
 struct BodyInfo {
   std::uint64_t group = 1, mask = kAll;
   int material = -1;  // index into World::Impl::materialNames, -1 = default
+  int recordIndex = -1;  // its record, to point at in messages
 };
 
 // 64-bit group/mask test.  Bullet's own broadphase filter is 32-bit.
@@ -45,6 +46,7 @@ struct Filter : btOverlapFilterCallback {
   const std::vector<BodyInfo>* info = nullptr;
   btOverlappingPairCache* cache = nullptr;
   std::uint64_t maxPairs = 0;  // 0: no cap
+  mutable int overflowRecord = -1;  // set once the cap refused a pair: a dynamic body of that pair
   mutable bool overflowed = false;
   bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
     auto* oa = static_cast<btCollisionObject*>(a->m_clientObject);
@@ -54,11 +56,13 @@ struct Filter : btOverlapFilterCallback {
     // At the cap a pair already kept stays; a new one is refused and noted.
     if (maxPairs && static_cast<std::uint64_t>(cache->getNumOverlappingPairs()) >= maxPairs &&
         !cache->findPair(a, b)) {
+      if (!overflowed) overflowRecord = info0(oa->isStaticOrKinematicObject() ? ob : oa).recordIndex;
       overflowed = true;
       return false;
     }
     return true;
   }
+  const BodyInfo& info0(const btCollisionObject* o) const { return (*info)[static_cast<std::size_t>(o->getUserIndex())]; }
   bool groupsMeet(const btCollisionObject* oa, const btCollisionObject* ob) const {
     const BodyInfo& x = (*info)[static_cast<std::size_t>(oa->getUserIndex())];
     const BodyInfo& y = (*info)[static_cast<std::size_t>(ob->getUserIndex())];
@@ -407,7 +411,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
 
   for (const Object& o : scene.objects) {
     if (o.bodyMode == BodyMode::VisualOnly) continue;
-    BodyInfo fi{o.collisionGroup, o.collisionMask, -1};
+    BodyInfo fi{o.collisionGroup, o.collisionMask, -1, o.recordIndex};
     btRigidBody* body = nullptr;
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = w.keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
@@ -469,7 +473,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     }
     btVector3 diag = c.hasInertia ? bt(c.inertiaDiagonal) : btVector3(inertia(0, 0), inertia(1, 1), inertia(2, 2));
     btTransform comShift(btQuaternion::getIdentity(), bt(com));
-    BodyInfo fi{c.collisionGroup, c.collisionMask, -1};
+    BodyInfo fi{c.collisionGroup, c.collisionMask, -1, c.recordIndex};
     btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
                                   c.contactMaterial, sv);
     if (c.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
@@ -487,7 +491,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.keep(shape);
     // Bullet centres a height field on its bounding box.
     btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
-    BodyInfo fi{kTerrainGroup, kAll, -1};
+    BodyInfo fi{kTerrainGroup, kAll, -1, t.recordIndex};
     btRigidBody* body = w.addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
     w.lowerFloorTo(body);
     w.byName[t.id] = body;
@@ -572,7 +576,10 @@ bool World::atRest() const {
 
 const std::vector<Departure>& World::departures() const { return impl_->departures; }
 
-bool World::pairsOverflowed() const { return impl_->filter.overflowed; }
+std::optional<int> World::pairOverflow() const {
+  if (!impl_->filter.overflowed) return std::nullopt;
+  return impl_->filter.overflowRecord;
+}
 
 std::optional<NonFinite> World::nonFinite() const {
   const Impl& w = *impl_;

@@ -83,7 +83,7 @@ struct WorldOptions {
   double leaveMargin = 10;
   // Cap on the overlapping body pairs the broadphase keeps (each costs a
   // contact manifold, about 8.5 KB): n dynamic bodies in one spot make n^2/2.
-  // Past it no pair is added and pairsOverflowed() turns true.  0: no cap.
+  // Past it no pair is added and pairOverflow() says so.  0: no cap.
   std::uint64_t maxPairs = 0;
 };
 
@@ -135,9 +135,10 @@ class World {
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
   std::optional<NonFinite> nonFinite() const;
-  // Whether the broadphase met more pairs than WorldOptions::maxPairs; the
-  // world is then missing contacts and should not be trusted.
-  bool pairsOverflowed() const;
+  // Once the broadphase met more pairs than WorldOptions::maxPairs (the
+  // world is then missing contacts and should not be trusted): the record
+  // of a dynamic body in the first pair refused; nullopt before.
+  std::optional<int> pairOverflow() const;
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or

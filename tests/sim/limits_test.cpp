@@ -141,7 +141,7 @@ TEST(PairFilter, StaticAndKinematicBodiesNeverPair) {
   auto world = World::create(r->scene, r->diags, wo);
   ASSERT_TRUE(world);
   world->step();
-  EXPECT_FALSE(world->pairsOverflowed());
+  EXPECT_EQ(world->pairOverflow(), std::nullopt);
 }
 
 TEST(PairFilter, CoLocatedDynamicBodiesHitTheCap) {
@@ -153,9 +153,14 @@ TEST(PairFilter, CoLocatedDynamicBodiesHitTheCap) {
   auto capped = World::create(r->scene, r->diags, wo);
   ASSERT_TRUE(capped);
   capped->step();
-  EXPECT_TRUE(capped->pairsOverflowed());
+  ASSERT_TRUE(capped->pairOverflow());
+  EXPECT_GE(*capped->pairOverflow(), 1);  // one of the body records
+  EXPECT_LE(*capped->pairOverflow(), 10);
+  Diagnostic d = tooManyPairs(r->doc, *capped->pairOverflow(), capped->steps(), 44);
+  EXPECT_EQ(d.code, limit_code::kTooManyPairs);
+  EXPECT_EQ(d.line, static_cast<std::uint32_t>(*capped->pairOverflow() + 1));
   wo.maxPairs = 45;
   auto fits = World::create(r->scene, r->diags, wo);
   fits->step();
-  EXPECT_FALSE(fits->pairsOverflowed());
+  EXPECT_EQ(fits->pairOverflow(), std::nullopt);
 }
