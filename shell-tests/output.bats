@@ -374,7 +374,7 @@ interrupt_mid_write() {
   [ -x "$BIN/rscene-sim" ] || skip "rscene-sim not built in $BIN"
   command -v env > /dev/null && env --default-signal=INT true || skip "env --default-signal unsupported"
   echo keep > out.rscene
-  env --default-signal=INT "$BIN/rscene-sim" --steps 100000000 -o out.rscene "$DATA/sim_drop.rscene" &
+  env --default-signal=INT "$BIN/rscene-sim" --steps 100000000 --max-steps 100000000 -o out.rscene "$DATA/sim_drop.rscene" &
   pid=$!
   sleep 0.5
   kill -INT "$pid"

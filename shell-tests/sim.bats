@@ -226,3 +226,131 @@ SCENE
   run -0 "$SIM" --steps 3 --trajectory t.jsonl tenth.rscene
   grep -q '^{"time":0.3,' t.jsonl
 }
+
+# --- Resource limits (README "Resource limits", rscene-sim(1) LIMITS) ---
+# Each reproducer runs under a time and address-space bound, so a
+# regression fails here instead of hanging or swapping the test machine.
+
+# Runs the simulator with at most $1 KB of address space and $2 seconds.
+bounded() {
+  local kb=$1 secs=$2
+  shift 2
+  ( ulimit -v "$kb" && exec timeout "$secs" "$SIM" "$@" )
+}
+
+# A scene of: header, time_step $1, then object lines from stdin.
+scene() { printf 'raisim_engine_scene 1\ntime_step %s\n' "$1"; cat; }
+# An object line: path, position, orientation, scale, mass, body mode.
+obj() {
+  echo "object $1 box $2 $3 $4 0.5 1 $5 default engine_default false true false - $6 true 1 18446744073709551615"
+}
+GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615'
+
+@test "limits: a dynamic mass of 4.9e-324 is refused up front (RS7020), nothing written" {
+  { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 4.9e-324 dynamic; } | scene 0.001 > tiny.rscene
+  run -2 --separate-stderr bounded 500000 10 -o out.rscene tiny.rscene
+  [ "${stderr_lines[0]}" = "tiny.rscene:4:55: error: dynamic body '/World/Box' has mass 4.94066e-324, which cannot be simulated [RS7020]" ]
+  [ ! -e out.rscene ]
+  # A light body simulates ...
+  { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1e-300 dynamic; } | scene 0.001 > light.rscene
+  run -0 bounded 500000 10 --steps 100 light.rscene
+  [[ $output != *nan* ]]
+  # ... and one whose inertia underflows passes the up-front check but is
+  # stopped at its first step by the state check, with nothing written.
+  { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 2.2250738585072014e-308 dynamic; } | scene 0.001 > normal.rscene
+  run -2 --separate-stderr bounded 500000 10 --steps 10 normal.rscene
+  [[ ${stderr_lines[0]} == "normal.rscene:4:1: error: the angular velocity of body '/World/Box' is no longer finite at step 1 "*"[RS7024]" ]]
+  [ -z "$output" ]
+}
+
+@test "limits: orientation 1e308 1e308 0 0 is refused (RS7021), even with --steps 0" {
+  { echo "$GROUND"; obj /World/Box "0 0 1" "1e308 1e308 0 0" "0.4 0.4 0.4" 2 dynamic; } | scene 0.001 > q.rscene
+  run -2 --separate-stderr bounded 500000 10 --steps 0 q.rscene
+  [ "${stderr_lines[0]}" = "q.rscene:4:29: error: body '/World/Box': orientation does not normalise to a unit quaternion [RS7021]" ]
+  [ -z "$output" ]
+}
+
+@test "limits: time_step 1e-12 and 5e-324 are refused at the time_step (RS7022)" {
+  echo "$GROUND" | scene 1e-12 > fine.rscene
+  run -2 --separate-stderr bounded 500000 10 fine.rscene
+  [ "${stderr_lines[0]}" = "fine.rscene:2:11: error: time_step 1e-12 is below the smallest simulated step, 1e-09 s [RS7022]" ]
+  echo "$GROUND" | scene 5e-324 > denormal.rscene
+  run -2 --separate-stderr bounded 500000 10 denormal.rscene
+  [ "${stderr_lines[0]}" = "denormal.rscene:2:11: error: time_step 4.94066e-324 is below the smallest simulated step, 1e-09 s [RS7022]" ]
+}
+
+@test "limits: --duration 1e300 and --steps past --max-steps are refused (RS7023); --max-steps raises the cap" {
+  run -2 --separate-stderr bounded 500000 10 --duration 1e300 sim_drop.rscene
+  [ "${stderr_lines[0]}" = "sim_drop.rscene:2:11: error: --duration 1e+300 at time_step 0.001 is 1e+303 steps, more than the limit of 10000000 steps [RS7023]" ]
+  [ "${stderr_lines[3]}" = "  hint: raise the limit with --max-steps N, or simulate less time" ]
+  run -2 --separate-stderr bounded 500000 10 --steps 10000001 sim_drop.rscene
+  [[ ${stderr_lines[0]} == *"--steps 10000001, more than the limit of 10000000 steps [RS7023]" ]]
+  run -2 --separate-stderr bounded 500000 10 --max-steps 99 --duration 0.1 sim_drop.rscene
+  [[ ${stderr_lines[0]} == *"--duration 0.1 at time_step 0.001 is 100 steps, more than the limit of 99 steps [RS7023]" ]]
+  run -0 --separate-stderr bounded 500000 10 --max-steps 100 --duration 0.1 --report sim_drop.rscene
+  jq -e '.steps == 100' <<<"${stderr_lines[-1]}"
+}
+
+@test "limits: a state that stops being finite stops the run naming the body (RS7024); no scene, no trajectory" {
+  # 1e300 kg passes the up-front checks; its contact with the ground does not.
+  { echo "$GROUND"; obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1e300 dynamic; } | scene 0.001 > heavy.rscene
+  echo old > t.jsonl
+  run -2 --separate-stderr bounded 500000 10 --steps 200 --trajectory t.jsonl -o out.rscene heavy.rscene
+  [[ ${stderr_lines[0]} == "heavy.rscene:4:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
+  [ "${stderr_lines[-1]}" = "rscene-sim: error: t.jsonl: write cancelled" ]
+  [ "$(cat t.jsonl)" = old ]
+  [ ! -e out.rscene ]
+  [ -z "$output" ]
+  # Written through a pipe: the lines before the failure, none of them NaN or infinite.
+  run -2 --separate-stderr bounded 500000 10 --steps 200 --trajectory - heavy.rscene
+  [[ $output != *nan* && $output != *inf* ]]
+}
+
+@test "limits: 12,000 co-located static boxes finish in bounded time and memory (no static pairs)" {
+  for i in $(seq 12000); do obj "/World/S$i" "0 0 0" "1 0 0 0" "1 1 1" 1 static; done | scene 0.001 > statics.rscene
+  # Before: the pair cache held 72 million static-static pairs (segfault, or
+  # still running after 60 s at 1.8 GB).  Now about 4 s and 60 MB.
+  run -0 --separate-stderr bounded 2000000 60 --steps 1 --report -o out.rscene statics.rscene
+  jq -e '.steps == 1 and .contactsPerStep == 0' <<<"${stderr_lines[-1]}"
+  [ -s out.rscene ]
+}
+
+@test "limits: --max-pairs stops co-located dynamic bodies (RS7025); 0 lifts the cap" {
+  for i in $(seq 100); do obj "/World/D$i" "0 0 0" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > pile.rscene
+  run -2 --separate-stderr bounded 1000000 30 --steps 1 --max-pairs 1000 -o out.rscene pile.rscene
+  [[ ${stderr_lines[0]} =~ ^pile\.rscene:[0-9]+:1:\ error:\ more\ than\ 1000\ overlapping\ body\ pairs\ at\ step\ 0,\ this\ body\ in\ one\ of\ them\;\ the\ simulation\ stopped\ and\ nothing\ was\ written\ \[RS7025\]$ ]]
+  [[ ${stderr_lines[1]} == "  object /World/D"* ]]
+  [ ! -e out.rscene ]
+  run -0 bounded 1000000 30 --steps 1 --max-pairs 4950 pile.rscene
+  run -0 bounded 1000000 30 --steps 1 --max-pairs 0 pile.rscene
+  # 500 in one spot are 124,750 pairs, past the default cap: refused before
+  # they cost 1 GB (before: 2,000 of them segfaulted at 3.8 GB).
+  for i in $(seq 500); do obj "/World/D$i" "0 0 0" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > crowd.rscene
+  run -2 --separate-stderr bounded 1000000 30 --steps 1 crowd.rscene
+  [[ ${stderr_lines[0]} == *"more than 100000 overlapping body pairs at step 0"*"[RS7025]" ]]
+}
+
+@test "limits: --trajectory is streamed: 200 bodies x 5,000 steps in 150 MB of address space" {
+  for i in $(seq 200); do obj "/World/B$i" "$((2 * i)) 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > many.rscene
+  # Held in memory, this trajectory (250 MB) did not fit.
+  bounded 150000 60 --steps 5000 --trajectory /dev/stdout -o out.rscene many.rscene | wc -l > lines
+  [ "$(cat lines)" = $((200 * 5001)) ]
+  [ -s out.rscene ]
+}
+
+@test "limits: SIGINT while a trajectory streams: exit 130, the old trajectory kept, no temporary file" {
+  command -v env > /dev/null && env --default-signal=INT true || skip "env --default-signal unsupported"
+  echo keep > t.jsonl
+  env --default-signal=INT "$SIM" --steps 5000000 --trajectory t.jsonl -o out.rscene sim_drop.rscene &
+  pid=$!
+  # Wait until the temporary trajectory file exists, so the signal lands mid-write.
+  for _ in $(seq 100); do compgen -G '.t.jsonl.tmp*' > /dev/null && break; sleep 0.05; done
+  compgen -G '.t.jsonl.tmp*' > /dev/null
+  kill -INT "$pid"
+  status=0
+  wait "$pid" || status=$?
+  [ "$status" -eq 130 ]
+  [ "$(cat t.jsonl)" = keep ]
+  [ ! -e out.rscene ]
+  ! compgen -G '.t.jsonl.tmp*'
+}

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <optional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +15,7 @@
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
 #include "core/writer.hpp"
+#include "sim/limits.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/world.hpp"
 
@@ -28,6 +31,8 @@ struct Options {
   double duration = 1;
   long long steps = -1;
   long long every = 1;
+  long long maxSteps = static_cast<long long>(sim::kDefaultMaxSteps);
+  long long maxPairs = static_cast<long long>(sim::kDefaultMaxPairs);
   bool untilRest = false, report = false, allowMissing = false;
 };
 
@@ -53,41 +58,88 @@ int run(const Options& opt) {
   bool ok = buildScene(doc, so, scene, ds);
   if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
   ok = ok && sim::checkPhysics(doc, scene, ds);
+  // The step count, before anything is built: --max-steps bounds the run.
+  auto maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
+  std::uint64_t total = 0;
+  if (ok && opt.steps >= 0) {
+    total = static_cast<std::uint64_t>(opt.steps);
+    if (total > maxSteps) ds.push_back(sim::tooManySteps(doc, "--steps " + std::to_string(total), maxSteps)), ok = false;
+  } else if (ok) {
+    std::optional<std::uint64_t> n = sim::stepsFor(opt.duration, scene.timeStep, maxSteps);
+    if (n) total = *n;
+    else {
+      char what[128];
+      std::snprintf(what, sizeof what, "--duration %g at time_step %g is %.3g steps", opt.duration, scene.timeStep,
+                    opt.duration / scene.timeStep);
+      ds.push_back(sim::tooManySteps(doc, what, maxSteps));
+      ok = false;
+    }
+  }
   sim::WorldOptions wo;
   wo.assets = &assets;
+  wo.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
   if (!world) return cli::kTrouble;
   Clock::time_point loadedAt = Clock::now();
 
-  long long total = opt.steps >= 0 ? opt.steps : std::llround(opt.duration / world->timeStep());
+  // Steps the world, streaming trajectory samples to `traj` (when given) as
+  // they are made, so memory does not grow with the steps.  After every
+  // step (and before the first) every body's state is checked: false, with
+  // `failure` set, as soon as one is not finite or the pair cap is passed,
+  // before that state is written anywhere.
   auto format = opt.trajectoryFormat == "csv" ? sim::TrajectoryFormat::Csv : sim::TrajectoryFormat::Jsonl;
-  std::string traj;
-  if (!opt.trajectory.empty()) {
-    traj = sim::trajectoryHeader(format);
-    sim::appendTrajectory(traj, format, world->time(), world->states());
-  }
-  bool progress = isatty(2);
-  Clock::time_point lastProgress = Clock::now();
+  std::optional<Diagnostic> failure;
   double contacts = 0;
   bool rested = false;
-  while (static_cast<long long>(world->steps()) < total && !gInterrupted) {
-    world->step();
-    contacts += world->contactCount();
-    long long n = static_cast<long long>(world->steps());
-    if (!opt.trajectory.empty() && n % opt.every == 0)
-      sim::appendTrajectory(traj, format, world->time(), world->states());
-    if (opt.untilRest && world->atRest()) {
-      rested = true;
-      break;
+  auto healthy = [&] {
+    if (auto bad = world->nonFinite()) failure = sim::nonFiniteError(doc, *bad);
+    else if (auto record = world->pairOverflow()) failure = sim::tooManyPairs(doc, *record, world->steps(), wo.maxPairs);
+    return !failure;
+  };
+  auto simulate = [&](Sink* traj) {
+    constexpr std::size_t kChunk = 1 << 16;
+    std::string buffer;
+    if (traj) buffer = sim::trajectoryHeader(format);
+    if (!healthy()) return false;
+    if (traj) sim::appendTrajectory(buffer, format, world->time(), world->states());
+    bool progress = isatty(2);
+    Clock::time_point lastProgress = Clock::now();
+    while (world->steps() < total && !gInterrupted) {
+      world->step();
+      if (!healthy()) break;
+      contacts += world->contactCount();
+      std::uint64_t n = world->steps();
+      if (traj && n % static_cast<std::uint64_t>(opt.every) == 0) {
+        sim::appendTrajectory(buffer, format, world->time(), world->states());
+        if (buffer.size() >= kChunk) traj->write(buffer), buffer.clear();
+      }
+      if (opt.untilRest && world->atRest()) {
+        rested = true;
+        break;
+      }
+      if (progress && (n & 255) == 0 && seconds(lastProgress, Clock::now()) > 0.25) {
+        lastProgress = Clock::now();
+        std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << total << std::flush;
+      }
     }
-    if (progress && (n & 255) == 0 && seconds(lastProgress, Clock::now()) > 0.25) {
-      lastProgress = Clock::now();
-      std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << total << std::flush;
-    }
-  }
-  if (progress) std::cerr << "\r\033[K" << std::flush;
+    if (progress) std::cerr << "\r\033[K" << std::flush;
+    if (failure) return false;
+    if (traj) traj->write(buffer);
+    return true;
+  };
+  // A failed run cancels the trajectory (no file is left at its path) and
+  // writes no scene; the failure is printed before the cancelled write is.
+  bool simulated = opt.trajectory.empty()
+                       ? simulate(nullptr)
+                       : cli::writeOutput(opt.trajectory, [&](Sink& s) {
+                           bool good = simulate(&s);
+                           if (failure) print(Diagnostics{*failure});
+                           return good;
+                         });
+  if (failure && opt.trajectory.empty()) print(Diagnostics{*failure});
+  if (!simulated) return cli::kTrouble;
   if (gInterrupted) return cli::kInterrupted;
   Diagnostics departures;
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
@@ -96,9 +148,6 @@ int run(const Options& opt) {
 
   world->writeBack(doc);
   if (!cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; })) return cli::kTrouble;
-  if (!opt.trajectory.empty() &&
-      !cli::writeOutput(opt.trajectory, [&](Sink& s) { s.write(traj); return true; }))
-    return cli::kTrouble;
   Clock::time_point writtenAt = Clock::now();
   if (opt.report) {
     double wall = seconds(start, Clock::now()), stepping = seconds(loadedAt, steppedAt);
@@ -134,7 +183,13 @@ int main(int argc, char** argv) {
                        ->check(cli::seconds());
   app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(cli::count(0))
       ->excludes(duration);
-  app.add_option("--trajectory", opt.trajectory, "Write body states to FILE")->type_name("FILE");
+  app.add_option("--max-steps", opt.maxSteps, "Refuse a run of more than N time steps (default 10000000)")
+      ->type_name("N")->check(cli::count(0));
+  app.add_option("--max-pairs", opt.maxPairs,
+                 "Stop when more than N body pairs overlap, 0 for no limit (default 100000)")
+      ->type_name("N")->check(cli::count(0));
+  app.add_option("--trajectory", opt.trajectory, "Write body states to FILE as they are simulated")
+      ->type_name("FILE");
   app.add_option("--every", opt.every, "Write a trajectory line every K steps (default 1)")->type_name("K")
       ->check(cli::count(1));
   app.add_option("--trajectory-format", opt.trajectoryFormat, "Trajectory format: jsonl (default) or csv")

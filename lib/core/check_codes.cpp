@@ -96,6 +96,12 @@ constexpr CheckInfo kChecks[] = {
     {"RS7010", W, Sim, "sim", "records kept but not simulated (articulated, deformable, granular, sensor)"},
     {"RS7011", W, Scene, "validate sim", "wire to a node the simulator does not model, skipped"},
     {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
+    {"RS7020", E, Scene, VSR, "dynamic mass that is not a finite normal double (its inverse would be infinite)"},
+    {"RS7021", E, Scene, VSR, "body pose that is not finite, or an orientation that does not normalise to a unit quaternion"},
+    {"RS7022", E, Scene, VSR, "time_step that is not finite or is below 1e-9 s"},
+    {"RS7023", E, Sim, "sim", "run longer than --max-steps"},
+    {"RS7024", E, Sim, "sim", "a body's state stopped being finite while stepping (nothing is written)"},
+    {"RS7025", E, Sim, "sim", "more overlapping body pairs than --max-pairs"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

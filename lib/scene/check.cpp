@@ -3,6 +3,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "scene/limits.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene {
@@ -130,6 +131,7 @@ class Checker {
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics) {
   std::size_t before = diagnostics.size();
   Checker(doc, scene, options, diagnostics).run();
+  checkNumericLimits(doc, scene, diagnostics);
   for (std::size_t i = before; i < diagnostics.size(); ++i)
     if (diagnostics[i].severity == Severity::Error) return false;
   return true;

@@ -30,6 +30,7 @@ struct SceneCheckOptions {
 //   RS5001  collision mesh file missing (when options.checkFiles)
 //   RS3012  enabled wire whose body names no node
 //   RS7011  warning: wire to a node the simulator does not model, skipped
+//   RS7020-RS7022  numbers no simulator can stand behind (scene/limits.hpp)
 // Returns false when it added an error.
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
 

@@ -411,6 +411,15 @@ class Builder {
           if (layout->fields[static_cast<std::size_t>(layout->tokens[k].first)].name == name) t = static_cast<int>(k);
         if (!slots.empty()) slots.push_back(t);
       }
+      // slots[9..15]: position and orientation, for checkNumericLimits().
+      std::size_t poseStart = slots.size();
+      for (const char* name : {"position", "orientation"})
+        for (std::size_t t = 0; t < layout->tokens.size() && !slots.empty(); ++t) {
+          const FieldDef& f = layout->fields[static_cast<std::size_t>(layout->tokens[t].first)];
+          if (f.name != name || layout->tokens[t].second != 0) continue;
+          for (int c = 0; c < f.width; ++c) slots.push_back(static_cast<int>(t) + c);
+        }
+      if (!slots.empty() && slots.size() - poseStart != 7) slots.clear();
     }
     if (slots.empty()) return false;
     if (slots[7] >= 0) {
@@ -424,7 +433,26 @@ class Builder {
     if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
     for (std::size_t k = 1; k < 7; ++k)
       if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])))) return false;
-    return true;
+    bool rotates = false;  // an orientation of four zeros does not normalise
+    for (std::size_t k = 9; k < 16; ++k) {
+      std::string_view v = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k]));
+      if (!v.empty() && v.front() == '-') v.remove_prefix(1);
+      if (!plainDecimal(v)) return false;
+      rotates = rotates || (k >= 12 && positiveNumber(v));
+    }
+    return rotates;
+  }
+
+  // Whether `s` is a short plain decimal ("0.5", "12"): finite, and its
+  // square neither overflows nor underflows to zero unless it is zero.
+  static bool plainDecimal(std::string_view s) {
+    if (s.empty() || s.size() >= 32 || s.front() == '.') return false;
+    int dots = 0;
+    for (char c : s) {
+      if (c == '.') ++dots;
+      else if (c < '0' || c > '9') return false;
+    }
+    return dots <= 1;
   }
 
   // Whether `s` is a finite number > 0.  Plain decimals ("0.5", "12") are
@@ -440,7 +468,7 @@ class Builder {
     }
     if (digits && dots <= 1 && s.front() != '.') return nonZero;
     std::optional<double> v = parseNumber(s);
-    return v && *v > 0 && std::isfinite(*v);
+    return v && std::isnormal(*v) && *v > 0;  // 4.9e-324 is RS7020's
   }
 
   void readCompound(const RecordReader& r, int idx) {

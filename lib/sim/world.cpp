@@ -35,14 +35,35 @@ constexpr std::uint64_t kAll = ~std::uint64_t{0};
 struct BodyInfo {
   std::uint64_t group = 1, mask = kAll;
   int material = -1;  // index into World::Impl::materialNames, -1 = default
+  int recordIndex = -1;  // its record, to point at in messages
 };
 
 // 64-bit group/mask test.  Bullet's own broadphase filter is 32-bit.
+// Replacing it must keep what it does first: a pair of static or kinematic
+// bodies never collides.  Letting those through makes n co-located static
+// boxes n^2/2 pairs in the pair cache (12,000 of them: gigabytes).
 struct Filter : btOverlapFilterCallback {
   const std::vector<BodyInfo>* info = nullptr;
+  btOverlappingPairCache* cache = nullptr;
+  std::uint64_t maxPairs = 0;  // 0: no cap
+  mutable int overflowRecord = -1;  // set once the cap refused a pair: a dynamic body of that pair
+  mutable bool overflowed = false;
   bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
     auto* oa = static_cast<btCollisionObject*>(a->m_clientObject);
     auto* ob = static_cast<btCollisionObject*>(b->m_clientObject);
+    if (oa->isStaticOrKinematicObject() && ob->isStaticOrKinematicObject()) return false;
+    if (!groupsMeet(oa, ob)) return false;
+    // At the cap a pair already kept stays; a new one is refused and noted.
+    if (maxPairs && static_cast<std::uint64_t>(cache->getNumOverlappingPairs()) >= maxPairs &&
+        !cache->findPair(a, b)) {
+      if (!overflowed) overflowRecord = info0(oa->isStaticOrKinematicObject() ? ob : oa).recordIndex;
+      overflowed = true;
+      return false;
+    }
+    return true;
+  }
+  const BodyInfo& info0(const btCollisionObject* o) const { return (*info)[static_cast<std::size_t>(o->getUserIndex())]; }
+  bool groupsMeet(const btCollisionObject* oa, const btCollisionObject* ob) const {
     const BodyInfo& x = (*info)[static_cast<std::size_t>(oa->getUserIndex())];
     const BodyInfo& y = (*info)[static_cast<std::size_t>(ob->getUserIndex())];
     return (x.group & y.mask) != 0 && (y.group & x.mask) != 0;
@@ -344,6 +365,10 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.broadphase = std::make_unique<btDbvtBroadphase>();
   w.world = std::make_unique<btDiscreteDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
   w.world->setGravity(bt(scene.gravity));
+  // Static bodies do not move: Bullet's default re-sets every AABB each
+  // step, which keeps statics in the broadphase's dynamic tree and
+  // collides them with each other there, every step.
+  w.world->setForceUpdateAllAabbs(false);
   btContactSolverInfo& si = w.world->getSolverInfo();
   si.m_numIterations = std::max(1, sv.iterations);
   si.m_erp = sv.erp;
@@ -361,6 +386,8 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   si.m_splitImpulse = true;
   si.m_splitImpulsePenetrationThreshold = 0;
   w.filter.info = &w.info;
+  w.filter.cache = w.world->getPairCache();
+  w.filter.maxPairs = options.maxPairs;
   w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
   // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
   gDeactivationTime = std::max(1, sv.sleepingQuietSteps) * w.dt;
@@ -384,7 +411,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
 
   for (const Object& o : scene.objects) {
     if (o.bodyMode == BodyMode::VisualOnly) continue;
-    BodyInfo fi{o.collisionGroup, o.collisionMask, -1};
+    BodyInfo fi{o.collisionGroup, o.collisionMask, -1, o.recordIndex};
     btRigidBody* body = nullptr;
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = w.keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
@@ -446,7 +473,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     }
     btVector3 diag = c.hasInertia ? bt(c.inertiaDiagonal) : btVector3(inertia(0, 0), inertia(1, 1), inertia(2, 2));
     btTransform comShift(btQuaternion::getIdentity(), bt(com));
-    BodyInfo fi{c.collisionGroup, c.collisionMask, -1};
+    BodyInfo fi{c.collisionGroup, c.collisionMask, -1, c.recordIndex};
     btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
                                   c.contactMaterial, sv);
     if (c.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
@@ -464,7 +491,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.keep(shape);
     // Bullet centres a height field on its bounding box.
     btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
-    BodyInfo fi{kTerrainGroup, kAll, -1};
+    BodyInfo fi{kTerrainGroup, kAll, -1, t.recordIndex};
     btRigidBody* body = w.addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
     w.lowerFloorTo(body);
     w.byName[t.id] = body;
@@ -548,6 +575,34 @@ bool World::atRest() const {
 }
 
 const std::vector<Departure>& World::departures() const { return impl_->departures; }
+
+std::optional<int> World::pairOverflow() const {
+  if (!impl_->filter.overflowed) return std::nullopt;
+  return impl_->filter.overflowRecord;
+}
+
+std::optional<NonFinite> World::nonFinite() const {
+  const Impl& w = *impl_;
+  auto finite = [](const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); };
+  for (const Simulated& s : w.simulated) {
+    const btTransform& t = s.body->getWorldTransform();
+    const btMatrix3x3& m = t.getBasis();
+    const char* what = !finite(t.getOrigin())                                     ? "position"
+                       : !(finite(m[0]) && finite(m[1]) && finite(m[2]))          ? "orientation"
+                       : !finite(s.body->getLinearVelocity())                     ? "linear velocity"
+                       : !finite(s.body->getAngularVelocity())                    ? "angular velocity"
+                                                                                  : nullptr;
+    if (!what) continue;
+    NonFinite bad;
+    bad.recordIndex = s.recordIndex;
+    bad.path = s.path;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = what;
+    return bad;
+  }
+  return std::nullopt;
+}
 
 Diagnostic departureWarning(const Document& doc, const Departure& d) {
   Diagnostic w;

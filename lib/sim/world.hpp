@@ -13,7 +13,9 @@
 //                    kinematic) or triangle mesh (static), read through
 //                    lib/asset's cache (one import and one shape per file)
 //   group/mask       full 64-bit test in an overlap filter: a pair collides
-//                    when (groupA & maskB) != 0 and (groupB & maskA) != 0
+//                    when (groupA & maskB) != 0 and (groupB & maskA) != 0;
+//                    pairs of static or kinematic bodies never do (as in
+//                    Bullet's own filter), whatever their groups
 //   contact_material per-pair friction/restitution/rolling/spinning,
 //                    combined by name when a contact point is created
 //   compound         one btCompoundShape body about its centre of mass
@@ -63,7 +65,7 @@ bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnost
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
 
 // rscene-sim --allow-missing-assets: every object or compound whose
-// collision mesh is missing (RS7004) or unreadable (RS7007) is left out of
+// collision mesh is missing (RS5001) or unreadable (RS7007) is left out of
 // the simulation (made visual-only in `scene`, so its record is written
 // back unchanged), with one warning per file naming it and the first
 // record (and how many more), and a wire attached to such a body is
@@ -78,6 +80,19 @@ struct WorldOptions {
   // A dynamic body more than this far below the lowest static geometry
   // has left the world (it fell off the edge or through the floor).
   double leaveMargin = 10;
+  // Cap on the overlapping body pairs the broadphase keeps (each costs a
+  // contact manifold, about 8.5 KB): n dynamic bodies in one spot make n^2/2.
+  // Past it no pair is added and pairOverflow() says so.  0: no cap.
+  std::uint64_t maxPairs = 0;
+};
+
+// A simulated body whose state is no longer finite (World::nonFinite()).
+struct NonFinite {
+  int recordIndex = -1;
+  std::string path;
+  std::uint64_t step = 0;
+  double time = 0;
+  std::string what;  // "position", "orientation", "linear velocity", "angular velocity"
 };
 
 // A dynamic body that left the world: below the lowest static geometry
@@ -99,7 +114,7 @@ Diagnostic departureWarning(const Document& doc, const Departure& departure);
 
 class World {
  public:
-  // Builds the Bullet world; mesh files are read here (RS7004/RS7007 on
+  // Builds the Bullet world; mesh files are read here (RS5001/RS7007 on
   // failure).  Returns nullptr after adding an error diagnostic.
   static std::unique_ptr<World> create(const Scene& scene, Diagnostics& diagnostics,
                                        const WorldOptions& options = {});
@@ -116,6 +131,13 @@ class World {
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
   const std::vector<Departure>& departures() const;  // in the order they happened
+  // The first body in record order whose pose or velocity is not finite
+  // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
+  std::optional<NonFinite> nonFinite() const;
+  // Once the broadphase met more pairs than WorldOptions::maxPairs (the
+  // world is then missing contacts and should not be trusted): the record
+  // of a dynamic body in the first pair refused; nullopt before.
+  std::optional<int> pairOverflow() const;
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or

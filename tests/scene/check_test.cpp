@@ -23,6 +23,9 @@ std::string object(const std::string& prim, const std::string& scale = "1 1 1", 
          " default engine_default false true false " + mesh + " " + mode + " true 1 18446744073709551615" +
          (keys.empty() ? "" : " " + keys) + "\n";
 }
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  return s.replace(s.find(from), from.size(), to);
+}
 const std::string K = "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true\n";
 std::string child(const std::string& prim, const std::string& keys) {
   return "compound_child /World/k " + prim + " 0 0 0 1 0 0 0 1 1 1 " + keys + "\n";
@@ -63,6 +66,8 @@ std::vector<Case> cases() {
       {"RS7003", H + object("box", "1 0 1"), H + object("box", "1 2 1")},
       {"RS7004", H + object("mesh"), H + object("mesh", "1 1 1", "0.5", "1", "dynamic", "", "/World/a", "present.obj")},
       {"RS7008", H + "time_step 0\n", H + "time_step 0.001\n"},
+      {"RS7020", H + object("box", "1 1 1", "0.5", "4.9e-324"), H + object("box", "1 1 1", "0.5", "1e-3")},
+      {"RS7022", H + "time_step 1e-12\n", H + "time_step 1e-9\n"},
       {"RS7011",
        H + object("box") + "articulated_resource arm arm arm.urdf\narticulated /World/r arm 0 0 0 1 0 0 0 true true\n" +
            "wire /World/w stiff /World/a /World/r 1\n",
@@ -89,12 +94,22 @@ TEST(SceneCheck, EachCodeTriggersOnItsSceneAndNotOnTheFineOne) {
 }
 
 TEST(SceneCheck, EveryCodeOfTheSceneLayerHasACase) {
-  std::set<std::string> covered{"RS5001"};  // MissingCollisionMeshIsReportedOnceWithCheckFiles
+  std::set<std::string> covered{"RS5001",   // MissingCollisionMeshIsReportedOnceWithCheckFiles
+                                "RS7021"};  // AnOrientationThatDoesNotNormaliseIsRefused
   for (const Case& c : cases()) covered.insert(c.code);
   for (const CheckInfo& info : checkTable()) {
     if (info.layer != CheckLayer::Scene) continue;
     EXPECT_TRUE(covered.count(std::string(info.code))) << info.code;
   }
+}
+
+// An orientation that does not normalise is RS7021 (an error: no simulator
+// can use it) beside the validator's RS4010 warning for any non-unit length.
+TEST(SceneCheck, AnOrientationThatDoesNotNormaliseIsRefused) {
+  Diagnostics ds = validate(H + replaced(object("box"), "0 0 1 1 0 0 0", "0 0 1 1e308 1e308 0 0"));
+  EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS4010", "RS7021"})) << describe(ds);
+  EXPECT_EQ(codes(validate(H + replaced(object("box"), "0 0 1 1 0 0 0", "0 0 1 2 0 0 0"))),
+            std::vector<std::string>{"RS4010"});
 }
 
 TEST(SceneCheck, ReportsAtTheFieldAUserWouldChange) {

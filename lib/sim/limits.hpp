@@ -1,0 +1,54 @@
+// What rscene-sim refuses so that a run stays bounded in time and memory
+// and never writes a value it cannot stand behind (README "Resource
+// limits", rscene-sim(1) LIMITS):
+//  - up front: a run of more steps than the cap (the numbers no simulator
+//    can stand behind, RS7020-RS7022, are the scene model's:
+//    scene/limits.hpp, run by checkScene() in every tool);
+//  - while stepping: a body whose state is no longer finite (World reports
+//    it, nonFiniteError() words it), more overlapping pairs than the cap.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "scene/scene.hpp"
+#include "sim/world.hpp"
+
+namespace rscene::sim {
+
+namespace limit_code {
+inline constexpr const char* kTooManySteps = "RS7023";  // run longer than --max-steps
+inline constexpr const char* kNonFinite = "RS7024";     // a body's state stopped being finite while stepping
+inline constexpr const char* kTooManyPairs = "RS7025";  // more overlapping pairs than --max-pairs
+}  // namespace limit_code
+
+// Default cap on the steps of one run (--max-steps): a few minutes for a
+// small scene (about 10^5 steps per second for a dozen bodies).
+inline constexpr std::uint64_t kDefaultMaxSteps = 10'000'000;
+// Default cap on overlapping body pairs (--max-pairs, WorldOptions::maxPairs).
+// A pair of touching boxes costs about 8.5 KB (pair, collision algorithm,
+// contact manifold): about 850 MB at the cap, some 12,000 bodies in one
+// dense pile; 450 boxes in one spot already make 100,000 pairs.
+inline constexpr std::uint64_t kDefaultMaxPairs = 100'000;
+
+
+// Steps of a run of `duration` seconds at `timeStep`: round(duration /
+// timeStep), computed without overflow or undefined conversion.  nullopt
+// when that is more than maxSteps (a non-finite quotient included).
+std::optional<std::uint64_t> stepsFor(double duration, double timeStep, std::uint64_t maxSteps);
+
+// The error for a run of more than maxSteps steps, at the time_step record
+// when the file has one.  `what` says how the count came about
+// ("--duration 1 at time_step 1e-12 is 1e+12 steps").
+Diagnostic tooManySteps(const Document& doc, const std::string& what, std::uint64_t maxSteps);
+
+// The error for World::nonFinite(), at the body's record.
+Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad);
+
+// The error for a world that met more overlapping pairs than its cap, at
+// the record World::pairOverflow() names.
+Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step, std::uint64_t maxPairs);
+
+}  // namespace rscene::sim
