@@ -76,6 +76,8 @@ EOF2
   run -1 "$DIFF" --rel-tolerance 1e-6 "$OLD" "$NEW"
   [[ $output != *"position:"* ]]
   run -2 "$DIFF" --tolerance -1 "$OLD" "$NEW"
+  run -2 --separate-stderr "$DIFF" --tolerance x "$OLD" "$NEW"
+  [ "${stderr_lines[0]}" = "rscene-diff: error: --tolerance: expected a plain number >= 0 (e.g. 0.001 or 1e-6), not 'x'" ]
 }
 
 @test "--format json: old and new values typed by the schema" {

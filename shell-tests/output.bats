@@ -384,3 +384,34 @@ interrupt_mid_write() {
   [ "$(cat out.rscene)" = keep ]
   [ -z "$(leftovers)" ]
 }
+
+@test "two outputs that are one file, or both standard output, are refused before anything is written" {
+  [ -x "$BIN/rscene-sim" ] && [ -x "$BIN/rscene-render" ] || skip "rscene-sim/rscene-render not built"
+  scene="$DATA/render_minimal.rscene"
+  run -2 --separate-stderr "$BIN/rscene-sim" --steps 2 -o same.txt --trajectory ./same.txt "$scene"
+  [ "${stderr_lines[0]}" = "rscene-sim: error: -o 'same.txt' and --trajectory './same.txt' are the same file; one would overwrite the other" ]
+  [ ! -e same.txt ]
+  run -2 --separate-stderr "$BIN/rscene-sim" --steps 2 --trajectory - "$scene"
+  [ "${stderr_lines[0]}" = "rscene-sim: error: -o and --trajectory would both write standard output; send one to a file" ]
+  # A refused --trajectory leaves -o untouched (it is checked first).
+  echo keep > ok.rscene
+  : > ro.csv && chmod 444 ro.csv
+  run -2 --separate-stderr "$BIN/rscene-sim" --steps 2 -o ok.rscene --trajectory ro.csv "$scene"
+  [ "${stderr_lines[0]}" = "rscene-sim: error: ro.csv: permission denied" ]
+  [ "$(cat ok.rscene)" = keep ]
+  run -2 --separate-stderr "$BIN/rscene-sim" -o "" "$scene"
+  [ "${stderr_lines[0]}" = "rscene-sim: error: --output: an empty path names no file" ]
+
+  "$BIN/rscene-render" --width 32 --height 24 -o base.png "$scene"
+  sum=$(cksum < base.png)
+  ln -s base.png link.png
+  run -2 --separate-stderr "$BIN/rscene-render" --width 32 --height 24 -o link.png --reference base.png "$scene"
+  [ "${stderr_lines[0]}" = "rscene-render: error: -o 'link.png' and --reference 'base.png' are the same file; one would overwrite the other" ]
+  run -2 --separate-stderr "$BIN/rscene-render" --width 32 --height 24 -o o.png --reference base.png --diff-output ./base.png "$scene"
+  [ "${stderr_lines[0]}" = "rscene-render: error: --diff-output './base.png' and --reference 'base.png' are the same file; one would overwrite the other" ]
+  [ "$(cksum < base.png)" = "$sum" ]
+  [ ! -e o.png ]
+  run -2 --separate-stderr "$BIN/rscene-render" --width 32 --height 24 -o o.png --reference base.png --diff-output ro.csv "$scene"
+  [ "${stderr_lines[0]}" = "rscene-render: error: ro.csv: permission denied" ]
+  [ ! -e o.png ]
+}

@@ -4,6 +4,7 @@
 // 0 to DBL_MAX in 300 digits).
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <cmath>
 #include <iostream>
 
 #include "common/cli.hpp"
@@ -73,6 +74,16 @@ CLI::Validator seconds() {
         return {};
       },
       "", "seconds");
+}
+
+CLI::Validator nonNegative() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        std::optional<double> v = parseNumber(s);
+        if (!v || !(*v >= 0) || !std::isfinite(*v)) return "expected a plain number >= 0 (e.g. 0.001 or 1e-6), not '" + s + "'";
+        return {};
+      },
+      "", "nonNegative");
 }
 
 CLI::Validator count(long long min) {

@@ -102,6 +102,36 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
   return true;
 }
 
+bool checkOutputs(const std::vector<NamedOutput>& outputs) {
+  auto isStdout = [](const std::string& p) { return p == "-"; };
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const NamedOutput& a = outputs[i];
+    if (a.path.empty()) continue;
+    for (std::size_t j = i + 1; j < outputs.size(); ++j) {
+      const NamedOutput& b = outputs[j];
+      if (b.path.empty()) continue;
+      if (isStdout(a.path) && isStdout(b.path)) {
+        error(std::string(a.flag) + " and " + b.flag + " would both write standard output; send one to a file");
+        return false;
+      }
+      if (!isStdout(a.path) && !isStdout(b.path) && sameOutputFile(a.path, b.path)) {
+        error(std::string(a.flag) + " '" + a.path + "' and " + b.flag + " '" + b.path +
+              "' are the same file; one would overwrite the other");
+        return false;
+      }
+    }
+  }
+  for (const NamedOutput& o : outputs) {
+    std::string err;
+    if (o.path.empty() || isStdout(o.path) || !o.written) continue;
+    if (!checkOutputFile(o.path, &err)) {
+      error(o.path + ": " + err);
+      return false;
+    }
+  }
+  return true;
+}
+
 bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce) {
   WritingScope writing;
   if (path.empty() || path == "-") {
@@ -152,8 +182,15 @@ void addInputOperands(CLI::App& app, std::vector<std::string>& files) {
       ->type_name("FILE");
 }
 
+namespace {
+// `-o ""` would otherwise mean standard output (or nothing) without a word.
+const CLI::Validator nonEmptyPath(
+    [](std::string& value) { return value.empty() ? std::string("an empty path names no file") : std::string(); },
+    "", "nonEmptyPath");
+}  // namespace
+
 void addOutputOption(CLI::App& app, std::string& output, const char* what) {
-  app.add_option("-o,--output", output, what)->type_name("FILE");
+  app.add_option("-o,--output", output, what)->type_name("FILE")->check(nonEmptyPath);
 }
 
 void addStdinFilename(CLI::App& app, std::string& name, bool assets) {

@@ -42,6 +42,20 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
 // failure prints `tool: error: PATH: why`.
 bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce);
 
+// One output (or an input that must not be overwritten) of a tool:
+// `flag` names it in messages, `path` is "-" for standard output and ""
+// when not requested; `written` false marks an input (a reference image)
+// that only has to differ from every output.
+struct NamedOutput {
+  const char* flag;
+  std::string path;
+  bool written = true;
+};
+// Before any work: refuses (with a message) two outputs to standard output,
+// two that end at the same file, and any output writeOutput() would
+// refuse, so a run never fails after replacing some of its outputs.
+bool checkOutputs(const std::vector<NamedOutput>& outputs);
+
 // setup() makes SIGINT, SIGTERM and SIGHUP remove the temporary file of an
 // output being written, then end the tool by that signal (a shell reports
 // 128+signal, 130 for SIGINT); signals that
@@ -92,8 +106,9 @@ void addBaseDir(CLI::App& app, std::string& dir, const char* help);
 int parseArgs(CLI::App& app, int argc, char** argv);
 
 // Validators whose messages name the expected form: seconds as a plain
-// number >= 0 (`2`, `0.5`, not `2s`); a whole number >= min.
+// number >= 0 (`2`, `0.5`, not `2s`); a finite number >= 0; a whole number >= min.
 CLI::Validator seconds();
+CLI::Validator nonNegative();
 CLI::Validator count(long long min);
 
 }  // namespace rscene::cli

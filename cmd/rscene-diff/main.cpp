@@ -105,10 +105,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}));
   app.add_option("--tolerance", opt.tolerance, "Numbers (also in vectors and lists) that differ by at most ABS are equal")
       ->type_name("ABS")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::nonNegative());
   app.add_option("--rel-tolerance", opt.relTolerance, "Numbers that differ by at most REL times the larger are equal")
       ->type_name("REL")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::nonNegative());
   app.add_flag("--ignore-editor-state", opt.ignoreEditorState,
                "Skip snapping, editor_ux, render_bake and the locked, expanded and selection* fields");
   app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");

@@ -160,6 +160,13 @@ int main(int argc, char** argv) {
     cli::error("--diff-output needs --reference");
     return cli::kTrouble;
   }
+  // A reference that exists is an input no output may replace; one that
+  // does not is where this render goes.
+  bool referenceWritten = !opt.baseline.reference.empty() && !fileExistsOnDisk(opt.baseline.reference);
+  if (!cli::checkOutputs({{"-o", opt.output},
+                          {"--diff-output", opt.baseline.diffOutput},
+                          {"--reference", opt.baseline.reference, referenceWritten}}))
+    return cli::kTrouble;
   opt.baseline.reportToStderr = opt.output == "-";
   return run(opt);
 }

@@ -201,6 +201,7 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  if (!cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
   return run(opt);
 }

@@ -249,38 +249,129 @@ bool replaceAtomically(const std::string& userPath, const std::string& target, c
 
 }  // namespace
 
-bool writeOutputFile(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error) {
-  if (path.empty()) return fail(error, errorText(ENOENT));
+namespace {
+
+// What is at an output path once its symlink chain is followed: the one
+// classification that writing, checking and comparing outputs share.
+struct Resolved {
+  enum Kind { Descriptor, New, Regular, Through, Refused } kind = Refused;
+  int fd = -1;          // Descriptor
+  std::string target;   // New, Regular, Through: the path at the end of the chain
+  struct stat st {};    // Regular, Through
+  std::string why;      // Refused
+};
+
+Resolved resolveOutput(const std::string& path) {
+  Resolved r;
+  if (path.empty()) {
+    r.why = errorText(ENOENT);
+    return r;
+  }
   // Follow a symlink chain one hop at a time: the chain may lead to an open
   // descriptor (/dev/stdout -> /proc/self/fd/1), and a dangling link is
   // named by what it points to.
   std::string p = path, lastLink;
-  struct stat st {};
   for (int hops = 0;; ++hops) {
-    if (int fd = descriptorNamed(p); fd >= 0) return writeToDescriptor(fd, produce, error);
-    if (::lstat(p.c_str(), &st) != 0) {
-      int e = errno;
-      if (e == ENOENT && hops > 0)
-        return fail(error, "is a dangling symbolic link to '" + lastLink + "'; create the target or remove the link");
-      if (e == ENOENT) return replaceAtomically(path, p, nullptr, produce, error);
-      return fail(error, errorText(e));
+    if (int fd = descriptorNamed(p); fd >= 0) {
+      r.kind = Resolved::Descriptor;
+      r.fd = fd;
+      return r;
     }
-    if (!S_ISLNK(st.st_mode)) break;
-    if (hops == kMaxSymlinkHops) return fail(error, errorText(ELOOP));
-    std::string target(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 4095) + 1, '\0');
+    if (::lstat(p.c_str(), &r.st) != 0) {
+      int e = errno;
+      if (e == ENOENT && hops > 0) {
+        r.why = "is a dangling symbolic link to '" + lastLink + "'; create the target or remove the link";
+      } else if (e == ENOENT) {
+        r.kind = Resolved::New;
+        r.target = p;
+      } else {
+        r.why = errorText(e);
+      }
+      return r;
+    }
+    if (!S_ISLNK(r.st.st_mode)) break;
+    if (hops == kMaxSymlinkHops) {
+      r.why = errorText(ELOOP);
+      return r;
+    }
+    std::string target(static_cast<std::size_t>(r.st.st_size > 0 ? r.st.st_size : 4095) + 1, '\0');
     ssize_t n = ::readlink(p.c_str(), target.data(), target.size());
-    if (n <= 0) return fail(error, errorText(n < 0 ? errno : ENOENT));
-    if (static_cast<std::size_t>(n) >= target.size()) return fail(error, errorText(ENAMETOOLONG));
+    if (n <= 0 || static_cast<std::size_t>(n) >= target.size()) {
+      r.why = errorText(n < 0 ? errno : n == 0 ? ENOENT : ENAMETOOLONG);
+      return r;
+    }
     target.resize(static_cast<std::size_t>(n));
     lastLink = target;
     p = target.front() == '/' ? target : directoryOf(p) + "/" + target;
   }
-  if (S_ISREG(st.st_mode)) return replaceAtomically(path, p, &st, produce, error);
-  if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return writeThrough(p, st, produce, error);
-  if (S_ISDIR(st.st_mode)) return fail(error, errorText(EISDIR));
-  if (S_ISBLK(st.st_mode)) return fail(error, "is a block device; refusing to write over it");
-  if (S_ISSOCK(st.st_mode)) return fail(error, "is a socket");
-  return fail(error, "is not a regular file, device or FIFO");
+  r.target = p;
+  if (S_ISREG(r.st.st_mode)) r.kind = Resolved::Regular;
+  else if (S_ISCHR(r.st.st_mode) || S_ISFIFO(r.st.st_mode)) r.kind = Resolved::Through;
+  else if (S_ISDIR(r.st.st_mode)) r.why = errorText(EISDIR);
+  else if (S_ISBLK(r.st.st_mode)) r.why = "is a block device; refusing to write over it";
+  else if (S_ISSOCK(r.st.st_mode)) r.why = "is a socket";
+  else r.why = "is not a regular file, device or FIFO";
+  return r;
+}
+
+}  // namespace
+
+bool writeOutputFile(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error) {
+  Resolved r = resolveOutput(path);
+  switch (r.kind) {
+    case Resolved::Descriptor: return writeToDescriptor(r.fd, produce, error);
+    case Resolved::New: return replaceAtomically(path, r.target, nullptr, produce, error);
+    case Resolved::Regular: return replaceAtomically(path, r.target, &r.st, produce, error);
+    case Resolved::Through: return writeThrough(r.target, r.st, produce, error);
+    case Resolved::Refused: break;
+  }
+  return fail(error, r.why);
+}
+
+bool checkOutputFile(const std::string& path, std::string* error) {
+  Resolved r = resolveOutput(path);
+  switch (r.kind) {
+    case Resolved::Refused: return fail(error, r.why);
+    case Resolved::Regular:
+      if (std::string why = refusal(path, r.target, r.st); !why.empty()) return fail(error, why);
+      [[fallthrough]];
+    case Resolved::New: {
+      if (baseOf(r.target).empty()) return fail(error, errorText(EISDIR));
+      std::string dir = directoryOf(r.target);
+      if (::faccessat(AT_FDCWD, dir.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+        return fail(error, std::string(r.kind == Resolved::New ? "cannot create a file in '" :
+                                                                   "cannot create a temporary file in '") +
+                               dir + "': " + errorText(errno));
+      return true;
+    }
+    case Resolved::Descriptor:
+    case Resolved::Through: return true;
+  }
+  return true;
+}
+
+bool sameOutputFile(const std::string& a, const std::string& b) {
+  Resolved ra = resolveOutput(a), rb = resolveOutput(b);
+  if (ra.kind == Resolved::Descriptor || rb.kind == Resolved::Descriptor) {
+    struct stat sa {}, sb {};
+    auto statOf = [](const Resolved& r, struct stat& st) {
+      if (r.kind == Resolved::Descriptor) return ::fstat(r.fd, &st) == 0;
+      if (r.kind == Resolved::Regular || r.kind == Resolved::Through) return (st = r.st), true;
+      return false;
+    };
+    return statOf(ra, sa) && statOf(rb, sb) && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino &&
+           !S_ISCHR(sa.st_mode);  // two outputs to one terminal or /dev/null are harmless
+  }
+  if (ra.kind == Resolved::Refused || rb.kind == Resolved::Refused) return false;
+  bool aExists = ra.kind != Resolved::New, bExists = rb.kind != Resolved::New;
+  if (aExists && bExists)
+    return ra.st.st_dev == rb.st.st_dev && ra.st.st_ino == rb.st.st_ino && !S_ISCHR(ra.st.st_mode);
+  if (aExists != bExists) return false;
+  // Two new files: the same name in the same directory (compared by the
+  // directory's identity, so "x" and "./x" and "dir/../x" agree).
+  struct stat da {}, db {};
+  return baseOf(ra.target) == baseOf(rb.target) && ::stat(directoryOf(ra.target).c_str(), &da) == 0 &&
+         ::stat(directoryOf(rb.target).c_str(), &db) == 0 && da.st_dev == db.st_dev && da.st_ino == db.st_ino;
 }
 
 }  // namespace rscene

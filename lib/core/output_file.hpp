@@ -41,4 +41,16 @@ namespace rscene {
 // message without the path ("permission denied"; "has 2 hard links ...").
 bool writeOutputFile(const std::string& path, const std::function<bool(Sink&)>& produce, std::string* error);
 
+// Whether writeOutputFile() would refuse `path` before producing anything
+// (read-only, hard-linked, a dangling link, a directory, an unwritable
+// directory for a new file ...), with the same message; writes nothing.
+// Tools with several outputs check them all first, so that one refused
+// output does not leave the others already replaced.
+bool checkOutputFile(const std::string& path, std::string* error);
+
+// Whether two output paths end at the same file (through links, ./ and
+// ../, or /dev/stdout and a file on descriptor 1).  Character devices
+// (/dev/null, a terminal) never count: writing both there loses nothing.
+bool sameOutputFile(const std::string& a, const std::string& b);
+
 }  // namespace rscene

@@ -364,3 +364,40 @@ TEST(TemporaryFiles, AFullRegistrySaysSoInsteadOfOverwritingASlot) {
 }
 
 }  // namespace
+
+// checkOutputFile() refuses what writeOutputFile() would, with the same
+// words, and writes nothing: tools check every output before the first.
+TEST_F(OutputFile, CheckingAnOutputRefusesWhatWritingWouldAndWritesNothing) {
+  std::string ro = at("ro.rscene"), fresh = at("new.rscene"), linked = at("a.rscene");
+  put(ro, "keep\n");
+  ASSERT_EQ(::chmod(ro.c_str(), 0444), 0);
+  put(linked, "x\n");
+  ASSERT_EQ(::link(linked.c_str(), at("b.rscene").c_str()), 0);
+  std::string checked, written;
+  EXPECT_FALSE(checkOutputFile(ro, &checked));
+  EXPECT_FALSE(write(ro, "new\n", &written));
+  EXPECT_EQ(checked, written);
+  EXPECT_FALSE(checkOutputFile(linked, &checked));
+  EXPECT_NE(checked.find("has 2 hard links"), std::string::npos) << checked;
+  EXPECT_FALSE(checkOutputFile(dir_.string(), &checked));
+  EXPECT_FALSE(checkOutputFile(at("missing/x.png"), &checked));
+  EXPECT_TRUE(checkOutputFile(fresh, &checked)) << checked;
+  EXPECT_FALSE(fs::exists(fresh));
+  EXPECT_TRUE(checkOutputFile("/dev/null", &checked));
+  EXPECT_EQ(get(ro), "keep\n");
+  EXPECT_TRUE(temporaries(dir_).empty());
+}
+
+TEST_F(OutputFile, SameOutputFileSeesThroughLinksAndDotsButNotDevices) {
+  std::string a = at("a.png");
+  put(a, "x");
+  ASSERT_EQ(::symlink("a.png", at("l.png").c_str()), 0);
+  ASSERT_EQ(::mkdir(at("d").c_str(), 0755), 0);
+  EXPECT_TRUE(sameOutputFile(a, at("l.png")));
+  EXPECT_TRUE(sameOutputFile(a, at("d/../a.png")));
+  EXPECT_FALSE(sameOutputFile(a, at("b.png")));
+  // Two files that do not exist yet: the same name in the same folder.
+  EXPECT_TRUE(sameOutputFile(at("new.png"), at("d/../new.png")));
+  EXPECT_FALSE(sameOutputFile(at("new.png"), at("d/new.png")));
+  EXPECT_FALSE(sameOutputFile("/dev/null", "/dev/null"));
+}
