@@ -115,16 +115,39 @@ bool ValueComparer::closeEnough(double x, double y) const {
 }
 
 // Decoded numbers item by item (vectors, colors, quaternions in one token).
-bool ValueComparer::sameNumbers(std::string_view x, std::string_view y) const {
+// Values that mean the same are the same: a color without alpha and the
+// same color with alpha 1 (alpha defaults to 1), and a quaternion and its
+// negation (the same rotation).
+bool ValueComparer::sameNumbers(std::string_view x, std::string_view y, ValueType type) const {
   std::vector<std::string_view> ix, iy;
   forEachItem(x, [&](std::string_view s, char) { ix.push_back(s); });
   forEachItem(y, [&](std::string_view s, char) { iy.push_back(s); });
-  if (ix.size() != iy.size()) return false;
-  for (std::size_t i = 0; i < ix.size(); ++i) {
-    if (ix[i] == iy[i]) continue;
-    auto px = parseNumber(ix[i]), py = parseNumber(iy[i]);
-    if (!px || !py || !closeEnough(*px, *py)) return false;
+  return sameItems(ix, iy, type);
+}
+
+bool ValueComparer::sameItems(std::vector<std::string_view> ix, std::vector<std::string_view> iy,
+                              ValueType type) const {
+  if (type == ValueType::Color && ix.size() + iy.size() == 7) {
+    std::vector<std::string_view>& longer = ix.size() == 4 ? ix : iy;
+    auto alpha = parseNumber(longer[3]);
+    if (!alpha || !closeEnough(*alpha, 1)) return false;
+    longer.pop_back();
   }
+  if (ix.size() != iy.size()) return false;
+  std::vector<double> nx(ix.size()), ny(iy.size());
+  bool same = true;
+  for (std::size_t i = 0; i < ix.size(); ++i) {
+    auto px = parseNumber(ix[i]), py = parseNumber(iy[i]);
+    if (!px || !py) {
+      if (ix[i] != iy[i]) return false;
+      continue;
+    }
+    nx[i] = *px, ny[i] = *py;
+    same = same && (ix[i] == iy[i] || closeEnough(*px, *py));
+  }
+  if (same || type != ValueType::Quat || nx.size() != 4) return same;
+  for (std::size_t i = 0; i < 4; ++i)
+    if (!closeEnough(nx[i], -ny[i])) return false;
   return true;
 }
 
@@ -165,7 +188,7 @@ bool ValueComparer::sameToken(std::string_view x, std::string_view y, ValueType 
     case ValueType::StringList:
       return parseStringList(x) == parseStringList(y);
     default:
-      if (componentCount(type) > 0) return sameNumbers(dx, dy);
+      if (componentCount(type) > 0) return sameNumbers(dx, dy, type);
       break;
   }
   return dx == dy;
@@ -179,6 +202,10 @@ void ValueComparer::compare(const DiffValue& a, const DiffValue& b, std::vector<
     bool same = true;
     for (std::size_t i = 0; i < b.tokens.size() && same; ++i) same = sameToken(a.tokens[i], b.tokens[i], type, b.def);
     if (same) return;
+    if (b.type == ValueType::Quat && b.tokens.size() == 4 && !b.unknownTokens) {  // q and -q
+      std::vector<std::string_view> qa(a.tokens.begin(), a.tokens.end()), qb(b.tokens.begin(), b.tokens.end());
+      if (sameItems(qa, qb, ValueType::Quat)) return;
+    }
   }
   FieldDiff f;
   f.name = b.name;

@@ -434,3 +434,13 @@ TEST(DiffTyped, IntegersWrittenAsDecimalsAreTheSameNumber) {
   ASSERT_EQ(d.records.size(), 1u);
   EXPECT_EQ(d.records[0].fields.at(0).newValue, "0,1,3");
 }
+
+// Spellings of one value: a color without alpha is the color with alpha 1,
+// and q and -q are one rotation (positional and key=value alike).
+TEST(Diff, AlphaOneAndANegatedQuaternionAreNoChange) {
+  EXPECT_TRUE(run(kBase, replace(kBase, "color=0.2,0.4,0.2", "color=0.2,0.4,0.2,1")).same());
+  EXPECT_TRUE(run(kBase, replace(kBase, "0 0 0.5 1 0 0 0 1 1 1", "0 0 0.5 -1 -0 0 0 1 1 1")).same());
+  EXPECT_FALSE(run(kBase, replace(kBase, "color=0.2,0.4,0.2", "color=0.2,0.4,0.2,0.5")).same());
+  EXPECT_FALSE(run(kBase, replace(kBase, "0 0 0.5 1 0 0 0 1 1 1", "0 0 0.5 0 1 0 0 1 1 1")).same());
+  EXPECT_FALSE(run(kBase, replace(kBase, "color=0.2,0.4,0.2", "color=0.2,0.4,0.3,1")).same());
+}
