@@ -242,3 +242,15 @@ setup() {
   run -0 --separate-stderr "$V" empty
   [ "${stderr_lines[0]}" = "rscene-validate: warning: no .rscene files under 'empty'" ]
 }
+
+@test "--check-files: a device, a FIFO or a folder is not an asset file" {
+  mkfifo pipe
+  mkdir folder
+  for target in /dev/zero pipe folder; do
+    printf 'raisim_engine_scene 1\nobject /World/M mesh 0 0 1 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false %s dynamic true 1 18446744073709551615\n' "$target" > m.rscene
+    run -1 timeout 10 "$V" --check-files m.rscene
+    [[ $output == *"RS5001"* ]]
+  done
+  run -1 "$V" --check-files m.rscene
+  [ "${lines[0]}" = "m.rscene:2:90: error: file 'folder' is a directory, not a file (resolved to 'folder') [RS5001]" ]
+}

@@ -17,7 +17,17 @@ std::string join(const std::string& dir, const std::string& path) {
 
 bool fileExistsOnDisk(const std::string& path) {
   struct stat st {};
-  return ::stat(path.c_str(), &st) == 0;
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string whyNotAFile(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "does not exist";
+  if (S_ISDIR(st.st_mode)) return "is a directory, not a file";
+  if (S_ISFIFO(st.st_mode)) return "is a FIFO, not a regular file";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "is a device, not a regular file";
+  if (!S_ISREG(st.st_mode)) return "is not a regular file";
+  return "does not exist";  // a file an in-memory FileExists does not know
 }
 
 std::string directoryOf(std::string_view scenePath) {

@@ -12,8 +12,14 @@ namespace rscene {
 
 using FileExists = std::function<bool(const std::string&)>;
 
-// Real file-system check (regular file or directory exists).
+// Real file-system check: a regular file exists at `path` (through links).
+// Directories, devices (/dev/zero) and FIFOs are not asset files: reading
+// them would never end or would mean nothing.
 bool fileExistsOnDisk(const std::string& path);
+
+// Why `path` is not an asset file, for messages: "does not exist", "is a
+// directory, not a file", "is a FIFO, not a regular file" ...
+std::string whyNotAFile(const std::string& path);
 
 // Directory of a scene file path ("" -> ".").
 std::string directoryOf(std::string_view scenePath);

@@ -76,7 +76,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS4013", W, Core, V, "field of view outside the range it is clamped to"},
     {"RS4014", E, Core, VSR, "terrain size not positive"},
     // RS5xxx files (--check-files)
-    {"RS5001", E, Core, "validate sim render", "asset file does not exist (validate --check-files; sim for collision meshes; render for meshes and textures)"},
+    {"RS5001", E, Core, "validate sim render", "asset file does not exist or is not a regular file (validate --check-files; sim for collision meshes; render for meshes and textures)"},
     // RS6xxx what RaiSim 2.7.1 refuses (--profile raisim)
     {"RS6001", E, Core, V, "record kind RaiSim does not load"},
     {"RS6002", E, Core, V, "key repeated in one record"},

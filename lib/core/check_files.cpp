@@ -15,7 +15,7 @@ void checkFiles(Context& ctx, const Record& r) {
     if (path.empty()) return;
     std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.index.assetRoot, path, ctx.opt.fileExists);
     if (ctx.opt.fileExists(resolved)) return;
-    ctx.report("RS5001", r, f.value, def.name, "file '" + path + "' does not exist (resolved to '" + resolved + "')",
+    ctx.report("RS5001", r, f.value, def.name, "file '" + path + "' " + whyNotAFile(resolved) + " (resolved to '" + resolved + "')",
                "paths resolve against the scene's directory, then against asset_root");
   });
 }

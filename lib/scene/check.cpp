@@ -63,7 +63,7 @@ class Checker {
       return;
     }
     if (opt_.checkFiles && !opt_.exists(resolved))
-      r.error(field, scene_code::kMissingFile, "mesh file '" + resolved + "' does not exist",
+      r.error(field, scene_code::kMissingFile, "mesh file '" + resolved + "' " + whyNotAFile(resolved),
               "paths resolve against the scene's directory, then against asset_root");
   }
 
