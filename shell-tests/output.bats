@@ -415,3 +415,12 @@ interrupt_mid_write() {
   [ "${stderr_lines[0]}" = "rscene-render: error: ro.csv: permission denied" ]
   [ ! -e o.png ]
 }
+
+@test "fmt -i on a FIFO or a device is refused at once instead of blocking on the read" {
+  mkfifo pipe
+  run -2 --separate-stderr timeout 10 "$FMT" -i pipe
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: pipe: --in-place needs a regular file; it is a FIFO, not a regular file" ]
+  run -2 --separate-stderr "$FMT" -i /dev/null
+  [ "${stderr_lines[0]}" = "rscene-fmt: error: /dev/null: --in-place needs a regular file; it is a device, not a regular file" ]
+  [ -c /dev/null ]
+}

@@ -1,9 +1,12 @@
 // rscene-fmt: writes scenes in the canonical form (DESIGN.md).
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
 
 #include "common/cli.hpp"
+#include "core/assets.hpp"
 #include "core/diff_lines.hpp"
 #include "core/io.hpp"
 #include "core/loader.hpp"
@@ -76,6 +79,12 @@ std::vector<char*> textconvOperand(const CLI::App& app, int argc, char** argv) {
 
 // Formats one input; returns its exit code.
 int formatOne(const std::string& operand, const Options& opt, bool color) {
+  // In place means replacing a file: a FIFO or device would block the read
+  // or make no sense to rewrite, and a refused file is refused before the read.
+  if (opt.inPlace && !fileExistsOnDisk(operand) && access(operand.c_str(), F_OK) == 0) {
+    cli::error(operand + ": --in-place needs a regular file; it " + whyNotAFile(operand));
+    return cli::kTrouble;
+  }
   cli::Input in;
   if (!cli::readInput(operand, opt.stdinName, in)) return cli::kTrouble;
   // The document takes the text over; the original bytes stay at the start
