@@ -94,8 +94,10 @@ is_png() {
   cmp a.png b.png
   run "$RENDER" "$DATA/render_mesh.rscene" --camera /World/Nope -o c.png
   [ "$status" -eq 2 ]
-  [ "$output" = "rscene-render: error: no camera with path or id '/World/Nope'" ]
+  [ "$output" = "rscene-render: error: no camera with path or id '/World/Nope'; its cameras: /World/Cam" ]
   [ ! -e c.png ]
+  run -2 "$RENDER" "$DATA/render_mesh.rscene" --camera cam_mian -o c.png
+  [ "$output" = "rscene-render: error: no camera with path or id 'cam_mian'; did you mean 'cam_main'?" ]
 }
 
 @test "missing mesh: exit 2 naming the resolved path; --allow-missing-assets draws a placeholder" {

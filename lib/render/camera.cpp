@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/suggest.hpp"
+
 namespace rscene::render {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -27,7 +29,28 @@ bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera&
       out = c;
       return true;
     }
-  if (error) *error = "no camera with path or id '" + selector + "'";
+  if (error) {
+    // Name the closest camera, or the ones there are (an editor's scene has few).
+    // Paths compare by their last part: a shared /World/ is no likeness.
+    auto last = [](std::string_view p) { return p.substr(p.rfind('/') + 1); };
+    const bool isPath = selector.find('/') != std::string::npos;
+    std::vector<std::string_view> names;
+    for (const Camera& c : scene.cameras) names.push_back(isPath ? last(c.path) : std::string_view(c.id));
+    *error = "no camera with path or id '" + selector + "'";
+    std::string near = closestName(isPath ? last(selector) : std::string_view(selector), names);
+    for (const Camera& c : scene.cameras)
+      if (!near.empty() && near == (isPath ? last(c.path) : std::string_view(c.id))) near = isPath ? c.path : c.id;
+    if (!near.empty()) {
+      *error += "; did you mean '" + near + "'?";
+    } else if (scene.cameras.empty()) {
+      *error += "; the scene has no camera (leave out --camera, or use --camera auto)";
+    } else {
+      std::string list;
+      for (std::size_t i = 0; i < scene.cameras.size() && i < 8; ++i)
+        list += (i ? ", " : "") + scene.cameras[i].path;
+      *error += "; its cameras: " + list + (scene.cameras.size() > 8 ? ", ..." : "");
+    }
+  }
   return false;
 }
 
