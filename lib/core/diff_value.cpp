@@ -207,12 +207,17 @@ void ValueComparer::compare(const DiffValue& a, const DiffValue& b, std::vector<
       if (sameItems(qa, qb, ValueType::Quat)) return;
     }
   }
+  out.push_back(wholeChange(a, b));
+}
+
+// The field as a whole, old value to new.
+FieldDiff ValueComparer::wholeChange(const DiffValue& a, const DiffValue& b) const {
   FieldDiff f;
   f.name = b.name;
   f.type = b.type;
   f.oldValue = display(a, oldVersion_);
   f.newValue = display(b, newVersion_);
-  out.push_back(std::move(f));
+  return f;
 }
 
 void ValueComparer::compareList(const DiffValue& a, const DiffValue& b, std::vector<FieldDiff>& out) const {
@@ -256,12 +261,7 @@ void ValueComparer::compareList(const DiffValue& a, const DiffValue& b, std::vec
   if (!changed && la.size() == lb.size()) return;
 
   if (std::max(la.items.size(), lb.items.size()) <= opt_.summarizeAbove) {
-    FieldDiff f;
-    f.name = b.name;
-    f.type = b.type;
-    f.oldValue = display(a, oldVersion_);
-    f.newValue = display(b, newVersion_);
-    out.push_back(std::move(f));
+    out.push_back(wholeChange(a, b));
     return;
   }
   FieldDiff summary;

@@ -43,6 +43,7 @@ class ValueComparer {
   bool sameToken(std::string_view x, std::string_view y, ValueType type, const FieldDef* def) const;
   bool sameNumbers(std::string_view x, std::string_view y, ValueType type) const;
   bool sameItems(std::vector<std::string_view> x, std::vector<std::string_view> y, ValueType type) const;
+  FieldDiff wholeChange(const DiffValue& a, const DiffValue& b) const;
   void compareList(const DiffValue& a, const DiffValue& b, std::vector<FieldDiff>& out) const;
 
   const DiffOptions& opt_;
