@@ -66,6 +66,8 @@ struct Filter64 : btOverlapFilterCallback {
   bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
     auto* oa = static_cast<btCollisionObject*>(a->m_clientObject);
     auto* ob = static_cast<btCollisionObject*>(b->m_clientObject);
+    // Static pairs never meet, as in Bullet's own filter (and lib/sim's).
+    if (oa->isStaticOrKinematicObject() && ob->isStaticOrKinematicObject()) return false;
     const auto& x = groupMask[static_cast<std::size_t>(oa->getUserIndex())];
     const auto& y = groupMask[static_cast<std::size_t>(ob->getUserIndex())];
     return (x.first & y.second) != 0 && (y.first & x.second) != 0;
@@ -128,6 +130,7 @@ class World {
     broadphase_ = std::make_unique<btDbvtBroadphase>();
     world_ = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher_, broadphase_.get(), &solver_, &config_);
     world_->setGravity(btVector3(s.gravity[0], s.gravity[1], s.gravity[2]));
+    world_->setForceUpdateAllAabbs(false);  // statics do not move (as lib/sim)
     btContactSolverInfo& si = world_->getSolverInfo();
     si.m_numIterations = s.iterations;
     si.m_erp = s.erp;
