@@ -81,10 +81,10 @@ setup() {
 @test "--list-checks prints every code any tool emits, with severity and tools" {
   run "$V" --list-checks
   [ "$status" -eq 0 ]
-  [[ "${lines[0]}" == "RS1001  error    validate             missing raisim_engine_scene header" ]]
+  [[ "${lines[0]}" == "RS1001  error    every tool           missing raisim_engine_scene header" ]]
   [[ "$output" == *"RS3002  warning  validate             unknown key (kept and ignored)"* ]]
   [[ "$output" == *"RS4008  error    validate sim render  dynamic object or compound without positive mass"* ]]
-  [[ "$output" == *"RS7011  warning  validate sim         wire to a node the simulator does not model, skipped"* ]]
+  [[ "$output" == *"RS7011  warning  validate sim render  wire to a node the simulator does not model, skipped"* ]]
   [[ "$output" == *"RS8001  error    from-json            invalid JSON"* ]]
   [[ "$output" == *"RS9001  error    render               mesh file that cannot be read"* ]]
   # Codes of other tools can be filtered on like the validator's own.

@@ -17,20 +17,21 @@ constexpr CheckLayer Core = CheckLayer::Core, Scene = CheckLayer::Scene, Sim = C
                      Json = CheckLayer::Json, Render = CheckLayer::Render;
 // Who reports a code: the validator alone, or also sim and render, whose
 // scene model (lib/scene/reader.cpp) reads values with the validator's codes.
-constexpr std::string_view V = "validate", VSR = "validate sim render";
+// The loader's codes (RS1001-RS1010) stop every tool that reads a scene.
+constexpr std::string_view V = "validate", VSR = "validate sim render", All = "every tool";
 
 constexpr CheckInfo kChecks[] = {
     // RS1xxx syntax (RS1001..RS1010 come from the loader)
-    {"RS1001", E, Core, V, "missing raisim_engine_scene header"},
-    {"RS1002", E, Core, V, "unsupported rscene version (only 1 and 2 exist)"},
-    {"RS1003", E, Core, V, "invalid percent escape"},
-    {"RS1004", E, Core, V, "scene text contains a NUL byte"},
-    {"RS1005", E, Core, V, "invalid UTF-8"},
-    {"RS1006", E, Core, V, "control character in a token"},
-    {"RS1007", E, Core, V, "wrong number of positional fields for the record kind"},
-    {"RS1008", E, Core, V, "positional field after key=value fields"},
-    {"RS1009", E, Core, V, "key=value token without a key"},
-    {"RS1010", E, Core, V, "input too large"},
+    {"RS1001", E, Core, All, "missing raisim_engine_scene header"},
+    {"RS1002", E, Core, All, "unsupported rscene version (only 1 and 2 exist)"},
+    {"RS1003", E, Core, All, "invalid percent escape"},
+    {"RS1004", E, Core, All, "scene text contains a NUL byte"},
+    {"RS1005", E, Core, All, "invalid UTF-8"},
+    {"RS1006", E, Core, All, "control character in a token"},
+    {"RS1007", E, Core, All, "wrong number of positional fields for the record kind"},
+    {"RS1008", E, Core, All, "positional field after key=value fields"},
+    {"RS1009", E, Core, All, "key=value token without a key"},
+    {"RS1010", E, Core, All, "input too large"},
     {"RS1101", W, Core, V, "key repeated in one record (the last one wins)"},
     // RS2xxx types
     {"RS2001", E, Core, VSR, "value is not a number"},
@@ -38,7 +39,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS2003", E, Core, VSR, "value is not an integer in range"},
     {"RS2004", E, Core, VSR, "collision group or mask is not an unsigned 64-bit integer"},
     {"RS2005", E, Core, VSR, "value is not a flag (true/false, 1/0, yes/no, on/off)"},
-    {"RS2006", E, Core, VSR, "unknown name for an enumeration"},
+    {"RS2006", E, Core, V, "unknown name for an enumeration"},
     {"RS2007", W, Core, V, "name not known for an open enumeration (newer writers may add names)"},
     {"RS2008", E, Core, VSR, "vector, quaternion or color with the wrong number of components"},
     {"RS2009", E, Core, VSR, "number list with an empty entry or a trailing separator"},
@@ -93,8 +94,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS7004", E, Scene, VSR, "mesh body without a mesh path"},
     {"RS7007", E, Sim, "sim", "mesh file that cannot be read or has no triangles"},
     {"RS7008", E, Scene, VSR, "time_step not positive"},
+    {"RS7009", E, Scene, VSR, "compound child that is a plane (ground or half_space)"},
     {"RS7010", W, Sim, "sim", "records kept but not simulated (articulated, deformable, granular, sensor)"},
-    {"RS7011", W, Scene, "validate sim", "wire to a node the simulator does not model, skipped"},
+    {"RS7011", W, Scene, VSR, "wire to a node the simulator does not model, skipped"},
     {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
     {"RS7020", E, Scene, VSR, "dynamic mass that is not a finite normal double (its inverse would be infinite)"},
     {"RS7021", E, Scene, VSR, "body pose that is not finite, or an orientation that does not normalise to a unit quaternion"},

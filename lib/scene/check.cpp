@@ -89,6 +89,13 @@ class Checker {
     mass(reader(c.recordIndex), c.bodyMode, c.mass, c.path);
     for (const CompoundChild& ch : c.children) {
       RecordReader r = reader(ch.recordIndex);
+      // A plane has no place inside a body (Bullet has no compound of one).
+      if (ch.primitive == "ground" || ch.primitive == "half_space") {
+        r.error("primitive", scene_code::kBadChildShape,
+                "a " + ch.primitive + " cannot be a child of compound '" + c.path + "'",
+                "make it an object of its own (a static ground or half_space)");
+        continue;
+      }
       std::string problem = sizeProblem(ch.primitive, childBox(c, ch), childRadius(c, ch), childHeight(c, ch));
       if (ch.primitive == "mesh" && !positive(childScale(c, ch).mean())) problem = "mesh with a zero or negative scale";
       if (!problem.empty())

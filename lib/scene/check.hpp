@@ -27,6 +27,7 @@ struct SceneCheckOptions {
 //           radius x scale.x, height x scale.z, mesh scale; compound
 //           children in the compound's scale)
 //   RS7004  mesh body without a mesh path
+//   RS7009  compound child that is a plane (ground, half_space)
 //   RS5001  collision mesh file missing (when options.checkFiles)
 //   RS3012  enabled wire whose body names no node
 //   RS7011  warning: wire to a node the simulator does not model, skipped

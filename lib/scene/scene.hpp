@@ -48,6 +48,7 @@ inline constexpr const char* kZeroSize = "RS7003";      // body shape with a zer
 inline constexpr const char* kNoMesh = "RS7004";        // mesh body without a mesh path
 inline constexpr const char* kBadMesh = "RS7007";       // mesh file that cannot be read
 inline constexpr const char* kBadTimeStep = "RS7008";   // time_step not positive
+inline constexpr const char* kBadChildShape = "RS7009"; // compound child that is a plane (ground, half_space)
 inline constexpr const char* kUnsupported = "RS7010";   // records kept but not simulated (warning)
 inline constexpr const char* kWireSkipped = "RS7011";   // wire to a node sim does not model (warning)
 inline constexpr const char* kBadMassValue = "RS7020";  // dynamic mass not a finite normal double (scene/limits.hpp)

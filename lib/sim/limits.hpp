@@ -30,7 +30,7 @@ inline constexpr std::uint64_t kDefaultMaxSteps = 10'000'000;
 // Default cap on overlapping body pairs (--max-pairs, WorldOptions::maxPairs).
 // A pair of touching boxes costs about 8.5 KB (pair, collision algorithm,
 // contact manifold): about 850 MB at the cap, some 12,000 bodies in one
-// dense pile; 450 boxes in one spot already make 100,000 pairs.
+// dense pile; 448 boxes in one spot already make more than 100,000 pairs.
 inline constexpr std::uint64_t kDefaultMaxPairs = 100'000;
 
 

@@ -66,6 +66,7 @@ std::vector<Case> cases() {
       {"RS7003", H + object("box", "1 0 1"), H + object("box", "1 2 1")},
       {"RS7004", H + object("mesh"), H + object("mesh", "1 1 1", "0.5", "1", "dynamic", "", "/World/a", "present.obj")},
       {"RS7008", H + "time_step 0\n", H + "time_step 0.001\n"},
+      {"RS7009", H + K + child("ground", ""), H + K + child("box", "")},
       {"RS7020", H + object("box", "1 1 1", "0.5", "4.9e-324"), H + object("box", "1 1 1", "0.5", "1e-3")},
       {"RS7022", H + "time_step 1e-12\n", H + "time_step 1e-9\n"},
       {"RS7011",
