@@ -172,7 +172,7 @@ CORPUS="$ROOT/../shared/corpus"
 @test "--allow-missing-assets: an unreadable mesh (a device, a non-mesh) is left out too" {
   sed 's|meshes/rock.obj|/dev/zero|' sim_missing_mesh.rscene > dev.rscene
   run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 dev.rscene
-  [[ ${stderr_lines[0]} == "dev.rscene:2:"*": warning: cannot read mesh '/dev/zero': not a regular file; body '/World/Rock' is not simulated [RS7007]" ]]
+  [[ ${stderr_lines[0]} == "dev.rscene:2:"*": warning: mesh file '/dev/zero' is not a regular file; body '/World/Rock' is not simulated [RS5001]" ]]
   run -2 --separate-stderr timeout 10 "$SIM" --steps 5 dev.rscene
   [[ $stderr == *"mesh file '/dev/zero' is a device, not a regular file [RS5001]"* ]]
 }

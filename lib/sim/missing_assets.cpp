@@ -23,7 +23,14 @@ void warn(const Document& doc, int recordIndex, const char* field, const char* c
 // reason), with its code; empty when it does.
 std::pair<std::string, const char*> meshProblem(const std::string& path, asset::AssetCache& assets) {
   if (path.empty()) return {"no mesh file", scene_code::kNoMesh};
-  if (!assets.fileSystem().exists(path)) return {"mesh file '" + path + "' does not exist", scene_code::kMissingFile};
+  // Not a regular file (missing, a folder, a device, a FIFO) is RS5001, as
+  // in checkScene() and rscene-validate --check-files.
+  switch (assets.fileSystem().stat(path).kind) {
+    case FileKind::Regular: break;
+    case FileKind::Missing: return {"mesh file '" + path + "' does not exist", scene_code::kMissingFile};
+    case FileKind::Directory: return {"mesh file '" + path + "' is a directory, not a file", scene_code::kMissingFile};
+    case FileKind::Other: return {"mesh file '" + path + "' is not a regular file", scene_code::kMissingFile};
+  }
   std::string why;
   if (!assets.mesh(path, asset::MeshContent::Geometry, &why))
     return {"cannot read mesh '" + path + "': " + why, scene_code::kBadMesh};
