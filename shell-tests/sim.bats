@@ -354,3 +354,11 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   [ ! -e out.rscene ]
   ! compgen -G '.t.jsonl.tmp*'
 }
+
+@test "a mesh that cannot be read is RS7007 at the record's field" {
+  mkdir -p g
+  echo "garbage, not a mesh" > g/bad.obj
+  printf 'raisim_engine_scene 1\nobject /World/B mesh 0 0 1 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false g/bad.obj dynamic true 1 18446744073709551615\n' > mg.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 mg.rscene
+  [[ ${stderr_lines[0]} == "mg.rscene:2:90: error: body '/World/B': cannot read mesh 'g/bad.obj': "*" [RS7007]" ]]
+}

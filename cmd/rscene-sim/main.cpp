@@ -78,6 +78,7 @@ int run(const Options& opt) {
   sim::WorldOptions wo;
   wo.assets = &assets;
   wo.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
+  wo.document = &doc;
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);

@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "core/text.hpp"
+#include "scene/reader.hpp"
 #include "sim/wire.hpp"
 
 namespace rscene::sim {
@@ -401,7 +402,14 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.pairs.pairs[{std::min(a, b), std::max(a, b)}] = c;
   }
 
-  auto fail = [&](const std::string& path, const std::string& message, const char* code) {
+  auto fail = [&](const std::string& path, const std::string& message, const char* code, int recordIndex,
+                  const char* field) -> std::unique_ptr<World> {
+    const Document* doc = options.document;
+    if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
+      RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics)
+          .error(field, code, "body '" + path + "': " + message);
+      return nullptr;
+    }
     Diagnostic d;
     d.code = code;
     d.message = path + ": " + message;
@@ -423,7 +431,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       Eigen::Vector3d box = o.scale;
       btCollisionShape* shape = w.primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
                                             o.collisionMeshPath, o.meshScale(), convex, error);
-      if (!shape) return fail(o.path, error, scene_code::kBadMesh);
+      if (!shape) return fail(o.path, error, scene_code::kBadMesh, o.recordIndex, "meshPath");
       btVector3 inertia(0, 0, 0);
       double mass = o.effectiveMass();
       body = w.addBody(shape, bt(o.world), o.bodyMode, mass, inertia, false, fi, o.contactMaterial, sv);
@@ -445,7 +453,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       std::string error;
       btCollisionShape* shape = w.primitive(ch.primitive, box, ch.radius * s.x(), ch.height * s.z(), ch.meshPath,
                                             s.mean(), true, error);
-      if (!shape) return fail(c.path, error, scene_code::kBadMesh);
+      if (!shape) return fail(c.path, error, scene_code::kBadMesh, ch.recordIndex, "meshPath");
       Pose local = ch.local;
       local.position = local.position.cwiseProduct(c.scale);
       parts.emplace_back(shape, bt(local));

@@ -84,6 +84,9 @@ struct WorldOptions {
   // contact manifold, about 8.5 KB): n dynamic bodies in one spot make n^2/2.
   // Past it no pair is added and pairOverflow() says so.  0: no cap.
   std::uint64_t maxPairs = 0;
+  // The scene's document, when there is one: errors then point at the
+  // record's field (line:col), as checkScene()'s do.
+  const Document* document = nullptr;
 };
 
 // A simulated body whose state is no longer finite (World::nonFinite()).
