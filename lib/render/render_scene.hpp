@@ -134,7 +134,7 @@ struct RenderScene {
 // renderedPointStride are honoured first.
 struct DrawLimits {
   // Instances drawn, all instanced_visual records together; past it the
-  // record that crosses it is an error (RS9014).  ~600 bytes each.
+  // record that crosses it is an error (RS9014).  ~1 KB each in all.
   std::uint64_t maxInstances = 1'000'000;
   // Vertices of one drawn terrain grid: a larger one is drawn decimated
   // (every k-th sample, the last row and column kept), a uniform flat one
