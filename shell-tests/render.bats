@@ -27,7 +27,8 @@ is_png() {
 @test "--help lists every flag" {
   run "$RENDER" --help
   [ "$status" -eq 0 ]
-  for f in --output --width --height --samples --transparent --backend --camera --stdin-filename \
+  for f in --output --width --height --samples --max-pixels --max-instances --max-texture-pixels \
+           --transparent --backend --camera --stdin-filename \
            --base-dir --allow-missing-assets --reference --threshold --diff-output --verbose --version; do
     [[ "$output" == *"$f"* ]] || { echo "missing $f"; return 1; }
   done
@@ -202,4 +203,119 @@ is_png() {
   run "$RENDER" "$SHARED/rayrai_warehouse.rscene" --allow-missing-assets --width 160 --height 100 -o out.png
   [ "$status" -eq 0 ]
   is_png out.png
+}
+
+# --- Resource limits (README, "Resource limits: rscene-render") ---------
+# Each reproducer of issue 10 item 5 runs under a memory and time bound
+# (GL start-up alone needs ~1 GB of address space) and asserts the
+# documented outcome.
+
+bounded() {  # bounded KB SECONDS cmd...: ulimit -v and timeout
+  local kb=$1 secs=$2
+  shift 2
+  ( ulimit -v "$kb" && exec timeout "$secs" "$@" )
+}
+
+BOX='object /World/B box 3 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615'
+
+@test "limits: an 8192x8192 terrain without heights renders in bounded memory" {
+  printf 'raisim_engine_scene 2\nterrain_region /World/T 8192 8192 100 100 0 0 0\n' > t.rscene
+  run bounded 2000000 60 "$RENDER" t.rscene --width 64 --height 48 -o t.png
+  [ "$status" -eq 0 ]
+  is_png t.png
+}
+
+@test "limits: --max-instances refuses 2 M instances at the record, before allocating them" {
+  { printf 'raisim_engine_scene 2\n'
+    awk 'BEGIN { printf "instanced_visual /World/I box size=0.1,0.1,0.1 instances=0,0,0,1,0,0,0,1,1,1"
+                 for (i = 1; i < 2000000; ++i) printf ";%d,0,0,1,0,0,0,1,1,1", i % 1000; print "" }'; } > i.rscene
+  run -2 --separate-stderr bounded 2000000 60 "$RENDER" i.rscene --width 64 --height 48 -o i.png
+  [ "${stderr_lines[0]}" = "i.rscene:2:1: error: instanced_visual draws 2000000 instances, more than the 1000000 left of --max-instances 1000000 [RS9014]" ]
+  [ ! -e i.png ]
+}
+
+@test "limits: maxRenderedInstances and renderedInstanceStride are honoured; --max-instances raises or lowers the cap" {
+  { printf 'raisim_engine_scene 2\ncamera /World/Cam -8 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=cam\n'
+    awk -v extra="$1" 'BEGIN { printf "instanced_visual /World/I box size=0.1,0.1,0.1 EXTRA instances=0,0,0,1,0,0,0,1,1,1"
+                 for (i = 1; i < 100; ++i) printf ";0,%d,0,1,0,0,0,1,1,1", i; print "" }'; } > base.rscene
+  sed 's/EXTRA//' base.rscene > all.rscene
+  run -2 --separate-stderr "$RENDER" all.rscene --max-instances 50 -o x.png
+  [ "${stderr_lines[0]}" = "all.rscene:3:1: error: instanced_visual draws 100 instances, more than the 50 left of --max-instances 50 [RS9014]" ]
+  [ "${stderr_lines[3]}" = "  hint: set maxRenderedInstances or renderedInstanceStride on the record, or raise --max-instances" ]
+  run "$RENDER" all.rscene --max-instances 100 -o x.png
+  [ "$status" -eq 0 ]
+  sed 's/EXTRA/maxRenderedInstances=50/' base.rscene > max.rscene
+  run "$RENDER" max.rscene --max-instances 50 -o x.png
+  [ "$status" -eq 0 ]
+  sed 's/EXTRA/renderedInstanceStride=2/' base.rscene > stride.rscene
+  run "$RENDER" stride.rscene --max-instances 50 -o x.png
+  [ "$status" -eq 0 ]
+  sed 's/EXTRA/renderedInstanceStride=1/' base.rscene > one.rscene
+  run "$RENDER" one.rscene --max-instances 50 -o x.png
+  [ "$status" -eq 2 ]
+}
+
+@test "limits: --width 16384 --height 16384 is refused before any framebuffer; --max-pixels raises the cap" {
+  printf 'raisim_engine_scene 2\n%s\n' "$BOX" > b.rscene
+  run -2 --separate-stderr bounded 2000000 30 "$RENDER" b.rscene --width 16384 --height 16384 -o b.png
+  [ "$stderr" = "rscene-render: error: --width/--height: 16384x16384 is 268435456 pixels, more than --max-pixels 16777216" ]
+  [ ! -e b.png ]
+  run -2 --separate-stderr "$RENDER" b.rscene --width 64 --height 48 --max-pixels 3000 -o b.png
+  [ "$stderr" = "rscene-render: error: --width/--height: 64x48 is 3072 pixels, more than --max-pixels 3000" ]
+  run "$RENDER" b.rscene --width 64 --height 48 --max-pixels 3072 -o b.png
+  [ "$status" -eq 0 ]
+  [ "$(png_size b.png)" = "64x48" ]
+  run "$RENDER" b.rscene --max-pixels 0 -o b.png
+  [ "$status" -eq 2 ]
+}
+
+@test "limits: a camera asking for too many pixels is an error at its width field" {
+  printf 'raisim_engine_scene 2\ncamera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 8192 8192 rgb true id=cam\n%s\n' "$BOX" > c.rscene
+  run -2 --separate-stderr "$RENDER" c.rscene -o c.png
+  [ "${stderr_lines[0]}" = "c.rscene:2:45: error: camera image 8192x8192 is 67108864 pixels, more than --max-pixels 16777216 [RS9013]" ]
+  [ ! -e c.png ]
+  # --width/--height override the camera's size.
+  run "$RENDER" c.rscene --width 32 --height 32 -o c.png
+  [ "$status" -eq 0 ]
+}
+
+@test "limits: a camera width of 4294967297 is RS2003 at the field, not 1 pixel" {
+  printf 'raisim_engine_scene 2\ncamera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 4294967297 48 rgb true id=cam\n%s\n' "$BOX" > w.rscene
+  run -2 --separate-stderr "$RENDER" w.rscene -o w.png
+  [ "${stderr_lines[0]}" = "w.rscene:2:45: error: width is 4294967297, outside 0..2147483647 [RS2003]" ]
+  [ ! -e w.png ]
+}
+
+@test "limits: a texture or HDR that is /dev/zero or a FIFO is not read; the scene renders with a warning" {
+  mkfifo pipe.png
+  for tex in /dev/zero "$PWD/pipe.png"; do
+    printf 'raisim_engine_scene 2\nmaterial m 1 1 1 1 0 0.5 0 0 0 0 false %s - - - - - id=m\n%s\n' "$tex" "${BOX/engine_default/m}" > t.rscene
+    run --separate-stderr bounded 2000000 20 "$RENDER" t.rscene --width 32 --height 32 -o t.png
+    [ "$status" -eq 0 ]
+    [ "${stderr_lines[0]}" = "t.rscene:2:1: warning: texture $tex is not drawn: not a regular file [RS9002]" ]
+    printf 'raisim_engine_scene 2\nenvironment 0.2 0.2 0.2 0.2 0.2 0.2 0 true true 10 %s backgroundMode=hdr\n%s\n' "$tex" "$BOX" > h.rscene
+    run --separate-stderr bounded 2000000 20 "$RENDER" h.rscene --width 32 --height 32 -o h.png
+    [ "$status" -eq 0 ]
+    [ "${stderr_lines[0]}" = "h.rscene:2:1: warning: hdr background $tex: not a regular file; drawing the procedural sky [RS9003]" ]
+  done
+}
+
+@test "limits: a 261 KB PNG declaring 16384x16384 is not decoded; --max-texture-pixels sets the cap" {
+  command -v python3 >/dev/null || skip "no python3 to write the PNG"
+  python3 - <<'PY'
+import struct, zlib
+def chunk(t, d): return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d) & 0xffffffff)
+w = h = 16384
+with open('big.png', 'wb') as f:
+    f.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 0, 0, 0, 0))
+            + chunk(b'IDAT', zlib.compress(b'\0' * ((w + 1) * h), 9)) + chunk(b'IEND', b''))
+PY
+  printf 'raisim_engine_scene 2\nmaterial m 1 1 1 1 0 0.5 0 0 0 0 false big.png - - - - - id=m\n%s\n' "${BOX/engine_default/m}" > p.rscene
+  run --separate-stderr bounded 2000000 30 "$RENDER" p.rscene --width 32 --height 32 -o p.png
+  [ "$status" -eq 0 ]
+  [[ "${stderr_lines[0]}" == "p.rscene:2:1: warning: texture "*"big.png is not drawn: png image too large: 16384x16384 pixels (limit 67108864) [RS9002]" ]]
+  run --separate-stderr "$RENDER" p.rscene --width 32 --height 32 --max-texture-pixels 1000 -o p.png
+  [[ "${stderr_lines[0]}" == *"(limit 1000) [RS9002]" ]]
+  run "$RENDER" p.rscene --max-texture-pixels 0 -o p.png
+  [ "$status" -eq 2 ]
 }

@@ -12,6 +12,7 @@
 #include "render/camera.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
+#include "render/limits.hpp"
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
 #include "rscene-render/baseline.hpp"
@@ -24,6 +25,9 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   std::string file = "-", output, stdinName, baseDir, camera, backend = "auto";
   int width = 0, height = 0, samples = 4;
+  std::uint64_t maxPixels = render::kDefaultMaxPixels;
+  render::DrawLimits limits;
+  std::uint64_t maxTexturePixels = render::RenderOptions{}.maxTexturePixels;
   bool transparent = false, allowMissing = false, verbose = false;
   render_cli::BaselineOptions baseline;
 };
@@ -51,7 +55,7 @@ int run(const Options& opt) {
   so.baseDir = opt.baseDir;
   render::RenderScene scene;
   Diagnostics diags;
-  bool built = render::buildRenderScene(loaded.document, so, scene, diags);
+  bool built = render::buildRenderScene(loaded.document, so, scene, diags, opt.limits);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;
   if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
@@ -65,6 +69,18 @@ int run(const Options& opt) {
   render::RenderOptions ro;
   ro.width = opt.width > 0 ? opt.width : camera.width > 0 ? camera.width : 1280;
   ro.height = opt.height > 0 ? opt.height : camera.height > 0 ? camera.height : 720;
+  // Checked before any framebuffer exists: a size the flags gave is a
+  // usage error, one the camera record gave an error at its width field.
+  if (opt.width > 0 && opt.height > 0) {
+    if (std::string problem = render::imageSizeProblem(ro.width, ro.height, opt.maxPixels); !problem.empty()) {
+      cli::error("--width/--height: " + problem);
+      return cli::kTrouble;
+    }
+  } else if (!render::checkCameraImageSize(loaded.document, camera, ro.width, ro.height, opt.maxPixels, diags)) {
+    cli::printDiagnostics(diags, in.display, in.text, color);
+    return cli::kTrouble;
+  }
+  ro.maxTexturePixels = opt.maxTexturePixels;
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
@@ -132,6 +148,15 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--samples", opt.samples, "Multisample anti-aliasing samples per pixel (default 4)")
       ->check(CLI::Range(1, 64));
+  app.add_option("--max-pixels", opt.maxPixels,
+                 "Largest image, width x height, before anything is drawn (default 16777216 = 4096x4096)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 28));
+  app.add_option("--max-instances", opt.limits.maxInstances,
+                 "Most instanced_visual instances drawn in all, after maxRenderedInstances (default 1000000)")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 32));
+  app.add_option("--max-texture-pixels", opt.maxTexturePixels,
+                 "Largest texture or HDR background decoded; a larger one is not drawn (default 67108864)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 28));
   app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
   app.add_option("--backend", opt.backend, "auto (GPU if one answers, else CPU), gpu (EGL device) or cpu (llvmpipe)")
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));

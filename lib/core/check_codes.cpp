@@ -115,6 +115,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS9010", E, Render, "render", "shader build failed"},
     {"RS9011", E, Render, "render", "cannot create the framebuffer"},
     {"RS9012", E, Render, "render", "an OpenGL call failed"},
+    {"RS9013", E, Render, "render", "camera image larger than --max-pixels or 16384 on a side"},
+    {"RS9014", E, Render, "render", "more instances to draw than --max-instances"},
 };
 
 }  // namespace

@@ -67,7 +67,10 @@ Affine3d affine(const Pose& p) {
 
 class Preparer {
  public:
-  Preparer(const Document& doc, const Scene& scene, RenderScene& out) : doc_(doc), s_(scene), out_(out) {}
+  Preparer(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags, const DrawLimits& limits)
+      : doc_(doc), s_(scene), out_(out), diags_(diags), limits_(limits) {}
+
+  bool ok() const { return ok_; }
 
   void run() {
     out_ = RenderScene{};
@@ -275,49 +278,90 @@ class Preparer {
     return slotColors_.empty() ? Vector4f(0.5f, 0.5f, 0.5f, 1) : slotColors_.begin()->second;
   }
 
+  // Whether every sample of `src` looks the same: one height, no holes,
+  // no per-sample color.  Such a terrain is drawn as its 4 corners.
+  static bool uniform(const Terrain& src) {
+    std::size_t n = src.heights.size();
+    if (src.vertexColors.size() == n) return false;
+    if (src.textureSplatting) {
+      if (src.texturePrimary.size() == n) return false;
+      for (const TerrainSplatLayer& layer : src.splatLayers)
+        if (layer.enabled && layer.weights.size() == n) return false;
+    }
+    for (double h : src.holes)
+      if (h > 0.5) return false;
+    return std::all_of(src.heights.begin(), src.heights.end(), [&](double h) { return h == src.heights.front(); });
+  }
+
+  // Sample indices drawn along an axis of `n` samples: every `step`-th,
+  // and always the last, so the drawn terrain keeps its extent.
+  static std::vector<int> axisSamples(int n, int step) {
+    std::vector<int> out;
+    for (int i = 0; i < n - 1; i += step) out.push_back(i);
+    out.push_back(n - 1);
+    return out;
+  }
+
   void terrain(const Terrain& src) {
     if (!src.visible || src.hiddenByGroup) return;
+    std::size_t n = std::size_t(src.xSamples) * std::size_t(src.ySamples);
+    if (src.xSamples < 2 || src.ySamples < 2 || src.heights.size() != n) return;  // the view reported it
+    // The grid drawn: all samples up to limits_.maxTerrainVertices, else
+    // every step-th one; a uniform terrain needs only its corners.
+    int step = 1;
+    while (std::uint64_t((src.xSamples - 2) / step + 2) * std::uint64_t((src.ySamples - 2) / step + 2) >
+           std::max<std::uint64_t>(limits_.maxTerrainVertices, 4))
+      ++step;
+    if (uniform(src)) step = std::max(src.xSamples, src.ySamples);
+    std::vector<int> xs = axisSamples(src.xSamples, step), ys = axisSamples(src.ySamples, step);
     TerrainMesh t;
-    t.xSamples = src.xSamples;
-    t.ySamples = src.ySamples;
-    std::size_t n = std::size_t(t.xSamples) * std::size_t(t.ySamples);
-    if (t.xSamples < 2 || t.ySamples < 2 || src.heights.size() != n) return;  // the view reported it
+    t.xSamples = int(xs.size());
+    t.ySamples = int(ys.size());
+    std::size_t drawn = xs.size() * ys.size();
     t.material = materialIndex(src.material);
     t.castShadow = src.castShadow;
-    t.positions.resize(n);
-    t.colors.assign(n, slotColor(src.baseTexture));
-    t.holes.assign(n, false);
+    t.positions.resize(drawn);
+    t.colors.assign(drawn, slotColor(src.baseTexture));
+    t.holes.assign(drawn, false);
     bool splatting = src.textureSplatting;
     const auto& primary = src.texturePrimary;
     const auto& secondary = src.textureSecondary;
     const auto& blend = src.textureBlend;
-    for (int y = 0; y < t.ySamples; ++y)
-      for (int x = 0; x < t.xSamples; ++x) {
-        std::size_t i = std::size_t(y) * t.xSamples + x;
-        t.positions[i] = src.samplePosition(x, y).cast<float>();
+    std::vector<const TerrainSplatLayer*> layers;
+    for (const TerrainSplatLayer& layer : src.splatLayers)
+      if (splatting && layer.enabled && layer.weights.size() == n) layers.push_back(&layer);
+    for (std::size_t yi = 0; yi < ys.size(); ++yi)
+      for (std::size_t xi = 0; xi < xs.size(); ++xi) {
+        int x = xs[xi], y = ys[yi];
+        std::size_t i = std::size_t(y) * std::size_t(src.xSamples) + std::size_t(x);  // in the source grid
+        std::size_t o = yi * xs.size() + xi;                                          // in the drawn grid
+        t.positions[o] = src.samplePosition(x, y).cast<float>();
+        Vector4f& c = t.colors[o];
         if (splatting && primary.size() == n) {
           Vector4f a = slotColor(int(primary[i]));
           Vector4f b = secondary.size() == n ? slotColor(int(secondary[i])) : a;
           float w = blend.size() == n ? std::clamp(float(blend[i]), 0.f, 1.f) : 0.f;
-          t.colors[i] = a * (1 - w) + b * w;
+          c = a * (1 - w) + b * w;
         }
-        if (src.holes.size() == n) t.holes[i] = src.holes[i] > 0.5;
-        t.bounds.extend(t.positions[i].cast<double>());
+        for (const TerrainSplatLayer* layer : layers) {
+          float k = std::clamp(float(layer->weights[i]), 0.f, 1.f) * std::clamp(float(layer->strength), 0.f, 1.f);
+          c = c * (1 - k) + slotColor(layer->slot) * k;
+        }
+        if (src.vertexColors.size() == n)
+          for (int k = 0; k < 3; ++k) c[k] *= float(src.vertexColors[i][k]);
+        if (src.holes.size() == n) t.holes[o] = src.holes[i] > 0.5;
+        t.bounds.extend(t.positions[o].cast<double>());
       }
-    for (const TerrainSplatLayer& layer : src.splatLayers) {
-      if (!splatting || !layer.enabled || layer.weights.size() != n) continue;
-      Vector4f color = slotColor(layer.slot);
-      float strength = std::clamp(float(layer.strength), 0.f, 1.f);
-      for (std::size_t i = 0; i < n; ++i) {
-        float k = std::clamp(float(layer.weights[i]), 0.f, 1.f) * strength;
-        t.colors[i] = t.colors[i] * (1 - k) + color * k;
-      }
-    }
-    if (src.vertexColors.size() == n)
-      for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < 3; ++k) t.colors[i][k] *= float(src.vertexColors[i][k]);
     out_.bounds.extend(t.bounds);
     out_.terrains.push_back(std::move(t));
+  }
+
+  // Indices a record draws: every stride-th (stride < 1 counts as 1), at
+  // most `max` of them when max > 0.
+  static std::size_t drawnCount(std::size_t total, std::int64_t max, std::int64_t stride) {
+    std::size_t s = std::size_t(std::max<std::int64_t>(stride, 1));
+    std::size_t n = (total + s - 1) / s;
+    return max > 0 ? std::min(n, std::size_t(max)) : n;
   }
 
   void instanced(const InstancedVisual& v) {
@@ -333,9 +377,29 @@ class Preparer {
     Vector3d unit = b.shape == Shape::Box || b.shape == Shape::Mesh ? v.size : Vector3d(v.size / 2);
     if (b.shape == Shape::Cylinder) unit.z() = v.size.z();
     Vector4f colorA = toF(v.colorA), colorB = toF(v.colorB);
-    b.worlds.reserve(v.instances.size());
-    b.colors.reserve(v.instances.size());
-    for (std::size_t i = 0; i < v.instances.size(); ++i) {
+    std::size_t stride = std::size_t(std::max<std::int64_t>(v.renderedStride, 1));
+    std::size_t count = drawnCount(v.instances.size(), v.maxRendered, v.renderedStride);
+    // Checked before anything per instance is allocated.
+    if (count > limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances)) {
+      Diagnostic d;
+      d.severity = Severity::Error;
+      d.code = "RS9014";
+      d.line = b.line;
+      d.column = b.line ? 1 : 0;
+      d.message = "instanced_visual draws " + std::to_string(count) + " instances, more than the " +
+                  std::to_string(limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances)) +
+                  " left of --max-instances " + std::to_string(limits_.maxInstances);
+      d.hint = "set maxRenderedInstances or renderedInstanceStride on the record, or raise --max-instances";
+      diags_.push_back(std::move(d));
+      ok_ = false;
+      return;
+    }
+    instancesDrawn_ += count;
+    b.worlds.reserve(count);
+    b.colors.reserve(count);
+    b.instanceBounds.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      std::size_t i = k * stride;
       const Instance& in = v.instances[i];
       Affine3d m = Eigen::Translation3d(in.position) * in.orientation * Eigen::Scaling(in.scale.cwiseProduct(unit));
       b.worlds.push_back(m);
@@ -352,9 +416,12 @@ class Preparer {
     if (!src.enabled || src.hiddenByGroup || src.points.empty()) return;
     PointBatch pc;
     pc.pointSize = float(std::clamp(src.pointSize, 1.0, 64.0));
-    pc.points.reserve(src.points.size());
-    pc.colors.reserve(src.points.size());
-    for (std::size_t i = 0; i < src.points.size(); ++i) {
+    std::size_t stride = std::size_t(std::max<std::int64_t>(src.renderedStride, 1));
+    std::size_t count = drawnCount(src.points.size(), src.maxRendered, src.renderedStride);
+    pc.points.reserve(count);
+    pc.colors.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      std::size_t i = k * stride;
       pc.points.push_back(src.points[i].cast<float>());
       pc.colors.push_back(i < src.colors.size() ? toF(src.colors[i]) : Vector4f(1, 1, 1, 1));
       pc.bounds.extend(src.points[i]);
@@ -366,22 +433,31 @@ class Preparer {
   const Document& doc_;
   const Scene& s_;
   RenderScene& out_;
+  Diagnostics& diags_;
+  const DrawLimits& limits_;
+  std::uint64_t instancesDrawn_ = 0;
+  bool ok_ = true;
   std::unordered_map<std::string, int> materialByRef_;
   std::map<int, Vector4f> slotColors_;
 };
 
 }  // namespace
 
-void prepareScene(const Document& doc, const Scene& scene, RenderScene& out) { Preparer(doc, scene, out).run(); }
+bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
+                  const DrawLimits& limits) {
+  Preparer p(doc, scene, out, diags, limits);
+  p.run();
+  return p.ok();
+}
 
-bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags) {
+bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
+                      const DrawLimits& limits) {
   Scene scene;
   bool ok = buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
   ok = checkScene(doc, scene, SceneCheckOptions{}, diags) && ok;
-  prepareScene(doc, scene, out);
-  return ok;
+  return prepareScene(doc, scene, out, diags, limits) && ok;
 }
 
 }  // namespace rscene::render

@@ -128,14 +128,31 @@ struct RenderScene {
   bool hasGround = false;
 };
 
+// How much the renderer prepares at most, whatever the file declares
+// (README, "Resource limits: rscene-render").  A record's own
+// maxRenderedInstances / renderedInstanceStride / maxRenderedPoints /
+// renderedPointStride are honoured first.
+struct DrawLimits {
+  // Instances drawn, all instanced_visual records together; past it the
+  // record that crosses it is an error (RS9014).  ~1 KB each in all.
+  std::uint64_t maxInstances = 1'000'000;
+  // Vertices of one drawn terrain grid: a larger one is drawn decimated
+  // (every k-th sample, the last row and column kept), a uniform flat one
+  // as its 4 corners.  Not an error: the scene is drawn at bounded cost.
+  std::uint64_t maxTerrainVertices = std::uint64_t{1} << 20;
+};
+
 // Prepares `out` from a scene view built from `doc` (the Document gives
-// record lines for messages only).  Adds no diagnostics of its own.
-void prepareScene(const Document& doc, const Scene& scene, RenderScene& out);
+// record lines for messages).  False with RS9014 when the instances to draw
+// exceed limits.maxInstances; the batch that crosses it is left out.
+bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
+                  const DrawLimits& limits = {});
 
 // buildScene(), checkScene() (scene/check.hpp: what validate and sim
 // refuse too) then prepareScene(); false when either reported an error (a
 // value that does not parse, a malformed terrain, a zero-size body ...).
 // `out` is filled as far as possible either way.
-bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags);
+bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
+                      const DrawLimits& limits = {});
 
 }  // namespace rscene::render

@@ -88,11 +88,19 @@ struct Batch {
   GLsizei count = 0, inView = 0;  // the first inView instances are inside the camera's frustum
 };
 
+// What a texture or background image may cost: --max-texture-pixels
+// (lib/asset refuses a larger declared size before decoding anything).
+asset::AssetLimits assetLimits(const RenderOptions& o) {
+  asset::AssetLimits l;
+  l.image.maxPixels = o.maxTexturePixels;
+  return l;
+}
+
 // Owns every GL object of one render; released in the destructor.
 class Frame {
  public:
   Frame(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Diagnostics& diags)
-      : scene_(scene), opt_(options), diags_(diags) {
+      : scene_(scene), opt_(options), diags_(diags), assets_(diskFileSystem(), assetLimits(options)) {
     aspect_ = double(options.width) / double(options.height);
     viewProj_ = projectionMatrix(camera, aspect_) * viewMatrix(camera);
     camera_ = camera;

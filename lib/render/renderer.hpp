@@ -2,6 +2,7 @@
 // EGL context (gl_context.hpp): shadow map of the main light, an MSAA HDR
 // pass, then background, exposure, tone mapping and gamma.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "core/diagnostic.hpp"
@@ -15,7 +16,16 @@ struct RenderOptions {
   int samples = 4;            // clamped to what the driver offers
   bool transparent = false;   // alpha 0 where no geometry covers a pixel
   bool allowMissingAssets = false;  // placeholder box + warning instead of an error
+  // Largest texture or HDR background decoded, in pixels; a larger one is
+  // not drawn (RS9002 / RS9003 warnings).  8192 x 8192: 256 MiB as RGBA8.
+  std::uint64_t maxTexturePixels = std::uint64_t{1} << 26;
 };
+
+// The image size rscene-render allows by default (--max-pixels): 4096 x
+// 4096, about 1 GiB of framebuffers with 4x MSAA (README, "Resource
+// limits: rscene-render").  Each side is at most kMaxImageSide.
+inline constexpr std::uint64_t kDefaultMaxPixels = std::uint64_t{1} << 24;
+inline constexpr int kMaxImageSide = 16384;
 
 struct RenderTimings {
   double uploadSeconds = 0;  // meshes, textures, instance buffers

@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <unordered_map>
 
@@ -312,6 +313,15 @@ class Builder {
     s_.lights.push_back(std::move(l));
   }
 
+  // A camera's image size as an int; a value past int range is an error at
+  // the field (RS2003) rather than a silent wrap (4294967297 would be 1).
+  static int pixelCount(const RecordReader& r, const char* name) {
+    std::int64_t v = r.integer(name);
+    if (v >= 0 && v <= std::numeric_limits<int>::max()) return static_cast<int>(v);
+    r.error(name, "RS2003", std::string(name) + " is " + std::to_string(v) + ", outside 0..2147483647");
+    return 0;
+  }
+
   void readCamera(const RecordReader& r, int idx) {
     Camera c;
     c.recordIndex = idx;
@@ -322,8 +332,8 @@ class Builder {
     c.horizontalFov = r.number("horizontalFov");
     c.nearPlane = r.number("nearPlane");
     c.farPlane = r.number("farPlane");
-    c.width = static_cast<int>(r.integer("width"));
-    c.height = static_cast<int>(r.integer("height"));
+    c.width = pixelCount(r, "width");
+    c.height = pixelCount(r, "height");
     c.renderMode = r.name("renderMode");
     c.projection = r.name("projection");
     c.orthoScale = r.number("orthoScale");
@@ -674,6 +684,8 @@ class Builder {
       }
     }
     r.numbers("colorWeights", v.colorWeights);
+    v.maxRendered = r.integer("maxRenderedInstances", 0);
+    v.renderedStride = r.integer("renderedInstanceStride", 1);
     v.castShadows = r.flag("castShadows");
     v.grassPatch = r.flag("grassPatch");
     v.enabled = r.flag("enabled");
@@ -705,6 +717,8 @@ class Builder {
         r.error("colors", scene_code::kBadValue, "colors needs one color per point or none");
     }
     p.pointSize = r.number("pointSize");
+    p.maxRendered = r.integer("maxRenderedPoints", 0);
+    p.renderedStride = r.integer("renderedPointStride", 1);
     p.enabled = r.flag("enabled");
     p.parentId = r.str("parentGroupId");
     parentOf_[idx] = p.parentId;

@@ -391,6 +391,9 @@ struct InstancedVisual {
   Eigen::Vector4d colorA{Eigen::Vector4d::Zero()}, colorB{Eigen::Vector4d::Zero()};
   std::vector<Instance> instances;
   std::vector<double> colorWeights;  // one per instance or empty
+  // How much a renderer draws: every stride-th instance, at most max of
+  // them (0: no limit of the record's own); the data keeps them all.
+  std::int64_t maxRendered = 0, renderedStride = 1;
   bool castShadows{}, enabled{}, grassPatch{};
   bool hiddenByGroup = false;
 };
@@ -401,6 +404,7 @@ struct PointCloud {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector4d> colors;  // one per point or empty
   double pointSize{};
+  std::int64_t maxRendered = 0, renderedStride = 1;  // as InstancedVisual's
   bool enabled{};
   bool hiddenByGroup = false;
 };
