@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <iostream>
+#include <vector>
 
 #include "core/report.hpp"
 #include "rscene-validate/output.hpp"
@@ -15,7 +16,11 @@ class TextReporter : public Reporter {
  public:
   explicit TextReporter(bool color) : color_(color) {}
   void file(const std::string& name, std::string_view text, const Diagnostics& shown, const FileCounts&) override {
-    for (const Diagnostic& d : shown) std::cout << formatDiagnostic(d, name, lineOf(text, d.line), color_);
+    std::vector<std::uint32_t> lines;
+    lines.reserve(shown.size());
+    for (const Diagnostic& d : shown) lines.push_back(d.line);
+    SourceLines source(text, std::move(lines));  // one pass over the text for all of them
+    for (const Diagnostic& d : shown) std::cout << formatDiagnostic(d, name, source(d.line), color_);
   }
   bool finish(const Totals& totals) override {
     std::cout.flush();

@@ -32,6 +32,45 @@ std::string_view lineOf(std::string_view text, std::uint32_t line) {
   return s;
 }
 
+namespace {
+
+// `s` without a final '\r'.
+std::string_view chopCr(std::string_view s) {
+  if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
+  return s;
+}
+
+}  // namespace
+
+SourceLines::SourceLines(std::string_view text, std::vector<std::uint32_t> lines) : lines_(std::move(lines)) {
+  std::sort(lines_.begin(), lines_.end());
+  lines_.erase(std::unique(lines_.begin(), lines_.end()), lines_.end());
+  if (!lines_.empty() && lines_.front() == 0) lines_.erase(lines_.begin());  // 0: the whole file, no line
+  text_.reserve(lines_.size());
+  std::uint32_t line = 1;
+  std::size_t pos = 0;
+  for (std::uint32_t want : lines_) {
+    // Skip to the start of line `want`, one newline at a time (memchr-fast).
+    while (line < want && pos != std::string_view::npos) {
+      pos = text.find('\n', pos);
+      if (pos != std::string_view::npos) ++pos;
+      ++line;
+    }
+    if (pos == std::string_view::npos || pos > text.size()) {
+      text_.emplace_back();
+      continue;
+    }
+    std::size_t end = text.find('\n', pos);
+    text_.push_back(chopCr(text.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos)));
+  }
+}
+
+std::string_view SourceLines::operator()(std::uint32_t line) const {
+  auto it = std::lower_bound(lines_.begin(), lines_.end(), line);
+  if (it == lines_.end() || *it != line) return {};
+  return text_[static_cast<std::size_t>(it - lines_.begin())];
+}
+
 std::string formatDiagnostic(const Diagnostic& d, std::string_view file, std::string_view sourceLine, bool color) {
   std::string out;
   const char* bold = color ? "\033[1m" : "";
