@@ -61,19 +61,23 @@ struct Run {
 
   // Counts every wanted finding as it is found and keeps only those
   // --max-issues lets through, so memory does not grow with the count.
+  // A streaming reporter prints them at once instead.
   struct Keep : DiagnosticSink {
     Run& run;
+    const std::string& name;
+    const Document& doc;  // its buffer holds the text while the check runs
     validate::FileCounts counts;
     Diagnostics shown;
-    explicit Keep(Run& r) : run(r) {}
+    Keep(Run& r, const std::string& n, const Document& d) : run(r), name(n), doc(d) {}
     void add(Diagnostic d) override {
       if (!run.wanted(d)) return;
       bool error = d.severity == Severity::Error;
       (error ? counts.errors : counts.warnings)++;
       if (error || run.opt.strict) run.failed = true;
       if (run.opt.maxIssues == 0 || run.totals.shown < run.opt.maxIssues) {
-        shown.push_back(std::move(d));
         ++run.totals.shown;
+        if (run.reporter.streams()) run.reporter.finding(name, doc.buffer(), d);
+        else shown.push_back(std::move(d));
       }
     }
   };
@@ -87,7 +91,7 @@ struct Run {
     co.checkFiles = opt.checkFiles;
     co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
     Document doc;
-    Keep keep(*this);
+    Keep keep(*this, in.display, doc);
     validateScene(std::move(in.text), co, doc, keep);
     totals.errors += keep.counts.errors;
     totals.warnings += keep.counts.warnings;

@@ -42,33 +42,22 @@ std::string_view chopCr(std::string_view s) {
 
 }  // namespace
 
-SourceLines::SourceLines(std::string_view text, std::vector<std::uint32_t> lines) : lines_(std::move(lines)) {
-  std::sort(lines_.begin(), lines_.end());
-  lines_.erase(std::unique(lines_.begin(), lines_.end()), lines_.end());
-  if (!lines_.empty() && lines_.front() == 0) lines_.erase(lines_.begin());  // 0: the whole file, no line
-  text_.reserve(lines_.size());
-  std::uint32_t line = 1;
-  std::size_t pos = 0;
-  for (std::uint32_t want : lines_) {
-    // Skip to the start of line `want`, one newline at a time (memchr-fast).
-    while (line < want && pos != std::string_view::npos) {
-      pos = text.find('\n', pos);
-      if (pos != std::string_view::npos) ++pos;
-      ++line;
-    }
-    if (pos == std::string_view::npos || pos > text.size()) {
-      text_.emplace_back();
-      continue;
-    }
-    std::size_t end = text.find('\n', pos);
-    text_.push_back(chopCr(text.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos)));
+std::string_view LineCursor::operator()(std::uint32_t line) {
+  if (line == 0) return {};
+  while (line_ < line) {
+    std::size_t nl = text_.find('\n', pos_);
+    if (nl == std::string_view::npos) return {};  // past the end; the cursor stays on the last line
+    pos_ = nl + 1;
+    ++line_;
   }
-}
-
-std::string_view SourceLines::operator()(std::uint32_t line) const {
-  auto it = std::lower_bound(lines_.begin(), lines_.end(), line);
-  if (it == lines_.end() || *it != line) return {};
-  return text_[static_cast<std::size_t>(it - lines_.begin())];
+  while (line_ > line) {
+    // pos_ - 1 is the newline ending the line before; its start follows the newline before that.
+    std::size_t nl = pos_ >= 2 ? text_.rfind('\n', pos_ - 2) : std::string_view::npos;
+    pos_ = nl == std::string_view::npos ? 0 : nl + 1;
+    --line_;
+  }
+  std::size_t end = text_.find('\n', pos_);
+  return chopCr(text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_));
 }
 
 std::string formatDiagnostic(const Diagnostic& d, std::string_view file, std::string_view sourceLine, bool color) {

@@ -4,7 +4,6 @@
 #pragma once
 #include <string>
 #include <string_view>
-#include <vector>
 
 #include "core/diagnostic.hpp"
 
@@ -16,19 +15,20 @@ std::string formatDiagnostic(const Diagnostic& d, std::string_view file, std::st
 // Scans from the start: for one line, not for one per finding.
 std::string_view lineOf(std::string_view text, std::uint32_t line);
 
-// The source lines a set of findings needs, found in one pass over `text`
-// and kept as views (memory grows with the lines asked for, not the file):
-// looking each up with lineOf() made printing N findings O(N * size).
-class SourceLines {
+// The lines under findings printed as they come: a cursor that walks from
+// the line it last found, forward or back, so findings in line order cost
+// one pass over the text in all (lineOf() per finding made printing N of
+// them O(N * size)), and nothing is kept.
+class LineCursor {
  public:
-  SourceLines(std::string_view text, std::vector<std::uint32_t> lines);
-  // As lineOf(text, line) for a line passed to the constructor; empty for
-  // any other.
-  std::string_view operator()(std::uint32_t line) const;
+  explicit LineCursor(std::string_view text) : text_(text) {}
+  // As lineOf(text, line).
+  std::string_view operator()(std::uint32_t line);
 
  private:
-  std::vector<std::uint32_t> lines_;  // sorted, unique
-  std::vector<std::string_view> text_;  // per entry of lines_
+  std::string_view text_;
+  std::uint32_t line_ = 1;  // the line that starts at pos_
+  std::size_t pos_ = 0;
 };
 
 }  // namespace rscene
