@@ -62,9 +62,10 @@ TEST(CheckStream, ASinkSeesTheFindingsOfTheVectorApiInTheirOrder) {
   }
 }
 
-TEST(CheckStream, CountsAMillionRepeatedTimeStepsWithoutKeepingThem) {
-  // Issue 10's reproducer, scaled: each repeat is an RS3016 warning.
-  const std::size_t n = 1000000;
+TEST(CheckStream, CountsRepeatedTimeStepsWithoutKeepingThem) {
+  // Issue 10's reproducer, scaled (the bats test runs a million under
+  // ulimit -v; a sanitizer build runs this one): each repeat is RS3016.
+  const std::size_t n = 200000;
   LoadResult loaded = parse(repeated("time_step 0.0025\n", n));
   ASSERT_TRUE(loaded.ok());
   CountSink sink;
