@@ -254,3 +254,55 @@ setup() {
   run -1 "$V" --check-files m.rscene
   [ "${lines[0]}" = "m.rscene:2:90: error: file 'folder' is a directory, not a file (resolved to 'folder') [RS5001]" ]
 }
+
+# Issue 10's reproducers, scaled to run in seconds: each under a time and a
+# virtual-memory bound the earlier validator broke (every finding was kept,
+# ~560 B each, and each one's source line was found by scanning from the
+# top).  A million findings held took ~570 MB; streamed, ~130 MB.
+repeated_time_steps() {
+  { printf 'raisim_engine_scene 2\n'; yes 'time_step 0.0025' | head -n "$1"; } > ts.rscene
+}
+
+@test "a million repeated time_steps with --max-issues: bounded memory, exact counts" {
+  repeated_time_steps 1000000
+  run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --max-issues 10 ts.rscene"
+  [ "${#lines[@]}" -eq 40 ]
+  [ "${lines[0]}" = "ts.rscene:3:1: warning: repeated time_step replaces the one on line 2 [RS3016]" ]
+  [ "${lines[36]}" = "ts.rscene:12:1: warning: repeated time_step replaces the one on line 11 [RS3016]" ]
+  [ "$stderr" = "999999 warnings in 1 file (999989 not shown)" ]
+}
+
+@test "a million repeated time_steps, every one shown: streamed, bounded memory, linear time" {
+  repeated_time_steps 1000000
+  run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' ts.rscene | tail -n 4"
+  [ "${lines[0]}" = "ts.rscene:1000001:1: warning: repeated time_step replaces the one on line 1000000 [RS3016]" ]
+  [ "${lines[1]}" = "  time_step 0.0025" ]
+  [ "$stderr" = "999999 warnings in 1 file" ]
+  run -1 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --strict --only RS3016 --max-issues 1 ts.rscene"
+  [ "$stderr" = "999999 warnings in 1 file (999998 not shown)" ]
+}
+
+@test "yes x | head -100000 after a header: each line's finding printed in linear time" {
+  { printf 'raisim_engine_scene 2\n'; yes x | head -n 100000; } > x.rscene
+  # Quadratic line lookup took 23 s here; linear takes well under a second.
+  run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 10 '$V' x.rscene"
+  [ "${#lines[@]}" -eq 400000 ]
+  [ "${lines[0]}" = "x.rscene:2:1: warning: unknown record tag 'x' [RS3001]" ]
+  [ "${lines[399996]}" = "x.rscene:100001:1: warning: unknown record tag 'x' [RS3001]" ]
+  [ "${lines[399997]}" = "  x" ]
+  [ "$stderr" = "100000 warnings in 1 file" ]
+}
+
+@test "JSON and SARIF with --max-issues on a million findings: valid, capped, counted" {
+  repeated_time_steps 1000000
+  run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --format json --max-issues 3 ts.rscene"
+  echo "$output" > out.json
+  run -0 python3 -c 'import json; d = json.load(open("out.json")); f = d["files"][0]
+print(len(f["findings"]), f["warnings"], d["counts"]["warnings"], d["truncated"], f["findings"][2]["line"])'
+  [ "$output" = "3 999999 999999 True 5" ]
+  run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --format sarif --max-issues 3 ts.rscene"
+  echo "$output" > out.sarif
+  run -0 python3 -c 'import json; r = json.load(open("out.sarif"))["runs"][0]["results"]
+print(len(r), r[0]["ruleId"], r[0]["locations"][0]["physicalLocation"]["region"]["startLine"])'
+  [ "$output" = "3 RS3016 3" ]
+}

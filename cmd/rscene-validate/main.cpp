@@ -59,6 +59,29 @@ struct Run {
     return only.empty() || only.count(d.code);
   }
 
+  // Counts every wanted finding as it is found and keeps only those
+  // --max-issues lets through, so memory does not grow with the count.
+  // A streaming reporter prints them at once instead.
+  struct Keep : DiagnosticSink {
+    Run& run;
+    const std::string& name;
+    const Document& doc;  // its buffer holds the text while the check runs
+    validate::FileCounts counts;
+    Diagnostics shown;
+    Keep(Run& r, const std::string& n, const Document& d) : run(r), name(n), doc(d) {}
+    void add(Diagnostic d) override {
+      if (!run.wanted(d)) return;
+      bool error = d.severity == Severity::Error;
+      (error ? counts.errors : counts.warnings)++;
+      if (error || run.opt.strict) run.failed = true;
+      if (run.opt.maxIssues == 0 || run.totals.shown < run.opt.maxIssues) {
+        ++run.totals.shown;
+        if (run.reporter.streams()) run.reporter.finding(name, doc.buffer(), d);
+        else shown.push_back(std::move(d));
+      }
+    }
+  };
+
   // Checks one operand; false on an I/O error.
   bool file(const std::string& operand) {
     cli::Input in;
@@ -68,23 +91,12 @@ struct Run {
     co.checkFiles = opt.checkFiles;
     co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
     Document doc;
-    Diagnostics all = validateScene(std::move(in.text), co, doc);
-    Diagnostics shown;
-    validate::FileCounts counts;
-    for (Diagnostic& d : all) {
-      if (!wanted(d)) continue;
-      bool error = d.severity == Severity::Error;
-      (error ? counts.errors : counts.warnings)++;
-      if (error || opt.strict) failed = true;
-      if (opt.maxIssues == 0 || totals.shown < opt.maxIssues) {
-        shown.push_back(std::move(d));
-        ++totals.shown;
-      }
-    }
-    totals.errors += counts.errors;
-    totals.warnings += counts.warnings;
+    Keep keep(*this, in.display, doc);
+    validateScene(std::move(in.text), co, doc, keep);
+    totals.errors += keep.counts.errors;
+    totals.warnings += keep.counts.warnings;
     ++totals.files;
-    reporter.file(in.display, doc.buffer(), shown, counts);
+    reporter.file(in.display, doc.buffer(), keep.shown, keep.counts);
     return true;
   }
 };

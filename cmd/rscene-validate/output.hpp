@@ -29,6 +29,12 @@ class Reporter {
   // `text` is the file's source, for the lines under messages.
   virtual void file(const std::string& name, std::string_view text, const Diagnostics& shown,
                     const FileCounts& counts) = 0;
+  // A reporter that streams is handed each finding to show as it is found,
+  // instead of in file()'s `shown` (then empty): the text output needs no
+  // memory per finding.  JSON and SARIF write counts before findings, so
+  // they gather the shown ones (at most --max-issues).
+  virtual bool streams() const { return false; }
+  virtual void finding(const std::string& /*name*/, std::string_view /*text*/, const Diagnostic& /*d*/) {}
   // Writes what is left; false when standard output failed.
   virtual bool finish(const Totals& totals) = 0;
 };

@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "core/report.hpp"
 #include "rscene-validate/output.hpp"
@@ -14,8 +15,18 @@ std::string plural(std::size_t n, const char* word) {
 class TextReporter : public Reporter {
  public:
   explicit TextReporter(bool color) : color_(color) {}
-  void file(const std::string& name, std::string_view text, const Diagnostics& shown, const FileCounts&) override {
-    for (const Diagnostic& d : shown) std::cout << formatDiagnostic(d, name, lineOf(text, d.line), color_);
+  bool streams() const override { return true; }
+  void finding(const std::string& name, std::string_view text, const Diagnostic& d) override {
+    // A new file's text: a new cursor (the text lives until file() is called).
+    if (!cursor_ || text.data() != text_.data() || text.size() != text_.size()) {
+      text_ = text;
+      cursor_.emplace(text);
+    }
+    std::cout << formatDiagnostic(d, name, (*cursor_)(d.line), color_);
+  }
+  void file(const std::string&, std::string_view, const Diagnostics& shown, const FileCounts&) override {
+    (void)shown;  // empty: findings were printed as they came
+    cursor_.reset();
   }
   bool finish(const Totals& totals) override {
     std::cout.flush();
@@ -25,6 +36,8 @@ class TextReporter : public Reporter {
 
  private:
   bool color_;
+  std::string_view text_;
+  std::optional<LineCursor> cursor_;
 };
 
 }  // namespace

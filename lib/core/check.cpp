@@ -269,26 +269,40 @@ const Record* Context::terrain(std::string_view ref) const {
 
 }  // namespace checks
 
-Diagnostics check(const Document& doc, const CheckOptions& options) {
+void check(const Document& doc, const CheckOptions& options, DiagnosticSink& sink) {
+  // The passes report into `out`, which is handed on and emptied after each
+  // record: a file of ten million bad lines never holds its findings at once.
   Diagnostics out;
+  auto flush = [&] {
+    for (Diagnostic& d : out) sink.add(std::move(d));
+    out.clear();
+  };
   checks::Context ctx(doc, options, out);
   checks::buildIndex(ctx);
+  flush();
   for (std::size_t i = 0; i < doc.records.size(); ++i) {
     const Record& r = doc.records[i];
-    std::size_t before = out.size();
     if (r.kind) ctx.resolve(r);
     checks::checkTypes(ctx, r);
-    if (!r.kind) continue;
-    checks::checkRefs(ctx, i);
-    checks::checkSizes(ctx, r);
-    if (options.checkFiles) checks::checkFiles(ctx, r);
-    if (options.profile == Profile::RaiSim) checks::checkRaisim(ctx, i);
-    // Findings of one record in column order, so they read left to right.
-    std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(before), out.end(),
-                     [](const Diagnostic& a, const Diagnostic& b) { return a.column < b.column; });
+    if (r.kind) {
+      checks::checkRefs(ctx, i);
+      checks::checkSizes(ctx, r);
+      if (options.checkFiles) checks::checkFiles(ctx, r);
+      if (options.profile == Profile::RaiSim) checks::checkRaisim(ctx, i);
+      // Findings of one record in column order, so they read left to right.
+      std::stable_sort(out.begin(), out.end(),
+                       [](const Diagnostic& a, const Diagnostic& b) { return a.column < b.column; });
+    }
+    flush();
   }
   checks::checkParentCycles(ctx);
-  return out;
+  flush();
+}
+
+Diagnostics check(const Document& doc, const CheckOptions& options) {
+  CollectDiagnostics all;
+  check(doc, options, all);
+  return std::move(all.all);
 }
 
 Diagnostics validateText(std::string text, const CheckOptions& options, Document& doc) {

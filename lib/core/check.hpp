@@ -24,8 +24,27 @@ struct CheckOptions {
   FileExists fileExists = fileExistsOnDisk;
 };
 
+// Receives findings one at a time, in the order they are reported, so a
+// caller can count every finding but keep only some: rscene-validate
+// --max-issues keeps memory bounded on a file with millions of findings.
+class DiagnosticSink {
+ public:
+  virtual ~DiagnosticSink() = default;
+  virtual void add(Diagnostic d) = 0;
+};
+
+// A sink that keeps every finding, for callers that want them all.
+class CollectDiagnostics : public DiagnosticSink {
+ public:
+  void add(Diagnostic d) override { all.push_back(std::move(d)); }
+  Diagnostics all;
+};
+
 // Checks a loaded document.  Findings come in record order.
 Diagnostics check(const Document& doc, const CheckOptions& options);
+// The same findings in the same order, handed to `sink` as each record is
+// done: memory holds one record's findings, not the file's.
+void check(const Document& doc, const CheckOptions& options, DiagnosticSink& sink);
 
 // Loads `text` and checks it: the loader's own errors (RS1xxx) are findings
 // too, and stop the check of that text.  `doc` receives the parsed scene

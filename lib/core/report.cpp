@@ -32,6 +32,34 @@ std::string_view lineOf(std::string_view text, std::uint32_t line) {
   return s;
 }
 
+namespace {
+
+// `s` without a final '\r'.
+std::string_view chopCr(std::string_view s) {
+  if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
+  return s;
+}
+
+}  // namespace
+
+std::string_view LineCursor::operator()(std::uint32_t line) {
+  if (line == 0) return {};
+  while (line_ < line) {
+    std::size_t nl = text_.find('\n', pos_);
+    if (nl == std::string_view::npos) return {};  // past the end; the cursor stays on the last line
+    pos_ = nl + 1;
+    ++line_;
+  }
+  while (line_ > line) {
+    // pos_ - 1 is the newline ending the line before; its start follows the newline before that.
+    std::size_t nl = pos_ >= 2 ? text_.rfind('\n', pos_ - 2) : std::string_view::npos;
+    pos_ = nl == std::string_view::npos ? 0 : nl + 1;
+    --line_;
+  }
+  std::size_t end = text_.find('\n', pos_);
+  return chopCr(text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_));
+}
+
 std::string formatDiagnostic(const Diagnostic& d, std::string_view file, std::string_view sourceLine, bool color) {
   std::string out;
   const char* bold = color ? "\033[1m" : "";

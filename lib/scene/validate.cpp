@@ -1,7 +1,8 @@
 #include "scene/validate.hpp"
 
 #include <algorithm>
-#include <set>
+#include <map>
+#include <string_view>
 #include <tuple>
 
 #include "core/loader.hpp"
@@ -11,57 +12,131 @@
 namespace rscene {
 namespace {
 
-// Merges `extra` into `out` by line and column (core's findings come in
-// record order, each record's in column order; ties keep core's first),
-// leaving out one whose code `out` already has on that line.  Linear after
-// sorting `extra`, so a scene with a million findings stays fast.
-void merge(Diagnostics& out, Diagnostics extra) {
-  if (extra.empty()) return;
-  std::set<std::pair<std::uint32_t, std::string>> seen;  // copies: `out` is moved from below
-  for (const Diagnostic& d : out) seen.emplace(d.line, d.code);
-  std::stable_sort(extra.begin(), extra.end(), [](const Diagnostic& a, const Diagnostic& b) {
-    return std::tie(a.line, a.column) < std::tie(b.line, b.column);
-  });
-  Diagnostics merged;
-  merged.reserve(out.size() + extra.size());
-  std::size_t i = 0;
-  auto before = [](const Diagnostic& o, const Diagnostic& d) {
-    return o.line < d.line || (o.line == d.line && o.column <= d.column);
-  };
-  for (Diagnostic& d : extra) {
-    if (seen.count({d.line, d.code})) continue;
-    while (i < out.size() && before(out[i], d)) merged.push_back(std::move(out[i++]));
-    merged.push_back(std::move(d));
+// The scene model's findings, sorted by line and column, with the ones that
+// repeat a core finding (same line and code) to be dropped.
+struct ModelFindings {
+  Diagnostics list;
+  std::vector<bool> dropped;
+  std::multimap<std::pair<std::uint32_t, std::string_view>, std::size_t> byLineCode;
+
+  explicit ModelFindings(Diagnostics ds) : list(std::move(ds)), dropped(list.size(), false) {
+    std::stable_sort(list.begin(), list.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return std::tie(a.line, a.column) < std::tie(b.line, b.column);
+    });
+    for (std::size_t i = 0; i < list.size(); ++i) byLineCode.emplace(std::pair{list[i].line, std::string_view(list[i].code)}, i);
   }
-  while (i < out.size()) merged.push_back(std::move(out[i++]));
-  out = std::move(merged);
-}
+  void dropRepeatsOf(const Diagnostic& core) {
+    auto [from, to] = byLineCode.equal_range({core.line, std::string_view(core.code)});
+    for (auto it = from; it != to; ++it) dropped[it->second] = true;
+  }
+};
+
+// Adds the loader's line-continuation hint to each core finding on its way.
+class HintSink : public DiagnosticSink {
+ public:
+  HintSink(const std::vector<std::uint32_t>& continued, DiagnosticSink& next) : continued_(continued), next_(next) {}
+  void add(Diagnostic d) override {
+    if (!continued_.empty()) {
+      Diagnostics one{std::move(d)};
+      hintContinuations(continued_, one);
+      d = std::move(one.front());
+    }
+    next_.add(std::move(d));
+  }
+
+ private:
+  const std::vector<std::uint32_t>& continued_;
+  DiagnosticSink& next_;
+};
+
+// First pass when the model found something: which of its findings a core
+// finding repeats.  Keeps nothing.
+class MarkRepeats : public DiagnosticSink {
+ public:
+  explicit MarkRepeats(ModelFindings& model) : model_(model) {}
+  void add(Diagnostic d) override { model_.dropRepeatsOf(d); }
+
+ private:
+  ModelFindings& model_;
+};
+
+// Merges the model's findings into the stream of core findings by line and
+// column (ties keep core's first), as they pass: a model finding goes out
+// just before the first core finding that is not before it.
+class MergeSink : public DiagnosticSink {
+ public:
+  MergeSink(ModelFindings& model, DiagnosticSink& next) : model_(model), next_(next) {}
+  void add(Diagnostic o) override {
+    while (next_model() && !before(o, model_.list[i_])) next_.add(std::move(model_.list[i_++]));
+    next_.add(std::move(o));
+  }
+  // Sends the model's findings after the last core finding.
+  void finish() {
+    while (next_model()) next_.add(std::move(model_.list[i_++]));
+  }
+
+ private:
+  static bool before(const Diagnostic& o, const Diagnostic& d) {
+    return o.line < d.line || (o.line == d.line && o.column <= d.column);
+  }
+  // Skips dropped findings; whether one is left.
+  bool next_model() {
+    while (i_ < model_.list.size() && model_.dropped[i_]) ++i_;
+    return i_ < model_.list.size();
+  }
+  ModelFindings& model_;
+  DiagnosticSink& next_;
+  std::size_t i_ = 0;
+};
 
 }  // namespace
 
-Diagnostics validateScene(std::string text, const CheckOptions& options, Document& doc) {
+void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink) {
   LoadResult loaded = parse(std::move(text));
   doc = std::move(loaded.document);
-  if (!loaded.ok()) return std::move(loaded.diagnostics);
-  Diagnostics out = std::move(loaded.diagnostics);
-  Diagnostics found = check(doc, options);
-  hintContinuations(loaded.continuedLines, found);
-  out.insert(out.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
+  if (!loaded.ok()) {
+    for (Diagnostic& d : loaded.diagnostics) sink.add(std::move(d));
+    return;
+  }
 
+  // The scene model's checks first: their findings are few (bodies only)
+  // and must be known to merge them into core's as those stream past.
   SceneOptions so;
   so.sceneDir = options.sceneDir;
   so.exists = options.fileExists;
   so.bodiesOnly = true;  // the rest is lib/core's to check; keeps validate fast on large scenes
   Scene scene;
-  Diagnostics model;
-  buildScene(doc, so, scene, model);
+  Diagnostics found;
+  buildScene(doc, so, scene, found);
   SceneCheckOptions sc;
   sc.checkFiles = options.checkFiles;
   sc.exists = options.fileExists;
-  checkScene(doc, scene, sc, model);
-  hintContinuations(loaded.continuedLines, model);
-  merge(out, std::move(model));
-  return out;
+  checkScene(doc, scene, sc, found);
+  hintContinuations(loaded.continuedLines, found);
+  ModelFindings model(std::move(found));
+
+  // A model finding is dropped when any core finding repeats it, even one
+  // that streams past after it.  Knowing that takes a pass over core's
+  // findings before the one that reports: checking twice (only when the
+  // model found something) costs time, holding core's findings would cost
+  // memory without bound.
+  if (!model.list.empty()) {
+    MarkRepeats marks(model);
+    for (const Diagnostic& d : loaded.diagnostics) marks.add(d);
+    check(doc, options, marks);
+  }
+  MergeSink merge(model, sink);
+  for (Diagnostic& d : loaded.diagnostics) merge.add(std::move(d));
+  loaded.diagnostics.clear();
+  HintSink hinted(loaded.continuedLines, merge);
+  check(doc, options, hinted);
+  merge.finish();
+}
+
+Diagnostics validateScene(std::string text, const CheckOptions& options, Document& doc) {
+  CollectDiagnostics all;
+  validateScene(std::move(text), options, doc, all);
+  return std::move(all.all);
 }
 
 }  // namespace rscene

@@ -16,5 +16,9 @@ namespace rscene {
 // repeats a core finding (same line and code) is dropped, so a condition is
 // reported once.  `doc` receives the parsed scene.
 Diagnostics validateScene(std::string text, const CheckOptions& options, Document& doc);
+// The same findings in the same order, handed to `sink` one at a time: the
+// core's are not held, so a caller that keeps few holds little.  `doc`
+// holds the text from the first call of the sink on, for source lines.
+void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink);
 
 }  // namespace rscene
