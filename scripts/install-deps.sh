@@ -9,7 +9,7 @@ build-essential cmake pkg-config git
 libcli11-dev nlohmann-json3-dev libeigen3-dev
 libgtest-dev libgmock-dev bats
 clang libclang-rt-14-dev libfuzzer-14-dev
-mandoc jq time parallel libdtl-dev
+mandoc jq time parallel libdtl-dev python3-yaml
 libbullet-dev libassimp-dev
 libpng-dev libjpeg-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
 "

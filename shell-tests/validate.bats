@@ -297,12 +297,10 @@ repeated_time_steps() {
   repeated_time_steps 1000000
   run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --format json --max-issues 3 ts.rscene"
   echo "$output" > out.json
-  run -0 python3 -c 'import json; d = json.load(open("out.json")); f = d["files"][0]
-print(len(f["findings"]), f["warnings"], d["counts"]["warnings"], d["truncated"], f["findings"][2]["line"])'
-  [ "$output" = "3 999999 999999 True 5" ]
+  run -0 jq -r '"\(.files[0].findings | length) \(.files[0].warnings) \(.counts.warnings) \(.truncated) \(.files[0].findings[2].line)"' out.json
+  [ "$output" = "3 999999 999999 true 5" ]
   run -0 --separate-stderr bash -c "ulimit -v 350000; timeout 60 '$V' --format sarif --max-issues 3 ts.rscene"
   echo "$output" > out.sarif
-  run -0 python3 -c 'import json; r = json.load(open("out.sarif"))["runs"][0]["results"]
-print(len(r), r[0]["ruleId"], r[0]["locations"][0]["physicalLocation"]["region"]["startLine"])'
+  run -0 jq -r '.runs[0].results | "\(length) \(.[0].ruleId) \(.[0].locations[0].physicalLocation.region.startLine)"' out.sarif
   [ "$output" = "3 RS3016 3" ]
 }
