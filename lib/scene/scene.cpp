@@ -752,40 +752,117 @@ class Builder {
     return it == poses_.end() ? nullptr : it->second;
   }
 
-  // World pose of the frame a node's pose is written in.
-  Pose parentFrame(int idx, int depth) {
-    Pose identity;
-    if (!s_.inheritedTransforms || depth > 64) return identity;
-    auto it = parentOf_.find(idx);
-    if (it == parentOf_.end()) return identity;
-    int parent = lookup(it->second);
-    if (parent < 0 || parent == idx) return identity;
-    const Pose* p = localPose(parent);
-    if (!p) return identity;  // groups and pose-less nodes are folders in the world frame
-    return parentFrame(parent, depth + 1) * *p;
+  // Parent record of each node, or -1 (none, unresolved, or itself).
+  // Resolved once so that the walks below cost one array read per step.
+  void resolveParents() {
+    parentIdx_.assign(doc_.records.size(), -1);
+    for (const auto& [idx, ref] : parentOf_) {
+      int parent = lookup(ref);
+      if (parent != idx) parentIdx_[static_cast<std::size_t>(idx)] = parent;
+    }
   }
 
-  // Whether a group with visible=false is among the node's ancestors.
-  bool hiddenByGroup(int idx) const {
-    if (hiddenGroups_.empty()) return false;
-    for (int depth = 0; depth < 64; ++depth) {
-      auto it = parentOf_.find(idx);
-      if (it == parentOf_.end()) return false;
-      int parent = lookup(it->second);
-      if (parent < 0 || parent == idx) return false;
-      if (std::find(hiddenGroups_.begin(), hiddenGroups_.end(), parent) != hiddenGroups_.end()) return true;
-      idx = parent;
+  // Memoised resolution over the parent links, for any depth: each node's
+  // value is computed once, by an explicit stack instead of recursion (a
+  // million-deep chain must not overflow the call stack), so that resolving
+  // every node costs time linear in the number of nodes.  `stops(n)` says
+  // that node n's value does not depend on its parent's (its value is then
+  // `root(n)`); otherwise it is `step(n, value of parent)`.  The nodes of a
+  // parent cycle (lib/core reports it, RS3xxx) all get `cycle(members)`.
+  template <typename T, typename Stops, typename Root, typename Step, typename Cycle>
+  void resolveChains(std::vector<T>& value, Stops stops, Root root, Step step, Cycle cycle) {
+    enum : unsigned char { kTodo, kOnStack, kDone };
+    std::vector<unsigned char> state(doc_.records.size(), kTodo);
+    value.assign(doc_.records.size(), T{});
+    std::vector<int> stack;
+    for (std::size_t start = 0; start < state.size(); ++start) {
+      if (state[start] == kDone) continue;
+      // Climb until a node whose value is known or needs no parent.
+      int n = static_cast<int>(start);
+      while (true) {
+        state[static_cast<std::size_t>(n)] = kOnStack;
+        stack.push_back(n);
+        int parent = parentIdx_[static_cast<std::size_t>(n)];
+        if (parent < 0 || stops(n)) {
+          value[static_cast<std::size_t>(n)] = root(n);
+          state[static_cast<std::size_t>(n)] = kDone;
+          stack.pop_back();
+          break;
+        }
+        if (state[static_cast<std::size_t>(parent)] == kDone) break;
+        if (state[static_cast<std::size_t>(parent)] == kOnStack) {
+          auto first = std::find(stack.begin(), stack.end(), parent);
+          std::vector<int> members(first, stack.end());
+          T v = cycle(members);
+          for (int m : members) {
+            value[static_cast<std::size_t>(m)] = v;
+            state[static_cast<std::size_t>(m)] = kDone;
+          }
+          stack.erase(first, stack.end());
+          break;
+        }
+        n = parent;
+      }
+      // Come back down: each node's parent is now done.
+      for (auto it = stack.rbegin(); it != stack.rend(); ++it) {
+        auto i = static_cast<std::size_t>(*it);
+        value[i] = step(*it, value[static_cast<std::size_t>(parentIdx_[i])]);
+        state[i] = kDone;
+      }
+      stack.clear();
     }
-    return false;
   }
+
+  // The world pose of the frame each node's pose is written in: its
+  // parent's world pose when the parent has a pose of its own; groups and
+  // pose-less nodes are folders in the world frame.  In a cycle there is
+  // no parent frame to inherit, so its members keep the world frame.
+  void resolveFrames() {
+    std::vector<Pose> frames;
+    if (s_.inheritedTransforms) {
+      auto stops = [&](int n) { return localPose(parentIdx_[static_cast<std::size_t>(n)]) == nullptr; };
+      auto root = [](int) { return Pose{}; };
+      auto step = [&](int n, const Pose& parentFrame) {
+        return parentFrame * *localPose(parentIdx_[static_cast<std::size_t>(n)]);
+      };
+      auto cycle = [](const std::vector<int>&) { return Pose{}; };
+      resolveChains(frames, stops, root, step, cycle);
+    } else {
+      frames.assign(doc_.records.size(), Pose{});
+    }
+    frames_ = std::move(frames);
+  }
+
+  // Whether a group with visible=false is among each node's ancestors (in
+  // a cycle, every member is an ancestor of every other).
+  void resolveHidden() {
+    std::vector<char> hiddenGroup(doc_.records.size(), 0);
+    for (int g : hiddenGroups_) hiddenGroup[static_cast<std::size_t>(g)] = 1;
+    auto stops = [](int) { return false; };
+    auto root = [](int) { return char{0}; };
+    auto step = [&](int n, char parentHidden) {
+      return static_cast<char>(parentHidden || hiddenGroup[static_cast<std::size_t>(parentIdx_[static_cast<std::size_t>(n)])]);
+    };
+    auto cycle = [&](const std::vector<int>& members) {
+      return static_cast<char>(std::any_of(members.begin(), members.end(),
+                                           [&](int m) { return hiddenGroup[static_cast<std::size_t>(m)] != 0; }));
+    };
+    resolveChains(hidden_, stops, root, step, cycle);
+  }
+
+  Pose parentFrame(int idx) const { return frames_[static_cast<std::size_t>(idx)]; }
+  bool hiddenByGroup(int idx) const { return hidden_[static_cast<std::size_t>(idx)] != 0; }
 
   void resolveWorld() {
     for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
     for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
     for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
-    for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex, 0) * o.local;
-    for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex, 0) * c.local;
-    for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex, 0) * c.local;
+    resolveParents();
+    resolveFrames();
+    resolveHidden();
+    for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
+    for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex) * c.local;
+    for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex) * c.local;
     for (Object& o : s_.objects) o.hiddenByGroup = hiddenByGroup(o.recordIndex);
     for (Compound& c : s_.compounds) c.hiddenByGroup = hiddenByGroup(c.recordIndex);
     for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);
@@ -793,7 +870,7 @@ class Builder {
     for (PointCloud& p : s_.pointClouds) p.hiddenByGroup = hiddenByGroup(p.recordIndex);
     for (Light& l : s_.lights) {
       l.hiddenByGroup = hiddenByGroup(l.recordIndex);
-      Pose f = parentFrame(l.recordIndex, 0);
+      Pose f = parentFrame(l.recordIndex);
       l.position = f.position + f.orientation * l.position;
       l.direction = f.orientation * l.direction;
     }
@@ -842,6 +919,9 @@ class Builder {
   std::unordered_map<int, std::string> parentOf_;
   std::unordered_map<int, const Pose*> poses_;
   std::vector<int> hiddenGroups_;  // record indices of groups with visible=false
+  std::vector<int> parentIdx_;     // per record: its parent's record index, or -1
+  std::vector<Pose> frames_;       // per record: the world pose of its parent frame
+  std::vector<char> hidden_;       // per record: a hidden group is among its ancestors
 };
 
 }  // namespace

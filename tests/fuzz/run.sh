@@ -5,6 +5,8 @@
 # ../shared/corpus when present:
 #   fuzz_loader     the .rscene loader, writer and validator
 #   fuzz_from_json  rscene-from-json's reader (seeds: the scenes as JSON)
+#   fuzz_sim        rscene-sim's world build and 20 steps (meshes missing)
+#   fuzz_render_scene  rscene-render's scene preparation, without GL
 # Exit status: 0 when nothing was found, non-zero on a crash, a leak, a
 # timeout or a broken invariant (the inputs are in build-fuzz/fuzz-artifacts/).
 #
@@ -23,16 +25,18 @@ fi
 CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRSCENE_FUZZ=ON -DRSCENE_BUILD_TOOLS=OFF -DRSCENE_BUILD_TESTS=OFF > "$BUILD.configure.log" 2>&1 ||
   { cat "$BUILD.configure.log" >&2; exit 2; }
-TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json})
+TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene})
 cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_seeds
 
 # The working corpora live in the build directory: libFuzzer adds the
 # inputs it finds there, and the seeds in the repository stay as they are.
 ARTIFACTS=$BUILD/fuzz-artifacts
-mkdir -p "$ARTIFACTS" "$BUILD/fuzz-corpus" "$BUILD/fuzz-corpus-json"
+mkdir -p "$ARTIFACTS" "$BUILD/fuzz-corpus" "$BUILD/fuzz-corpus-json" "$BUILD/fuzz-corpus-sim" "$BUILD/fuzz-corpus-render"
 shopt -s nullglob
 seeds=("$ROOT"/tests/data/*.rscene "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene)
-for f in "${seeds[@]}"; do cp -f "$f" "$BUILD/fuzz-corpus/seed_$(basename "$f")"; done
+for f in "${seeds[@]}"; do
+  for dir in fuzz-corpus fuzz-corpus-sim fuzz-corpus-render; do cp -f "$f" "$BUILD/$dir/seed_$(basename "$f")"; done
+done
 "$BUILD/bin/make_json_seeds" "$BUILD/fuzz-corpus-json" "${seeds[@]}"
 
 # A dictionary of the tags and keys the seeds use helps the mutator build
@@ -73,6 +77,8 @@ for target in "${TARGETS[@]}"; do
   case $target in
     fuzz_loader) corpus=$BUILD/fuzz-corpus dict=$DICT ;;
     fuzz_from_json) corpus=$BUILD/fuzz-corpus-json dict=$JSON_DICT ;;
+    fuzz_sim) corpus=$BUILD/fuzz-corpus-sim dict=$DICT ;;
+    fuzz_render_scene) corpus=$BUILD/fuzz-corpus-render dict=$DICT ;;
     *) echo "tests/fuzz/run.sh: error: unknown target '$target'" >&2; exit 2 ;;
   esac
   echo "$target: fuzzing for ${SECONDS_TO_RUN}s from $(find "$corpus" -type f | wc -l) inputs, $(wc -l < "$dict") dictionary entries"

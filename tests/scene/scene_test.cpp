@@ -221,3 +221,75 @@ TEST(Scene, CorpusScenesBuild) {
     EXPECT_FALSE(s.objects.empty() && s.materials.size() < 2 && s.lights.empty()) << f;
   }
 }
+
+namespace {
+
+// An object line: a 1 x 1 x 1 static box at `position` (a "x y z" text),
+// unrotated unless `orientation` says otherwise, under `parent`.
+std::string boxLine(const std::string& path, const std::string& id, const std::string& position,
+                    const std::string& parent, const std::string& orientation = "1 0 0 0") {
+  return "object " + path + " box " + position + " " + orientation +
+         " 1 1 1 0.5 1 1 default engine_default false true false - static true 1 1 id=" + id +
+         " parentGroupId=" + parent + "\n";
+}
+
+}  // namespace
+
+// Issue 10, item 8: transforms stopped inheriting, and a hidden group was
+// no longer seen, past 64 levels.  At depth 100 both must still hold.
+TEST(Scene, TransformsInheritAtDepth100) {
+  std::string text = "raisim_engine_scene 2\ngroup /World id=w parentId=-\n";
+  // A base yawed 90 degrees at (1, 0, 0), then 100 boxes each 1 m along
+  // its parent's +x, which the yaw turns into world +y.
+  text += boxLine("/World/b0", "b0", "1 0 0", "w", "0.7071067811865476 0 0 0.7071067811865476");
+  for (int i = 1; i <= 100; ++i)
+    text += boxLine("/World/b" + std::to_string(i), "b" + std::to_string(i), "1 0 0", "b" + std::to_string(i - 1));
+  Built b = build(text);
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  ASSERT_EQ(b.scene.objects.size(), 101u);
+  const Object& leaf = b.scene.objects.back();
+  EXPECT_NEAR(leaf.world.position.x(), 1, 1e-9);
+  EXPECT_NEAR(leaf.world.position.y(), 100, 1e-9);
+  EXPECT_NEAR(leaf.world.position.z(), 0, 1e-9);
+  EXPECT_NEAR(std::abs(leaf.world.orientation.w()), 0.7071067811865476, 1e-9);
+  const Object& mid = b.scene.objects[50];
+  EXPECT_NEAR(mid.world.position.y(), 50, 1e-9);
+}
+
+TEST(Scene, HiddenGroupSeenAtDepth100) {
+  // g0 (hidden) > g1 > ... > g99 > leaf: the leaf is 100 levels under g0.
+  // A second chain of the same depth under a visible group stays visible.
+  std::string text = "raisim_engine_scene 2\n";
+  for (const char* chain : {"h", "v"}) {
+    std::string c = chain;
+    text += "group /" + c + "0 id=" + c + "0 parentId=-" + (c == "h" ? " visible=false" : "") + "\n";
+    for (int i = 1; i < 100; ++i)
+      text += "group /" + c + std::to_string(i) + " id=" + c + std::to_string(i) + " parentId=" + c +
+              std::to_string(i - 1) + "\n";
+    text += boxLine("/" + c + "leaf", c + "leaf", "0 0 0", c + "99");
+  }
+  Built b = build(text);
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  ASSERT_EQ(b.scene.objects.size(), 2u);
+  EXPECT_TRUE(b.scene.objects[0].hiddenByGroup);
+  EXPECT_FALSE(b.scene.objects[1].hiddenByGroup);
+}
+
+TEST(Scene, ParentCyclesResolveWithoutHanging) {
+  // a <- b <- a: lib/core reports the cycle; the scene model must still
+  // come back, with finite poses, and a hidden group inside a cycle hides
+  // every member and what hangs below them.
+  std::string text = "raisim_engine_scene 2\n";
+  text += boxLine("/a", "a", "1 0 0", "b");
+  text += boxLine("/b", "b", "1 0 0", "a");
+  text += boxLine("/c", "c", "1 0 0", "b");
+  text += "group /g id=g parentId=k visible=false\ngroup /k id=k parentId=g\n";
+  text += boxLine("/d", "d", "0 0 0", "k");
+  Built b = build(text);
+  ASSERT_EQ(b.scene.objects.size(), 4u);
+  for (const Object& o : b.scene.objects) EXPECT_TRUE(o.world.position.allFinite()) << o.path;
+  EXPECT_FALSE(b.scene.objects[0].hiddenByGroup);
+  EXPECT_TRUE(b.scene.objects[3].hiddenByGroup);
+  // c hangs below the cycle: it inherits from b, which keeps one level.
+  EXPECT_NEAR(b.scene.objects[2].world.position.x(), 2, 1e-12);
+}
