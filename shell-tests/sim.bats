@@ -362,3 +362,14 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   run -2 --separate-stderr "$SIM" --steps 1 mg.rscene
   [[ ${stderr_lines[0]} == "mg.rscene:2:90: error: body '/World/B': cannot read mesh 'g/bad.obj': "*" [RS7007]" ]]
 }
+
+@test "50 000 findings print in linear time (each finding's source line is not searched from the top)" {
+  { echo 'raisim_engine_scene 1'
+    for i in $(seq 1 50000); do
+      echo "object /World/b$i box 0 0 1 1 0 0 0 0 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615"
+    done
+  } > zero.rscene
+  run -2 --separate-stderr bash -c "ulimit -v 1000000; timeout 20 '$SIM' --steps 1 zero.rscene"
+  [ "$(grep -c 'RS7003' <<<"$stderr")" -eq 50000 ]
+  [[ ${stderr_lines[-4]} == "zero.rscene:50001:40: error: box with a zero or negative side "*"[RS7003]" ]]
+}

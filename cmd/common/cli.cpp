@@ -162,7 +162,8 @@ bool colorFor(int fd) {
 }
 
 void printDiagnostics(const Diagnostics& ds, std::string_view display, std::string_view text, bool color) {
-  for (const Diagnostic& d : ds) std::cerr << formatDiagnostic(d, display, lineOf(text, d.line), color);
+  LineCursor lines(text);  // one pass over the text for findings in line order
+  for (const Diagnostic& d : ds) std::cerr << formatDiagnostic(d, display, lines(d.line), color);
 }
 
 void setup(CLI::App& app, const char* tool) {
