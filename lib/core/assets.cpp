@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include "core/filesystem.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
@@ -16,8 +17,7 @@ std::string join(const std::string& dir, const std::string& path) {
 }  // namespace
 
 bool fileExistsOnDisk(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  return diskFileSystem().stat(path).kind == FileKind::Regular;  // the one classification of paths
 }
 
 std::string whyNotAFile(const std::string& path) {

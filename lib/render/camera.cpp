@@ -1,5 +1,6 @@
 #include "render/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/suggest.hpp"
@@ -38,9 +39,9 @@ bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera&
     for (const Camera& c : scene.cameras) names.push_back(isPath ? last(c.path) : std::string_view(c.id));
     *error = "no camera with path or id '" + selector + "'";
     std::string near = closestName(isPath ? last(selector) : std::string_view(selector), names);
-    for (const Camera& c : scene.cameras)
-      if (!near.empty() && near == (isPath ? last(c.path) : std::string_view(c.id))) near = isPath ? c.path : c.id;
     if (!near.empty()) {
+      const Camera& c = scene.cameras[static_cast<std::size_t>(std::find(names.begin(), names.end(), near) - names.begin())];
+      near = isPath ? c.path : c.id;
       *error += "; did you mean '" + near + "'?";
     } else if (scene.cameras.empty()) {
       *error += "; the scene has no camera (leave out --camera, or use --camera auto)";
