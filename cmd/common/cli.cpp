@@ -163,7 +163,9 @@ bool colorFor(int fd) {
 
 void printDiagnostics(const Diagnostics& ds, std::string_view display, std::string_view text, bool color) {
   LineCursor lines(text);  // one pass over the text for findings in line order
-  for (const Diagnostic& d : ds) std::cerr << formatDiagnostic(d, display, lines(d.line), color);
+  for (const Diagnostic& d : ds)
+    std::cerr << (d.file.empty() ? formatDiagnostic(d, display, lines(d.line), color)
+                                 : formatDiagnostic(d, d.file, {}, color));
 }
 
 void setup(CLI::App& app, const char* tool) {

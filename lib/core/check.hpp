@@ -58,6 +58,7 @@ enum class CheckLayer {
   Sim,     // lib/sim: what only building the Bullet world finds
   Json,    // lib/core's JSON reader (rscene-from-json)
   Render,  // lib/render: what only drawing finds
+  Robot,   // lib/robot: reading a URDF or MJCF model, and what the model says of a record
 };
 
 // One row of the registry of every diagnostic code any tool emits: used by

@@ -14,7 +14,7 @@ namespace {
 constexpr Severity E = Severity::Error;
 constexpr Severity W = Severity::Warning;
 constexpr CheckLayer Core = CheckLayer::Core, Scene = CheckLayer::Scene, Sim = CheckLayer::Sim,
-                     Json = CheckLayer::Json, Render = CheckLayer::Render;
+                     Json = CheckLayer::Json, Render = CheckLayer::Render, Robot = CheckLayer::Robot;
 // Who reports a code: the validator alone, or also sim and render, whose
 // scene model (lib/scene/reader.cpp) reads values with the validator's codes.
 // The loader's codes (RS1001-RS1010) stop every tool that reads a scene.
@@ -104,6 +104,17 @@ constexpr CheckInfo kChecks[] = {
     {"RS7023", E, Sim, "sim", "run longer than --max-steps"},
     {"RS7024", E, Sim, "sim", "a body's state stopped being finite while stepping (nothing is written)"},
     {"RS7025", E, Sim, "sim", "more overlapping body pairs than --max-pairs"},
+    // RS703x reading robot files (lib/robot/load.hpp); RS704x an articulated
+    // record against its model (lib/robot/instance.hpp).
+    {"RS7030", E, Robot, VSR, "robot file (URDF or MJCF) that does not parse or that MuJoCo's compiler refuses"},
+    {"RS7031", W, Robot, VSR, "robot file element that cannot be used, skipped (xacro leftovers, unknown geometry ...)"},
+    {"RS7032", E, Robot, VSR, "robot model that is not a tree (no root, two roots, a joint to an unknown link, a cycle)"},
+    {"RS7033", E, Robot, VSR, "module (a URDF fragment) not found in RaiSim's search order"},
+    {"RS7034", E, Robot, VSR, "articulated record with no robot file to load"},
+    {"RS7040", E, Robot, VSR, "generalizedCoordinate length differs from the model's"},
+    {"RS7041", E, Robot, VSR, "generalizedVelocity length differs from the model's"},
+    {"RS7042", E, Robot, VSR, "jointOrder names an unknown, fixed or repeated joint, or leaves one out"},
+    {"RS7043", W, Robot, VSR, "quaternion in generalizedCoordinate not of unit length (normalised), or zero (error)"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

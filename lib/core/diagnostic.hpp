@@ -18,6 +18,9 @@ struct Diagnostic {
   std::string hint;     // optional, e.g. "did you mean `color`?"
   std::string tag;      // record tag, when there is one
   std::string field;    // field name, when there is one
+  // The file the line and column are in, when it is not the scene itself
+  // (a robot's URDF or MJCF file, a module); empty: the scene.
+  std::string file;
 };
 
 using Diagnostics = std::vector<Diagnostic>;

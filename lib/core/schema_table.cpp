@@ -150,7 +150,7 @@ const KindRow kKinds[] = {
  "coacdMaxConvexHull:int coacdPreprocess:name coacdSampleResolution:int"},
 {"articulated_resource", 17, Role::Plain, "", "",
  "id:text name:text path:path",
- "resourceDirectory:path modules:strs jointOrder:strs doNotCollideWithParent:flag convexifyCollisionMeshes:flag"},
+ "resourceDirectory:path modules:strs jointOrder:strs doNotCollideWithParent:flag=true convexifyCollisionMeshes:flag=true"},
 {"group", 18, Role::Node, "folder_", "",
  "path:text",
  "id:id parentId:ref@node visible:flag=true locked:flag=false expanded:flag=true"},
@@ -223,14 +223,16 @@ const KindRow kKinds[] = {
  "visible:flag"},
 {"articulated", 26, Role::Node, "", "",
  "path:text resource:ref@resource position:vec3 orientation:quat visible:flag collidable:flag",
- "id:id parentGroupId:ref@node sourcePath:path resourceDirectory:path modules:strs jointOrder:strs scale:vec3 "
- "doNotCollideWithParent:flag convexifyCollisionMeshes:flag collisionGroup:u64 collisionMask:u64 "
- "generalizedCoordinate:nums generalizedVelocity:nums semanticClass:text"},
+ "id:id parentGroupId:ref@node sourcePath:path resourceDirectory:path modules:strs jointOrder:strs scale:vec3=1,1,1 "
+ "doNotCollideWithParent:flag=true convexifyCollisionMeshes:flag=true collisionGroup:u64=1 "
+ "collisionMask:u64=18446744073709551615 generalizedCoordinate:nums generalizedVelocity:nums semanticClass:text"},
 {"articulated_ik", 26, Role::Child, "", "articulated",
  "articulated:ref@node frame:text target:csv3",
- "enabled:flag=true useOrientation:flag orientation:quat maxIterations:int positionTolerance:num "
- "orientationTolerance:num orientationWeight:num damping:num stepSize:num maxStep:num svdTolerance:num "
- "finiteDifferenceStep:num applyBestOnFailure:flag enforceJointLimits:flag inverseMethod:name transposeGain:num"},
+ "enabled:flag=true useOrientation:flag=false orientation:quat=1,0,0,0 maxIterations:int=80 "
+ "positionTolerance:num=0.001 orientationTolerance:num=0.01 orientationWeight:num=0.5 damping:num=0.05 "
+ "stepSize:num=0.5 maxStep:num=0.1 svdTolerance:num=1e-6 finiteDifferenceStep:num=1e-4 "
+ "applyBestOnFailure:flag=true enforceJointLimits:flag=true inverseMethod:name@ik_method=damped_least_squares "
+ "transposeGain:num=0"},
 {"sensor", 27, Role::Node, "", "",
  "path:text kind:name@sensor_kind parentObject:ref@body position:vec3 orientation:quat",
  "id:id parentGroupId:ref@node parentLink:text width:int height:int updateRate:num verticalFov:num "
@@ -316,6 +318,7 @@ const EnumRow kEnums[] = {
 {"render_mode", "rgb depth segmentation rgb_depth ..."},
 {"sensor_kind", "rgb depth segmentation rgb_depth imu lidar force_torque ..."},
 {"deformable_kind", "cloth mass_spring fem ..."},
+{"ik_method", "damped_least_squares=dls pseudo_inverse=pinv,pseudoinverse transpose=jacobian_transpose ..."},
 };
 // clang-format on
 

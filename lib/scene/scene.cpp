@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "scene/reader.hpp"
+#include "core/filesystem.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
@@ -25,7 +26,8 @@ Node* lastNamed(std::vector<Node>& nodes, const std::string& ref) {
 // listed in Scene::skipped.
 constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
                                           "camera", "object",         "compound",            "compound_child",
-                                          "wire",   "instanced_visual", "point_cloud"};
+                                          "wire",   "instanced_visual", "point_cloud", "articulated",
+                                          "articulated_ik"};
 
 bool modelled(std::string_view tag) {
   return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
@@ -34,7 +36,8 @@ bool modelled(std::string_view tag) {
 // Record kinds SceneOptions::bodiesOnly builds.
 bool forBodies(std::string_view tag) {
   return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
-         tag == "terrain_region" || tag == "wire" || tag == "point_cloud";
+         tag == "terrain_region" || tag == "wire" || tag == "point_cloud" || tag == "articulated_resource" ||
+         tag == "articulated" || tag == "articulated_ik";
 }
 
 Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
@@ -86,10 +89,14 @@ class Builder {
       else if (tag == "wire") readWire(r, idx);
       else if (tag == "instanced_visual") readInstanced(r, idx);
       else if (tag == "point_cloud") readPointCloud(r, idx);
+      else if (tag == "articulated_resource") readArticulatedResource(r, idx);
+      else if (tag == "articulated") readArticulated(r, idx);
+      else if (tag == "articulated_ik") readArticulatedIk(r, idx);
       else if ((rec.kind->role == Role::Node || rec.kind->role == Role::Child) && !modelled(tag))
         s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
     }
     defaults();
+    resolveArticulated();
     if (!opt_.bodiesOnly) resolveWorld();  // checkScene() needs no world poses
     resolveWires();
   }
@@ -656,6 +663,134 @@ class Builder {
     s_.wires.push_back(std::move(w));
   }
 
+  // A resource directory: like an asset path, but the candidate must be a
+  // directory.
+  std::string assetDirectory(const std::string& path) const {
+    if (path.empty()) return path;
+    auto isDir = [](const std::string& p) { return DiskFileSystem().stat(p).kind == FileKind::Directory; };
+    std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, isDir);
+    for (std::size_t at; (at = out.find("/./")) != std::string::npos;) out.erase(at, 2);
+    return out;
+  }
+
+  static std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      std::size_t end = text.find_first_of(";,", start);
+      if (end == std::string::npos) end = text.size();
+      if (end > start) out.push_back(text.substr(start, end - start));
+      start = end + 1;
+    }
+    return out;
+  }
+
+  void readArticulatedResource(const RecordReader& r, int idx) {
+    ArticulatedResource a;
+    a.recordIndex = idx;
+    a.id = r.str("id");
+    a.name = r.str("name");
+    a.path = asset(r.str("path"));
+    a.resourceDirectory = assetDirectory(r.str("resourceDirectory"));
+    a.modules = splitList(r.str("modules"));
+    a.jointOrder = splitList(r.str("jointOrder"));
+    a.doNotCollideWithParent = r.flag("doNotCollideWithParent");
+    a.convexifyCollisionMeshes = r.flag("convexifyCollisionMeshes");
+    s_.articulatedResources.push_back(std::move(a));
+  }
+
+  void readArticulated(const RecordReader& r, int idx) {
+    Articulated a;
+    a.recordIndex = idx;
+    a.path = nodePath(doc_, r.record());
+    a.id = nodeId(doc_, r.record());
+    a.parentId = r.str("parentGroupId");
+    a.resourceRef = r.str("resource");
+    // Fields the record writes; the rest come from its resource once every
+    // resource is read (resolveArticulated: a resource is scene-global).
+    Written w;
+    w.source = r.has("sourcePath");
+    w.directory = r.has("resourceDirectory");
+    w.modules = r.has("modules");
+    w.order = r.has("jointOrder");
+    w.noParent = r.has("doNotCollideWithParent");
+    w.convexify = r.has("convexifyCollisionMeshes");
+    a.sourcePath = asset(r.str("sourcePath"));
+    a.resourceDirectory = assetDirectory(r.str("resourceDirectory"));
+    a.modules = splitList(r.str("modules"));
+    a.jointOrder = splitList(r.str("jointOrder"));
+    a.doNotCollideWithParent = r.flag("doNotCollideWithParent");
+    a.convexifyCollisionMeshes = r.flag("convexifyCollisionMeshes");
+    written_.push_back(w);
+    a.local = readPose(r, "position", "orientation");
+    a.positionToken = r.positionalToken("position");
+    a.scale = r.vec3("scale");
+    a.visible = r.flag("visible");
+    a.collidable = r.flag("collidable");
+    a.collisionGroup = r.group("collisionGroup");
+    a.collisionMask = r.group("collisionMask");
+    a.hasCoordinate = r.has("generalizedCoordinate") && r.numbers("generalizedCoordinate", a.generalizedCoordinate);
+    a.hasVelocity = r.has("generalizedVelocity") && r.numbers("generalizedVelocity", a.generalizedVelocity);
+    a.semanticClass = r.str("semanticClass");
+    parentOf_[idx] = a.parentId;
+    s_.articulated.push_back(std::move(a));
+  }
+
+  // Which of the fields a resource provides an articulated record wrote.
+  struct Written {
+    bool source = false, directory = false, modules = false, order = false, noParent = false, convexify = false;
+  };
+
+  void resolveArticulated() {
+    for (std::size_t n = 0; n < s_.articulated.size(); ++n) {
+      Articulated& a = s_.articulated[n];
+      const Written& w = written_[n];
+      for (std::size_t i = 0; i < s_.articulatedResources.size(); ++i)  // the last of that id or name
+        if (s_.articulatedResources[i].id == a.resourceRef || s_.articulatedResources[i].name == a.resourceRef)
+          a.resource = static_cast<int>(i);
+      if (a.resource < 0) continue;
+      const ArticulatedResource& res = s_.articulatedResources[static_cast<std::size_t>(a.resource)];
+      a.resourceRecord = res.recordIndex;
+      if (!w.source) a.sourcePath = res.path;
+      if (!w.directory) a.resourceDirectory = res.resourceDirectory;
+      if (!w.modules) a.modules = res.modules;
+      if (!w.order) a.jointOrder = res.jointOrder;
+      if (!w.noParent) a.doNotCollideWithParent = res.doNotCollideWithParent;
+      if (!w.convexify) a.convexifyCollisionMeshes = res.convexifyCollisionMeshes;
+    }
+  }
+
+  void readArticulatedIk(const RecordReader& r, int idx) {
+    std::string ref = r.str("articulated");
+    Articulated* owner = lastNamed(s_.articulated, ref);
+    if (!owner) {
+      r.error("articulated", "RS3014", "articulated system '" + ref + "' does not exist");
+      return;
+    }
+    ArticulatedIk k;
+    k.recordIndex = idx;
+    k.frame = r.str("frame");
+    k.target = r.vec3("target", Eigen::Vector3d::Zero());
+    k.enabled = r.flag("enabled");
+    k.useOrientation = r.flag("useOrientation");
+    Eigen::Quaterniond q = toQuat(r.quat("orientation"));
+    k.orientation = q.norm() > 1e-12 ? q.normalized() : Eigen::Quaterniond::Identity();
+    k.maxIterations = static_cast<int>(r.integer("maxIterations"));
+    k.positionTolerance = r.number("positionTolerance");
+    k.orientationTolerance = r.number("orientationTolerance");
+    k.orientationWeight = r.number("orientationWeight");
+    k.damping = r.number("damping");
+    k.stepSize = r.number("stepSize");
+    k.maxStep = r.number("maxStep");
+    k.svdTolerance = r.number("svdTolerance");
+    k.finiteDifferenceStep = r.number("finiteDifferenceStep");
+    k.transposeGain = r.number("transposeGain");
+    k.applyBestOnFailure = r.flag("applyBestOnFailure");
+    k.enforceJointLimits = r.flag("enforceJointLimits");
+    k.inverseMethod = r.name("inverseMethod");
+    owner->ik.push_back(std::move(k));
+  }
+
   void readInstanced(const RecordReader& r, int idx) {
     InstancedVisual v;
     v.recordIndex = idx;
@@ -857,12 +992,17 @@ class Builder {
     for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
     for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
     for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
+    for (const Articulated& a : s_.articulated) poses_[a.recordIndex] = &a.local;
     resolveParents();
     resolveFrames();
     resolveHidden();
     for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
     for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex) * c.local;
     for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex) * c.local;
+    for (Articulated& a : s_.articulated) {
+      a.world = parentFrame(a.recordIndex) * a.local;
+      a.hiddenByGroup = hiddenByGroup(a.recordIndex);
+    }
     for (Object& o : s_.objects) o.hiddenByGroup = hiddenByGroup(o.recordIndex);
     for (Compound& c : s_.compounds) c.hiddenByGroup = hiddenByGroup(c.recordIndex);
     for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);
@@ -884,6 +1024,8 @@ class Builder {
     for (const Object& o : s_.objects) simulatedBody[o.recordIndex] = o.bodyMode != BodyMode::VisualOnly;
     for (const Compound& c : s_.compounds) simulatedBody[c.recordIndex] = c.bodyMode != BodyMode::VisualOnly;
     for (const Terrain& t : s_.terrains) simulatedBody[t.recordIndex] = true;
+    std::unordered_map<int, bool> robot;
+    for (const Articulated& a : s_.articulated) robot[a.recordIndex] = true;
     auto classify = [&](const std::string& ref, WireEnd& end, std::string& tag) {
       if (ref.empty()) return;
       int target = lookup(ref);
@@ -892,6 +1034,10 @@ class Builder {
         return;
       }
       tag = doc_.records[static_cast<std::size_t>(target)].kind->tag;
+      if (robot.count(target)) {
+        end = WireEnd::Articulated;
+        return;
+      }
       auto it = simulatedBody.find(target);
       if (it == simulatedBody.end() && tag == "object") {  // skipped by a bodiesOnly build
         RecordReader r(doc_, static_cast<std::size_t>(target), diags_);
@@ -917,6 +1063,7 @@ class Builder {
   // mass, then bodyMode and collidable (-1 when the layout has none).
   std::unordered_map<const Layout*, std::vector<int>> plainSlots_;
   std::unordered_map<int, std::string> parentOf_;
+  std::vector<Written> written_;  // per Scene::articulated entry
   std::unordered_map<int, const Pose*> poses_;
   std::vector<int> hiddenGroups_;  // record indices of groups with visible=false
   std::vector<int> parentIdx_;     // per record: its parent's record index, or -1

@@ -350,9 +350,65 @@ struct Terrain {
   }
 };
 
+// articulated_resource: a URDF or MJCF robot description that articulated
+// records instantiate (lib/robot reads the file).
+struct ArticulatedResource {
+  int recordIndex = -1;
+  std::string id, name;
+  std::string path;               // resolved robot file
+  std::string resourceDirectory;  // resolved directory for package:// and modules; empty = none
+  std::vector<std::string> modules, jointOrder;
+  bool doNotCollideWithParent{}, convexifyCollisionMeshes{};
+};
+
+// articulated_ik: one frame target of the articulated system it follows.
+struct ArticulatedIk {
+  int recordIndex = -1;
+  std::string frame;
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  bool enabled{}, useOrientation{};
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // normalised
+  int maxIterations{};
+  double positionTolerance{}, orientationTolerance{}, orientationWeight{};
+  double damping{}, stepSize{}, maxStep{}, svdTolerance{}, finiteDifferenceStep{}, transposeGain{};
+  bool applyBestOnFailure{}, enforceJointLimits{};
+  std::string inverseMethod{};  // damped_least_squares | pseudo_inverse | transpose (or as written)
+};
+
+// articulated: an instance of an articulated_resource.  Fields the record
+// writes override the resource's (sourcePath, resourceDirectory, modules,
+// jointOrder, doNotCollideWithParent, convexifyCollisionMeshes).
+//
+// Base pose: a fixed-base robot's base is placed at `world`; a floating
+// base's pose is the first 7 numbers of generalizedCoordinate (position,
+// quaternion w x y z, world frame) when the record writes them, else
+// `world`.
+struct Articulated {
+  int recordIndex = -1;
+  std::string path, id, parentId;
+  std::string resourceRef;  // as written (resource id or name)
+  int resource = -1;        // index into Scene::articulatedResources, -1 when it names none
+  int resourceRecord = -1;  // that resource's record index
+  std::string sourcePath;   // resolved robot file (the record's sourcePath=, else the resource's)
+  std::string resourceDirectory;
+  std::vector<std::string> modules, jointOrder;
+  Pose local, world;
+  Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
+  bool visible{}, collidable{};
+  bool hiddenByGroup = false;
+  bool doNotCollideWithParent{}, convexifyCollisionMeshes{};
+  std::uint64_t collisionGroup{}, collisionMask{};
+  bool hasCoordinate = false, hasVelocity = false;  // the record writes them
+  std::vector<double> generalizedCoordinate, generalizedVelocity;  // as written
+  std::string semanticClass;
+  std::vector<ArticulatedIk> ik;
+  int positionToken = -1;  // token of position.x (orientation w at +3)
+};
+
 // What one end of a wire names (compat-notes.md, "Wire kinds": a body by id
 // or path, a terrain counts as a body; nothing means a point in the world).
-enum class WireEnd { World, Body, NotSimulated, Unknown };
+// Articulated: an articulated system, attached at its body localIndexA/B.
+enum class WireEnd { World, Body, Articulated, NotSimulated, Unknown };
 
 struct Wire {
   int recordIndex = -1;
@@ -409,7 +465,7 @@ struct PointCloud {
   bool hiddenByGroup = false;
 };
 
-// A scene-content record the view does not model (articulated, deformable,
+// A scene-content record the view does not model (deformable,
 // granular, sensor, decals, fog volumes, probes, foliage layers ...).
 struct SkippedRecord {
   int recordIndex = -1;
@@ -437,6 +493,8 @@ struct Scene {
   std::vector<Compound> compounds;
   std::vector<Terrain> terrains;
   std::vector<Wire> wires;
+  std::vector<ArticulatedResource> articulatedResources;
+  std::vector<Articulated> articulated;
   std::vector<InstancedVisual> instancedVisuals;
   std::vector<PointCloud> pointClouds;
   std::vector<SkippedRecord> skipped;

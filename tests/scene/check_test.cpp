@@ -70,8 +70,7 @@ std::vector<Case> cases() {
       {"RS7020", H + object("box", "1 1 1", "0.5", "4.9e-324"), H + object("box", "1 1 1", "0.5", "1e-3")},
       {"RS7022", H + "time_step 1e-12\n", H + "time_step 1e-9\n"},
       {"RS7011",
-       H + object("box") + "articulated_resource arm arm arm.urdf\narticulated /World/r arm 0 0 0 1 0 0 0 true true\n" +
-           "wire /World/w stiff /World/a /World/r 1\n",
+       H + object("box") + "point_cloud /World/r points=0,0,0\n" + "wire /World/w stiff /World/a /World/r 1\n",
        H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
            "wire /World/w stiff /World/a /World/b 1\n"},
   };

@@ -1,0 +1,141 @@
+#include "robot/instance.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "scene/reader.hpp"
+
+namespace rscene::robot {
+namespace {
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// The generalizedCoordinate entries that are quaternions: the floating
+// base's (at 3) and each spherical joint's.
+std::vector<int> quaternionStarts(const Model& model, const Coordinates& c) {
+  std::vector<int> at;
+  if (model.floatingBase) at.push_back(3);
+  for (int j : c.joints)
+    if (model.joints[static_cast<std::size_t>(j)].type == JointType::Spherical)
+      at.push_back(c.coordinateIndex[static_cast<std::size_t>(j)]);
+  return at;
+}
+
+void reportJointOrder(const Document& doc, const Articulated& a, const std::vector<JointOrderProblem>& problems,
+                      Diagnostics& diags) {
+  // The record that wrote jointOrder: the articulated record, else its resource.
+  RecordReader own(doc, static_cast<std::size_t>(a.recordIndex), diags);
+  bool here = own.has("jointOrder") || a.resourceRecord < 0;
+  RecordReader r(doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diags);
+  std::vector<std::string> missing;
+  for (const JointOrderProblem& p : problems) {
+    switch (p.kind) {
+      case JointOrderProblem::Unknown:
+        r.error("jointOrder", code::kJointOrder, "jointOrder names '" + p.name + "', which is not a joint of the model");
+        break;
+      case JointOrderProblem::Fixed:
+        r.error("jointOrder", code::kJointOrder,
+                "jointOrder names '" + p.name + "', a fixed joint (it has no coordinate)");
+        break;
+      case JointOrderProblem::Repeated:
+        r.error("jointOrder", code::kJointOrder, "jointOrder names '" + p.name + "' twice");
+        break;
+      case JointOrderProblem::Missing: missing.push_back(p.name); break;
+    }
+  }
+  if (!missing.empty())
+    r.error("jointOrder", code::kJointOrder, "jointOrder leaves out movable joints: " + joinNames(missing));
+}
+
+}  // namespace
+
+LoadOptions loadOptionsOf(const Articulated& record) {
+  LoadOptions o;
+  o.resourceDirectory = record.resourceDirectory;
+  o.modules = record.modules;
+  o.scale = record.scale;
+  return o;
+}
+
+bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, RobotInstance& out,
+                  Diagnostics& diags, const InstanceOptions& options) {
+  out = RobotInstance{};
+  out.record = &a;
+  out.base = a.world;
+  RecordReader r(doc, static_cast<std::size_t>(a.recordIndex), diags);
+  if (a.sourcePath.empty()) {
+    if (options.reportModel)
+      r.error(a.resource < 0 ? "resource" : "sourcePath", code::kNoResource,
+              a.resource < 0 ? "articulated system names no articulated_resource '" + a.resourceRef + "'"
+                             : "articulated system has no robot file (its resource's path is empty)");
+    return false;
+  }
+  Diagnostics loadDiags;
+  out.model = cache.get(a.sourcePath, loadOptionsOf(a), loadDiags);
+  if (options.reportModel) diags.insert(diags.end(), loadDiags.begin(), loadDiags.end());
+  if (!out.model) return false;
+  const Model& model = *out.model;
+
+  bool ok = true;
+  std::vector<JointOrderProblem> problems = makeCoordinates(model, a.jointOrder, out.coordinates);
+  if (!problems.empty()) {
+    reportJointOrder(doc, a, problems, diags);
+    ok = false;
+  }
+  const Coordinates& c = out.coordinates;
+
+  out.q = neutralCoordinate(model, c, a.world);
+  if (a.hasCoordinate) {
+    const std::vector<double>& gc = a.generalizedCoordinate;
+    if (static_cast<int>(gc.size()) != c.coordinateDim) {
+      r.error("generalizedCoordinate", code::kCoordinateLength,
+              "generalizedCoordinate has " + std::to_string(gc.size()) + " numbers; the model '" + model.name +
+                  "' has " + std::to_string(c.coordinateDim) +
+                  (model.floatingBase ? " (7 for the floating base, then the joints)" : " (joints only: fixed base)"));
+      ok = false;
+    } else {
+      out.q = Eigen::Map<const Eigen::VectorXd>(gc.data(), static_cast<Eigen::Index>(gc.size()));
+      for (int at : quaternionStarts(model, c)) {
+        Eigen::Vector4d v = out.q.segment<4>(at);
+        double n = v.norm();
+        if (!(n > 1e-12) || !std::isfinite(n)) {
+          r.error("generalizedCoordinate", code::kQuaternion,
+                  "generalizedCoordinate holds a zero quaternion at entries " + std::to_string(at) + ".." +
+                      std::to_string(at + 3));
+          out.q.segment<4>(at) << 1, 0, 0, 0;
+          ok = false;
+        } else {
+          if (std::abs(n - 1) > 1e-3)
+            r.error("generalizedCoordinate", code::kQuaternion,
+                    "quaternion at entries " + std::to_string(at) + ".." + std::to_string(at + 3) +
+                        " has length " + std::to_string(n) + "; it is normalised",
+                    {}, Severity::Warning);
+          out.q.segment<4>(at) = v / n;
+        }
+      }
+    }
+  }
+  out.u = Eigen::VectorXd::Zero(c.velocityDim);
+  if (a.hasVelocity) {
+    const std::vector<double>& gv = a.generalizedVelocity;
+    if (static_cast<int>(gv.size()) != c.velocityDim) {
+      r.error("generalizedVelocity", code::kVelocityLength,
+              "generalizedVelocity has " + std::to_string(gv.size()) + " numbers; the model '" + model.name +
+                  "' has " + std::to_string(c.velocityDim));
+      ok = false;
+    } else {
+      out.u = Eigen::Map<const Eigen::VectorXd>(gv.data(), static_cast<Eigen::Index>(gv.size()));
+    }
+  }
+  if (model.floatingBase) {
+    out.base.position = out.q.head<3>();
+    out.base.orientation = Eigen::Quaterniond(out.q[3], out.q[4], out.q[5], out.q[6]);
+  }
+  return ok;
+}
+
+}  // namespace rscene::robot

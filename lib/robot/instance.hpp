@@ -1,0 +1,55 @@
+// One articulated record read against its model: the one reading of a
+// robot's state that sim, render and validate share (so they cannot
+// disagree about where a robot stands).
+#pragma once
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "robot/kinematics.hpp"
+#include "robot/load.hpp"
+#include "scene/scene.hpp"
+
+namespace rscene::robot {
+
+// Diagnostic codes of an articulated record read against its model.
+namespace code {
+inline constexpr const char* kCoordinateLength = "RS7040";  // generalizedCoordinate length differs from the model's
+inline constexpr const char* kVelocityLength = "RS7041";    // generalizedVelocity length differs from the model's
+inline constexpr const char* kJointOrder = "RS7042";        // jointOrder names an unknown, fixed or repeated joint, or omits one
+inline constexpr const char* kQuaternion = "RS7043";        // quaternion in generalizedCoordinate not of unit length (warning) or zero
+}  // namespace code
+
+struct RobotInstance {
+  const Articulated* record = nullptr;
+  std::shared_ptr<const Model> model;
+  Coordinates coordinates;
+  Pose base;          // the record's world pose (fixed base: where it is fixed)
+  Eigen::VectorXd q;  // generalized coordinate, quaternions normalised
+  Eigen::VectorXd u;  // generalized velocity
+};
+
+struct InstanceOptions {
+  bool reportModel = true;  // false: a missing or broken model is left to --check-files (validate)
+};
+
+// Loads the record's model through `cache` and reads its state: q from
+// generalizedCoordinate (base pose from the record when it has none), u
+// from generalizedVelocity (zeros when absent).  A length that does not
+// match the model is an error at the field (RS7040, RS7041); a non-unit
+// quaternion is normalised with a warning (RS7043).  Returns false after an
+// error; `out.model` is null when the model did not load.
+bool makeInstance(const Document& doc, const Articulated& record, ModelCache& cache, RobotInstance& out,
+                  Diagnostics& diagnostics, const InstanceOptions& options = {});
+
+// LoadOptions of a record (its resource directory, modules and scale).
+LoadOptions loadOptionsOf(const Articulated& record);
+
+// World poses of the instance's links at its current q.
+inline std::vector<Pose> linkPoses(const RobotInstance& r) {
+  return linkPoses(*r.model, r.coordinates, r.base, r.q);
+}
+
+}  // namespace rscene::robot

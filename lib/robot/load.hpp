@@ -1,0 +1,62 @@
+// Reading robot files into the model: URDF in RaiSim's dialect (urdf.cpp,
+// tinyxml2) and MJCF compiled by MuJoCo's own compiler (mjcf.cpp).
+//
+// Diagnostics about the robot file carry Diagnostic::file (the URDF, the
+// module or the MJCF file) and the line there where one is known; the
+// library never prints.
+#pragma once
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "robot/model.hpp"
+
+namespace rscene::robot {
+
+// Diagnostic codes of robot loading (registry: core/check_codes.cpp).
+namespace code {
+inline constexpr const char* kMissingFile = "RS5001";   // robot file or mesh that does not exist / is not a regular file
+inline constexpr const char* kBadFile = "RS7030";       // robot file that does not parse (XML, MJCF compile error)
+inline constexpr const char* kSkipped = "RS7031";       // element that cannot be used, skipped (warning)
+inline constexpr const char* kBadModel = "RS7032";      // not a tree: no root, two roots, unknown link, cycle
+inline constexpr const char* kNoModule = "RS7033";      // module file not found in RaiSim's search order
+inline constexpr const char* kNoResource = "RS7034";    // articulated record with no robot file to load
+}  // namespace code
+
+struct LoadOptions {
+  // Directory for package:// paths and modules (the record's
+  // resourceDirectory=, resolved); empty: the robot file's directory.
+  std::string resourceDirectory;
+  std::vector<std::string> modules;  // URDF fragments inserted before </robot>
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  std::size_t maxFileBytes = std::size_t{256} << 20;  // robot file size cap
+};
+
+// Reads `path` by its root element (<robot>: URDF, <mujoco>: MJCF).
+// Returns false after an error diagnostic; warnings do not fail.
+bool loadModel(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
+bool loadUrdf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
+bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
+
+// Multiplies every length of the model by `scale` (per axis, in each
+// element's frame), masses by the volume ratio, inertias to match.
+void scaleModel(Model& model, const Eigen::Vector3d& scale);
+
+// One load per distinct (file, resource directory, modules, scale) in a run:
+// sixteen robots of one URDF read it once.  Diagnostics of a load are
+// reported by the first request only.
+class ModelCache {
+ public:
+  // The model, or nullptr when it did not load (diagnostics say why).
+  std::shared_ptr<const Model> get(const std::string& path, const LoadOptions& options, Diagnostics& diagnostics);
+
+ private:
+  using Key = std::tuple<std::string, std::string, std::vector<std::string>, double, double, double>;
+  std::map<Key, std::shared_ptr<const Model>> models_;
+};
+
+}  // namespace rscene::robot
