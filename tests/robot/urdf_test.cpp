@@ -13,9 +13,14 @@
 #include <regex>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
+
+#include "core/io.hpp"
+#include "robot/instance.hpp"
 #include "robot/kinematics.hpp"
 #include "robot/load.hpp"
 #include "robot/robot_paths.hpp"
+#include "scene/scene.hpp"
 
 namespace rscene::robot {
 namespace {
@@ -24,6 +29,9 @@ namespace fs = std::filesystem;
 
 const std::string kFixtures = std::string(RSCENE_TEST_DATA) + "/robots/urdf/";
 const std::string kRobots = std::string(RSCENE_SHARED_DIR) + "/corpus/robots/";
+// RaiSim's joint order of ANYmal C, and of our quadruped built like it.
+const std::vector<std::string> kAnymalJoints = {"LF_HAA", "LF_HFE", "LF_KFE", "RF_HAA", "RF_HFE", "RF_KFE",
+                                                "LH_HAA", "LH_HFE", "LH_KFE", "RH_HAA", "RH_HFE", "RH_KFE"};
 
 bool load(const std::string& path, Model& m, Diagnostics& d, const LoadOptions& o = {}) {
   return loadModel(path, o, m, d);
@@ -564,12 +572,79 @@ TEST(ModelCache, OneLoadPerKeyAndItsDiagnosticsOnce) {
 }
 
 // ---------------------------------------------------------------------------
+// The project's own robot (examples/robots/quadruped), which `make demo`
+// simulates and renders without ../shared.
+
+TEST(UrdfExample, QuadrupedIsAPlausibleRobot) {
+  Model m;
+  Diagnostics d;
+  ASSERT_TRUE(load(std::string(RSCENE_SOURCE_DIR) + "/examples/robots/quadruped/quadruped.urdf", m, d));
+  EXPECT_TRUE(d.empty()) << messages(d);
+  EXPECT_TRUE(m.floatingBase);
+  EXPECT_NEAR(m.totalMass(), 15.2, 1e-9);
+  Coordinates c;
+  makeCoordinates(m, {}, c);
+  std::vector<std::string> order;
+  for (int j : c.joints) {
+    const Joint& joint = m.joints[static_cast<std::size_t>(j)];
+    order.push_back(joint.name);
+    EXPECT_EQ(joint.type, JointType::Revolute);
+    EXPECT_TRUE(joint.hasLimits);
+    EXPECT_GT(joint.damping, 0);
+  }
+  EXPECT_EQ(order, kAnymalJoints);
+  for (const Link& l : m.links) {
+    SCOPED_TRACE(l.name);
+    EXPECT_GT(l.inertial.mass, 0);
+    EXPECT_FALSE(l.visuals.empty());
+    EXPECT_FALSE(l.collisions.empty());
+    for (const Visual& v : l.visuals) EXPECT_TRUE(v.color.has_value());
+    // A physical inertia: positive principal moments, each at most the sum
+    // of the other two.
+    Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(l.inertial.inertia).eigenvalues();
+    EXPECT_GT(p.minCoeff(), 0);
+    EXPECT_LE(p[2], p[0] + p[1] + 1e-12);
+  }
+}
+
+TEST(UrdfExample, RobotCellStandsTheQuadrupedOnTheGround) {
+  std::string path = std::string(RSCENE_SOURCE_DIR) + "/examples/robot_cell.rscene";
+  Document doc;
+  std::string error;
+  ASSERT_TRUE(loadFile(path, doc, &error)) << error;
+  Scene scene;
+  Diagnostics d;
+  SceneOptions options;
+  options.sceneDir = std::string(RSCENE_SOURCE_DIR) + "/examples";
+  ASSERT_TRUE(buildScene(doc, options, scene, d)) << messages(d);
+  ASSERT_EQ(scene.articulated.size(), 1u);
+  ModelCache cache;
+  RobotInstance robot;
+  ASSERT_TRUE(makeInstance(doc, scene.articulated[0], cache, robot, d)) << messages(d);
+  EXPECT_FALSE(hasErrors(d)) << messages(d);
+  // Every foot sphere's lowest point within 1 mm of the ground (z = 0),
+  // and nothing else of the robot below it.
+  std::vector<Pose> poses = linkPoses(robot);
+  double lowestOther = 1e9;
+  for (std::size_t i = 0; i < robot.model->links.size(); ++i) {
+    const Link& l = robot.model->links[i];
+    for (const Collision& k : l.collisions) {
+      double z = (poses[i] * k.origin).position.z();
+      if (l.name.find("_FOOT") != std::string::npos) {
+        EXPECT_NEAR(z - k.geometry.radius, 0, 1e-3) << l.name;
+      } else {
+        lowestOther = std::min(lowestOther, z);
+      }
+    }
+  }
+  EXPECT_GT(lowestOther, 0.05);
+}
+
+// ---------------------------------------------------------------------------
 // The robots of ../shared/corpus
 
 bool haveCorpus() { return fs::exists(kRobots + "anymal_c/urdf/anymal.urdf"); }
 
-const std::vector<std::string> kAnymalJoints = {"LF_HAA", "LF_HFE", "LF_KFE", "RF_HAA", "RF_HFE", "RF_KFE",
-                                                "LH_HAA", "LH_HFE", "LH_KFE", "RH_HAA", "RH_HFE", "RH_KFE"};
 
 void expectAnymal(const std::string& file, double mass, std::size_t links, bool hasMeshes = true) {
   SCOPED_TRACE(file);
