@@ -41,15 +41,15 @@ class TreeBuilder {
 bool TreeBuilder::liftFloatingBase(std::vector<Link>& links, std::vector<RawJoint>& joints, bool& floating) {
   floating = false;
   int lifted = -1;
+  int worldChildren = 0;
+  bool worldIsChild = false;
+  for (const RawJoint& k : joints) {
+    if (k.parent == "world") ++worldChildren;
+    if (k.child == "world") worldIsChild = true;
+  }
   for (std::size_t i = 0; i < joints.size(); ++i) {
     const RawJoint& j = joints[i];
     if (!j.floating) continue;
-    int worldChildren = 0;
-    bool worldIsChild = false;
-    for (const RawJoint& k : joints) {
-      if (k.parent == "world") ++worldChildren;
-      if (k.child == "world") worldIsChild = true;
-    }
     if (j.parent == "world" && lifted < 0 && worldChildren == 1 && !worldIsChild) {
       lifted = static_cast<int>(i);
       continue;

@@ -262,6 +262,43 @@ TEST(Urdf, FloatingJointFromWorldMakesAFloatingBase) {
   EXPECT_DOUBLE_EQ(m.totalMass(), 3);
 }
 
+TEST(Urdf, LongChainNeedsNoRecursion) {
+  // 20 000 links, each one joint below the last: read, checked and walked
+  // with explicit stacks, so depth costs no call stack.
+  TempDir t;
+  std::ostringstream text;
+  text << "<robot name=\"chain\">\n<link name=\"l0\"/>\n";
+  const int n = 20000;
+  for (int i = 1; i < n; ++i)
+    text << "<link name=\"l" << i << "\"/><joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l"
+         << i - 1 << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0 0 -0.1\"/></joint>\n";
+  text << "</robot>\n";
+  Model m;
+  Diagnostics d;
+  ASSERT_TRUE(load(t.write("chain.urdf", text.str()), m, d)) << messages(d);
+  Coordinates c;
+  makeCoordinates(m, {}, c);
+  EXPECT_EQ(c.coordinateDim, 7 + n - 1);
+  Eigen::VectorXd q = neutralCoordinate(m, c, Pose{});
+  EXPECT_NEAR(linkPoses(m, c, Pose{}, q).back().position.z(), -0.1 * (n - 1), 1e-6);
+}
+
+TEST(Urdf, FloatingJointFromAWorldWithOtherChildrenIsAnError) {
+  TempDir t;
+  Model m;
+  Diagnostics d;
+  EXPECT_FALSE(load(t.write("w.urdf", R"(<robot name="w">
+  <link name="world"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="free" type="floating"><parent link="world"/><child link="a"/></joint>
+  <joint name="bolt" type="fixed"><parent link="world"/><child link="b"/></joint>
+</robot>
+)"),
+                    m, d));
+  EXPECT_EQ(codesAndLines(d), std::vector<std::string>{"RS7032:5"}) << messages(d);
+}
+
 TEST(Urdf, NotARobotFile) {
   TempDir t;
   Model m;
