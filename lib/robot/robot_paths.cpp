@@ -43,13 +43,16 @@ std::string parentDirectory(const std::string& path) {
   return dir.empty() ? "." : dir;
 }
 
-std::vector<std::string> meshCandidates(const RobotPaths& paths, const std::string& elementDirectory,
-                                        const std::string& uri) {
-  std::vector<std::string> out;
-  if (uri.empty()) return out;
+namespace {
+
+// Calls `visit` with each candidate in order until it returns true.
+template <typename Visit>
+void forEachCandidate(const RobotPaths& paths, const std::string& elementDirectory, const std::string& uri,
+                      Visit&& visit) {
+  if (uri.empty()) return;
   if (startsWith(uri, "file://")) {
-    out.push_back(uri.substr(7));
-    return out;
+    visit(uri.substr(7));
+    return;
   }
   for (const char* scheme : {"package://", "model://"}) {
     if (!startsWith(uri, scheme)) continue;
@@ -57,31 +60,44 @@ std::vector<std::string> meshCandidates(const RobotPaths& paths, const std::stri
     std::size_t slash = rest.find('/');
     std::string name = slash == std::string::npos ? rest : rest.substr(0, slash);
     std::string tail = slash == std::string::npos ? "" : rest.substr(slash + 1);
-    if (tail.empty()) return out;  // names a package, not a file
-    if (!paths.resourceDirectory.empty()) {
-      out.push_back(join(paths.resourceDirectory, tail));
-      out.push_back(join(paths.resourceDirectory, name + "/" + tail));
-    }
-    for (const std::string& dir : upwards(paths.robotDirectory)) {
-      out.push_back(join(dir, tail));
-      out.push_back(join(dir, name + "/" + tail));
-    }
-    return out;
+    if (tail.empty()) return;  // names a package, not a file
+    const std::string named = name + "/" + tail;
+    if (!paths.resourceDirectory.empty() &&
+        (visit(join(paths.resourceDirectory, tail)) || visit(join(paths.resourceDirectory, named))))
+      return;
+    for (const std::string& dir : upwards(paths.robotDirectory))
+      if (visit(join(dir, tail)) || visit(join(dir, named))) return;
+    return;
   }
   if (uri.front() == '/') {
-    out.push_back(uri);
-    return out;
+    visit(uri);
+    return;
   }
-  out.push_back(join(elementDirectory, uri));
-  if (!paths.resourceDirectory.empty()) out.push_back(join(paths.resourceDirectory, uri));
+  if (visit(join(elementDirectory, uri))) return;
+  if (!paths.resourceDirectory.empty()) visit(join(paths.resourceDirectory, uri));
+}
+
+}  // namespace
+
+std::vector<std::string> meshCandidates(const RobotPaths& paths, const std::string& elementDirectory,
+                                        const std::string& uri) {
+  std::vector<std::string> out;
+  forEachCandidate(paths, elementDirectory, uri, [&](std::string c) {
+    out.push_back(std::move(c));
+    return false;
+  });
   return out;
 }
 
 std::string resolveRobotFile(const RobotPaths& paths, const std::string& elementDirectory, const std::string& uri,
                              const FileExists& exists) {
-  for (const std::string& candidate : meshCandidates(paths, elementDirectory, uri))
-    if (exists(candidate)) return candidate;
-  return {};
+  std::string found;
+  forEachCandidate(paths, elementDirectory, uri, [&](std::string c) {
+    if (!exists(c)) return false;
+    found = std::move(c);
+    return true;
+  });
+  return found;
 }
 
 std::vector<std::string> moduleCandidates(const RobotPaths& paths, const std::string& module) {
