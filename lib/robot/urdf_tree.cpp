@@ -86,14 +86,16 @@ bool TreeBuilder::build(std::vector<Link> links, std::vector<RawJoint> joints, M
             "link '" + links[i].name + "' declared twice (first at " + where(first.file, first.line) + ")");
     }
   }
-  std::unordered_map<std::string, int> jointIndex;
+  // Where each joint name was first declared (whether or not that joint
+  // made it into the tree).
+  std::unordered_map<std::string, std::pair<std::string, int>> declared;
   out.joints.clear();
   for (RawJoint& raw : joints) {
     Joint& j = raw.joint;
-    auto [it, fresh] = jointIndex.emplace(j.name, static_cast<int>(out.joints.size()));
+    auto [it, fresh] = declared.emplace(j.name, std::pair{j.file, j.line});
     if (!fresh) {
-      const Joint& first = out.joints[static_cast<std::size_t>(it->second)];
-      error(j.file, j.line, "joint '" + j.name + "' declared twice (first at " + where(first.file, first.line) + ")");
+      error(j.file, j.line,
+            "joint '" + j.name + "' declared twice (first at " + where(it->second.first, it->second.second) + ")");
       continue;
     }
     auto parent = linkIndex.find(raw.parent);

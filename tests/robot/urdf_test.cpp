@@ -247,6 +247,17 @@ TEST(Urdf, EveryErrorOfAFileIsReported) {
   EXPECT_NE(d[1].message.find("type 'planar'"), std::string::npos) << d[1].message;
 }
 
+TEST(Urdf, DuplicateNamesAreErrorsNamingTheFirst) {
+  Model m;
+  Diagnostics d;
+  EXPECT_FALSE(load(kFixtures + "duplicates.urdf", m, d));
+  // The second joint `j` is a duplicate even though the first one named a
+  // link that does not exist (found by fuzzing: it once read past the end).
+  EXPECT_EQ(codesAndLines(d), (std::vector<std::string>{"RS7032:4", "RS7032:5", "RS7032:9"})) << messages(d);
+  EXPECT_NE(d[0].message.find("link 'a' declared twice (first at line 2)"), std::string::npos) << d[0].message;
+  EXPECT_NE(d[2].message.find("joint 'j' declared twice (first at line 5)"), std::string::npos) << d[2].message;
+}
+
 TEST(Urdf, FloatingJointFromWorldMakesAFloatingBase) {
   Model m;
   Diagnostics d;
