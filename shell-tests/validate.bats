@@ -105,7 +105,7 @@ setup() {
 
 @test "a wire to an articulated system is a warning, and sim still runs" {
   run -0 --separate-stderr "$V" "$BATS_TEST_DIRNAME/../examples/robot_cell.rscene"
-  [[ "$output" == *"warning: wire '/World/Tether' is not simulated: bodyA 'articulated_anymal' is an articulated, which rscene-sim does not model [RS7011]"* ]]
+  [[ "$output" == *"warning: wire '/World/Tether' is not simulated: bodyA 'articulated_quadruped' is an articulated, which rscene-sim does not model [RS7011]"* ]]
 }
 
 @test "--format json: one document with findings, counts and truncated" {
