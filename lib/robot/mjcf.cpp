@@ -160,7 +160,8 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
     d.file = path;
     diagnostics.push_back(std::move(d));
   }
-  bool ok = convertMjcf(*m, path, out, diagnostics);
+  bool ok = convertMjcf(*m, path, m->nmesh > 0 ? mjcfMeshFiles(path) : std::map<std::string, std::string>{}, out,
+                        diagnostics);
   mj_deleteModel(m);
   return ok;
 }

@@ -3,6 +3,7 @@
 // conversion of a compiled MuJoCo model into the robot model, apart from
 // the loading so that tests can convert a model they compiled themselves.
 #pragma once
+#include <map>
 #include <string>
 
 #include "core/diagnostic.hpp"
@@ -27,6 +28,20 @@ inline constexpr const char* kMjcfApproximated = "RS7037";
 // The coordinates are MuJoCo's qpos: a joint's value in the robot model is
 // its qpos entry, including a joint's `ref` offset (the joint origin holds
 // the offset), so a qpos logged in MuJoCo is a generalizedCoordinate here.
-bool convertMjcf(const mjModel_& m, const std::string& path, Model& out, Diagnostics& diagnostics);
+// `meshFiles` maps mesh names to their files (mjcfMeshFiles); a mesh geom
+// whose mesh has none is skipped with a warning.
+bool convertMjcf(const mjModel_& m, const std::string& path, const std::map<std::string, std::string>& meshFiles,
+                 Model& out, Diagnostics& diagnostics);
+
+// The files of the <asset><mesh> elements of the MJCF file `path` and its
+// includes, by mesh name, resolved as MuJoCo resolves them.
+std::map<std::string, std::string> mjcfMeshFiles(const std::string& path);
+
+// Where the vertices of mesh `file` lie in the frame of MuJoCo's compiled
+// copy of it (`count` float vertices x y z): compiled = frame * (scale *
+// file vertex).  False with the reason when they cannot be matched.  Calls
+// MuJoCo: the caller holds the MuJoCo lock (mjcf.cpp).
+bool mjcfMeshFrame(const std::string& file, const float* vertices, int count, Pose& frame, Eigen::Vector3d& scale,
+                   std::string& why);
 
 }  // namespace rscene::robot

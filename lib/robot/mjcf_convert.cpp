@@ -16,6 +16,7 @@
 #include <mujoco/mujoco.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 
@@ -43,8 +44,9 @@ bool isDefaultRgba(const float* c) { return c[0] == 0.5f && c[1] == 0.5f && c[2]
 
 class Converter {
  public:
-  Converter(const mjModel& m, const std::string& path, Model& out, Diagnostics& diags)
-      : m_(m), path_(path), out_(out), diags_(diags) {
+  Converter(const mjModel& m, const std::string& path, const std::map<std::string, std::string>& meshFiles, Model& out,
+            Diagnostics& diags)
+      : m_(m), path_(path), meshFiles_(meshFiles), out_(out), diags_(diags) {
     for (int j = 0; j < m.njnt; ++j) jointNames_.insert(nameOf(mjOBJ_JOINT, j, "joint"));
     for (int b = 0; b < m.nbody; ++b) linkNames_.insert(nameOf(mjOBJ_BODY, b, "body"));
   }
@@ -80,6 +82,13 @@ class Converter {
   }
 
  private:
+  struct MeshFrame {
+    bool ok = false;
+    std::string file;
+    Pose frame;  // the file's vertices in MuJoCo's compiled mesh frame
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  };
+
   std::string nameOf(int type, int id, const char* fallback) const {
     const char* n = mj_id2name(&m_, type, id);
     if (n && *n) return n;
@@ -254,6 +263,7 @@ class Converter {
     const std::string name = nameOf(mjOBJ_GEOM, g, "geom");
     const mjtNum* s = m_.geom_size + 3 * g;
     Geometry geometry;
+    Pose meshOffset;  // a mesh file's vertices in MuJoCo's compiled mesh frame
     switch (m_.geom_type[g]) {
       case mjGEOM_SPHERE:
         geometry.kind = GeometryKind::Sphere;
@@ -276,17 +286,21 @@ class Converter {
         warn(code::kMjcfApproximated, "ellipsoid geom '" + name + "' is approximated by a sphere of radius " +
                                           std::to_string(geometry.radius) + " (the same volume)");
         break;
-      case mjGEOM_MESH:
-        // MuJoCo 2.2.2 keeps the vertices, not the file, and moves them to
-        // the mesh's inertial frame; the robot model names mesh files.
-        warn(code::kSkipped, "mesh geom '" + name + "' is skipped: MJCF meshes are not read yet");
-        return;
+      case mjGEOM_MESH: {
+        const MeshFrame* mesh = meshFrame(m_.geom_dataid[g], name);
+        if (!mesh) return;
+        geometry.kind = GeometryKind::Mesh;
+        geometry.meshPath = mesh->file;
+        geometry.meshScale = mesh->scale;
+        meshOffset = mesh->frame;
+        break;
+      }
       default:
         warn(code::kSkipped, std::string(m_.geom_type[g] == mjGEOM_PLANE ? "plane" : "height field") + " geom '" +
                                  name + "' on a body is skipped: the robot model has no such shape");
         return;
     }
-    const Pose origin = toLink * poseOf(m_.geom_pos + 3 * g, m_.geom_quat + 4 * g);
+    const Pose origin = toLink * poseOf(m_.geom_pos + 3 * g, m_.geom_quat + 4 * g) * meshOffset;
     Visual v;
     v.name = name;
     v.origin = origin;
@@ -306,8 +320,32 @@ class Converter {
     l.collisions.push_back(std::move(c));
   }
 
+  // The file and frame of mesh `id`, or nullptr after a warning.
+  const MeshFrame* meshFrame(int id, const std::string& geom) {
+    auto [it, fresh] = meshFrames_.try_emplace(id);
+    MeshFrame& f = it->second;
+    const std::string mesh = nameOf(mjOBJ_MESH, id, "mesh");
+    if (fresh) {
+      auto file = meshFiles_.find(mesh);
+      std::string why = "it has no file (vertices written in the model)";
+      if (file != meshFiles_.end()) {
+        f.file = file->second;
+        f.ok = mjcfMeshFrame(f.file, m_.mesh_vert + 3 * m_.mesh_vertadr[id], m_.mesh_vertnum[id], f.frame, f.scale,
+                             why);
+      }
+      if (!f.ok) warn(code::kSkipped, "mesh '" + mesh + "' is skipped: " + why);
+    }
+    if (!f.ok) {
+      warn(code::kSkipped, "mesh geom '" + geom + "' is skipped: its mesh '" + mesh + "' cannot be used");
+      return nullptr;
+    }
+    return &f;
+  }
+
   const mjModel& m_;
   const std::string& path_;
+  const std::map<std::string, std::string>& meshFiles_;
+  std::map<int, MeshFrame> meshFrames_;  // by mesh id, worked out once
   Model& out_;
   Diagnostics& diags_;
   std::set<std::string> jointNames_, linkNames_;
@@ -318,11 +356,12 @@ class Converter {
 
 }  // namespace
 
-bool convertMjcf(const mjModel_& m, const std::string& path, Model& out, Diagnostics& diagnostics) {
+bool convertMjcf(const mjModel_& m, const std::string& path, const std::map<std::string, std::string>& meshFiles,
+                 Model& out, Diagnostics& diagnostics) {
   out = Model{};
   out.sourceFile = path;
   out.floatingBase = false;
-  Converter converter(m, path, out, diagnostics);
+  Converter converter(m, path, meshFiles, out, diagnostics);
   return converter.run();
 }
 

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -85,6 +86,43 @@ Eigen::VectorXd randomQ(const mjModel* m, std::mt19937& rng) {
 
 double angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) { return a.angularDistance(b); }
 
+// The `v x y z` lines of an OBJ file.
+std::vector<Eigen::Vector3d> objVertices(const std::string& path) {
+  std::vector<Eigen::Vector3d> out;
+  std::ifstream f(path);
+  std::string tag;
+  for (std::string line; std::getline(f, line);) {
+    std::istringstream s(line);
+    Eigen::Vector3d v;
+    if (s >> tag && tag == "v" && s >> v.x() >> v.y() >> v.z()) out.push_back(v);
+  }
+  return out;
+}
+
+// The mesh file's vertices placed by our visual (origin, meshScale) and
+// MuJoCo's compiled vertices of geom g are the same points (float
+// precision; MuJoCo 2.2.2 repeats an OBJ's vertices per face, so as sets).
+void expectSameVertices(const mjModel* m, int g, const Eigen::Vector3d& gpos, const Eigen::Matrix3d& gmat,
+                        const Pose& world, const Geometry& geometry, const std::string& name) {
+  std::vector<Eigen::Vector3d> ours;
+  for (const Eigen::Vector3d& v : objVertices(geometry.meshPath))
+    ours.push_back(world.position + world.orientation * geometry.meshScale.cwiseProduct(v));
+  ASSERT_FALSE(ours.empty()) << geometry.meshPath;
+  const int mesh = m->geom_dataid[g];
+  std::vector<Eigen::Vector3d> theirs;
+  for (int i = 0; i < m->mesh_vertnum[mesh]; ++i) {
+    const float* c = m->mesh_vert + 3 * (m->mesh_vertadr[mesh] + i);
+    theirs.push_back(gpos + gmat * Eigen::Vector3d(c[0], c[1], c[2]));
+  }
+  auto nearest = [](const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& set) {
+    double best = 1e300;
+    for (const Eigen::Vector3d& q : set) best = std::min(best, (p - q).norm());
+    return best;
+  };
+  for (const Eigen::Vector3d& t : theirs) EXPECT_LT(nearest(t, ours), 2e-6) << name;
+  for (const Eigen::Vector3d& o : ours) EXPECT_LT(nearest(o, theirs), 2e-6) << name;
+}
+
 // Loads `path` with loadMjcf and checks it against MuJoCo's own compile:
 // coordinate layout (MuJoCo's qpos order is RaiSim's depth-first order),
 // mass, and body, geom and centre-of-mass poses for `samples` random q.
@@ -143,7 +181,7 @@ void expectMatchesMuJoCo(const std::string& path, int samples = 20) {
       EXPECT_LT((com - Eigen::Vector3d(d->xipos[3 * b], d->xipos[3 * b + 1], d->xipos[3 * b + 2])).norm(), 1e-9)
           << body;
     }
-    // Every converted geom where MuJoCo puts it.
+    // Every converted geom where MuJoCo puts it; a mesh vertex by vertex.
     for (std::size_t li = 0; li < model.links.size(); ++li)
       for (const Visual& v : model.links[li].visuals) {
         int g = mj_name2id(m.get(), mjOBJ_GEOM, v.name.c_str());
@@ -152,6 +190,10 @@ void expectMatchesMuJoCo(const std::string& path, int samples = 20) {
         Pose world = poses[li] * v.origin;
         Eigen::Vector3d gpos(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
         Eigen::Matrix3d gmat = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->geom_xmat + 9 * g);
+        if (v.geometry.kind == GeometryKind::Mesh) {
+          expectSameVertices(m.get(), g, gpos, gmat, world, v.geometry, v.name);
+          continue;
+        }
         EXPECT_LT((world.position - gpos).norm(), 1e-9) << v.name;
         EXPECT_LT(angle(world.orientation, Eigen::Quaterniond(gmat)), 1e-8) << v.name;
       }
@@ -317,6 +359,37 @@ TEST(Mjcf, IncludesAndDefaultClassesAreMuJoCos) {
   EXPECT_EQ(model.links[0].name, "block");
   EXPECT_NEAR(model.links[0].inertial.mass, 5000 * 0.2 * 0.2 * 0.2, 1e-9);  // density of class "heavy"
   expectMatchesMuJoCo(kFixtures + "include.xml");
+}
+
+TEST(Mjcf, MeshGeomsKeepTheirFileScaleAndFrame) {
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(kFixtures + "meshes.xml", LoadOptions{}, model, diags)) << dump(diags);
+  EXPECT_TRUE(diags.empty()) << dump(diags);
+  const std::string box = fs::path(kFixtures + "meshes/box.obj").lexically_normal().string();
+  const Link& base = model.links[static_cast<std::size_t>(model.findLink("base"))];
+  ASSERT_EQ(base.visuals.size(), 1u);
+  EXPECT_EQ(base.visuals[0].geometry.kind, GeometryKind::Mesh);
+  EXPECT_EQ(base.visuals[0].geometry.meshPath, box);  // compiler meshdir, relative to the model
+  EXPECT_LT((base.visuals[0].geometry.meshScale - Eigen::Vector3d(1, 2, 0.5)).norm(), 1e-6);
+  ASSERT_EQ(base.collisions.size(), 1u);
+  EXPECT_EQ(base.collisions[0].geometry.meshPath, box);
+  const Link& arm = model.links[static_cast<std::size_t>(model.findLink("arm"))];
+  ASSERT_EQ(arm.visuals.size(), 1u);  // the mesh named after its file
+  EXPECT_LT((arm.visuals[0].geometry.meshScale - Eigen::Vector3d::Ones()).norm(), 1e-6);
+  EXPECT_TRUE(arm.collisions.empty());
+  expectMatchesMuJoCo(kFixtures + "meshes.xml");
+}
+
+TEST(Mjcf, MeshWithoutAFileIsSkippedWithAWarning) {
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(kFixtures + "inline_mesh.xml", LoadOptions{}, model, diags)) << dump(diags);
+  EXPECT_EQ(countCode(diags, code::kSkipped), 2) << dump(diags);
+  EXPECT_NE(dump(diags).find("mesh 'tetra' is skipped: it has no file"), std::string::npos) << dump(diags);
+  ASSERT_EQ(model.links.size(), 1u);
+  ASSERT_EQ(model.links[0].visuals.size(), 1u);  // the sphere stays
+  EXPECT_EQ(model.links[0].visuals[0].name, "ball");
 }
 
 TEST(Mjcf, FreeJointBelowTheTopLevelIsRefused) {

@@ -1,0 +1,178 @@
+// Mesh geoms of an MJCF model (mjcf.hpp).  MuJoCo 2.2.2's compiled model
+// keeps a mesh's vertices but not its file, and it has moved the vertices:
+// scaled (mesh scale, refpos/refquat) and re-expressed in the mesh's
+// inertial frame, with the geom's pose compensating.  The robot model names
+// mesh files that the renderer and simulator read themselves, so two
+// things are recovered here:
+//   - the file: <asset><mesh file=> of the model and its includes, resolved
+//     as MuJoCo does (compiler meshdir, else assetdir, relative to the main
+//     file's directory; absolute paths as written);
+//   - the frame: the file compiled alone by MuJoCo (an in-memory model in a
+//     virtual file system) gives the file's vertices in a frame MuJoCo
+//     knows; the affine map from those to the model's compiled vertices,
+//     fitted over all vertices (same file, same processing, same order), is
+//     a rotation times a diagonal scale plus a translation: exactly the
+//     visual's origin and meshScale.
+#include <mujoco/mujoco.h>
+#include <tinyxml2.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+#include "robot/mjcf.hpp"
+
+namespace rscene::robot {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Scan {
+  std::string meshdir, assetdir;
+  bool haveMeshdir = false;
+  std::vector<std::pair<std::string, std::string>> meshes;  // name, file as written
+  int files = 0;
+};
+
+// Include depth and file count caps: a model that includes itself stops here.
+constexpr int kMaxIncludeDepth = 16;
+constexpr int kMaxIncludedFiles = 256;
+
+void scanElement(const tinyxml2::XMLElement* e, const fs::path& modelDir, Scan& scan, int depth);
+
+void scanFile(const fs::path& file, const fs::path& modelDir, Scan& scan, int depth) {
+  if (depth > kMaxIncludeDepth || ++scan.files > kMaxIncludedFiles) return;
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(file.string().c_str()) != tinyxml2::XML_SUCCESS) return;  // MuJoCo has read it already
+  if (const tinyxml2::XMLElement* root = doc.RootElement()) scanElement(root, modelDir, scan, depth);
+}
+
+void scanElement(const tinyxml2::XMLElement* e, const fs::path& modelDir, Scan& scan, int depth) {
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "compiler") {
+      if (const char* d = c->Attribute("meshdir")) {
+        scan.meshdir = d;
+        scan.haveMeshdir = true;
+      }
+      if (const char* d = c->Attribute("assetdir")) scan.assetdir = d;
+    } else if (tag == "mesh" && std::strcmp(e->Name(), "asset") == 0) {
+      if (const char* file = c->Attribute("file")) {
+        const char* name = c->Attribute("name");
+        scan.meshes.emplace_back(name ? name : fs::path(file).stem().string(), file);
+      }
+    } else if (tag == "include") {
+      if (const char* file = c->Attribute("file")) scanFile(modelDir / file, modelDir, scan, depth + 1);
+    } else if (tag == "asset" || tag == "mujoco") {
+      scanElement(c, modelDir, scan, depth);
+    }
+  }
+}
+
+struct VfsDeleter {
+  void operator()(mjVFS* v) const {
+    mj_deleteVFS(v);
+    delete v;
+  }
+};
+
+}  // namespace
+
+std::map<std::string, std::string> mjcfMeshFiles(const std::string& path) {
+  fs::path modelDir = fs::path(path).parent_path();
+  Scan scan;
+  scanFile(path, modelDir, scan, 0);
+  const std::string dir = scan.haveMeshdir ? scan.meshdir : scan.assetdir;
+  std::map<std::string, std::string> files;
+  for (const auto& [name, file] : scan.meshes) {
+    fs::path p = file;
+    if (p.is_relative()) p = modelDir / dir / p;
+    files[name] = p.lexically_normal().string();
+  }
+  return files;
+}
+
+bool mjcfMeshFrame(const std::string& file, const float* vertices, int count, Pose& frame, Eigen::Vector3d& scale,
+                   std::string& why) {
+  // The file alone: one mesh, one world geom at the identity, so the geom's
+  // pose is the frame MuJoCo moved the file's vertices to.
+  std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+  mj_defaultVFS(vfs.get());
+  const fs::path p(file);
+  const std::string name = p.filename().string();
+  // MuJoCo 2.2.2 joins a directory argument oddly; the whole path works
+  // and the file is stored under its name without the path.
+  if (mj_addFileVFS(vfs.get(), "", file.c_str()) != 0) {
+    why = "cannot read it";
+    return false;
+  }
+  const std::string xml = "<mujoco><asset><mesh name=\"m\" file=\"" + name +
+                          "\"/></asset><worldbody><geom type=\"mesh\" mesh=\"m\"/></worldbody></mujoco>";
+  const char* modelName = "rscene_mesh_frame.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), modelName, static_cast<int>(xml.size())) != 0) {
+    why = "the virtual file system is full";
+    return false;
+  }
+  int index = mj_findFileVFS(vfs.get(), modelName);
+  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  char error[512] = "";
+  mjModel* alone = mj_loadXML(modelName, vfs.get(), error, sizeof error);
+  if (!alone) {
+    why = std::string("MuJoCo refuses it alone: ") + error;
+    return false;
+  }
+  std::unique_ptr<mjModel, void (*)(mjModel*)> guard(alone, mj_deleteModel);
+  if (alone->nmesh != 1 || alone->mesh_vertnum[0] != count || count < 4) {
+    why = "MuJoCo reads it differently alone";
+    return false;
+  }
+  // File vertex v = M0 * c0 (c0: compiled alone); the model's compiled
+  // vertex c1 = A c0 + b, fitted by least squares about the centroids.
+  const Pose m0{Eigen::Vector3d(alone->geom_pos[0], alone->geom_pos[1], alone->geom_pos[2]),
+                Eigen::Quaterniond(alone->geom_quat[0], alone->geom_quat[1], alone->geom_quat[2], alone->geom_quat[3])
+                    .normalized()};
+  Eigen::Matrix3Xd c0(3, count), c1(3, count);
+  for (int i = 0; i < count; ++i) {
+    c0.col(i) = Eigen::Vector3f(alone->mesh_vert + 3 * i).cast<double>();
+    c1.col(i) = Eigen::Vector3f(vertices + 3 * i).cast<double>();
+  }
+  const Eigen::Vector3d mean0 = c0.rowwise().mean(), mean1 = c1.rowwise().mean();
+  const Eigen::Matrix3Xd d0 = c0.colwise() - mean0, d1 = c1.colwise() - mean1;
+  const Eigen::Matrix3d cov = d0 * d0.transpose();
+  if (std::abs(cov.determinant()) < 1e-30) {
+    why = "it is flat";
+    return false;
+  }
+  const Eigen::Matrix3d a = (d1 * d0.transpose()) * cov.inverse();
+  const Eigen::Vector3d b = mean1 - a * mean0;
+  double size = std::max(d1.cwiseAbs().maxCoeff(), 1e-12);
+  double residual = ((a * c0).colwise() + b - c1).cwiseAbs().maxCoeff();
+  if (residual > 1e-4 * size) {
+    why = "its vertices do not map onto the compiled ones (residual " + std::to_string(residual) + ")";
+    return false;
+  }
+  // c1 = L v + t with L = A R0^T, t = b - L c0pos; L = Q diag(s).
+  const Eigen::Matrix3d r0 = m0.orientation.toRotationMatrix();
+  const Eigen::Matrix3d l = a * r0.transpose();
+  const Eigen::Vector3d t = b - l * m0.position;
+  scale = l.colwise().norm().transpose();
+  if (scale.minCoeff() < 1e-12) {
+    why = "its scale is zero";
+    return false;
+  }
+  Eigen::Matrix3d q = l * scale.cwiseInverse().asDiagonal();
+  if (q.determinant() < 0) {  // a mirroring scale: keep a rotation, mirror one axis
+    scale.z() = -scale.z();
+    q.col(2) = -q.col(2);
+  }
+  // Snap to the nearest rotation (the fit is as exact as float vertices).
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(q, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  q = svd.matrixU() * svd.matrixV().transpose();
+  frame.position = t;
+  frame.orientation = Eigen::Quaterniond(q).normalized();
+  return true;
+}
+
+}  // namespace rscene::robot
