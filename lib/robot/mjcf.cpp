@@ -106,24 +106,44 @@ std::uint32_t lineOf(const std::string& text) {
 bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics) {
   out = Model{};
   out.sourceFile = path;
-  auto fail = [&](const char* code, std::uint32_t line, std::string message) {
+  auto fail = [&](const char* code, const std::string& file, int line, std::string message) {
     Diagnostic d;
     d.severity = Severity::Error;
     d.code = code;
-    d.line = line;
+    d.line = static_cast<std::uint32_t>(line);
     d.message = std::move(message);
-    d.file = path;
+    d.file = file;
     diagnostics.push_back(std::move(d));
     return false;
   };
-  if (!fileExistsOnDisk(path)) return fail(code::kMissingFile, 0, "robot file '" + path + "' " + whyNotAFile(path));
-  std::error_code ec;
-  auto bytes = std::filesystem::file_size(path, ec);
-  if (ec) return fail(code::kMissingFile, 0, "robot file '" + path + "' cannot be read: " + ec.message());
-  if (bytes > options.maxFileBytes)
-    return fail(code::kBadFile, 0,
-                "robot file '" + path + "' is " + std::to_string(bytes) + " bytes, over the cap of " +
-                    std::to_string(options.maxFileBytes));
+  // The file and every file it names: regular files under the cap, so
+  // MuJoCo never reads a FIFO, a device or a huge file.
+  auto check = [&](const std::string& file, const std::string& from, int line, const char* what) {
+    std::error_code ec;
+    if (!fileExistsOnDisk(file)) {
+      if (from.empty() || whyNotAFile(file) != "does not exist")
+        return fail(code::kMissingFile, from.empty() ? file : from, line,
+                    std::string(what) + " '" + file + "' " + whyNotAFile(file));
+      return true;  // missing: MuJoCo's message names it
+    }
+    auto bytes = std::filesystem::file_size(file, ec);
+    if (ec) return fail(code::kMissingFile, from.empty() ? file : from, line,
+                        std::string(what) + " '" + file + "' cannot be read: " + ec.message());
+    if (bytes > options.maxFileBytes)
+      return fail(code::kBadFile, from.empty() ? file : from, line,
+                  std::string(what) + " '" + file + "' is " + std::to_string(bytes) + " bytes, over the cap of " +
+                      std::to_string(options.maxFileBytes));
+    return true;
+  };
+  if (!check(path, "", 0, "robot file")) return false;
+  const MjcfFiles named = scanMjcf(path);
+  for (const MjcfFiles::Named& f : named.files)
+    if (!check(f.path, f.from, f.line, "file")) return false;
+  if (named.tooDeep) return fail(code::kBadFile, path, 0, "includes nested too deep or too many included files");
+  if (named.compositeLine > 0)
+    return fail(code::kMjcfUnsupported, named.compositeFile, named.compositeLine,
+                "<composite> is not read: MuJoCo expands it into as many bodies as its count asks, "
+                "which a robot model has no use for");
 
   std::lock_guard<std::mutex> lock(mujocoLock());
   std::string warnings;
@@ -134,15 +154,15 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
     m = mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
   } catch (const std::exception& e) {
     if (m) mj_deleteModel(m);
-    return fail(code::kBadFile, 0, "mujoco failed on the model: " + oneLine(e.what()));
+    return fail(code::kBadFile, path, 0, "mujoco failed on the model: " + oneLine(e.what()));
   }
   std::string text(error.data());
   if (!m) {
     if (text.empty()) text = "MuJoCo's compiler refused the model";
-    return fail(code::kBadFile, lineOf(text), oneLine(text));
+    return fail(code::kBadFile, path, static_cast<int>(lineOf(text)), oneLine(text));
   }
   // On success the buffer holds the compiler's warning, if any.
-  if (!text.empty()) warnings += (warnings.empty() ? "" : "; ") + text;
+  if (!text.empty()) warnings += std::string(warnings.empty() ? "" : "; ") + text;
   if (!warnings.empty()) {
     Diagnostic d;
     d.severity = Severity::Warning;
@@ -160,8 +180,7 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
     d.file = path;
     diagnostics.push_back(std::move(d));
   }
-  bool ok = convertMjcf(*m, path, m->nmesh > 0 ? mjcfMeshFiles(path) : std::map<std::string, std::string>{}, out,
-                        diagnostics);
+  bool ok = convertMjcf(*m, path, named.meshes, out, diagnostics);
   mj_deleteModel(m);
   return ok;
 }

@@ -5,6 +5,7 @@
 #pragma once
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/diagnostic.hpp"
 #include "robot/model.hpp"
@@ -33,9 +34,22 @@ inline constexpr const char* kMjcfApproximated = "RS7037";
 bool convertMjcf(const mjModel_& m, const std::string& path, const std::map<std::string, std::string>& meshFiles,
                  Model& out, Diagnostics& diagnostics);
 
-// The files of the <asset><mesh> elements of the MJCF file `path` and its
-// includes, by mesh name, resolved as MuJoCo resolves them.
-std::map<std::string, std::string> mjcfMeshFiles(const std::string& path);
+// What an MJCF file names, read before MuJoCo reads it (mjcf_files.cpp).
+struct MjcfFiles {
+  struct Named {
+    std::string path;  // resolved as MuJoCo resolves it
+    std::string from;  // the XML file that names it
+    int line = 0;
+  };
+  std::vector<Named> files;                    // includes and asset files (mesh, texture, hfield, skin)
+  std::map<std::string, std::string> meshes;   // <asset><mesh file=> by mesh name
+  std::string compositeFile;                   // the first <composite>, if any
+  int compositeLine = 0;                       // 0: none
+  bool tooDeep = false;                        // includes past the scan's depth or count cap
+};
+
+// Scans the MJCF file `path` and its includes (tinyxml2).
+MjcfFiles scanMjcf(const std::string& path);
 
 // Where the vertices of mesh `file` lie in the frame of MuJoCo's compiled
 // copy of it (`count` float vertices x y z): compiled = frame * (scale *

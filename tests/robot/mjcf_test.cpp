@@ -9,12 +9,14 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <random>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "robot/kinematics.hpp"
@@ -439,6 +441,39 @@ TEST(Mjcf, MalformedXmlNamesTheLine) {
   ASSERT_EQ(diags.size(), 1u);
   EXPECT_EQ(diags[0].code, code::kBadFile);
   EXPECT_GT(diags[0].line, 0u) << diags[0].message;
+  fs::remove_all(dir);
+}
+
+TEST(Mjcf, CompositeIsRefusedBeforeMuJoCoExpandsIt) {
+  Model model;
+  Diagnostics diags;
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(loadMjcf(kFixtures + "composite.xml", LoadOptions{}, model, diags));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, code::kMjcfUnsupported);
+  EXPECT_EQ(diags[0].file, kFixtures + "composite.xml");
+  EXPECT_EQ(diags[0].line, 7u);
+}
+
+TEST(Mjcf, FifoNamedAsAMeshIsRefusedWhereItIsNamed) {
+  fs::path dir = fs::temp_directory_path() / ("rscene_mjcf_fifo_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "part.stl").c_str(), 0600), 0);
+  const std::string path = (dir / "model.xml").string();
+  {
+    std::ofstream f(path);
+    f << "<mujoco>\n  <asset>\n    <mesh file=\"part.stl\"/>\n  </asset>\n  <worldbody>\n"
+         "    <geom type=\"mesh\" mesh=\"part\"/>\n  </worldbody>\n</mujoco>\n";
+  }
+  Model model;
+  Diagnostics diags;
+  EXPECT_FALSE(loadMjcf(path, LoadOptions{}, model, diags));  // and returns: MuJoCo never opens the FIFO
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, code::kMissingFile);
+  EXPECT_EQ(diags[0].file, path);
+  EXPECT_EQ(diags[0].line, 3u);
+  EXPECT_NE(diags[0].message.find("FIFO"), std::string::npos) << diags[0].message;
   fs::remove_all(dir);
 }
 

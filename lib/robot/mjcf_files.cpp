@@ -1,9 +1,18 @@
-// Mesh geoms of an MJCF model (mjcf.hpp).  MuJoCo 2.2.2's compiled model
-// keeps a mesh's vertices but not its file, and it has moved the vertices:
-// scaled (mesh scale, refpos/refquat) and re-expressed in the mesh's
-// inertial frame, with the geom's pose compensating.  The robot model names
-// mesh files that the renderer and simulator read themselves, so two
-// things are recovered here:
+// What an MJCF file names besides itself (mjcf.hpp): the files it includes
+// and the asset files MuJoCo will read, looked at before MuJoCo reads them,
+// and the mesh geoms' files and frames after.
+//
+// Before: MuJoCo reads whatever a model names, without a size cap, and a
+// FIFO or a device named as a mesh would never end; a <composite> expands
+// to as many bodies as its count asks (100 x 100 takes MuJoCo 2.2.2 about
+// 20 s).  So the file and its includes are scanned first (tinyxml2):
+// named files must be regular files under the cap, composites are refused.
+//
+// After: MuJoCo 2.2.2's compiled model keeps a mesh's vertices but not its
+// file, and it has moved the vertices: scaled (mesh scale, refpos/refquat)
+// and re-expressed in the mesh's inertial frame, with the geom's pose
+// compensating.  The robot model names mesh files that the renderer and
+// simulator read themselves, so two things are recovered:
 //   - the file: <asset><mesh file=> of the model and its includes, resolved
 //     as MuJoCo does (compiler meshdir, else assetdir, relative to the main
 //     file's directory; absolute paths as written);
@@ -22,6 +31,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/assets.hpp"
 #include "robot/mjcf.hpp"
 
 namespace rscene::robot {
@@ -30,26 +40,36 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Scan {
-  std::string meshdir, assetdir;
-  bool haveMeshdir = false;
-  std::vector<std::pair<std::string, std::string>> meshes;  // name, file as written
-  int files = 0;
+  std::string meshdir, texturedir, assetdir;
+  bool haveMeshdir = false, haveTexturedir = false;
+  struct Asset {
+    std::string tag, name, file, from;  // from: the XML file that names it
+    int line = 0;
+  };
+  std::vector<Asset> assets;
+  MjcfFiles out;
 };
 
-// Include depth and file count caps: a model that includes itself stops here.
+// Include depth and file count caps: MuJoCo refuses a repeated include
+// itself; these only bound this scan.
 constexpr int kMaxIncludeDepth = 16;
 constexpr int kMaxIncludedFiles = 256;
 
-void scanElement(const tinyxml2::XMLElement* e, const fs::path& modelDir, Scan& scan, int depth);
+void scanElement(const tinyxml2::XMLElement* e, const std::string& file, const fs::path& modelDir, Scan& scan,
+                 int depth);
 
 void scanFile(const fs::path& file, const fs::path& modelDir, Scan& scan, int depth) {
-  if (depth > kMaxIncludeDepth || ++scan.files > kMaxIncludedFiles) return;
+  if (depth > kMaxIncludeDepth || static_cast<int>(scan.out.files.size()) > kMaxIncludedFiles) {
+    scan.out.tooDeep = true;
+    return;
+  }
   tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(file.string().c_str()) != tinyxml2::XML_SUCCESS) return;  // MuJoCo has read it already
-  if (const tinyxml2::XMLElement* root = doc.RootElement()) scanElement(root, modelDir, scan, depth);
+  if (doc.LoadFile(file.string().c_str()) != tinyxml2::XML_SUCCESS) return;  // MuJoCo says why
+  if (const tinyxml2::XMLElement* root = doc.RootElement()) scanElement(root, file.string(), modelDir, scan, depth);
 }
 
-void scanElement(const tinyxml2::XMLElement* e, const fs::path& modelDir, Scan& scan, int depth) {
+void scanElement(const tinyxml2::XMLElement* e, const std::string& file, const fs::path& modelDir, Scan& scan,
+                 int depth) {
   for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "compiler") {
@@ -57,16 +77,29 @@ void scanElement(const tinyxml2::XMLElement* e, const fs::path& modelDir, Scan& 
         scan.meshdir = d;
         scan.haveMeshdir = true;
       }
-      if (const char* d = c->Attribute("assetdir")) scan.assetdir = d;
-    } else if (tag == "mesh" && std::strcmp(e->Name(), "asset") == 0) {
-      if (const char* file = c->Attribute("file")) {
-        const char* name = c->Attribute("name");
-        scan.meshes.emplace_back(name ? name : fs::path(file).stem().string(), file);
+      if (const char* d = c->Attribute("texturedir")) {
+        scan.texturedir = d;
+        scan.haveTexturedir = true;
       }
+      if (const char* d = c->Attribute("assetdir")) scan.assetdir = d;
     } else if (tag == "include") {
-      if (const char* file = c->Attribute("file")) scanFile(modelDir / file, modelDir, scan, depth + 1);
-    } else if (tag == "asset" || tag == "mujoco") {
-      scanElement(c, modelDir, scan, depth);
+      if (const char* name = c->Attribute("file")) {
+        fs::path included = modelDir / name;
+        scan.out.files.push_back({included.lexically_normal().string(), file, c->GetLineNum()});
+        if (whyNotAFile(included.string()) == "does not exist" || fileExistsOnDisk(included.string()))
+          scanFile(included, modelDir, scan, depth + 1);
+      }
+    } else if (tag == "composite") {
+      if (scan.out.compositeLine == 0) {
+        scan.out.compositeFile = file;
+        scan.out.compositeLine = c->GetLineNum();
+      }
+    } else {
+      if (const char* name = c->Attribute("file"); name && std::strcmp(e->Name(), "asset") == 0) {
+        const char* given = c->Attribute("name");
+        scan.assets.push_back({tag, given ? given : fs::path(name).stem().string(), name, file, c->GetLineNum()});
+      }
+      scanElement(c, file, modelDir, scan, depth);
     }
   }
 }
@@ -80,18 +113,22 @@ struct VfsDeleter {
 
 }  // namespace
 
-std::map<std::string, std::string> mjcfMeshFiles(const std::string& path) {
+MjcfFiles scanMjcf(const std::string& path) {
   fs::path modelDir = fs::path(path).parent_path();
   Scan scan;
   scanFile(path, modelDir, scan, 0);
-  const std::string dir = scan.haveMeshdir ? scan.meshdir : scan.assetdir;
-  std::map<std::string, std::string> files;
-  for (const auto& [name, file] : scan.meshes) {
-    fs::path p = file;
-    if (p.is_relative()) p = modelDir / dir / p;
-    files[name] = p.lexically_normal().string();
+  // Meshes, height fields and skins in meshdir, textures in texturedir;
+  // either defaults to assetdir.
+  const std::string meshdir = scan.haveMeshdir ? scan.meshdir : scan.assetdir;
+  const std::string texturedir = scan.haveTexturedir ? scan.texturedir : scan.assetdir;
+  for (const Scan::Asset& a : scan.assets) {
+    fs::path p = a.file;
+    if (p.is_relative()) p = modelDir / (a.tag == "texture" ? texturedir : meshdir) / p;
+    const std::string resolved = p.lexically_normal().string();
+    scan.out.files.push_back({resolved, a.from, a.line});
+    if (a.tag == "mesh") scan.out.meshes[a.name] = resolved;
   }
-  return files;
+  return std::move(scan.out);
 }
 
 bool mjcfMeshFrame(const std::string& file, const float* vertices, int count, Pose& frame, Eigen::Vector3d& scale,
