@@ -134,6 +134,7 @@ sim_bases() {
 
 status=0
 declare -a TARGETS
+declare -A MJ_PROFILE
 printf '%-9s %6s  %12s %12s %14s  %12s %12s %9s  %9s  %s\n' world steps "MuJoCo st/s" "MuJoCo CPU s" "MJ z m/tilt" \
   "rscene st/s" "rscene CPU s" "ratio" "load s" "rscene base z / tilt"
 for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
@@ -145,6 +146,7 @@ for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
     continue
   fi
   mj_rate=$(jq -r '.steps / .stepWall' <<< "$MJ_JSON")
+  MJ_PROFILE[$name]=$(jq -r '"\(.contactsAtEnd) contacts at the end; of its step time, collision \(.collisionShare * 100 | floor)%, constraint solver \(.constraintShare * 100 | floor)%"' <<< "$MJ_JSON")
   mj_line=$(printf '%-9s %6s  %12.0f %12.3f %14s' "$name" "$(jq -r .steps <<< "$MJ_JSON")" "$mj_rate" \
     "$(jq -r .stepCpu <<< "$MJ_JSON")" "$(jq -r '"\(.baseHeightMin)/\(.tiltMaxDeg)"' <<< "$MJ_JSON")")
   if ((SIM_READY == 0)); then
@@ -162,6 +164,9 @@ for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
   printf '%s  %12.0f %12.3f %9s  %9.3f  %s\n' "$mj_line" "$sim_rate" "$SIM_CPU" "$ratio" "$load" \
     "$(sim_bases "$SIM_OUT" "$DIR/$name.rscene")"
   TARGETS+=("$name|$ratio|$load|$(jq -c '{parseTime, buildTime, stepTime, writeTime}' <<< "$SIM_JSON")")
+done
+for name in anymal anymal16; do
+  [[ -n ${MJ_PROFILE[$name]:-} ]] && echo "  MuJoCo $name: ${MJ_PROFILE[$name]}"
 done
 echo "  (st/s: steps per second of stepping wall time; z: lowest final base height, m; tilt: largest, degrees;" \
   "MuJoCo compiled the URDF in $(jq -r .compileTime <<< "$MJ_JSON") s)"
