@@ -352,6 +352,17 @@ TEST(Mjcf, FixtureJointsGeomsAndWarnings) {
   EXPECT_NEAR((world.visuals[0].geometry.size - Eigen::Vector3d(0.1, 0.1, 1)).norm(), 0, 1e-12);
 }
 
+TEST(Mjcf, ModulesDoNotApplyToMjcf) {
+  Model model;
+  Diagnostics diags;
+  LoadOptions options;
+  options.modules = {"actuator_pd"};
+  ASSERT_TRUE(loadMjcf(kFixtures + "include.xml", options, model, diags)) << dump(diags);
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, code::kSkipped);
+  EXPECT_NE(diags[0].message.find("modules="), std::string::npos) << diags[0].message;
+}
+
 TEST(Mjcf, IncludesAndDefaultClassesAreMuJoCos) {
   Model model;
   Diagnostics diags;
