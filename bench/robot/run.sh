@@ -12,9 +12,11 @@
 # 0.0025 s, best of ROBOT_BENCH_REPEAT runs (default 3) by CPU time.
 # MuJoCo's figures are its stepping alone (compile excluded); rscene-sim's
 # are its --report stepTime (stepping alone) and, beside them, its load
-# time.  Both PD controllers are explicit torques kp (q* - q) - kd qdot
-# with ROBOT_BENCH_GAINS (default 400,10: ANYmal C sags under 6 cm in
-# MuJoCo with them; 100,2 lets it sink onto its knees in 10 s).
+# time.  Both hold every joint toward its initial position with the gains
+# ROBOT_BENCH_GAINS (default 400,10: ANYmal C sags under 6 cm in MuJoCo
+# with them; 100,2 lets it sink onto its knees in 10 s): MuJoCo with
+# explicit torques kp (q* - q) - kd qdot, rscene-sim with its --pd-gains
+# (its own integration of the same law).
 #
 # Targets, marked PASS or MISS: rscene-sim's steps per second at least
 # half MuJoCo's (stepping wall time; the CPU time of the whole process is
