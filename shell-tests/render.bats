@@ -285,7 +285,7 @@ BOX='object /World/B box 3 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default fals
 @test "limits: a camera width of 4294967297 is RS2003 at the field, not 1 pixel" {
   printf 'raisim_engine_scene 2\ncamera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 4294967297 48 rgb true id=cam\n%s\n' "$BOX" > w.rscene
   run -2 --separate-stderr "$RENDER" w.rscene -o w.png
-  [ "${stderr_lines[0]}" = "w.rscene:2:45: error: width is 4294967297, outside 0..2147483647 [RS2003]" ]
+  [ "${stderr_lines[0]}" = "w.rscene:2:45: error: invalid 32-bit integer '4294967297' for width of camera [RS2003]" ]
   [ ! -e w.png ]
 }
 
@@ -328,4 +328,11 @@ PY
   [[ "${stderr_lines[0]}" == *"(limit 1000) [RS9002]" ]]
   run "$RENDER" p.rscene --max-texture-pixels 0 -o p.png
   [ "$status" -eq 2 ]
+}
+
+@test "--threshold nan (or 2) is a usage error: NaN must not make every image pass" {
+  for t in nan NaN 2 -0.5; do
+    run -2 --separate-stderr "$RENDER" "$DATA/render_mesh.rscene" --reference base.png --threshold "$t" -o out.png
+    [[ $stderr == *"--threshold: expected a fraction from 0 to 1 (e.g. 0.01), not '$t'"* ]]
+  done
 }

@@ -343,13 +343,12 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
 }
 
 @test "limits: a state that stops being finite stops the run naming the body (RS7024); no scene, no trajectory" {
-  # A restitution of 1e308 passes the up-front checks (no bound on it); the
-  # first bounce overflows the velocity.
-  { echo 'contact_material default default 0.5 1e308 0 0.5 0.01 0 0'; echo "$GROUND"
-    obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; } | scene 0.001 > heavy.rscene
+  # The smallest normal mass passes the up-front checks (its inverse is
+  # finite); its inertia's inverse is not, which only stepping finds.
+  { echo "$GROUND"; obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 2.2250738585072014e-308 dynamic; } | scene 0.001 > heavy.rscene
   echo old > t.jsonl
   run -2 --separate-stderr bounded 500000 10 --steps 2000 --trajectory t.jsonl -o out.rscene heavy.rscene
-  [[ ${stderr_lines[0]} == "heavy.rscene:5:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
+  [[ ${stderr_lines[0]} == "heavy.rscene:4:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
   [ "${stderr_lines[-1]}" = "rscene-sim: error: t.jsonl: write cancelled" ]
   [ "$(cat t.jsonl)" = old ]
   [ ! -e out.rscene ]
@@ -425,4 +424,45 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   run -2 --separate-stderr bash -c "ulimit -v 1000000; timeout 20 '$SIM' --steps 1 zero.rscene"
   [ "$(grep -c 'RS7003' <<<"$stderr")" -eq 50000 ]
   [[ ${stderr_lines[-4]} == "zero.rscene:50001:40: error: box with a zero or negative side "*"[RS7003]" ]]
+}
+
+@test "limits: validate, sim and render give one verdict on hostile values (code, line and column)" {
+  # Each of these once passed one tool and failed another (issue 10 review).
+  base='object /World/Box box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615 id=object_box'
+  b2='object /World/B2 sphere 0 0 3 1 0 0 0 1 1 1 0.2 0 1 default engine_default false true false - dynamic true 1 18446744073709551615 id=object_b2'
+  cases=(
+    "solver 2147483647 0 0.2 accurate|RS7027"
+    "solver -2147483649 0 0.2 accurate|RS2003"
+    "$b2
+wire /World/W stiff object_box object_b2 -1|RS4011"
+    "$b2
+wire /World/W compliant object_box object_b2 1 stiffness=1e308|RS7027"
+    "camera /World/C -8 -8 5 1 0 0 0 45 0.05 200 -1 10 rgb true|RS7028"
+    "camera /World/C -8 -8 5 1 0 0 0 45 0.05 200 16385 10 rgb true|RS7028"
+    "terrain_region /World/T 4294967297 2 100 100 0 0 0|RS2003"
+    "terrain_region /World/T 3 3 10 10 0 0 0 heights=0,0,0,0,1e308,0,0,0,0|RS7026"
+    "contact_material default default -1e308 0 0 0 0 0 0|RS7027"
+  )
+  for c in "${cases[@]}"; do
+    { echo "$GROUND"; echo "$base"; echo "${c%|*}"; } | scene 0.001 > h.rscene
+    run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene h.rscene
+    sim=${stderr_lines[0]}
+    [[ $sim == *"error: "*"[${c##*|}]" ]]
+    run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" h.rscene
+    [ "${sim%%: error*}" = "${lines[0]%%: error*}" ]  # same file:line:col
+    [[ ${lines[0]} == *"[${c##*|}]" ]]
+    run -2 --separate-stderr timeout 20 "$RSCENE_BIN/rscene-render" --width 32 --height 32 -o out.png h.rscene
+    [ "${stderr_lines[0]}" = "$sim" ]
+  done
+  # An object parented to itself, and an orientation too short to have a direction.
+  { echo "$GROUND"; echo "$base parentGroupId=object_box"; } | scene 0.001 > self.rscene
+  { echo "$GROUND"; echo "${base/0.5 1 0 0 0/0.5 1e-13 1e-13 1e-13 1e-13}"; } | scene 0.001 > tiny.rscene
+  for f in self tiny; do
+    run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene $f.rscene
+    sim=${stderr_lines[0]}
+    run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" $f.rscene
+    v=$(printf '%s\n' "${lines[@]}" | grep -m1 ': error: ')
+    [ "${sim%%: error*}" = "${v%%: error*}" ]
+    [ "${sim##*[}" = "${v##*[}" ]
+  done
 }

@@ -70,7 +70,7 @@ CLI::Validator seconds() {
   return CLI::Validator(
       [](std::string& s) -> std::string {
         std::optional<double> v = parseNumber(s);
-        if (!v || *v < 0) return "expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '" + s + "'";
+        if (!v || !(*v >= 0)) return "expected seconds as a plain number >= 0 (e.g. 2 or 0.5), not '" + s + "'";
         return {};
       },
       "", "seconds");
@@ -84,6 +84,16 @@ CLI::Validator nonNegative() {
         return {};
       },
       "", "nonNegative");
+}
+
+CLI::Validator fraction() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        std::optional<double> v = parseNumber(s);
+        if (!v || !(*v >= 0 && *v <= 1)) return "expected a fraction from 0 to 1 (e.g. 0.01), not '" + s + "'";
+        return {};
+      },
+      "", "fraction");
 }
 
 CLI::Validator count(long long min) {

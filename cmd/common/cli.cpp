@@ -171,6 +171,11 @@ void printDiagnostics(const Diagnostics& found, std::string_view display, std::s
   std::stable_sort(ds.begin(), ds.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::tuple(!a.file.empty(), a.file, a.line, a.column) < std::tuple(!b.file.empty(), b.file, b.line, b.column);
   });
+  // The same finding twice (one value read by two checks) is printed once.
+  auto same = [](const Diagnostic& a, const Diagnostic& b) {
+    return a.code == b.code && a.line == b.line && a.column == b.column && a.message == b.message && a.file == b.file;
+  };
+  ds.erase(std::unique(ds.begin(), ds.end(), same), ds.end());
   LineCursor lines(text);  // one pass over the text for findings in line order
   for (const Diagnostic& d : ds)
     std::cerr << (d.file.empty() ? formatDiagnostic(d, display, lines(d.line), color)

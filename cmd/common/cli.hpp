@@ -109,6 +109,8 @@ int parseArgs(CLI::App& app, int argc, char** argv);
 // number >= 0 (`2`, `0.5`, not `2s`); a finite number >= 0; a whole number >= min.
 CLI::Validator seconds();
 CLI::Validator nonNegative();
+// A number from 0 to 1 (CLI::Range lets NaN through).
+CLI::Validator fraction();
 CLI::Validator count(long long min);
 
 }  // namespace rscene::cli

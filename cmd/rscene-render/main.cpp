@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   app.add_option("--threshold", opt.baseline.threshold,
                  "Largest accepted fraction (0..1) of pixels differing by more than 16/255 (default 0.01)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(cli::fraction());
   app.add_option("--diff-output", opt.baseline.diffOutput, "With --reference, write a difference image to FILE")
       ->type_name("FILE");
   app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");

@@ -70,7 +70,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS4006", E, Core, VSR, "vertexColors count differs from the terrain's sample count"},
     {"RS4007", E, Core, V, "generalizedCoordinate and generalizedVelocity lengths disagree"},
     {"RS4008", E, Scene, VSR, "dynamic object or compound without positive mass (ground and half_space are static)"},
-    {"RS4009", E, Core, VSR, "zero quaternion"},
+    {"RS4009", E, Core, VSR, "zero quaternion (length below 1e-12)"},
     {"RS4010", W, Core, V, "quaternion not of unit length (off by more than 1e-3)"},
     {"RS4011", E, Core, V, "negative size, radius or length"},
     {"RS4012", E, Core, V, "camera near plane not positive or not below the far plane"},
@@ -104,7 +104,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS7023", E, Sim, "sim", "run longer than --max-steps"},
     {"RS7024", E, Sim, "sim", "a body's state stopped being finite while stepping (nothing is written)"},
     {"RS7025", E, Sim, "sim", "more overlapping body pairs than --max-pairs"},
-    {"RS7026", E, Scene, VSR, "size, scale, wire attachment or length, or gravity larger than 1e12 in magnitude (m, m/s^2)"},
+    {"RS7026", E, Scene, VSR, "size, scale, wire attachment or length, terrain size, centre or height, or gravity larger than 1e12 in magnitude (m, m/s^2)"},
+    {"RS7027", E, Scene, VSR, "wire stiffness, damping or compliance, friction or restitution negative or above 1e15; solver iterations outside 0..10000"},
+    {"RS7028", E, Scene, VSR, "camera width or height outside 0..16384"},
     // RS703x reading robot files (lib/robot/load.hpp); RS704x an articulated
     // record against its model (lib/robot/instance.hpp).
     {"RS7030", E, Robot, VSR, "robot file (URDF or MJCF) that does not parse or that MuJoCo's compiler refuses"},

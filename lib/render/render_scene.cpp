@@ -20,8 +20,15 @@ using Eigen::Vector4f;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinGroundSize = 200;  // metres: the ground reads as "large" from any camera
 
-Vector4f toF(const Vector4d& v) { return v.cast<float>(); }
-Vector3f rgb(const Vector4d& v) { return v.head<3>().cast<float>(); }
+// Colours, intensities and other shading inputs as floats the shaders can
+// multiply without overflowing: beyond +-1e6 (which tone mapping saturates
+// long before) they are drawn as +-1e6, and NaN as 0.  A light of 1e39 was
+// infinite in float and turned the lit surfaces black (NaN).
+constexpr double kMaxShade = 1e6;
+float shade(double v) { return std::isnan(v) ? 0.f : float(std::clamp(v, -kMaxShade, kMaxShade)); }
+Vector4f toF(const Vector4d& v) { return {shade(v[0]), shade(v[1]), shade(v[2]), shade(v[3])}; }
+Vector3f toF(const Vector3d& v) { return {shade(v[0]), shade(v[1]), shade(v[2])}; }
+Vector3f rgb(const Vector4d& v) { return toF(Vector3d(v.head<3>())); }
 
 Shape shapeOf(const std::string& primitive) {
   if (primitive == "sphere") return Shape::Sphere;
@@ -120,7 +127,7 @@ class Preparer {
     m.color = toF(src.color);
     m.metallic = float(src.metallic);
     m.roughness = float(std::clamp(src.roughness, 0.03, 1.0));
-    m.emissive = src.emissive.cast<float>() * float(src.emissiveStrength);
+    m.emissive = toF(Vector3d(src.emissive * std::clamp(src.emissiveStrength, -kMaxShade, kMaxShade)));
     m.doubleSided = src.doubleSided;
     m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
     m.albedoTexture = src.albedoTexture;
@@ -149,12 +156,12 @@ class Preparer {
   void look() {
     const Environment& env = s_.environment;
     Look& e = out_.environment;
-    e.background = env.background.cast<float>();
-    e.ambient = env.ambient.cast<float>();
+    e.background = toF(env.background);
+    e.ambient = toF(env.ambient);
     e.fogDensity = float(std::max(0.0, env.fogDensity));
     e.fogColor = rgb(env.fogColor);
     e.shadows = env.shadows;
-    e.exposure = float(env.exposure);
+    e.exposure = shade(env.exposure);
     e.gamma = float(env.gamma);
     if (!(e.gamma > 0.1f)) e.gamma = 2.2f;
     e.mode = env.backgroundMode == "plain_color" ? Background::PlainColor
@@ -269,8 +276,8 @@ class Preparer {
                                   : LightType::Directional;
     l.direction = src.direction;
     l.position = src.position;
-    float intensity = float(src.negative ? -src.intensity : src.intensity);
-    l.color = rgb(src.color) * intensity;
+    float intensity = shade(src.negative ? -src.intensity : src.intensity);
+    l.color = toF(Vector3d((rgb(src.color) * intensity).cast<double>()));
     l.attenuation = Vector3f(float(src.attenuationConstant), float(src.attenuationLinear), float(src.attenuationQuadratic));
     l.coneDegrees = float(src.coneAngle);
     l.innerConeDegrees = float(std::min(src.innerConeAngle, src.coneAngle));

@@ -3,14 +3,23 @@
 // rscene-sim would refuse.
 #include "scene/limits.hpp"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
 
+#include "core/text.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene {
 namespace {
+
+// The shortest text that reads back as `v`, as lib/core writes numbers.
+std::string shortest(double v) {
+  std::string s;
+  appendNumber(s, v);
+  return s;
+}
 
 std::string number(double v) {
   char buf[32];
@@ -48,6 +57,63 @@ void checkLength(const RecordReader& r, const char* field, const T& value, const
             "lengths, coordinates and accelerations must stay within 1e12 (m, m/s^2) for double precision to resolve them");
 }
 
+// RS7027 at `field` when the coefficient is negative, above
+// kMaxCoefficient or not finite.
+void checkCoefficient(const RecordReader& r, const char* field, double v, const std::string& what) {
+  if (!(v >= 0 && v <= kMaxCoefficient))
+    r.error(field, scene_code::kBadCoefficient, what + " is " + number(v) + ", outside 0.." + number(kMaxCoefficient),
+            "a negative coefficient has no meaning, and a larger one overflows forces");
+}
+
+// The records validate's bodies-only scene does not build, read here from
+// the document: solver, contact materials, cameras, terrains.
+void checkRecords(const Document& doc, Diagnostics& diagnostics) {
+  for (std::size_t i = 1; i < doc.records.size(); ++i) {
+    const Record& rec = doc.records[i];
+    if (!rec.kind) continue;
+    const std::string& tag = rec.kind->tag;
+    if (tag == "solver") {
+      RecordReader r(doc, i, diagnostics);
+      for (const char* field : {"iterations", "contactMaxIterations"}) {
+        std::int64_t n = r.integer(field);
+        if (n < 0 || n > kMaxSolverIterations)
+          r.error(field, scene_code::kBadCoefficient,
+                  std::string("solver ") + field + " is " + std::to_string(n) + ", outside 0.." +
+                      std::to_string(kMaxSolverIterations),
+                  "each iteration visits every contact of every step");
+      }
+      for (const char* field : {"defaultFriction", "defaultRestitution", "defaultStaticFriction",
+                                "defaultRollingFriction", "defaultSpinningFriction"})
+        checkCoefficient(r, field, r.number(field), std::string("solver ") + field);
+    } else if (tag == "contact_material") {
+      RecordReader r(doc, i, diagnostics);
+      for (const char* field : {"friction", "restitution", "staticFriction", "rollingFriction", "spinningFriction"})
+        if (r.has(field)) checkCoefficient(r, field, r.number(field, 0), std::string("contact ") + field);
+    } else if (tag == "camera") {
+      RecordReader r(doc, i, diagnostics);
+      for (const char* field : {"width", "height"}) {
+        std::int64_t n = r.integer(field, 0);
+        if (n < 0 || n > kMaxCameraSide)
+          r.error(field, scene_code::kBadCameraSize,
+                  std::string("camera ") + field + " is " + std::to_string(n) + ", outside 0.." +
+                      std::to_string(kMaxCameraSide),
+                  "0 lets rscene-render choose; it draws at most 16384 pixels per side");
+      }
+    } else if (tag == "terrain_region") {
+      RecordReader r(doc, i, diagnostics);
+      checkLength(r, "xSize", r.number("xSize", 0), "terrain xSize");
+      checkLength(r, "ySize", r.number("ySize", 0), "terrain ySize");
+      checkLength(r, "center", r.vec3("center", Eigen::Vector3d::Zero()), "terrain center");
+      std::vector<double> heights;
+      if (r.has("heights") && r.numbers("heights", heights)) {
+        double largest = 0;
+        for (double h : heights) largest = std::isnan(h) ? h : std::max(largest, std::abs(h));
+        checkLength(r, "heights", largest, "a terrain height");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
@@ -66,6 +132,7 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
               "time_step " + number(dt) + " is above the longest simulated step, " + number(kMaxTimeStep) + " s",
               "a step longer than a second resolves no contact");
   }
+  checkRecords(doc, diagnostics);
   for (std::size_t i = 1; i < doc.records.size(); ++i) {
     const Record& rec = doc.records[i];
     if (!rec.kind || rec.kind->tag != "gravity") continue;
@@ -112,7 +179,13 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
   }
   for (const Wire& w : scene.wires) {
     RecordReader r(doc, static_cast<std::size_t>(w.recordIndex), diagnostics);
-    checkLength(r, "length", w.length, "length of wire '" + w.path + "'");
+    if (w.length < 0)  // lib/core's finding, in its words
+      r.error("length", "RS4011", "length is negative (" + shortest(w.length) + ")");
+    else
+      checkLength(r, "length", w.length, "length of wire '" + w.path + "'");
+    checkCoefficient(r, "stiffness", w.stiffness, "stiffness of wire '" + w.path + "'");
+    checkCoefficient(r, "damping", w.damping, "damping of wire '" + w.path + "'");
+    checkCoefficient(r, "compliance", w.compliance, "compliance of wire '" + w.path + "'");
     checkLength(r, "localPositionA", w.localPositionA, "localPositionA of wire '" + w.path + "'");
     checkLength(r, "localPositionB", w.localPositionB, "localPositionB of wire '" + w.path + "'");
   }

@@ -8,11 +8,18 @@
 //           a unit quaternion (1e308 1e308 0 0);
 //   RS7022  a positive time_step that is not finite or outside
 //           [kMinTimeStep, kMaxTimeStep] (time_step <= 0 is RS7008);
-//   RS7026  a size, wire attachment or length, or gravity larger than
-//           kMaxLength (a local pose of at most kMaxLength at every level
-//           keeps every world pose finite, however deep the parent chain).
+//   RS7026  a size, wire attachment or length, terrain size, centre or
+//           height, or gravity larger than kMaxLength (a local pose of at
+//           most kMaxLength at every level keeps every world pose finite,
+//           however deep the parent chain);
+//   RS7027  a coefficient (wire stiffness/damping/compliance, friction,
+//           restitution) negative or above kMaxCoefficient, or solver
+//           iterations outside 0..kMaxSolverIterations;
+//   RS7028  a camera width or height outside 0..kMaxCameraSide;
+//   RS4011  (lib/core's code, in its words) a wire with a negative length.
 // checkScene() runs these, so validate, sim and render agree on them.
 #pragma once
+#include <cstdint>
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
@@ -34,6 +41,15 @@ inline constexpr double kMaxMass = 1e15;
 // resolves 0.2 mm, and products of two such values (inertia, energy)
 // stay far from overflow.
 inline constexpr double kMaxLength = 1e12;
+// Largest coefficient (wire stiffness, damping, compliance; friction and
+// restitution): with lengths within kMaxLength, forces stay within 1e27.
+inline constexpr double kMaxCoefficient = 1e15;
+// Most solver iterations per step: Bullet runs each one over every
+// contact, so 2^31 iterations never finish a step.  RaiSim's scenes use
+// tens to hundreds.
+inline constexpr std::int64_t kMaxSolverIterations = 10000;
+// Largest camera image side (rscene-render draws at most 16384 per side).
+inline constexpr std::int64_t kMaxCameraSide = 16384;
 
 // Appends the refusals above, each an error at the record's field.
 // Returns false when it added an error.

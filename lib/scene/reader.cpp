@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "scene/scene.hpp"
@@ -133,8 +134,14 @@ double RecordReader::number(std::string_view name, double fallback) const {
 std::int64_t RecordReader::integer(std::string_view name, std::int64_t fallback) const {
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
-  if (std::optional<std::int64_t> v = parseInteger(*t)) return *v;
-  bad(name, *t, "integer", "RS2003");
+  std::optional<std::int64_t> v = parseInteger(*t);
+  // An `int` field holds 32 bits, as lib/core's validator checks: a value
+  // past that range is the same error here, never a wrap (-2147483649
+  // solver iterations must not become 2147483647).
+  Located l = locate(name);
+  bool int32 = l.def && l.def->type == ValueType::Integer;
+  if (v && (!int32 || (*v >= INT32_MIN && *v <= INT32_MAX))) return *v;
+  bad(name, *t, int32 ? "32-bit integer" : "integer", "RS2003");
   return fallback;
 }
 

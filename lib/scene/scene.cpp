@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <cmath>
+#include <tuple>
 #include <unordered_map>
 
 #include "scene/limits.hpp"
@@ -321,13 +322,12 @@ class Builder {
     s_.lights.push_back(std::move(l));
   }
 
-  // A camera's image size as an int; a value past int range is an error at
-  // the field (RS2003) rather than a silent wrap (4294967297 would be 1).
+  // A camera's image size.  A value past 32 bits is RS2003 (the reader's,
+  // never a wrap: 4294967297 would be 1); one outside 0..16384 is
+  // checkNumericLimits()'s RS7028; either way the size is left to the tool.
   static int pixelCount(const RecordReader& r, const char* name) {
     std::int64_t v = r.integer(name);
-    if (v >= 0 && v <= std::numeric_limits<int>::max()) return static_cast<int>(v);
-    r.error(name, "RS2003", std::string(name) + " is " + std::to_string(v) + ", outside 0..2147483647");
-    return 0;
+    return v >= 0 && v <= kMaxCameraSide ? static_cast<int>(v) : 0;
   }
 
   void readCamera(const RecordReader& r, int idx) {
@@ -565,7 +565,14 @@ class Builder {
     t.path = nodePath(doc_, r.record());
     t.id = nodeId(doc_, r.record());
     t.parentId = r.str("parentGroupId");
-    std::int64_t xs = r.integer("xSamples"), ys = r.integer("ySamples");
+    // A count that is not a 32-bit integer is the reader's RS2003 already
+    // (as in validate); it is not then also "0, outside 2..16384".
+    std::size_t before = diags_.size();
+    std::int64_t xs = r.integer("xSamples");
+    bool xRead = diags_.size() == before;
+    before = diags_.size();
+    std::int64_t ys = r.integer("ySamples");
+    bool yRead = diags_.size() == before;
     t.xSize = r.number("xSize");
     t.ySize = r.number("ySize");
     t.center = r.vec3("center");
@@ -573,9 +580,9 @@ class Builder {
     // cannot ask for an unbounded allocation.
     // The validator's codes: RS4001 per axis, RS4002 in total, RS4014 sizes.
     bool countsOk = true;
-    for (auto [name, v] : {std::pair{"xSamples", xs}, std::pair{"ySamples", ys}})
+    for (auto [name, v, read] : {std::tuple{"xSamples", xs, xRead}, std::tuple{"ySamples", ys, yRead}})
       if (v < 2 || v > 16384) {
-        r.error(name, "RS4001", std::string(name) + " is " + std::to_string(v) + ", outside 2..16384");
+        if (read) r.error(name, "RS4001", std::string(name) + " is " + std::to_string(v) + ", outside 2..16384");
         countsOk = false;
       }
     if (countsOk && static_cast<std::uint64_t>(xs) * static_cast<std::uint64_t>(ys) > kMaxTerrainSamples) {
@@ -909,6 +916,7 @@ class Builder {
     for (const auto& [idx, ref] : parentOf_) {
       int parent = lookup(ref);
       if (parent != idx) parentIdx_[static_cast<std::size_t>(idx)] = parent;
+      else reportCycle(idx);  // its own parent: the shortest cycle
     }
   }
 

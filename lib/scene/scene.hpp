@@ -55,6 +55,8 @@ inline constexpr const char* kBadMassValue = "RS7020";  // dynamic mass not a fi
 inline constexpr const char* kBadPose = "RS7021";       // pose not finite, orientation not normalisable
 inline constexpr const char* kTinyTimeStep = "RS7022";  // positive time_step not finite or outside [kMinTimeStep, kMaxTimeStep]
 inline constexpr const char* kHugeValue = "RS7026";     // size, wire attachment or length, gravity beyond kMaxLength
+inline constexpr const char* kBadCoefficient = "RS7027";  // coefficient or solver iterations out of range
+inline constexpr const char* kBadCameraSize = "RS7028";   // camera width or height outside 0..16384
 // Codes shared with lib/core's validator (same condition, same code).
 inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
 inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist

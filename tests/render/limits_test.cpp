@@ -155,16 +155,23 @@ TEST(RenderLimits, ImageSizeProblems) {
 }
 
 TEST(RenderLimits, CameraSizeErrorsPointAtTheWidthField) {
-  Built b = build("camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 20000 100 rgb true id=cam\n");
+  // Past 16384 on a side: the scene model's RS7028, which validate reports too.
+  Built wide = build("camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 20000 100 rgb true id=cam\n");
+  EXPECT_FALSE(wide.ok);
+  ASSERT_FALSE(wide.diags.empty());
+  EXPECT_EQ(wide.diags[0].code, "RS7028");
+  EXPECT_EQ(wide.diags[0].column, 45u);
+  // Within it but past --max-pixels: render's RS9013 at the same field.
+  Built b = build("camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 10000 10000 rgb true id=cam\n");
   ASSERT_TRUE(b.ok);
   ASSERT_EQ(b.scene.cameras.size(), 1u);
   Diagnostics diags;
-  EXPECT_FALSE(checkCameraImageSize(b.doc, b.scene.cameras[0], 20000, 100, kDefaultMaxPixels, diags));
+  EXPECT_FALSE(checkCameraImageSize(b.doc, b.scene.cameras[0], 10000, 10000, kDefaultMaxPixels, diags));
   ASSERT_EQ(diags.size(), 1u);
   EXPECT_EQ(diags[0].code, "RS9013");
   EXPECT_EQ(diags[0].line, 2u);
   EXPECT_EQ(diags[0].column, 45u);
-  EXPECT_EQ(diags[0].message, "camera image 20000x100 is outside 1..16384 on a side");
+  EXPECT_EQ(diags[0].message, "camera image 10000x10000 is 100000000 pixels, more than --max-pixels 16777216");
 }
 
 TEST(RenderLimits, CameraWidthPastIntRangeIsAnErrorNotAWrap) {
@@ -175,5 +182,5 @@ TEST(RenderLimits, CameraWidthPastIntRangeIsAnErrorNotAWrap) {
   EXPECT_EQ(b.diags[0].code, "RS2003");
   EXPECT_EQ(b.diags[0].line, 2u);
   EXPECT_EQ(b.diags[0].column, 45u);
-  EXPECT_EQ(b.diags[0].message, "width is 4294967297, outside 0..2147483647");
+  EXPECT_EQ(b.diags[0].message, "invalid 32-bit integer '4294967297' for width of camera");
 }

@@ -144,6 +144,20 @@ TEST(Render, SkyAboveGroundBelow) {
   EXPECT_GT(bottom[0], bottom[2]);  // red/gray ground
 }
 
+// Issue 10: an intensity past float range was infinite in the shaders and
+// turned the lit faces black (NaN); it is drawn as the brightest light.
+TEST(Render, ALightPastFloatRangeSaturatesInsteadOfGoingBlack) {
+  for (const char* intensity : {"1e38", "1e39", "1e300"}) {
+    Result r = renderText(
+        "camera /World/Cam 0 -6 0 0.70710678 0 0 0.70710678 40 0.05 100 200 200 rgb true\n"
+        "light /World/Sun -1 0 0 " + std::string(intensity) + " type=directional\n"
+        "object /World/Box box 0 0 0 0.92387953 0 0 0.38268343 1.5 1.5 1.5 0.5 1 1 default gray false true false - "
+        "static true 1 18446744073709551615\n");
+    ASSERT_TRUE(r.ok);
+    EXPECT_GT(luminance(r.image, 125, 100), 700) << intensity;  // the lit face is white, not black
+  }
+}
+
 TEST(Render, LightMakesLitFaceBrighter) {
   // Box turned 45 degrees, seen from -y: the right face's normal has +x, the
   // light travels along -x.

@@ -73,6 +73,18 @@ std::vector<Case> cases() {
       {"RS7020", H + object("box", "1 1 1", "0.5", "1e300"), H + object("box", "1 1 1", "0.5", "1e15")},
       {"RS7022", H + "time_step 1e300\n", H + "time_step 1\n"},
       {"RS7026", H + "gravity 0 0 -1e300\n", H + "gravity 0 0 -1e12\n"},
+      {"RS7026", H + "terrain_region /World/T 3 3 10 10 0 0 0 heights=0,0,0,0,1e308,0,0,0,0\n",
+       H + "terrain_region /World/T 3 3 10 10 0 0 0 heights=0,0,0,0,1e12,0,0,0,0\n"},
+      {"RS7027", H + "solver 2147483647 0 0.2 accurate\n", H + "solver 10000 0 0.2 accurate\n"},
+      {"RS7027", H + "contact_material default default -1 0 0 0 0 0 0\n",
+       H + "contact_material default default 0.8 0 0 0 0 0 0\n"},
+      {"RS7027",
+       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
+           "wire /World/w compliant /World/a /World/b 1 stiffness=1e308\n",
+       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
+           "wire /World/w compliant /World/a /World/b 1 stiffness=1e15\n"},
+      {"RS7028", H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 -1 10 rgb true\n",
+       H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 16384 10 rgb true\n"},
       {"RS7026", H + object("box", "1e300 1 1"), H + object("box", "1e12 1 1")},
       {"RS7026",
        H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
