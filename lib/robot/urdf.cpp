@@ -122,7 +122,7 @@ class UrdfReader {
   void readLink(const Source& src, const XMLElement* e);
   bool readInertial(const Source& src, const XMLElement* e, Inertial& out);
   bool readGeometry(const Source& src, const XMLElement* owner, const char* what, Geometry& g);
-  bool readVisualMaterial(const Source& src, const XMLElement* e, Visual& v);
+  void readVisualMaterial(const Source& src, const XMLElement* e, Visual& v);
   void readJoint(const Source& src, const XMLElement* e);
   void readJointParts(const Source& src, const XMLElement* e, Joint& j);
   void readTopLevel(const Source& src, const XMLElement* first);
@@ -305,9 +305,9 @@ bool UrdfReader::readGeometry(const Source& src, const XMLElement* owner, const 
   return false;
 }
 
-bool UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visual& v) {
+void UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visual& v) {
   const XMLElement* m = e->FirstChildElement("material");
-  if (!m) return true;
+  if (!m) return;
   if (const char* name = m->Attribute("name")) v.materialName = name;
   std::string texture;
   const Source* textureSource = &src;
@@ -337,7 +337,6 @@ bool UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visu
       diagnostics_.push_back(robotDiagnostic(Severity::Warning, code::kSkipped, textureSource->file, textureLine,
                                              "material texture '" + texture + "' not found; drawn without it"));
   }
-  return true;
 }
 
 void UrdfReader::readLink(const Source& src, const XMLElement* e) {
