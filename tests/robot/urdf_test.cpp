@@ -587,6 +587,25 @@ TEST(UrdfScale, PerAxisScaleFollowsEachShapesAxes) {
   EXPECT_DOUBLE_EQ(l.collisions[1].geometry.radius, std::sqrt(6.0));
 }
 
+TEST(UrdfScale, InertiaInARotatedFrameStretchesWithTheLink) {
+  // The same 1 x 2 x 3 box, its inertia frame turned 90 degrees about z:
+  // its own x lies along the link's y, its own y along the link's -x.
+  Model m;
+  m.links.resize(1);
+  Inertial& in = m.links[0].inertial;
+  in.mass = 6;
+  auto boxInertia = [](double mass, double a, double b, double c) -> Eigen::Matrix3d {
+    return Eigen::Matrix3d(Eigen::Vector3d(b * b + c * c, a * a + c * c, a * a + b * b).asDiagonal()) * mass / 12.0;
+  };
+  in.inertia = boxInertia(6, 1, 2, 3);
+  in.origin.orientation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
+  in.origin.position = {1, 2, 3};
+  scaleModel(m, {2, 3, 4});
+  // Its x side takes the link's y factor (3), its y side the x factor (2).
+  EXPECT_TRUE(in.inertia.isApprox(boxInertia(6 * 24, 3, 4, 12), 1e-12)) << in.inertia;
+  EXPECT_TRUE(in.origin.position.isApprox(Eigen::Vector3d(2, 6, 12)));
+}
+
 TEST(UrdfScale, NonPositiveScaleIsRefused) {
   LoadOptions o;
   o.scale = {1, 0, 1};
