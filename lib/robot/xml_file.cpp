@@ -25,8 +25,8 @@ bool readXmlFile(const std::string& path, std::size_t maxBytes, tinyxml2::XMLDoc
   const FileSystem& disk = diskFileSystem();
   FileStatus status = disk.stat(path);
   if (status.kind != FileKind::Regular) {
-    diagnostics.push_back(
-        robotDiagnostic(Severity::Error, code::kMissingFile, path, 0, "robot file '" + path + "' " + whyNotAFile(path)));
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kMissingFile, path, 0,
+                                          "robot file '" + path + "' " + whyNotAFile(path)));
     return false;
   }
   std::string text, error;

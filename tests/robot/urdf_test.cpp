@@ -184,7 +184,7 @@ TEST(Urdf, SkipsWhatCannotBeUsedWithWarningsAndKeepsTheRobot) {
   ASSERT_TRUE(load(kFixtures + "skipped.urdf", m, d)) << messages(d);
   EXPECT_EQ(codesAndLines(d), (std::vector<std::string>{"RS7031:4", "RS7031:9", "RS7031:13", "RS7031:18",
                                                          "RS7031:23", "RS7031:33", "RS7031:40", "RS7031:42",
-                                                         "RS7031:45", "RS7031:48"}))
+                                                         "RS7031:45", "RS7031:48", "RS7031:54"}))
       << messages(d);
   for (const Diagnostic& x : d) {
     EXPECT_EQ(x.severity, Severity::Warning);
@@ -202,6 +202,7 @@ TEST(Urdf, SkipsWhatCannotBeUsedWithWarningsAndKeepsTheRobot) {
   EXPECT_TRUE(j.origin.position.isZero());  // the xacro origin ignored
   EXPECT_TRUE(j.axis.isApprox(Eigen::Vector3d::UnitZ()));
   EXPECT_EQ(m.links[static_cast<std::size_t>(m.findLink("leg"))].sensorSet, "imu_set.xml");
+  EXPECT_FALSE(m.joints[static_cast<std::size_t>(m.findJoint("k"))].hasLimits);  // lower above upper: dropped
   EXPECT_TRUE(m.floatingBase);
 }
 
@@ -623,14 +624,14 @@ TEST(ModelCache, OneLoadPerKeyAndItsDiagnosticsOnce) {
   auto b = cache.get(kFixtures + "skipped.urdf", {}, second);
   ASSERT_TRUE(a);
   EXPECT_EQ(a, b);
-  EXPECT_EQ(first.size(), 10u);
+  EXPECT_EQ(first.size(), 11u);
   EXPECT_TRUE(second.empty());
   LoadOptions scaled;
   scaled.scale = {2, 2, 2};
   Diagnostics third;
   auto c = cache.get(kFixtures + "skipped.urdf", scaled, third);
   EXPECT_NE(a, c);
-  EXPECT_EQ(third.size(), 10u);
+  EXPECT_EQ(third.size(), 11u);
   Diagnostics broken1, broken2;
   EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken1));
   EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken2));
