@@ -11,6 +11,7 @@
 //
 // What is skipped with an RS7031 warning (the robot still loads): <gazebo>,
 // <transmission>, <constraints> and other unknown top-level elements; a
+// <limit> whose lower bound is above its upper (the limits are dropped); a
 // visual, collision or inertial whose numbers hold an unexpanded xacro
 // `${...}`/`$(...)` or a RaiSim template `@@X` (for a joint, the <origin>,
 // <axis>, <limit> or <dynamics> holding it); unknown or degenerate
@@ -80,6 +81,13 @@ bool parseNumbers(const char* text, std::vector<double>& out) {
   return true;
 }
 
+// A value quoted in a message, cut short: an attribute can be megabytes.
+std::string shown(const char* text) {
+  std::string_view v(text);
+  constexpr std::size_t kMax = 60;
+  return v.size() <= kMax ? std::string(v) : std::string(v.substr(0, kMax)) + "...";
+}
+
 Eigen::Quaterniond rpyToQuaternion(double roll, double pitch, double yaw) {
   // URDF: fixed-axis roll, pitch, yaw, i.e. R = Rz(yaw) Ry(pitch) Rx(roll).
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
@@ -122,7 +130,7 @@ class UrdfReader {
   void readLink(const Source& src, const XMLElement* e);
   bool readInertial(const Source& src, const XMLElement* e, Inertial& out);
   bool readGeometry(const Source& src, const XMLElement* owner, const char* what, Geometry& g);
-  bool readVisualMaterial(const Source& src, const XMLElement* e, Visual& v);
+  void readVisualMaterial(const Source& src, const XMLElement* e, Visual& v);
   void readJoint(const Source& src, const XMLElement* e);
   void readJointParts(const Source& src, const XMLElement* e, Joint& j);
   void readTopLevel(const Source& src, const XMLElement* first);
@@ -146,13 +154,14 @@ Read UrdfReader::numbers(const Source& src, const XMLElement* e, const char* att
   if (!text) return Read::Absent;
   std::string tag = std::string("<") + e->Name() + " " + attr + ">";
   if (looksLikeTemplate(text)) {
-    warn(src, e, tag + " holds an unexpanded xacro or template expression '" + std::string(text) + "'; " + skipping);
+    warn(src, e, tag + " holds an unexpanded xacro or template expression '" + shown(text) + "'; " + skipping);
     return Read::Skip;
   }
   if (!parseNumbers(text, out) || out.size() < minCount || out.size() > maxCount) {
-    std::string want = minCount == maxCount ? std::to_string(minCount) : std::to_string(minCount) + " or " +
-                                                                             std::to_string(maxCount);
-    fail(src, e, tag + " is '" + std::string(text) + "', not " + want + (maxCount == 1 ? " finite number" : " finite numbers"));
+    std::string want = std::to_string(minCount);
+    if (maxCount != minCount) want += " to " + std::to_string(maxCount);
+    want += maxCount == 1 ? " finite number" : " finite numbers";
+    fail(src, e, tag + " is '" + shown(text) + "', not " + want);
     return Read::Fail;
   }
   return Read::Ok;
@@ -276,8 +285,8 @@ bool UrdfReader::readGeometry(const Source& src, const XMLElement* owner, const 
       return false;
     }
     if (looksLikeTemplate(file)) {
-      warn(src, shape, "<mesh filename> holds an unexpanded xacro or template expression '" + std::string(file) +
-                           "'; " + skipping);
+      warn(src, shape,
+           "<mesh filename> holds an unexpanded xacro or template expression '" + shown(file) + "'; " + skipping);
       return false;
     }
     std::vector<double> scale;
@@ -305,9 +314,9 @@ bool UrdfReader::readGeometry(const Source& src, const XMLElement* owner, const 
   return false;
 }
 
-bool UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visual& v) {
+void UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visual& v) {
   const XMLElement* m = e->FirstChildElement("material");
-  if (!m) return true;
+  if (!m) return;
   if (const char* name = m->Attribute("name")) v.materialName = name;
   std::string texture;
   const Source* textureSource = &src;
@@ -337,7 +346,6 @@ bool UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visu
       diagnostics_.push_back(robotDiagnostic(Severity::Warning, code::kSkipped, textureSource->file, textureLine,
                                              "material texture '" + texture + "' not found; drawn without it"));
   }
-  return true;
 }
 
 void UrdfReader::readLink(const Source& src, const XMLElement* e) {
@@ -413,9 +421,11 @@ void UrdfReader::readJointParts(const Source& src, const XMLElement* e, Joint& j
       j.upper = v[1];
       j.effort = v[2];
       j.velocity = v[3];
-      if (j.hasLimits && j.type != JointType::Spherical && got[0] == Read::Ok && got[1] == Read::Ok && j.lower > j.upper)
-        fail(src, l, "<limit> of " + name + " has lower " + std::to_string(j.lower) + " above upper " +
-                         std::to_string(j.upper));
+      bool bothBounds = got[0] == Read::Ok && got[1] == Read::Ok;
+      if (j.hasLimits && j.type != JointType::Spherical && bothBounds && j.lower > j.upper) {
+        warn(src, l, "<limit> of " + name + " has lower above upper; the joint moves without position limits");
+        j.hasLimits = false;
+      }
     }
   }
   if (const XMLElement* d = e->FirstChildElement("dynamics")) {

@@ -1,9 +1,11 @@
 #include "robot/xml_file.hpp"
 
+#include <cctype>
 #include <cstring>
 
 #include "core/assets.hpp"
 #include "core/filesystem.hpp"
+#include "robot/load.hpp"
 
 namespace rscene::robot {
 
@@ -23,22 +25,26 @@ bool readXmlFile(const std::string& path, std::size_t maxBytes, tinyxml2::XMLDoc
   const FileSystem& disk = diskFileSystem();
   FileStatus status = disk.stat(path);
   if (status.kind != FileKind::Regular) {
-    diagnostics.push_back(
-        robotDiagnostic(Severity::Error, "RS5001", path, 0, "robot file '" + path + "' " + whyNotAFile(path)));
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kMissingFile, path, 0,
+                                          "robot file '" + path + "' " + whyNotAFile(path)));
     return false;
   }
   std::string text, error;
   if (!disk.read(path, text, &error, maxBytes)) {
     diagnostics.push_back(
-        robotDiagnostic(Severity::Error, "RS7030", path, 0, "cannot read robot file '" + path + "': " + error));
+        robotDiagnostic(Severity::Error, code::kBadFile, path, 0, "cannot read robot file '" + path + "': " + error));
     return false;
   }
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     std::string what = doc.ErrorName() ? doc.ErrorName() : "error";
-    // tinyxml2's names are XML_ERROR_PARSING_ELEMENT ...: lower-case words read better.
-    if (what.rfind("XML_", 0) == 0) what = what.substr(4);
+    // tinyxml2's names are XML_ERROR_MISMATCHED_ELEMENT ...: lower-case words read better.
+    for (const char* prefix : {"XML_ERROR_", "XML_"})
+      if (what.rfind(prefix, 0) == 0) {
+        what = what.substr(std::strlen(prefix));
+        break;
+      }
     for (char& c : what) c = c == '_' ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    diagnostics.push_back(robotDiagnostic(Severity::Error, "RS7030", path, doc.ErrorLineNum(),
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadFile, path, doc.ErrorLineNum(),
                                           "robot file is not well-formed XML (" + what + ")"));
     return false;
   }

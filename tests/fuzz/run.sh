@@ -7,6 +7,7 @@
 #   fuzz_from_json  rscene-from-json's reader (seeds: the scenes as JSON)
 #   fuzz_sim        rscene-sim's world build and 20 steps (meshes missing)
 #   fuzz_render_scene  rscene-render's scene preparation, without GL
+#   fuzz_urdf       the URDF reader (seeds: tests/data/robots/urdf, examples/robots)
 # Exit status: 0 when nothing was found, non-zero on a crash, a leak, a
 # timeout or a broken invariant (the inputs are in build-fuzz/fuzz-artifacts/).
 #
@@ -25,7 +26,7 @@ fi
 CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRSCENE_FUZZ=ON -DRSCENE_BUILD_TOOLS=OFF -DRSCENE_BUILD_TESTS=OFF > "$BUILD.configure.log" 2>&1 ||
   { cat "$BUILD.configure.log" >&2; exit 2; }
-TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene})
+TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene fuzz_urdf})
 cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_seeds
 
 # The working corpora live in the build directory: libFuzzer adds the
@@ -38,6 +39,17 @@ for f in "${seeds[@]}"; do
   for dir in fuzz-corpus fuzz-corpus-sim fuzz-corpus-render; do cp -f "$f" "$BUILD/$dir/seed_$(basename "$f")"; done
 done
 "$BUILD/bin/make_json_seeds" "$BUILD/fuzz-corpus-json" "${seeds[@]}"
+mkdir -p "$BUILD/fuzz-corpus-urdf"
+for f in "$ROOT"/tests/data/robots/urdf/*.urdf "$ROOT"/examples/robots/*/*.urdf "$ROOT"/../shared/corpus/robots/*/*.urdf \
+  "$ROOT"/../shared/corpus/robots/*/urdf/*.urdf; do
+  cp -f "$f" "$BUILD/fuzz-corpus-urdf/seed_$(basename "$(dirname "$f")")_$(basename "$f")"
+done
+URDF_DICT=$BUILD/fuzz-urdf.dict
+printf '%s\n' '"<link name=\"a\">"' '"</link>"' '"<joint name=\"j\" type=\"spherical\">"' '"type=\"floating\""' \
+  '"<parent link=\"world\"/>"' '"<child link=\"a\"/>"' '"<origin xyz=\"0 0 1\" rpy=\"0 1 0\"/>"' \
+  '"<axis xyz=\"0 0 0\"/>"' '"spring_mount=\"0 0 0 0\""' '"<limit lower=\"1\" upper=\"-1\"/>"' \
+  '"<mesh filename=\"package://x/y.stl\" scale=\"1 2\"/>"' '"<capsule radius=\"1\" height=\"-1\"/>"' \
+  '"<material name=\"m\"><texture filename=\"t.png\"/></material>"' '"${x}"' '"@@X"' '"nan"' '"1e400"' > "$URDF_DICT"
 
 # A dictionary of the tags and keys the seeds use helps the mutator build
 # records that get past the first token.
@@ -79,6 +91,7 @@ for target in "${TARGETS[@]}"; do
     fuzz_from_json) corpus=$BUILD/fuzz-corpus-json dict=$JSON_DICT ;;
     fuzz_sim) corpus=$BUILD/fuzz-corpus-sim dict=$DICT ;;
     fuzz_render_scene) corpus=$BUILD/fuzz-corpus-render dict=$DICT ;;
+    fuzz_urdf) corpus=$BUILD/fuzz-corpus-urdf dict=$URDF_DICT ;;
     *) echo "tests/fuzz/run.sh: error: unknown target '$target'" >&2; exit 2 ;;
   esac
   echo "$target: fuzzing for ${SECONDS_TO_RUN}s from $(find "$corpus" -type f | wc -l) inputs, $(wc -l < "$dict") dictionary entries"

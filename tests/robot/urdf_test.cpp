@@ -184,7 +184,7 @@ TEST(Urdf, SkipsWhatCannotBeUsedWithWarningsAndKeepsTheRobot) {
   ASSERT_TRUE(load(kFixtures + "skipped.urdf", m, d)) << messages(d);
   EXPECT_EQ(codesAndLines(d), (std::vector<std::string>{"RS7031:4", "RS7031:9", "RS7031:13", "RS7031:18",
                                                          "RS7031:23", "RS7031:33", "RS7031:40", "RS7031:42",
-                                                         "RS7031:45", "RS7031:48"}))
+                                                         "RS7031:45", "RS7031:48", "RS7031:54"}))
       << messages(d);
   for (const Diagnostic& x : d) {
     EXPECT_EQ(x.severity, Severity::Warning);
@@ -202,6 +202,7 @@ TEST(Urdf, SkipsWhatCannotBeUsedWithWarningsAndKeepsTheRobot) {
   EXPECT_TRUE(j.origin.position.isZero());  // the xacro origin ignored
   EXPECT_TRUE(j.axis.isApprox(Eigen::Vector3d::UnitZ()));
   EXPECT_EQ(m.links[static_cast<std::size_t>(m.findLink("leg"))].sensorSet, "imu_set.xml");
+  EXPECT_FALSE(m.joints[static_cast<std::size_t>(m.findJoint("k"))].hasLimits);  // lower above upper: dropped
   EXPECT_TRUE(m.floatingBase);
 }
 
@@ -214,7 +215,7 @@ struct ErrorCase {
 
 TEST(Urdf, ErrorsNameTheFileAndLine) {
   const ErrorCase cases[] = {
-      {"bad_xml.urdf", "RS7030", 3, "not well-formed XML"},  // tinyxml2 names the unclosed element
+      {"bad_xml.urdf", "RS7030", 3, "not well-formed XML (mismatched element)"},  // tinyxml2 names the unclosed element
       {"unknown_link.urdf", "RS7032", 8, "child link 'c' that does not exist"},
       {"two_parents.urdf", "RS7032", 13, "link 'c' has two parent joints: 'ac' (line 9) and 'bc'"},
       {"cycle.urdf", "RS7032", 9, "closes a cycle"},
@@ -587,6 +588,25 @@ TEST(UrdfScale, PerAxisScaleFollowsEachShapesAxes) {
   EXPECT_DOUBLE_EQ(l.collisions[1].geometry.radius, std::sqrt(6.0));
 }
 
+TEST(UrdfScale, InertiaInARotatedFrameStretchesWithTheLink) {
+  // The same 1 x 2 x 3 box, its inertia frame turned 90 degrees about z:
+  // its own x lies along the link's y, its own y along the link's -x.
+  Model m;
+  m.links.resize(1);
+  Inertial& in = m.links[0].inertial;
+  in.mass = 6;
+  auto boxInertia = [](double mass, double a, double b, double c) -> Eigen::Matrix3d {
+    return Eigen::Matrix3d(Eigen::Vector3d(b * b + c * c, a * a + c * c, a * a + b * b).asDiagonal()) * mass / 12.0;
+  };
+  in.inertia = boxInertia(6, 1, 2, 3);
+  in.origin.orientation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
+  in.origin.position = {1, 2, 3};
+  scaleModel(m, {2, 3, 4});
+  // Its x side takes the link's y factor (3), its y side the x factor (2).
+  EXPECT_TRUE(in.inertia.isApprox(boxInertia(6 * 24, 3, 4, 12), 1e-12)) << in.inertia;
+  EXPECT_TRUE(in.origin.position.isApprox(Eigen::Vector3d(2, 6, 12)));
+}
+
 TEST(UrdfScale, NonPositiveScaleIsRefused) {
   LoadOptions o;
   o.scale = {1, 0, 1};
@@ -604,14 +624,14 @@ TEST(ModelCache, OneLoadPerKeyAndItsDiagnosticsOnce) {
   auto b = cache.get(kFixtures + "skipped.urdf", {}, second);
   ASSERT_TRUE(a);
   EXPECT_EQ(a, b);
-  EXPECT_EQ(first.size(), 10u);
+  EXPECT_EQ(first.size(), 11u);
   EXPECT_TRUE(second.empty());
   LoadOptions scaled;
   scaled.scale = {2, 2, 2};
   Diagnostics third;
   auto c = cache.get(kFixtures + "skipped.urdf", scaled, third);
   EXPECT_NE(a, c);
-  EXPECT_EQ(third.size(), 10u);
+  EXPECT_EQ(third.size(), 11u);
   Diagnostics broken1, broken2;
   EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken1));
   EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken2));
