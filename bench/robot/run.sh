@@ -124,7 +124,8 @@ rscene() {
 }
 
 # Lowest base height and largest tilt (degrees) of the robots in a scene
-# written back by rscene-sim, above the ground under their start point.
+# written back by rscene-sim, above the highest ground under their start
+# footprint (as rscene-robot-bench-mujoco reports MuJoCo's).
 sim_bases() {
   paste <(grep '^articulated ' "$1" | sed 's/.*generalizedCoordinate=\([^ ]*\).*/\1/') \
     <(grep '^articulated ' "$2" | sed 's/.*generalizedCoordinate=\([^ ]*\).*/\1/') | awk '
