@@ -166,7 +166,7 @@ for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
   sim_rate=$(jq -r '.steps / .stepTime' <<< "$SIM_JSON")
   ratio=$(awk -v a="$sim_rate" -v b="$mj_rate" 'BEGIN { printf "%.3f", a / b }')
   cpu_ratio=$(awk -v a="$(jq -r .stepCpu <<< "$MJ_JSON")" -v b="$SIM_CPU" 'BEGIN { printf "%.3f", (b > 0 ? a / b : 0) }')
-  load=$(jq -r .loadTime <<< "$SIM_JSON")
+  load=$(jq -r .loadTime <<< "$SIM_JSON" | awk '{ printf "%.3f", $1 }')
   printf '%s  %12.0f %12.3f %9s %9s  %7.3f  %s\n' "$mj_line" "$sim_rate" "$SIM_CPU" "$cpu_ratio" "$ratio" "$load" \
     "$(sim_bases "$SIM_OUT" "$DIR/$name.rscene")"
   TARGETS+=("$name|$cpu_ratio|$load|$(jq -c '{parseTime, buildTime, stepTime, writeTime}' <<< "$SIM_JSON")")
