@@ -89,10 +89,16 @@ std::array<double, 2> robotXY(int i, int n) {
   return {(i % side) * kSpacing - off, (i / side) * kSpacing - off};
 }
 
-// Base height of robot i: the pose's height above the ground under it.
+// Base height of robot i: the pose's height above the highest ground
+// under its footprint (1 x 0.8 m), so that no foot starts inside the
+// terrain (a penalty-free start for both contact models; they settle).
 double baseZ(const World& w, int i) {
+  if (!w.terrain) return w.pose[2];
   auto xy = robotXY(i, w.robots);
-  return w.pose[2] + (w.terrain ? terrainHeight(xy[0], xy[1]) : 0);
+  double top = -1e300;
+  for (double dx = -0.5; dx <= 0.5; dx += 0.05)
+    for (double dy = -0.4; dy <= 0.4; dy += 0.05) top = std::max(top, terrainHeight(xy[0] + dx, xy[1] + dy));
+  return w.pose[2] + top;
 }
 
 int usage(const char* why) {
@@ -379,7 +385,7 @@ int run(const World& w) {
   double zmin = 1e300, zmax = -1e300, tilt = 0;
   for (std::size_t i = 0; i < baseQ.size(); ++i) {
     const double* q = d->qpos + baseQ[i];
-    double z = q[2] - (baseZ(w, static_cast<int>(i)) - w.pose[2]);  // above the ground under the start point
+    double z = q[2] - (baseZ(w, static_cast<int>(i)) - w.pose[2]);  // above the highest ground under its start footprint
     zmin = std::min(zmin, z);
     zmax = std::max(zmax, z);
     // Angle between the base's z axis and the world's: 1 - 2 (qx^2 + qy^2) is their cosine.

@@ -19,8 +19,10 @@
 # (its own integration of the same law).
 #
 # Targets, marked PASS or MISS: rscene-sim's steps per second at least
-# half MuJoCo's (stepping wall time; the CPU time of the whole process is
-# printed too), and loading the robot under 0.3 s (rscene-sim's loadTime:
+# half MuJoCo's, judged on CPU time (MuJoCo's stepping against the whole
+# rscene-sim process, load and write included: conservative, and far less
+# moved by a loaded machine than wall time; the wall-time ratio of stepping
+# alone is printed beside it), and loading the robot under 0.3 s (rscene-sim's loadTime:
 # scene, URDF, world build; rscene-render's scene build, which reads the
 # visual meshes, is printed when rscene-render is built).  Until rscene-sim
 # simulates robots (its --pd-gains flag), its rows say "robots not
@@ -122,7 +124,8 @@ rscene() {
 }
 
 # Lowest base height and largest tilt (degrees) of the robots in a scene
-# written back by rscene-sim, above the ground under their start point.
+# written back by rscene-sim, above the highest ground under their start
+# footprint (as rscene-robot-bench-mujoco reports MuJoCo's).
 sim_bases() {
   paste <(grep '^articulated ' "$1" | sed 's/.*generalizedCoordinate=\([^ ]*\).*/\1/') \
     <(grep '^articulated ' "$2" | sed 's/.*generalizedCoordinate=\([^ ]*\).*/\1/') | awk '
@@ -137,8 +140,8 @@ sim_bases() {
 status=0
 declare -a TARGETS
 declare -A MJ_PROFILE
-printf '%-9s %6s  %12s %12s %14s  %12s %12s %9s  %9s  %s\n' world steps "MuJoCo st/s" "MuJoCo CPU s" "MJ z m/tilt" \
-  "rscene st/s" "rscene CPU s" "ratio" "load s" "rscene base z / tilt"
+printf '%-9s %6s  %12s %12s %14s  %12s %12s %9s %9s  %7s  %s\n' world steps "MuJoCo st/s" "MuJoCo CPU s" "MJ z m/tilt" \
+  "rscene st/s" "rscene CPU s" "CPU ratio" "st/s ratio" "load s" "rscene z m/tilt"
 for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
   name=${entry%%|*}
   read -r -a args <<< "${entry#*|}"
@@ -162,15 +165,17 @@ for entry in "anymal|" "anymal16|--robots 16 --terrain"; do
   fi
   sim_rate=$(jq -r '.steps / .stepTime' <<< "$SIM_JSON")
   ratio=$(awk -v a="$sim_rate" -v b="$mj_rate" 'BEGIN { printf "%.3f", a / b }')
-  load=$(jq -r .loadTime <<< "$SIM_JSON")
-  printf '%s  %12.0f %12.3f %9s  %9.3f  %s\n' "$mj_line" "$sim_rate" "$SIM_CPU" "$ratio" "$load" \
+  cpu_ratio=$(awk -v a="$(jq -r .stepCpu <<< "$MJ_JSON")" -v b="$SIM_CPU" 'BEGIN { printf "%.3f", (b > 0 ? a / b : 0) }')
+  load=$(jq -r .loadTime <<< "$SIM_JSON" | awk '{ printf "%.3f", $1 }')
+  printf '%s  %12.0f %12.3f %9s %9s  %7.3f  %s\n' "$mj_line" "$sim_rate" "$SIM_CPU" "$cpu_ratio" "$ratio" "$load" \
     "$(sim_bases "$SIM_OUT" "$DIR/$name.rscene")"
-  TARGETS+=("$name|$ratio|$load|$(jq -c '{parseTime, buildTime, stepTime, writeTime}' <<< "$SIM_JSON")")
+  TARGETS+=("$name|$cpu_ratio|$load|$(jq -c '{parseTime, buildTime, stepTime, writeTime}' <<< "$SIM_JSON")")
 done
 for name in anymal anymal16; do
   [[ -n ${MJ_PROFILE[$name]:-} ]] && echo "  MuJoCo $name: ${MJ_PROFILE[$name]}"
 done
-echo "  (st/s: steps per second of stepping wall time; z: lowest final base height, m; tilt: largest, degrees;" \
+echo "  (st/s: steps per second of stepping wall time; CPU ratio: MuJoCo's stepping CPU s / rscene-sim's process CPU s;" \
+  "z: lowest final base height, m; tilt: largest, degrees;" \
   "MuJoCo compiled the URDF in $(jq -r .compileTime <<< "$MJ_JSON") s)"
 
 # Loading the robot with its meshes: rscene-render builds the scene's
@@ -186,13 +191,13 @@ if [[ -x $BIN/rscene-render && -s $DIR/anymal.rscene ]]; then
 fi
 
 echo
-echo "targets (issue 11): rscene-sim steps/s >= 0.5 x MuJoCo's, robot load < 0.3 s"
+echo "targets (issue 11): rscene-sim steps per CPU second >= 0.5 x MuJoCo's, robot load < 0.3 s"
 if ((SIM_READY == 0)); then
   echo "  rscene-sim: robots not simulated yet (no --pd-gains); nothing to compare"
 fi
 for t in "${TARGETS[@]}"; do
   IFS='|' read -r name ratio load parts <<< "$t"
-  verdict "$name: rscene-sim / MuJoCo steps per second" "$ratio" ">=" 0.5
+  verdict "$name: rscene-sim / MuJoCo steps per CPU second" "$ratio" ">=" 0.5
   verdict "$name: rscene-sim load time (s)" "$load" "<" 0.3
   echo "    rscene-sim breakdown (s): $parts"
 done

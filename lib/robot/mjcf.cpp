@@ -136,7 +136,7 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
     return true;
   };
   if (!check(path, "", 0, "robot file")) return false;
-  const MjcfFiles named = scanMjcf(path);
+  const MjcfFiles named = scanMjcf(path, options.maxFileBytes);
   for (const MjcfFiles::Named& f : named.files)
     if (!check(f.path, f.from, f.line, "file")) return false;
   if (named.tooDeep) return fail(code::kBadFile, path, 0, "includes nested too deep or too many included files");

@@ -3,6 +3,7 @@
 // conversion of a compiled MuJoCo model into the robot model, apart from
 // the loading so that tests can convert a model they compiled themselves.
 #pragma once
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,8 +49,10 @@ struct MjcfFiles {
   bool tooDeep = false;                        // includes past the scan's depth or count cap
 };
 
-// Scans the MJCF file `path` and its includes (tinyxml2).
-MjcfFiles scanMjcf(const std::string& path);
+// Scans the MJCF file `path` (a regular file the caller has checked) and
+// its includes (tinyxml2; an include that is not a regular file of at most
+// `maxFileBytes` is listed, not read).
+MjcfFiles scanMjcf(const std::string& path, std::uintmax_t maxFileBytes);
 
 // Where the vertices of mesh `file` lie in the frame of MuJoCo's compiled
 // copy of it (`count` float vertices x y z): compiled = frame * (scale *

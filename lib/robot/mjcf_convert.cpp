@@ -124,7 +124,7 @@ class Converter {
     first_ = -1;
     for (int b = 1; b < m_.nbody && first_ < 0; ++b)
       if (m_.body_parentid[b] == 0) first_ = b;
-    if (first_ < 0) return error(code::kBadModel, "MJCF model has no body under <worldbody>");
+    if (first_ < 0) return error(code::kBadModel, "the MJCF model has no body under <worldbody>");
     for (int j = 0; j < m_.njnt; ++j) {
       if (m_.jnt_type[j] != mjJNT_FREE) continue;
       const int b = m_.jnt_bodyid[j];

@@ -48,6 +48,7 @@ struct Scan {
   };
   std::vector<Asset> assets;
   MjcfFiles out;
+  std::uintmax_t maxFileBytes = 0;
 };
 
 // Include depth and file count caps: MuJoCo refuses a repeated include
@@ -86,7 +87,9 @@ void scanElement(const tinyxml2::XMLElement* e, const std::string& file, const f
       if (const char* name = c->Attribute("file")) {
         fs::path included = modelDir / name;
         scan.out.files.push_back({included.lexically_normal().string(), file, c->GetLineNum()});
-        if (whyNotAFile(included.string()) == "does not exist" || fileExistsOnDisk(included.string()))
+        // Only a regular file under the cap is read (loadMjcf reports the rest).
+        std::error_code ec;
+        if (fileExistsOnDisk(included.string()) && fs::file_size(included, ec) <= scan.maxFileBytes && !ec)
           scanFile(included, modelDir, scan, depth + 1);
       }
     } else if (tag == "composite") {
@@ -113,9 +116,10 @@ struct VfsDeleter {
 
 }  // namespace
 
-MjcfFiles scanMjcf(const std::string& path) {
+MjcfFiles scanMjcf(const std::string& path, std::uintmax_t maxFileBytes) {
   fs::path modelDir = fs::path(path).parent_path();
   Scan scan;
+  scan.maxFileBytes = maxFileBytes;
   scanFile(path, modelDir, scan, 0);
   // Meshes, height fields and skins in meshdir, textures in texturedir;
   // either defaults to assetdir.

@@ -488,6 +488,29 @@ TEST(Mjcf, FifoNamedAsAMeshIsRefusedWhereItIsNamed) {
   fs::remove_all(dir);
 }
 
+TEST(Mjcf, OversizeIncludedFileIsRefusedWhereItIsIncluded) {
+  fs::path dir = fs::temp_directory_path() / ("rscene_mjcf_big_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "model.xml").string();
+  {
+    std::ofstream f(path);
+    f << "<mujoco>\n  <worldbody>\n    <include file=\"big.xml\"/>\n  </worldbody>\n</mujoco>\n";
+    std::ofstream big(dir / "big.xml");
+    big << "<mujoco><!--" << std::string(4000, 'x') << "--></mujoco>\n";
+  }
+  LoadOptions options;
+  options.maxFileBytes = 1000;  // the model fits, its include does not
+  Model model;
+  Diagnostics diags;
+  EXPECT_FALSE(loadMjcf(path, options, model, diags));
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, code::kBadFile);
+  EXPECT_EQ(diags[0].file, path);
+  EXPECT_EQ(diags[0].line, 3u);
+  EXPECT_NE(diags[0].message.find("over the cap of 1000"), std::string::npos) << diags[0].message;
+  fs::remove_all(dir);
+}
+
 TEST(Mjcf, MissingDirectoryAndOversizeFilesAreRefusedBeforeMuJoCo) {
   Model model;
   Diagnostics diags;
