@@ -176,6 +176,12 @@ struct World::Impl {
   std::vector<Simulated> simulated;
   std::vector<Spring> springs;
   std::vector<std::unique_ptr<SimRobot>> robots;
+  std::vector<std::unique_ptr<MultiBodyRope>> robotWires;
+  struct {
+    int recordIndex = -1;
+    const char* field = "";
+    std::string message;
+  } wireError;  // a wire create() refuses
   std::vector<SelfPairs> selfPairs;  // per robot
   double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
@@ -189,6 +195,7 @@ struct World::Impl {
     if (world) {  // removing what is not (or no longer) in the world is a no-op
       for (auto& c : constraints) world->removeConstraint(c.get());
       for (auto& b : bodies) world->removeRigidBody(b.get());
+      for (auto& c : robotWires) world->removeMultiBodyConstraint(c.get());
       for (auto& r : robots) {
         for (auto& c : r->constraints()) world->removeMultiBodyConstraint(c.get());
         for (btMultiBodyLinkCollider* c : r->colliders())
@@ -232,8 +239,10 @@ struct World::Impl {
     for (auto& c : constraints)
       if (&c->getRigidBodyA() == body || &c->getRigidBodyB() == body) world->removeConstraint(c.get());
     springs.erase(std::remove_if(springs.begin(), springs.end(),
-                                 [&](const Spring& sp) { return sp.a == body || sp.b == body; }),
+                                 [&](const Spring& sp) { return sp.a.rigid == body || sp.b.rigid == body; }),
                   springs.end());
+    for (auto& c : robotWires)
+      if (c->rigid() == body) world->removeMultiBodyConstraint(c.get());
     world->removeRigidBody(body);
     body->setLinearVelocity(btVector3(0, 0, 0));
     body->setAngularVelocity(btVector3(0, 0, 0));
@@ -635,41 +644,57 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
 
   for (const Wire& wire : scene.wires) {
     if (!wire.simulated()) continue;  // disabled, or to a node not modelled (RS7011)
-    auto find = [&](const std::string& ref) -> btRigidBody* {
-      auto it = w.byName.find(ref);
-      return it == w.byName.end() ? nullptr : it->second;
-    };
-    btRigidBody* a = find(wire.bodyA);
-    btRigidBody* b = find(wire.bodyB);
-    if (!a && !b) continue;  // checkPhysics reported it
-    // Attachment points are given in the record frame; compounds simulate
-    // about their centre of mass.
-    auto local = [&](btRigidBody* body, const Eigen::Vector3d& p) {
-      for (const Simulated& s : w.simulated)
-        if (s.body == body) return s.toRecord.inverse() * bt(p);
-      return bt(p);
-    };
-    if (!a) {  // the world is body A: keep the dynamic one first
-      std::swap(a, b);
-      Eigen::Vector3d pa = wire.localPositionB, pb = wire.localPositionA;
-      btVector3 anchor = b ? local(b, pb) : bt(pb);
-      if (wire.kind == "compliant") w.springs.push_back({a, b, local(a, pa), anchor, wire.length, wire.stiffness, wire.damping});
-      else {
-        auto* c = new RopeConstraint(*a, b, local(a, pa), anchor, wire.length);
-        w.constraints.emplace_back(c);
-        w.world->addConstraint(c, true);
+    // Each end: the world (no name), a rigid body (attachment point in its
+    // record frame; compounds simulate about their centre of mass), or a
+    // robot's body localIndex (point in that body's frame).
+    enum Kind { None, Point, Body };
+    auto anchor = [&](const std::string& ref, int localIndex, const Eigen::Vector3d& p, const char* field,
+                      WireAnchor& out) -> Kind {
+      out.local = bt(p);
+      if (ref.empty()) return Point;
+      if (auto it = w.robotByName.find(ref); it != w.robotByName.end()) {
+        SimRobot* r = w.robots[static_cast<std::size_t>(it->second)].get();
+        int bodies = static_cast<int>(r->layout().bodies.size());
+        if (localIndex < 0 || localIndex >= bodies) {
+          w.wireError = {wire.recordIndex, field,
+                         std::string(field == std::string("bodyA") ? "localIndexA " : "localIndexB ") +
+                             std::to_string(localIndex) + " is not a body of articulated system '" + ref + "' (it has " +
+                             std::to_string(bodies) + ", 0 to " + std::to_string(bodies - 1) + ")"};
+          return None;
+        }
+        out.robot = r;
+        out.body = localIndex;
+        return Body;
       }
+      auto it = w.byName.find(ref);
+      if (it == w.byName.end()) return None;  // checkPhysics reported it
+      out.rigid = it->second;
+      for (const Simulated& s : w.simulated)
+        if (s.body == out.rigid) out.local = s.toRecord.inverse() * bt(p);
+      return Body;
+    };
+    WireAnchor a, b;
+    Kind ka = anchor(wire.bodyA, wire.localIndexA, wire.localPositionA, "bodyA", a);
+    Kind kb = anchor(wire.bodyB, wire.localIndexB, wire.localPositionB, "bodyB", b);
+    if (w.wireError.recordIndex >= 0)
+      return fail(wire.path, w.wireError.message, sim_code::kWireLocalIndex, w.wireError.recordIndex,
+                  w.wireError.field);
+    if (ka == None || kb == None || (ka == Point && kb == Point)) continue;
+    if (wire.kind == "compliant") {
+      w.springs.push_back({a, b, wire.length, wire.stiffness, wire.damping});
       continue;
     }
-    btVector3 pa = local(a, wire.localPositionA);
-    btVector3 pb = b ? local(b, wire.localPositionB) : bt(wire.localPositionB);
-    if (wire.kind == "compliant") {
-      w.springs.push_back({a, b, pa, pb, wire.length, wire.stiffness, wire.damping});
-    } else {
-      auto* c = new RopeConstraint(*a, b, pa, pb, wire.length);
-      w.constraints.emplace_back(c);
-      w.world->addConstraint(c, true);
+    if (!a.robot && b.robot) std::swap(a, b);  // a robot end first
+    if (a.robot) {
+      auto* c = new MultiBodyRope(a, b, wire.length);
+      w.robotWires.emplace_back(c);
+      w.world->addMultiBodyConstraint(c);
+      continue;
     }
+    if (!a.rigid) std::swap(a, b);  // the world is end B
+    auto* c = new RopeConstraint(*a.rigid, b.rigid, a.local, b.local, wire.length);
+    w.constraints.emplace_back(c);
+    w.world->addConstraint(c, true);
   }
   return std::unique_ptr<World>(new World(std::move(impl)));
 }

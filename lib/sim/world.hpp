@@ -48,6 +48,7 @@ namespace rscene::sim {
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
+inline constexpr const char* kWireLocalIndex = "RS7050";  // a wire's localIndex is not a body of its articulated system
 }  // namespace sim_code
 
 // State of one simulated body (dynamic or kinematic), in the world frame.

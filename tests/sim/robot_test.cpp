@@ -74,7 +74,7 @@ robot::Collision box(const Eigen::Vector3d& size, const Eigen::Vector3d& where =
 }
 
 // A scene with one articulated record per model, at the origin, simulated.
-struct Run {
+struct Run {  // NOLINT
   Document doc;
   Scene scene;
   Diagnostics diags;
@@ -441,4 +441,64 @@ TEST(RobotSim, RunsAreBitIdentical) {
   for (Eigen::Index i = 0; i < a.q.size(); ++i) EXPECT_EQ(a.q[i], b.q[i]) << i;  // bitwise
   for (Eigen::Index i = 0; i < a.u.size(); ++i) EXPECT_EQ(a.u[i], b.u[i]) << i;
   EXPECT_GT(a.q[2], 0.2);  // it stands on its feet
+}
+
+// A stiff wire from a point in the world to a robot's body holds it up
+// (a rope: never longer than its length); a compliant one lets it sag to
+// where the spring carries its weight.
+TEST(RobotSim, WiresHoldARobotAtItsBody) {
+  auto m = std::make_shared<robot::Model>();
+  addLink(*m, "base", inertial(2, {0, 0, 0}, 0.01));
+  addLink(*m, "tail", inertial(1, {0, 0, -0.1}, 0.01), 0, JointType::Revolute, at(0, 0, -0.1), Eigen::Vector3d::UnitY());
+  Eigen::VectorXd q(8);
+  q << 0, 0, 1.1, 1, 0, 0, 0, 0;
+  // Body 1 (the tail) hangs from (0, 0, 2) by its joint origin, at z = 1.
+  auto stiff = make("time_step 0.001\nwire /World/W stiff - /World/R0 1 localIndexB=1 localPositionA=0,0,2\n", {m}, {q});
+  ASSERT_TRUE(stiff->world);
+  double longest = 0;
+  for (int k = 0; k < 2000; ++k) {
+    stiff->world->step();
+    RobotState s = stiff->world->robotStates()[0];
+    longest = std::max(longest, (s.bodyPoses[1].position - Eigen::Vector3d(0, 0, 2)).norm());
+  }
+  EXPECT_LT(longest, 1 + 2e-3);  // the solver's residual over 2 s of a 3 kg load
+  EXPECT_GT(longest, 1 - 1e-3);  // taut
+  auto soft = make("time_step 0.001\nwire /World/W compliant - /World/R0 1 localIndexB=1 localPositionA=0,0,2 "
+                   "stiffness=3000 damping=100\n",
+                   {m}, {q});
+  ASSERT_TRUE(soft->world);
+  run(*soft->world, 5);
+  RobotState s = soft->world->robotStates()[0];
+  double d = (s.bodyPoses[1].position - Eigen::Vector3d(0, 0, 2)).norm();
+  EXPECT_NEAR(d, 1 + 3 * 9.81 / 3000, 1e-4);  // k (d - L) = m g, at rest
+}
+
+// localIndexB past the robot's last body is refused at the wire's field.
+TEST(RobotSim, WireToABodyTheRobotDoesNotHaveIsAnError) {
+  auto m = std::make_shared<robot::Model>();
+  addLink(*m, "base", inertial(2, {0, 0, 0}, 0.01));
+  Eigen::VectorXd q(7);
+  q << 0, 0, 1, 1, 0, 0, 0;
+  auto r = std::make_unique<::Run>();
+  LoadResult loaded = parse("raisim_engine_scene 1\narticulated /World/R0 res 0 0 0 1 0 0 0 true true\n"
+                            "wire /World/W stiff - /World/R0 1 localIndexB=3\n");
+  ASSERT_TRUE(loaded.ok());
+  ASSERT_TRUE(buildScene(loaded.document, {}, r->scene, r->diags));
+  r->robots.resize(1);
+  robot::RobotInstance& in = r->robots[0];
+  in.record = &r->scene.articulated[0];
+  in.model = m;
+  robot::makeCoordinates(*m, {}, in.coordinates);
+  in.q = q;
+  in.u = Eigen::VectorXd::Zero(6);
+  WorldOptions wo;
+  wo.robots = &r->robots;
+  wo.document = &loaded.document;
+  EXPECT_FALSE(World::create(r->scene, r->diags, wo));
+  ASSERT_FALSE(r->diags.empty());
+  EXPECT_EQ(r->diags.back().code, "RS7050");
+  EXPECT_EQ(r->diags.back().line, 3u);
+  EXPECT_NE(r->diags.back().message.find("localIndexB 3 is not a body of articulated system '/World/R0' (it has 1, 0 to 0)"),
+            std::string::npos)
+      << r->diags.back().message;
 }
