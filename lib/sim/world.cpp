@@ -119,6 +119,32 @@ double volumeOf(const btCollisionShape* s) {
   return std::max(d.x() * d.y() * d.z(), 1e-12);
 }
 
+bool hasMeshCollision(const robot::Model& model) {
+  for (const robot::Link& l : model.links)
+    for (const robot::Collision& c : l.collisions)
+      if (c.geometry.kind == robot::GeometryKind::Mesh) return true;
+  return false;
+}
+
+// RS7051: Bullet collides no triangle mesh on a moving body.
+void warnNotConvexified(const Document* doc, const Articulated& a, Diagnostics& diagnostics) {
+  std::string message = "articulated system '" + a.path +
+                        "': convexifyCollisionMeshes=false, but its mesh collisions are simulated as convex hulls "
+                        "(Bullet collides no triangle mesh on a moving body)";
+  if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
+    RecordReader r(*doc, static_cast<std::size_t>(a.recordIndex), diagnostics);
+    bool here = r.has("convexifyCollisionMeshes") || a.resourceRecord < 0;
+    RecordReader(*doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diagnostics)
+        .error("convexifyCollisionMeshes", sim_code::kNotConvexified, message, "", Severity::Warning);
+    return;
+  }
+  Diagnostic d;
+  d.severity = Severity::Warning;
+  d.code = sim_code::kNotConvexified;
+  d.message = message;
+  diagnostics.push_back(std::move(d));
+}
+
 }  // namespace
 
 struct Simulated {
@@ -643,11 +669,14 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   }
 
   if (options.robots) {
-    for (const robot::RobotInstance& instance : *options.robots)
+    for (const robot::RobotInstance& instance : *options.robots) {
       if (!w.addRobot(instance, options.pd, sv)) {
         const Articulated& a = *instance.record;
         return fail(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
       }
+      if (instance.model && !instance.record->convexifyCollisionMeshes && hasMeshCollision(*instance.model))
+        warnNotConvexified(options.document, *instance.record, diagnostics);
+    }
   }
 
   for (const Wire& wire : scene.wires) {
@@ -769,7 +798,12 @@ std::vector<RobotState> World::robotStates() const {
     s.recordIndex = in.record->recordIndex;
     s.path = in.record->path;
     s.instance = &in;
-    r->state(s.q, s.u);
+    if (impl_->stepCount == 0) {  // what the record says, not its round trip through Bullet's frames
+      s.q = in.q;
+      s.u = in.u;
+    } else {
+      r->state(s.q, s.u);
+    }
     s.base = r->bodyPose(0);
     if (in.model->floatingBase) {
       s.baseLinearVelocity = s.u.head<3>();

@@ -49,6 +49,7 @@ namespace rscene::sim {
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
 inline constexpr const char* kWireLocalIndex = "RS7050";  // a wire's localIndex is not a body of its articulated system
+inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
 
 // State of one simulated body (dynamic or kinematic), in the world frame.
@@ -88,6 +89,12 @@ struct PdGains {
   double kp = 0, kd = 0;
   std::map<std::string, std::pair<double, double>> joints;  // name -> kp, kd
 };
+
+// Reads --pd-gains values: "KP,KD" for every joint, "JOINT=KP,KD" for one
+// (the last of each wins); gains finite and >= 0.  False with `error`.
+bool parsePdGains(const std::vector<std::string>& specs, PdGains& out, std::string& error);
+// Joint names of `pd` that no robot has as a movable joint.
+std::vector<std::string> unknownPdJoints(const PdGains& pd, const std::vector<robot::RobotInstance>& robots);
 
 // The instance of every articulated record (Scene::articulated order),
 // loaded through one robot::ModelCache: the one reading of each robot's
