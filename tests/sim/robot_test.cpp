@@ -84,7 +84,7 @@ struct Run {  // NOLINT
 
 std::unique_ptr<Run> make(const std::string& body, const std::vector<std::shared_ptr<robot::Model>>& models,
                           const std::vector<Eigen::VectorXd>& q = {}, const std::vector<Eigen::VectorXd>& u = {},
-                          const PdGains& pd = {}) {
+                          const PdGains& pd = {}, const std::vector<std::string>& order = {}) {
   auto r = std::make_unique<Run>();
   std::string text = "raisim_engine_scene 1\ngravity 0 0 -9.81\n" + body;
   for (std::size_t i = 0; i < models.size(); ++i)
@@ -98,7 +98,7 @@ std::unique_ptr<Run> make(const std::string& body, const std::vector<std::shared
     robot::RobotInstance& in = r->robots[i];
     in.record = &r->scene.articulated[i];
     in.model = models[i];
-    robot::makeCoordinates(*in.model, {}, in.coordinates);
+    EXPECT_TRUE(robot::makeCoordinates(*in.model, order, in.coordinates).empty());
     in.base = in.record->world;
     in.q = i < q.size() ? q[i] : robot::neutralCoordinate(*in.model, in.coordinates, in.base);
     in.u = i < u.size() ? u[i] : Eigen::VectorXd::Zero(in.coordinates.velocityDim);
@@ -270,8 +270,11 @@ TEST(RobotSim, PendulumPeriodMatchesThePhysicalPendulumWithinOnePercent) {
 }
 
 // Three spheres on spherical joints (RaiSim's chain robot, built here),
-// started tilted and spinning, with no damping: total energy within 2%
-// over 5 s.
+// started tilted and spinning, with no damping: total energy within 2% of
+// the energy of the motion over 5 s, at time_step 0.0005.  The deviation
+// is the integrator's (semi-implicit Euler) and first order in the step:
+// started at 1 rad and spinning at 2 rad/s it is 7% at 0.001, 3% at 0.0005
+// and under 2% at 0.0002.
 TEST(RobotSim, UndampedChainKeepsItsEnergyWithinTwoPercent) {
   auto m = std::make_shared<robot::Model>();
   m->floatingBase = false;
@@ -279,22 +282,26 @@ TEST(RobotSim, UndampedChainKeepsItsEnergyWithinTwoPercent) {
   int l1 = addLink(*m, "link1", inertial(1, {0, 0, -0.12}, 0.002), 0, JointType::Fixed, at(0, 0, 2));
   int l2 = addLink(*m, "link2", inertial(1, {0, 0, -0.12}, 0.002), l1, JointType::Spherical, at(0, 0, -0.24));
   addLink(*m, "link3", inertial(1, {0, 0, -0.12}, 0.002), l2, JointType::Spherical, at(0, 0, -0.24));
-  Eigen::Quaterniond a(Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 0.5, 0).normalized()));
-  Eigen::Quaterniond b(Eigen::AngleAxisd(-0.8, Eigen::Vector3d(0, 1, 0.3).normalized()));
+  Eigen::Quaterniond a(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 0.5, 0).normalized()));
+  Eigen::Quaterniond b(Eigen::AngleAxisd(-0.5, Eigen::Vector3d(0, 1, 0.3).normalized()));
   Eigen::VectorXd q(8), u(6);
   q << a.w(), a.x(), a.y(), a.z(), b.w(), b.x(), b.y(), b.z();
-  u << 0, 0, 2, 1, 0, 0;
-  auto r = make("time_step 0.001\n", {m}, {q}, {u});
+  u << 0, 0, 0.5, 0, 0, 0;
+  auto r = make("time_step 0.0005\n", {m}, {q}, {u});
   ASSERT_TRUE(r->world);
   RobotLayout layout = makeLayout(*m);
   double e0 = energy(r->world->robotStates()[0], layout, 9.81);
-  double scale = 3 * 9.81 * 0.72;  // m g h of the chain's height: energy relative to it
+  // 2% of the energy of the motion: e0 above the chain hanging at rest
+  // (link2's centre at 2 - 0.24 - 0.12, link3's 0.24 lower; link1 does not move).
+  double rest = 1 * 9.81 * (2 - 0.12) + 1 * 9.81 * (2 - 0.36) + 1 * 9.81 * (2 - 0.60);
+  double swing = e0 - rest;
+  ASSERT_GT(swing, 0.3);
   double worst = 0;
-  for (int k = 0; k < 5000; ++k) {
+  for (int k = 0; k < std::lround(5 / r->world->timeStep()); ++k) {
     r->world->step();
     if (k % 10 == 0) worst = std::max(worst, std::abs(energy(r->world->robotStates()[0], layout, 9.81) - e0));
   }
-  EXPECT_LT(worst, 0.02 * std::max(std::abs(e0), scale)) << "e0 " << e0;
+  EXPECT_LT(worst, 0.02 * swing) << "energy of the motion " << swing;
 }
 
 // A joint limit is a hard stop: a pendulum released far from it swings
@@ -501,4 +508,27 @@ TEST(RobotSim, WireToABodyTheRobotDoesNotHaveIsAnError) {
   EXPECT_NE(r->diags.back().message.find("localIndexB 3 is not a body of articulated system '/World/R0' (it has 1, 0 to 0)"),
             std::string::npos)
       << r->diags.back().message;
+}
+
+// jointOrder= reorders the coordinates, not the bodies: the state still
+// reads back entry for entry and the bodies sit where the FK puts them.
+TEST(RobotSim, JointOrderReordersTheCoordinatesOnly) {
+  auto m = std::make_shared<robot::Model>();
+  m->floatingBase = false;
+  addLink(*m, "world", {});
+  int a = addLink(*m, "upper", inertial(1, {0, 0, -0.2}, 0.01), 0, JointType::Revolute, at(0, 0, 2), Eigen::Vector3d::UnitY());
+  addLink(*m, "lower", inertial(1, {0, 0, -0.2}, 0.01), a, JointType::Prismatic, at(0, 0, -0.4), Eigen::Vector3d::UnitZ());
+  Eigen::VectorXd q(2), u(2);
+  q << -0.05, 0.7;  // lower_joint first, then upper_joint
+  u << 0.3, -0.4;
+  auto r = make("", {m}, {q}, {u}, {}, {"lower_joint", "upper_joint"});
+  ASSERT_TRUE(r->world);
+  r->world->step();
+  RobotState s = r->world->robotStates()[0];
+  double dt = r->world->timeStep();
+  EXPECT_NEAR(s.q[1], 0.7 - 0.4 * dt, 1e-3);  // the revolute joint, moving at -0.4 rad/s
+  EXPECT_NEAR(s.q[0], -0.05 + 0.3 * dt, 1e-3);
+  std::vector<Pose> fk = robot::linkPoses(*m, r->robots[0].coordinates, r->robots[0].base, s.q);
+  EXPECT_LT((s.bodyPoses[2].position - fk[2].position).norm(), 1e-12);
+  EXPECT_LT((s.bodyPoses[1].position - fk[1].position).norm(), 1e-12);
 }
