@@ -532,3 +532,19 @@ TEST(RobotSim, JointOrderReordersTheCoordinatesOnly) {
   EXPECT_LT((s.bodyPoses[2].position - fk[2].position).norm(), 1e-12);
   EXPECT_LT((s.bodyPoses[1].position - fk[1].position).norm(), 1e-12);
 }
+
+// A robot whose state stops being finite is named by World::nonFinite()
+// (rscene-sim stops with RS7024), as a body is.
+TEST(RobotSim, NonFiniteStateIsReported) {
+  Eigen::VectorXd q0(1), u0(1);
+  q0 << 0.5;
+  u0 << 1e308;
+  auto r = make("time_step 0.0025\n", {pendulum(2, 0.5, 0.02)}, {q0}, {u0});
+  ASSERT_TRUE(r->world);
+  EXPECT_FALSE(r->world->nonFinite());
+  for (int k = 0; k < 3 && !r->world->nonFinite(); ++k) r->world->step();
+  std::optional<NonFinite> bad = r->world->nonFinite();
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->path, "/World/R0");
+  EXPECT_TRUE(bad->what == "generalized coordinate" || bad->what == "generalized velocity") << bad->what;
+}
