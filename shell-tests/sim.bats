@@ -21,7 +21,7 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 @test "--help lists every option" {
   run -0 "$SIM" --help
-  for opt in --output --duration --steps --trajectory --every --trajectory-format --until-rest --report \
+  for opt in --output --duration --steps --trajectory --every --trajectory-format --until-rest --report --pd-gains \
              --stdin-filename --base-dir --version; do
     [[ $output == *"$opt"* ]] || { echo "missing $opt"; false; }
   done
@@ -114,9 +114,9 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   grep -q '^granular /World/Sand sand' <<<"$output"
 }
 
-@test "examples/robot_cell simulates: its wire to the articulated robot is skipped with a warning" {
+@test "examples/robot_cell simulates, its wire to the articulated robot too" {
   run -0 --separate-stderr "$SIM" --steps 2 "$ROOT/examples/robot_cell.rscene"
-  [[ "$stderr" == *"robot_cell.rscene:14:26: warning: wire '/World/Tether' is not simulated: bodyA 'articulated_quadruped' is an articulated, which rscene-sim does not model [RS7011]"* ]]
+  [[ "$stderr" != *"RS7011"* ]]
   grep -q '^wire /World/Tether stiff articulated_quadruped compound_cart 2' <<<"$output"
   # the README's batch recipe no longer halts on it
   if command -v parallel > /dev/null; then
@@ -465,4 +465,95 @@ wire /World/W compliant object_box object_b2 1 stiffness=1e308|RS7027"
     [ "${sim%%: error*}" = "${v%%: error*}" ]
     [ "${sim##*[}" = "${v##*[}" ]
   done
+# generalizedCoordinate entry N (0-based) of the articulated record at PATH
+# in scene text on stdin.
+qof() {
+  awk -v p="$1" -v n="$2" '$1 == "articulated" && $2 == p {
+    for (i = 1; i <= NF; ++i) if ($i ~ /^generalizedCoordinate=/) { split(substr($i, 23), q, ","); print q[n + 1] } }'
+}
+
+@test "robots: without --pd-gains the quadruped of robot_cell collapses; with it, it stands" {
+  run -0 --separate-stderr "$SIM" --duration 2 "$ROOT/examples/robot_cell.rscene"
+  z=$(qof /World/Robot 2 <<<"$output")
+  awk -v z="$z" 'BEGIN { exit !(z < 0.25) }'
+  run -0 --separate-stderr "$SIM" --duration 2 --pd-gains 100,2 "$ROOT/examples/robot_cell.rscene"
+  z=$(qof /World/Robot 2 <<<"$output")
+  awk -v z="$z" 'BEGIN { exit !(z > 0.3582 && z < 0.4182) }'  # within 3 cm of 0.3882
+  # the positional pose is q's base
+  grep -q "^articulated /World/Robot quadruped_resource [^ ]* [^ ]* $z " <<<"$output"
+}
+
+@test "robots: --pd-gains per joint wins over the default; bad gains and unknown joints are usage errors" {
+  # LF_KFE (entry 9, held at -1.2 against the load) sags less when stiffer
+  run -0 --separate-stderr "$SIM" --duration 1 --pd-gains 100,2 "$ROOT/examples/robot_cell.rscene"
+  a=$(qof /World/Robot 9 <<<"$output")
+  run -0 --separate-stderr "$SIM" --duration 1 --pd-gains 100,2 --pd-gains LF_KFE=2000,40 "$ROOT/examples/robot_cell.rscene"
+  b=$(qof /World/Robot 9 <<<"$output")
+  awk -v a="$a" -v b="$b" 'function abs(x) { return x < 0 ? -x : x } BEGIN { exit !(abs(b + 1.2) < abs(a + 1.2) / 2) }'
+  run -2 --separate-stderr "$SIM" --pd-gains 100 "$ROOT/examples/robot_cell.rscene"
+  [ "$stderr" = "rscene-sim: error: --pd-gains '100': expected KP,KD or JOINT=KP,KD with finite gains >= 0" ]
+  run -2 --separate-stderr "$SIM" --pd-gains=-1,2 "$ROOT/examples/robot_cell.rscene"
+  [[ "$stderr" == *"--pd-gains '-1,2': expected KP,KD"* ]]
+  run -2 --separate-stderr "$SIM" --pd-gains LF_KNEE=1,2 "$ROOT/examples/robot_cell.rscene"
+  [[ "$stderr" == *"--pd-gains names joint 'LF_KNEE', which no articulated system has as a movable joint"* ]]
+  [ -z "$output" ]
+}
+
+@test "robots: --steps 0 writes the record's state back as written" {
+  run -0 --separate-stderr "$SIM" --steps 0 "$ROOT/examples/robot_cell.rscene"
+  grep -q 'generalizedCoordinate=0,0,0.3882,1,0,0,0,0,0.6,-1.2,0,0.6,-1.2,0,-0.6,1.2,0,-0.6,1.2 generalizedVelocity=0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0$' <<<"$output"
+}
+
+@test "robots: the trajectory has the base and the joints by name (CSV columns q.NAME, u.NAME; JSON Lines objects)" {
+  run -0 --separate-stderr "$SIM" --steps 3 --trajectory t.csv --trajectory-format csv --pd-gains 100,2 "$ROOT/examples/robot_cell.rscene"
+  head -1 t.csv | grep -q '^time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.LF_HAA,q.LF_HFE,q.LF_KFE,.*,q.RH_KFE,u.LF_HAA,.*,u.RH_KFE$'
+  [ "$(head -1 t.csv | tr ',' '\n' | wc -l)" -eq $((15 + 24)) ]
+  grep -q '^0,/World/Robot,0,0,0.3882,1,0,0,0,0,0,0,0,0,0,0,0.6,-1.2,0,0.6,-1.2,0,-0.6,1.2,0,-0.6,1.2,0,0,0,0,0,0,0,0,0,0,0,0$' t.csv
+  grep -q '^0,/World/Cart,.*,,,,$' t.csv  # a body row leaves the joint columns empty
+  [ "$(grep -c '/World/Robot' t.csv)" -eq 4 ]
+  run -0 --separate-stderr "$SIM" --steps 1 --trajectory t.jsonl "$ROOT/examples/robot_cell.rscene"
+  command -v jq >/dev/null || skip "jq not installed"
+  [ "$(jq -s 'map(select(.path == "/World/Robot"))[0].jointPositions.LF_KFE' t.jsonl)" = "-1.2" ]
+  [ "$(jq -s 'map(select(.path == "/World/Robot"))[0].position[2]' t.jsonl)" = "0.3882" ]
+  [ "$(jq -s 'map(select(.path == "/World/Robot"))[1].jointVelocities | length' t.jsonl)" = "12" ]
+}
+
+@test "robots: two runs are byte-identical" {
+  "$SIM" --duration 1 --pd-gains 100,2 -o a.rscene --trajectory a.jsonl "$ROOT/examples/robot_cell.rscene"
+  "$SIM" --duration 1 --pd-gains 100,2 -o b.rscene --trajectory b.jsonl "$ROOT/examples/robot_cell.rscene"
+  cmp a.rscene b.rscene
+  cmp a.jsonl b.jsonl
+}
+
+@test "robots: a wire's localIndexB past the robot's bodies is RS7050 at the wire" {
+  sed 's|^wire /World/Tether stiff articulated_quadruped compound_cart 2.0|wire /World/Tether stiff compound_cart articulated_quadruped 2.0 localIndexB=13|' \
+    "$ROOT/examples/robot_cell.rscene" > w.rscene
+  sed -i "s|robots/quadruped|$ROOT/examples/robots/quadruped|g" w.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 w.rscene
+  [[ "$stderr" == *"w.rscene:14:"*": error: body '/World/Tether': localIndexB 13 is not a body of articulated system 'articulated_quadruped' (it has 13, 0 to 12) [RS7050]"* ]]
+}
+
+@test "robots: a mesh collision is a convex hull; convexifyCollisionMeshes=false says so (RS7051)" {
+  cp "$DATA/render_assets/crate.obj" .
+  cat > arm.urdf <<'URDF'
+<robot name="arm">
+  <link name="world"/>
+  <link name="box">
+    <inertial><origin xyz="0 0 -0.3"/><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="crate.obj" scale="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="hinge" type="revolute">
+    <parent link="world"/><child link="box"/><origin xyz="0 0 1"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="10"/>
+  </joint>
+</robot>
+URDF
+  printf 'raisim_engine_scene 1\narticulated_resource arm_res Arm arm.urdf\narticulated /World/Arm arm_res 0 0 0 1 0 0 0 true true convexifyCollisionMeshes=false generalizedCoordinate=0.5\n' > arm.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 arm.rscene
+  [[ "$stderr" == "arm.rscene:3:"*": warning: articulated system '/World/Arm': convexifyCollisionMeshes=false, but its mesh collisions are simulated as convex hulls (Bullet collides no triangle mesh on a moving body) [RS7051]"* ]]
+  q=$(qof /World/Arm 0 <<<"$output")
+  awk -v q="$q" 'BEGIN { exit !(q < 0.5) }'  # it swings down
+  sed -i 's/ convexifyCollisionMeshes=false//' arm.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 arm.rscene
+  [ -z "$stderr" ]
 }

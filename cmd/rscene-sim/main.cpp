@@ -34,6 +34,7 @@ struct Options {
   long long maxSteps = static_cast<long long>(sim::kDefaultMaxSteps);
   long long maxPairs = static_cast<long long>(sim::kDefaultMaxPairs);
   bool untilRest = false, report = false, allowMissing = false;
+  std::vector<std::string> pdGains;
 };
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -79,6 +80,19 @@ int run(const Options& opt) {
   wo.assets = &assets;
   wo.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
   wo.document = &doc;
+  std::vector<robot::RobotInstance> robots;
+  ok = ok && sim::makeRobots(doc, scene, robots, ds);
+  wo.robots = &robots;
+  std::string pdError;
+  if (!sim::parsePdGains(opt.pdGains, wo.pd, pdError)) {
+    cli::error(pdError);
+    return cli::kTrouble;
+  }
+  if (ok)
+    for (const std::string& name : sim::unknownPdJoints(wo.pd, robots)) {
+      cli::error("--pd-gains names joint '" + name + "', which no articulated system has as a movable joint");
+      return cli::kTrouble;
+    }
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
@@ -91,6 +105,7 @@ int run(const Options& opt) {
   // `failure` set, as soon as one is not finite or the pair cap is passed,
   // before that state is written anywhere.
   auto format = opt.trajectoryFormat == "csv" ? sim::TrajectoryFormat::Csv : sim::TrajectoryFormat::Jsonl;
+  const sim::Trajectory lines(format, world->robotStates());
   std::optional<Diagnostic> failure;
   double contacts = 0;
   bool rested = false;
@@ -102,9 +117,9 @@ int run(const Options& opt) {
   auto simulate = [&](Sink* traj) {
     constexpr std::size_t kChunk = 1 << 16;
     std::string buffer;
-    if (traj) buffer = sim::trajectoryHeader(format);
+    if (traj) buffer = lines.header();
     if (!healthy()) return false;
-    if (traj) sim::appendTrajectory(buffer, format, world->time(), world->states());
+    if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates());
     bool progress = isatty(2);
     Clock::time_point lastProgress = Clock::now();
     while (world->steps() < total && !gInterrupted) {
@@ -113,7 +128,7 @@ int run(const Options& opt) {
       contacts += world->contactCount();
       std::uint64_t n = world->steps();
       if (traj && n % static_cast<std::uint64_t>(opt.every) == 0) {
-        sim::appendTrajectory(buffer, format, world->time(), world->states());
+        lines.append(buffer, world->time(), world->states(), world->robotStates());
         if (buffer.size() >= kChunk) traj->write(buffer), buffer.clear();
       }
       if (opt.untilRest && world->atRest()) {
@@ -164,6 +179,7 @@ int run(const Options& opt) {
                         {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
                         {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
                         {"bodies", world->bodyCount()},
+                        {"robots", world->robotCount()},
                         {"leftWorld", world->departures().size()},
                         {"contactsPerStep", steps ? contacts / steps : 0.0},
                         {"atRest", rested || world->atRest()}};
@@ -197,6 +213,10 @@ int main(int argc, char** argv) {
       ->type_name("FORMAT")->check(CLI::IsMember({"jsonl", "csv"}));
   app.add_flag("--until-rest", opt.untilRest, "Stop early once every dynamic body sleeps (--duration is the cap)");
   app.add_flag("--report", opt.report, "Print a JSON summary of the run on standard error");
+  app.add_option("--pd-gains", opt.pdGains,
+                 "Hold every robot joint at its initial position by PD: KP,KD for all joints, JOINT=KP,KD for one "
+                 "(repeatable)")
+      ->type_name("GAINS")->allow_extra_args(false);
   app.add_flag("--allow-missing-assets", opt.allowMissing,
                "Leave out a body whose collision mesh is missing or unreadable and warn, instead of failing");
   cli::addStdinFilename(app, opt.stdinName, true);

@@ -12,6 +12,7 @@ complete -c rscene-sim -l trajectory-format -x -a 'jsonl csv' -d 'Trajectory for
 complete -c rscene-sim -l until-rest -d 'Stop once every dynamic body sleeps'
 complete -c rscene-sim -l report -d 'Print a JSON summary on standard error'
 complete -c rscene-sim -l allow-missing-assets -d 'Leave out bodies whose mesh is missing, with a warning'
+complete -c rscene-sim -l pd-gains -r -d 'Hold robot joints by PD: KP,KD or JOINT=KP,KD'
 complete -c rscene-sim -l stdin-filename -r -F -d 'Name standard input in messages'
 complete -c rscene-sim -l base-dir -x -a '(__fish_complete_directories)' -d 'Resolve asset paths against DIR'
 complete -c rscene-sim -k -x -a '(__fish_complete_suffix .rscene)'

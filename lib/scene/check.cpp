@@ -112,8 +112,7 @@ class Checker {
       if (end == WireEnd::Unknown)
         reader(w.recordIndex)
             .error(field, scene_code::kUnknownBody, "body '" + *ref + "' does not exist", "name a node by its id or path");
-    // Wires to articulated systems wait for lib/sim's multibody support.
-    auto skipped = [](WireEnd e) { return e == WireEnd::NotSimulated || e == WireEnd::Articulated; };
+    auto skipped = [](WireEnd e) { return e == WireEnd::NotSimulated; };
     bool a = skipped(w.endA);
     if (!a && !skipped(w.endB)) return;
     const char* field = a ? "bodyA" : "bodyB";

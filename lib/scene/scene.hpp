@@ -427,10 +427,11 @@ struct Wire {
   std::string tagA, tagB;  // record kind an end names (when it names a node)
 
   // Whether a simulator attaches this wire: enabled, and each end is the
-  // world or a simulated body (object, compound, terrain).  A wire to an
-  // articulated system or a visual-only object is skipped with RS7011.
+  // world, a simulated body (object, compound, terrain) or an articulated
+  // system (at its body localIndexA/B).  A wire to a visual-only object or
+  // another node the simulator does not model is skipped with RS7011.
   bool simulated() const {
-    auto ok = [](WireEnd e) { return e == WireEnd::World || e == WireEnd::Body; };
+    auto ok = [](WireEnd e) { return e == WireEnd::World || e == WireEnd::Body || e == WireEnd::Articulated; };
     return enabled && ok(endA) && ok(endB);
   }
 };

@@ -19,16 +19,19 @@ std::optional<Diagnostic> unsupportedWarning(const Scene& scene) {
   std::set<std::string> seen;
   // Scene records with physics this simulator does not model; purely
   // visual ones (decals, probes, fog volumes ...) are not worth a warning.
-  auto physical = [](const std::string& tag) {
-    return tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular" ||
-           tag == "sensor";
-  };
+  auto physical = [](const std::string& tag) { return tag == "deformable" || tag == "granular" || tag == "sensor"; };
   for (const SkippedRecord& s : scene.skipped) {
     if (!physical(s.tag) || !seen.insert(s.tag).second) continue;
     std::size_t n = 0;
     for (const SkippedRecord& t : scene.skipped) n += t.tag == s.tag;
     list += (list.empty() ? "" : ", ") + s.tag + " (" + std::to_string(n) + ")";
   }
+  // Robots are simulated; their IK targets are not solved (yet): the
+  // joints start where generalizedCoordinate puts them.
+  std::size_t targets = 0;
+  for (const Articulated& a : scene.articulated)
+    for (const ArticulatedIk& k : a.ik) targets += k.enabled;
+  if (targets) list += (list.empty() ? "" : ", ") + std::string("articulated_ik (") + std::to_string(targets) + ")";
   if (list.empty()) return std::nullopt;
   Diagnostic d;
   d.severity = Severity::Warning;

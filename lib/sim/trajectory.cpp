@@ -1,8 +1,10 @@
 #include "sim/trajectory.hpp"
 
 #include <nlohmann/json.hpp>
+#include <unordered_map>
 
 #include "core/text.hpp"
+#include "robot/kinematics.hpp"
 
 namespace rscene::sim {
 namespace {
@@ -20,48 +22,116 @@ void csvField(std::string& out, const std::string& s) {
   out += '"';
 }
 
+void number(std::string& out, double v) { appendNumber(out, v == 0 ? 0.0 : v); }
+
 void numbers(std::string& out, std::initializer_list<double> values, char sep) {
   for (double v : values) {
     out += sep;
-    appendNumber(out, v == 0 ? 0.0 : v);
+    number(out, v);
   }
+}
+
+// One pose-and-velocity line (a body, or a robot's base) without its end.
+void poseLine(std::string& out, TrajectoryFormat format, double time, const std::string& path,
+              const Eigen::Vector3d& p, const Eigen::Quaterniond& q, const Eigen::Vector3d& v,
+              const Eigen::Vector3d& w) {
+  if (format == TrajectoryFormat::Csv) {
+    number(out, time);
+    out += ',';
+    csvField(out, path);
+    numbers(out, {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}, ',');
+    return;
+  }
+  out += "{\"time\":";
+  number(out, time);
+  out += ",\"path\":" + nlohmann::json(path).dump();
+  auto vec = [&](const char* name, std::initializer_list<double> xs) {
+    out += ",\"";
+    out += name;
+    out += "\":[";
+    std::string inner;
+    numbers(inner, xs, ',');
+    out += inner.substr(1);
+    out += ']';
+  };
+  vec("position", {p.x(), p.y(), p.z()});
+  vec("quaternion", {q.w(), q.x(), q.y(), q.z()});
+  vec("linearVelocity", {v.x(), v.y(), v.z()});
+  vec("angularVelocity", {w.x(), w.y(), w.z()});
 }
 
 }  // namespace
 
-std::string trajectoryHeader(TrajectoryFormat format) {
-  if (format == TrajectoryFormat::Jsonl) return {};
-  return "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+Trajectory::Trajectory(TrajectoryFormat format, const std::vector<RobotState>& robots) : format_(format) {
+  std::unordered_map<std::string, int> index;
+  auto column = [&](const std::string& name) {
+    auto [it, added] = index.emplace(name, static_cast<int>(columns_.size()));
+    if (added) columns_.push_back(name);
+    return it->second;
+  };
+  for (const RobotState& r : robots) {
+    const robot::RobotInstance& in = *r.instance;
+    std::vector<std::string> q = robot::coordinateNames(*in.model, in.coordinates, false);
+    std::vector<std::string> u = robot::coordinateNames(*in.model, in.coordinates, true);
+    qColumns_.emplace_back();
+    uColumns_.emplace_back();
+    for (std::size_t i = static_cast<std::size_t>(in.coordinates.baseCoordinates); i < q.size(); ++i)
+      qColumns_.back().push_back(column("q." + q[i]));
+    for (std::size_t i = static_cast<std::size_t>(in.coordinates.baseVelocities); i < u.size(); ++i)
+      uColumns_.back().push_back(column("u." + u[i]));
+  }
 }
 
-void appendTrajectory(std::string& out, TrajectoryFormat format, double time, const std::vector<BodyState>& states) {
-  for (const BodyState& b : states) {
-    const Eigen::Vector3d &p = b.position, &v = b.linearVelocity, &w = b.angularVelocity;
-    const Eigen::Quaterniond& q = b.orientation;
-    if (format == TrajectoryFormat::Csv) {
-      appendNumber(out, time);
-      out += ',';
-      csvField(out, b.path);
-      numbers(out, {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}, ',');
+std::string Trajectory::header() const {
+  if (format_ == TrajectoryFormat::Jsonl) return {};
+  std::string h = "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+  for (const std::string& c : columns_) {
+    h += ',';
+    csvField(h, c);
+  }
+  return h + '\n';
+}
+
+void Trajectory::append(std::string& out, double time, const std::vector<BodyState>& bodies,
+                        const std::vector<RobotState>& robots) const {
+  const std::string empty(columns_.size(), ',');
+  for (const BodyState& b : bodies) {
+    poseLine(out, format_, time, b.path, b.position, b.orientation, b.linearVelocity, b.angularVelocity);
+    out += format_ == TrajectoryFormat::Csv ? empty + '\n' : "}\n";
+  }
+  std::vector<const double*> cells(columns_.size());
+  for (std::size_t k = 0; k < robots.size() && k < qColumns_.size(); ++k) {
+    const RobotState& r = robots[k];
+    const robot::RobotInstance& in = *r.instance;
+    poseLine(out, format_, time, r.path, r.base.position, r.base.orientation, r.baseLinearVelocity,
+             r.baseAngularVelocity);
+    const int q0 = in.coordinates.baseCoordinates, u0 = in.coordinates.baseVelocities;
+    if (format_ == TrajectoryFormat::Csv) {
+      std::fill(cells.begin(), cells.end(), nullptr);
+      for (std::size_t i = 0; i < qColumns_[k].size(); ++i)
+        cells[static_cast<std::size_t>(qColumns_[k][i])] = &r.q[q0 + static_cast<Eigen::Index>(i)];
+      for (std::size_t i = 0; i < uColumns_[k].size(); ++i)
+        cells[static_cast<std::size_t>(uColumns_[k][i])] = &r.u[u0 + static_cast<Eigen::Index>(i)];
+      for (const double* c : cells) {
+        out += ',';
+        if (c) number(out, *c);
+      }
       out += '\n';
       continue;
     }
-    out += "{\"time\":";
-    appendNumber(out, time);
-    out += ",\"path\":" + nlohmann::json(b.path).dump();
-    auto vec = [&](const char* name, std::initializer_list<double> xs) {
+    auto object = [&](const char* name, const std::vector<int>& cols, const Eigen::VectorXd& v, int first) {
       out += ",\"";
       out += name;
-      out += "\":[";
-      std::string inner;
-      numbers(inner, xs, ',');
-      out += inner.substr(1);
-      out += ']';
+      out += "\":{";
+      for (std::size_t i = 0; i < cols.size(); ++i) {
+        if (i) out += ',';
+        out += nlohmann::json(columns_[static_cast<std::size_t>(cols[i])].substr(2)).dump() + ':';
+        number(out, v[first + static_cast<Eigen::Index>(i)]);
+      }
+      out += '}';
     };
-    vec("position", {p.x(), p.y(), p.z()});
-    vec("quaternion", {q.w(), q.x(), q.y(), q.z()});
-    vec("linearVelocity", {v.x(), v.y(), v.z()});
-    vec("angularVelocity", {w.x(), w.y(), w.z()});
+    object("jointPositions", qColumns_[k], r.q, q0);
+    object("jointVelocities", uColumns_[k], r.u, u0);
     out += "}\n";
   }
 }

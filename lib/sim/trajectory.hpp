@@ -1,4 +1,14 @@
-// Trajectory lines: body states as JSON Lines or CSV (rscene-sim --trajectory).
+// Trajectory lines: body and robot states as JSON Lines or CSV
+// (rscene-sim --trajectory).
+//
+// A body's line: time, path, position, quaternion (w x y z), linear and
+// angular velocity, world frame.  An articulated system's line has the
+// same fields for its base (the root link's frame, its origin's velocity),
+// then its joints by name (robot::coordinateNames): in JSON Lines
+// "jointPositions" and "jointVelocities" objects; in CSV one column
+// "q.NAME" per coordinate and "u.NAME" per velocity entry, after the body
+// columns, for the joints of every robot (a joint name shared by two
+// robots is one column); a row leaves the columns not its own empty.
 #pragma once
 #include <string>
 #include <vector>
@@ -9,9 +19,22 @@ namespace rscene::sim {
 
 enum class TrajectoryFormat { Jsonl, Csv };
 
-// The CSV header line (with newline); JSON Lines has none.
-std::string trajectoryHeader(TrajectoryFormat format);
-// One line per body at simulated time `time`, numbers shortest round-trip.
-void appendTrajectory(std::string& out, TrajectoryFormat format, double time, const std::vector<BodyState>& states);
+class Trajectory {
+ public:
+  // `robots`: the states of the robots the lines will carry (World::robotStates()).
+  Trajectory(TrajectoryFormat format, const std::vector<RobotState>& robots);
+  // The CSV header line (with newline); JSON Lines has none.
+  std::string header() const;
+  // One line per body, then one per robot, at simulated time `time`;
+  // numbers shortest round-trip.
+  void append(std::string& out, double time, const std::vector<BodyState>& bodies,
+              const std::vector<RobotState>& robots) const;
+
+ private:
+  TrajectoryFormat format_;
+  std::vector<std::string> columns_;  // joint columns (CSV)
+  // Per robot: the column of each q entry past the base, then of each u entry.
+  std::vector<std::vector<int>> qColumns_, uColumns_;
+};
 
 }  // namespace rscene::sim

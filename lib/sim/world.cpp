@@ -7,6 +7,8 @@
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,18 +20,12 @@
 
 #include "core/text.hpp"
 #include "scene/reader.hpp"
+#include "sim/bt_eigen.hpp"
+#include "sim/robot_sim.hpp"
 #include "sim/wire.hpp"
 
 namespace rscene::sim {
 namespace {
-
-static_assert(sizeof(btScalar) == sizeof(double), "lib/sim needs Bullet's double-precision build");
-
-btVector3 bt(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-btQuaternion bt(const Eigen::Quaterniond& q) { return {q.x(), q.y(), q.z(), q.w()}; }
-btTransform bt(const Pose& p) { return btTransform(bt(p.orientation), bt(p.position)); }
-Eigen::Vector3d eig(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Quaterniond eig(const btQuaternion& q) { return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()); }
 
 constexpr std::uint64_t kTerrainGroup = std::uint64_t{1} << 63;
 constexpr std::uint64_t kAll = ~std::uint64_t{0};
@@ -39,6 +35,14 @@ struct BodyInfo {
   std::uint64_t group = 1, mask = kAll;
   int material = -1;  // index into World::Impl::materialNames, -1 = default
   int recordIndex = -1;  // its record, to point at in messages
+  int robot = -1, body = -1;  // a robot's collider: index into World::Impl::robots, its body
+};
+
+// Which bodies of one robot may touch each other (robots' self-collision).
+struct SelfPairs {
+  int bodies = 0;
+  std::vector<char> allowed;  // bodies x bodies
+  bool operator()(int a, int b) const { return allowed[static_cast<std::size_t>(a * bodies + b)] != 0; }
 };
 
 // 64-bit group/mask test.  Bullet's own broadphase filter is 32-bit.
@@ -48,6 +52,7 @@ struct BodyInfo {
 struct Filter : btOverlapFilterCallback {
   const std::vector<BodyInfo>* info = nullptr;
   btOverlappingPairCache* cache = nullptr;
+  const std::vector<SelfPairs>* self = nullptr;
   std::uint64_t maxPairs = 0;  // 0: no cap
   mutable int overflowRecord = -1;  // set once the cap refused a pair: a dynamic body of that pair
   mutable bool overflowed = false;
@@ -69,6 +74,8 @@ struct Filter : btOverlapFilterCallback {
   bool groupsMeet(const btCollisionObject* oa, const btCollisionObject* ob) const {
     const BodyInfo& x = (*info)[static_cast<std::size_t>(oa->getUserIndex())];
     const BodyInfo& y = (*info)[static_cast<std::size_t>(ob->getUserIndex())];
+    if (x.robot >= 0 && x.robot == y.robot)  // a robot's own bodies: collidable, and as SelfPairs says
+      return x.group != 0 && y.group != 0 && (*self)[static_cast<std::size_t>(x.robot)](x.body, y.body);
     return (x.group & y.mask) != 0 && (y.group & x.mask) != 0;
   }
 };
@@ -112,6 +119,32 @@ double volumeOf(const btCollisionShape* s) {
   return std::max(d.x() * d.y() * d.z(), 1e-12);
 }
 
+bool hasMeshCollision(const robot::Model& model) {
+  for (const robot::Link& l : model.links)
+    for (const robot::Collision& c : l.collisions)
+      if (c.geometry.kind == robot::GeometryKind::Mesh) return true;
+  return false;
+}
+
+// RS7051: Bullet collides no triangle mesh on a moving body.
+void warnNotConvexified(const Document* doc, const Articulated& a, Diagnostics& diagnostics) {
+  std::string message = "articulated system '" + a.path +
+                        "': convexifyCollisionMeshes=false, but its mesh collisions are simulated as convex hulls "
+                        "(Bullet collides no triangle mesh on a moving body)";
+  if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
+    RecordReader r(*doc, static_cast<std::size_t>(a.recordIndex), diagnostics);
+    bool here = r.has("convexifyCollisionMeshes") || a.resourceRecord < 0;
+    RecordReader(*doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diagnostics)
+        .error("convexifyCollisionMeshes", sim_code::kNotConvexified, message, "", Severity::Warning);
+    return;
+  }
+  Diagnostic d;
+  d.severity = Severity::Warning;
+  d.code = sim_code::kNotConvexified;
+  d.message = message;
+  diagnostics.push_back(std::move(d));
+}
+
 }  // namespace
 
 struct Simulated {
@@ -147,8 +180,8 @@ struct World::Impl {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   std::unique_ptr<btBroadphaseInterface> broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
+  btMultiBodyConstraintSolver solver;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world;
   Filter filter;
   PairTable pairs;
   std::vector<BodyInfo> info;
@@ -170,7 +203,17 @@ struct World::Impl {
   std::vector<std::vector<double>> heights;  // terrain data must outlive its shape
   std::vector<Simulated> simulated;
   std::vector<Spring> springs;
+  std::vector<std::unique_ptr<SimRobot>> robots;
+  std::vector<std::unique_ptr<MultiBodyRope>> robotWires;
+  struct {
+    int recordIndex = -1;
+    const char* field = "";
+    std::string message;
+  } wireError;  // a wire create() refuses
+  std::vector<SelfPairs> selfPairs;  // per robot
+  double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
+  std::unordered_map<std::string, int> robotByName;      // id and path -> index into robots
   std::map<std::string, int> materialIndex;
   double dt = 0.0025;
   std::uint64_t stepCount = 0;
@@ -180,6 +223,13 @@ struct World::Impl {
     if (world) {  // removing what is not (or no longer) in the world is a no-op
       for (auto& c : constraints) world->removeConstraint(c.get());
       for (auto& b : bodies) world->removeRigidBody(b.get());
+      for (auto& c : robotWires) world->removeMultiBodyConstraint(c.get());
+      for (auto& r : robots) {
+        for (auto& c : r->constraints()) world->removeMultiBodyConstraint(c.get());
+        for (btMultiBodyLinkCollider* c : r->colliders())
+          if (c) world->removeCollisionObject(c);
+        world->removeMultiBody(r->multiBody());
+      }
     }
   }
 
@@ -223,8 +273,10 @@ struct World::Impl {
     for (auto& c : constraints)
       if (&c->getRigidBodyA() == body || &c->getRigidBodyB() == body) world->removeConstraint(c.get());
     springs.erase(std::remove_if(springs.begin(), springs.end(),
-                                 [&](const Spring& sp) { return sp.a == body || sp.b == body; }),
+                                 [&](const Spring& sp) { return sp.a.rigid == body || sp.b.rigid == body; }),
                   springs.end());
+    for (auto& c : robotWires)
+      if (c->rigid() == body) world->removeMultiBodyConstraint(c.get());
     world->removeRigidBody(body);
     body->setLinearVelocity(btVector3(0, 0, 0));
     body->setAngularVelocity(btVector3(0, 0, 0));
@@ -260,10 +312,13 @@ struct World::Impl {
   // Ten bodies naming one mesh file at one scale share one shape (one
   // convex hull, one BVH): Bullet shapes may be shared between bodies.
   btCollisionShape* meshShape(const std::string& path, double scale, bool convex, std::string& error) {
+    return meshShape(path, Eigen::Vector3d::Constant(scale), convex, error);
+  }
+  btCollisionShape* meshShape(const std::string& path, const Eigen::Vector3d& scale, bool convex, std::string& error) {
     char key[32];
-    std::memcpy(key, &scale, sizeof scale);
-    key[sizeof scale] = convex ? 'h' : 't';
-    std::string name = std::string(key, sizeof scale + 1) + path;
+    std::memcpy(key, scale.data(), 3 * sizeof(double));
+    key[3 * sizeof(double)] = convex ? 'h' : 't';
+    std::string name = std::string(key, 3 * sizeof(double) + 1) + path;
     if (auto it = meshShapes.find(name); it != meshShapes.end()) return it->second;
     std::string why;
     std::shared_ptr<const asset::Mesh> mesh = assets->mesh(path, asset::MeshContent::Geometry, &why);
@@ -275,7 +330,7 @@ struct World::Impl {
     btCollisionShape* shape = nullptr;
     if (convex) {
       std::vector<double> points(part.positions.begin(), part.positions.end());
-      for (double& v : points) v *= scale;
+      for (std::size_t i = 0; i < points.size(); ++i) points[i] *= scale[static_cast<Eigen::Index>(i % 3)];
       auto* hull = new btConvexHullShape(points.data(), static_cast<int>(part.vertexCount()), 3 * sizeof(double));
       hull->optimizeConvexHull();
       hull->setMargin(0.001);
@@ -293,12 +348,108 @@ struct World::Impl {
       im.m_vertexType = PHY_FLOAT;
       auto* array = new btTriangleIndexVertexArray();
       array->addIndexedMesh(im, PHY_INTEGER);
-      array->setScaling(btVector3(scale, scale, scale));
+      array->setScaling(bt(scale));
       meshData.emplace_back(array);
       shape = keep(new btBvhTriangleMeshShape(array, true));
     }
     meshes.push_back(std::move(mesh));
     return meshShapes[name] = shape;
+  }
+
+  // A robot link's collision shape: primitives sized as the model says
+  // (capsule length between the sphere centres), meshes as convex hulls
+  // (Bullet collides no triangle mesh on a moving body).
+  btCollisionShape* robotShape(const robot::Geometry& g, std::string& error) {
+    switch (g.kind) {
+      case robot::GeometryKind::Box: return keep(new btBoxShape(bt(Eigen::Vector3d(g.size / 2))));
+      case robot::GeometryKind::Sphere: return keep(new btSphereShape(g.radius));
+      case robot::GeometryKind::Cylinder: return keep(new btCylinderShapeZ(btVector3(g.radius, g.radius, g.length / 2)));
+      case robot::GeometryKind::Capsule: return keep(new btCapsuleShapeZ(g.radius, g.length));
+      case robot::GeometryKind::Mesh: return meshShape(g.meshPath, g.meshScale, true, error);
+    }
+    error = "unknown geometry";
+    return nullptr;
+  }
+
+  std::string robotError;  // why addRobot failed
+
+  // Builds one articulated system into the world: its multibody, colliders
+  // (the record's group and mask; self-collision as selfPairsOf decides),
+  // joint limits and friction motors.
+  bool addRobot(const robot::RobotInstance& instance, const PdGains& pd, const Solver& sv) {
+    if (!instance.model || !instance.record) return true;  // makeRobots reported it
+    auto maker = [this](const robot::Geometry& g, std::string& e) { return robotShape(g, e); };
+    // Robots never sleep: Bullet's multibody sleep test (a fixed 0.01 bound
+    // on the sum of squared speeds for 2 s) stops slow swings mid-way.
+    // atRest() asks their bodies' speeds against the solver's thresholds.
+    std::unique_ptr<SimRobot> r = SimRobot::create(instance, maker, pd, false, robotError);
+    if (!r) return false;
+    r->addFriction(dt);
+    const Articulated& a = *instance.record;
+    int index = static_cast<int>(robots.size());
+    btMultiBody* mb = r->multiBody();
+    // Before any collider is in the broadphase, which asks the filter.
+    selfPairs.push_back(selfPairsOf(*r, a.doNotCollideWithParent));
+    for (std::size_t b = 0; b < r->colliders().size(); ++b) {
+      btMultiBodyLinkCollider* c = r->colliders()[b];
+      if (!c) continue;
+      c->setFriction(sv.defaultFriction);
+      c->setRestitution(sv.defaultRestitution);
+      c->setRollingFriction(sv.defaultRollingFriction);
+      c->setSpinningFriction(sv.defaultSpinningFriction);
+      c->setContactProcessingThreshold(0);
+      bool collides = a.collidable && r->hasShapes(static_cast<int>(b));  // group 0 meets nothing
+      BodyInfo bi{collides ? a.collisionGroup : 0, collides ? a.collisionMask : 0, -1, a.recordIndex, index,
+                  static_cast<int>(b)};
+      c->setUserIndex(static_cast<int>(info.size()));
+      c->setUserIndex2(-1);
+      info.push_back(bi);
+      world->addCollisionObject(c, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+    }
+    world->addMultiBody(mb);
+    for (auto& c : r->constraints()) world->addMultiBodyConstraint(c.get());
+    robotByName[a.id] = index;
+    robotByName[a.path] = index;
+    robots.push_back(std::move(r));
+    return true;
+  }
+
+  // RaiSim collides a robot's bodies with each other, except a body with
+  // its parent under doNotCollideWithParent.  Pairs whose shapes already
+  // touch in the initial pose are left out too: a coarse collision model
+  // (hulls, cylinders around meshes) often overlaps at the joints of a
+  // robot that is fine, and the solver would throw them apart.
+  SelfPairs selfPairsOf(const SimRobot& r, bool noParent) {
+    const std::vector<RobotBody>& bodies = r.layout().bodies;
+    SelfPairs p;
+    p.bodies = static_cast<int>(bodies.size());
+    p.allowed.assign(bodies.size() * bodies.size(), 1);
+    struct Touch : btCollisionWorld::ContactResultCallback {
+      bool touching = false;
+      btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
+                               const btCollisionObjectWrapper*, int, int) override {
+        if (cp.getDistance() <= 0) touching = true;
+        return 0;
+      }
+    };
+    for (int a = 0; a < p.bodies; ++a) {
+      for (int b = 0; b < p.bodies; ++b) {
+        bool adjacent = bodies[static_cast<std::size_t>(a)].parentBody == b || bodies[static_cast<std::size_t>(b)].parentBody == a;
+        bool off = a == b || (noParent && adjacent);
+        btMultiBodyLinkCollider* ca = r.colliders()[static_cast<std::size_t>(a)];
+        btMultiBodyLinkCollider* cb = r.colliders()[static_cast<std::size_t>(b)];
+        if (!off && a < b && r.hasShapes(a) && r.hasShapes(b)) {
+          Touch t;
+          world->contactPairTest(ca, cb, t);
+          off = t.touching;
+        }
+        if (off) p.allowed[static_cast<std::size_t>(a * p.bodies + b)] = 0;
+      }
+    }
+    for (int a = 0; a < p.bodies; ++a)  // symmetric
+      for (int b = 0; b < a; ++b)
+        p.allowed[static_cast<std::size_t>(a * p.bodies + b)] = p.allowed[static_cast<std::size_t>(b * p.bodies + a)];
+    return p;
   }
 
   btRigidBody* addBody(btCollisionShape* shape, const btTransform& at, BodyMode mode, double mass,
@@ -358,6 +509,8 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.assets = w.ownAssets.get();
   }
   w.leaveMargin = options.leaveMargin;
+  w.sleepLinear = scene.solver.sleepingLinearVelocityThreshold;
+  w.sleepAngular = scene.solver.sleepingAngularVelocityThreshold;
   const Solver& sv = scene.solver;
   w.bounded = sv.broadphaseUseWorldBounds;
   w.boundsMin = bt(sv.broadphaseWorldMin);
@@ -372,7 +525,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
   else
     w.broadphase = std::make_unique<btDbvtBroadphase>();
-  w.world = std::make_unique<btDiscreteDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
+  w.world = std::make_unique<btMultiBodyDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
   w.world->setGravity(bt(scene.gravity));
   // Static bodies do not move: Bullet's default re-sets every AABB each
   // step, which keeps statics in the broadphase's dynamic tree and
@@ -395,6 +548,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   si.m_splitImpulse = true;
   si.m_splitImpulsePenetrationThreshold = 0;
   w.filter.info = &w.info;
+  w.filter.self = &w.selfPairs;
   w.filter.cache = w.world->getPairCache();
   w.filter.maxPairs = options.maxPairs;
   w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
@@ -514,43 +668,70 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.byName[t.path] = body;
   }
 
+  if (options.robots) {
+    for (const robot::RobotInstance& instance : *options.robots) {
+      if (!w.addRobot(instance, options.pd, sv)) {
+        const Articulated& a = *instance.record;
+        return fail(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
+      }
+      if (instance.model && !instance.record->convexifyCollisionMeshes && hasMeshCollision(*instance.model))
+        warnNotConvexified(options.document, *instance.record, diagnostics);
+    }
+  }
+
   for (const Wire& wire : scene.wires) {
     if (!wire.simulated()) continue;  // disabled, or to a node not modelled (RS7011)
-    auto find = [&](const std::string& ref) -> btRigidBody* {
-      auto it = w.byName.find(ref);
-      return it == w.byName.end() ? nullptr : it->second;
-    };
-    btRigidBody* a = find(wire.bodyA);
-    btRigidBody* b = find(wire.bodyB);
-    if (!a && !b) continue;  // checkPhysics reported it
-    // Attachment points are given in the record frame; compounds simulate
-    // about their centre of mass.
-    auto local = [&](btRigidBody* body, const Eigen::Vector3d& p) {
-      for (const Simulated& s : w.simulated)
-        if (s.body == body) return s.toRecord.inverse() * bt(p);
-      return bt(p);
-    };
-    if (!a) {  // the world is body A: keep the dynamic one first
-      std::swap(a, b);
-      Eigen::Vector3d pa = wire.localPositionB, pb = wire.localPositionA;
-      btVector3 anchor = b ? local(b, pb) : bt(pb);
-      if (wire.kind == "compliant") w.springs.push_back({a, b, local(a, pa), anchor, wire.length, wire.stiffness, wire.damping});
-      else {
-        auto* c = new RopeConstraint(*a, b, local(a, pa), anchor, wire.length);
-        w.constraints.emplace_back(c);
-        w.world->addConstraint(c, true);
+    // Each end: the world (no name), a rigid body (attachment point in its
+    // record frame; compounds simulate about their centre of mass), or a
+    // robot's body localIndex (point in that body's frame).
+    enum Kind { None, Point, Body };
+    auto anchor = [&](const std::string& ref, int localIndex, const Eigen::Vector3d& p, const char* field,
+                      WireAnchor& out) -> Kind {
+      out.local = bt(p);
+      if (ref.empty()) return Point;
+      if (auto it = w.robotByName.find(ref); it != w.robotByName.end()) {
+        SimRobot* r = w.robots[static_cast<std::size_t>(it->second)].get();
+        int bodies = static_cast<int>(r->layout().bodies.size());
+        if (localIndex < 0 || localIndex >= bodies) {
+          w.wireError = {wire.recordIndex, field,
+                         std::string(field == std::string("bodyA") ? "localIndexA " : "localIndexB ") +
+                             std::to_string(localIndex) + " is not a body of articulated system '" + ref + "' (it has " +
+                             std::to_string(bodies) + ", 0 to " + std::to_string(bodies - 1) + ")"};
+          return None;
+        }
+        out.robot = r;
+        out.body = localIndex;
+        return Body;
       }
+      auto it = w.byName.find(ref);
+      if (it == w.byName.end()) return None;  // checkPhysics reported it
+      out.rigid = it->second;
+      for (const Simulated& s : w.simulated)
+        if (s.body == out.rigid) out.local = s.toRecord.inverse() * bt(p);
+      return Body;
+    };
+    WireAnchor a, b;
+    Kind ka = anchor(wire.bodyA, wire.localIndexA, wire.localPositionA, "bodyA", a);
+    Kind kb = anchor(wire.bodyB, wire.localIndexB, wire.localPositionB, "bodyB", b);
+    if (w.wireError.recordIndex >= 0)
+      return fail(wire.path, w.wireError.message, sim_code::kWireLocalIndex, w.wireError.recordIndex,
+                  w.wireError.field);
+    if (ka == None || kb == None || (ka == Point && kb == Point)) continue;
+    if (wire.kind == "compliant") {
+      w.springs.push_back({a, b, wire.length, wire.stiffness, wire.damping});
       continue;
     }
-    btVector3 pa = local(a, wire.localPositionA);
-    btVector3 pb = b ? local(b, wire.localPositionB) : bt(wire.localPositionB);
-    if (wire.kind == "compliant") {
-      w.springs.push_back({a, b, pa, pb, wire.length, wire.stiffness, wire.damping});
-    } else {
-      auto* c = new RopeConstraint(*a, b, pa, pb, wire.length);
-      w.constraints.emplace_back(c);
-      w.world->addConstraint(c, true);
+    if (!a.robot && b.robot) std::swap(a, b);  // a robot end first
+    if (a.robot) {
+      auto* c = new MultiBodyRope(a, b, wire.length);
+      w.robotWires.emplace_back(c);
+      w.world->addMultiBodyConstraint(c);
+      continue;
     }
+    if (!a.rigid) std::swap(a, b);  // the world is end B
+    auto* c = new RopeConstraint(*a.rigid, b.rigid, a.local, b.local, wire.length);
+    w.constraints.emplace_back(c);
+    w.world->addConstraint(c, true);
   }
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
@@ -558,6 +739,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
 void World::step() {
   Impl& w = *impl_;
   for (const Spring& s : w.springs) s.apply();
+  for (auto& r : w.robots) r->applyJointForces(w.dt);
   gCalculateCombinedFrictionCallback = combinedFriction;
   gCalculateCombinedRestitutionCallback = combinedRestitution;
   gCalculateCombinedRollingFrictionCallback = combinedRolling;
@@ -595,7 +777,49 @@ int World::contactCount() const { return impl_->contacts; }
 bool World::atRest() const {
   for (const Simulated& s : impl_->simulated)
     if (s.dynamic && !s.departed && s.body->isActive()) return false;
+  if (impl_->robots.empty()) return true;
+  for (const RobotState& r : robotStates()) {
+    for (const Eigen::Vector3d& v : r.bodyLinearVelocities)
+      if (!(v.norm() < impl_->sleepLinear)) return false;
+    for (const Eigen::Vector3d& w : r.bodyAngularVelocities)
+      if (!(w.norm() < impl_->sleepAngular)) return false;
+  }
   return true;
+}
+
+int World::robotCount() const { return static_cast<int>(impl_->robots.size()); }
+
+std::vector<RobotState> World::robotStates() const {
+  std::vector<RobotState> out;
+  out.reserve(impl_->robots.size());
+  for (const auto& r : impl_->robots) {
+    const robot::RobotInstance& in = r->instance();
+    RobotState s;
+    s.recordIndex = in.record->recordIndex;
+    s.path = in.record->path;
+    s.instance = &in;
+    if (impl_->stepCount == 0) {  // what the record says, not its round trip through Bullet's frames
+      s.q = in.q;
+      s.u = in.u;
+    } else {
+      r->state(s.q, s.u);
+    }
+    s.base = r->bodyPose(0);
+    if (in.model->floatingBase) {
+      s.baseLinearVelocity = s.u.head<3>();
+      s.baseAngularVelocity = s.u.segment<3>(3);
+    }
+    const std::vector<RobotBody>& bodies = r->layout().bodies;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      Pose p = r->bodyPose(static_cast<int>(b));
+      s.bodyPoses.push_back(p);
+      Eigen::Vector3d w, com = (p * bodies[b].com).position;
+      s.bodyLinearVelocities.push_back(r->pointVelocity(static_cast<int>(b), com, &w));
+      s.bodyAngularVelocities.push_back(w);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 const std::vector<Departure>& World::departures() const { return impl_->departures; }
@@ -620,6 +844,19 @@ std::optional<NonFinite> World::nonFinite() const {
     NonFinite bad;
     bad.recordIndex = s.recordIndex;
     bad.path = s.path;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = what;
+    return bad;
+  }
+  Eigen::VectorXd q, u;
+  for (const auto& r : w.robots) {
+    r->state(q, u);
+    const char* what = !q.allFinite() ? "generalized coordinate" : !u.allFinite() ? "generalized velocity" : nullptr;
+    if (!what) continue;
+    NonFinite bad;
+    bad.recordIndex = r->instance().record->recordIndex;
+    bad.path = r->instance().record->path;
     bad.step = w.stepCount;
     bad.time = time();
     bad.what = what;
@@ -709,6 +946,49 @@ void World::writeBack(Document& doc) const {
       appendNumber(num, values[k] == 0 ? 0.0 : values[k]);  // no "-0"
       doc.setValue(static_cast<std::uint32_t>(f - doc.fields.data()), num);
     }
+  }
+  for (const RobotState& r : robotStates()) writeRobot(doc, r);
+}
+
+void World::writeRobot(Document& doc, const RobotState& state) {
+  const robot::RobotInstance& in = *state.instance;
+  const robot::Model& model = *in.model;
+  Eigen::VectorXd q = state.q;
+  // One spelling per rotation: quaternions with w >= 0 (base and spherical joints).
+  auto canonical = [&](int at) {
+    if (q[at] < 0) q.segment<4>(at) *= -1;
+  };
+  if (model.floatingBase) canonical(3);
+  for (int j : in.coordinates.joints)
+    if (model.joints[static_cast<std::size_t>(j)].type == robot::JointType::Spherical)
+      canonical(in.coordinates.coordinateIndex[static_cast<std::size_t>(j)]);
+  auto list = [](const Eigen::VectorXd& v) {
+    std::string out;
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      if (i) out += ',';
+      appendNumber(out, v[i] == 0 ? 0.0 : v[i]);
+    }
+    return out;
+  };
+  std::size_t index = static_cast<std::size_t>(state.recordIndex);
+  doc.setKey(index, "generalizedCoordinate", list(q));
+  doc.setKey(index, "generalizedVelocity", list(state.u));
+  if (!model.floatingBase || in.record->positionToken < 0) return;
+  // The positional pose of a floating base is q's base, in the record's parent frame.
+  const Articulated& a = *in.record;
+  Pose world{q.head<3>(), Eigen::Quaterniond(q[3], q[4], q[5], q[6])};
+  Pose local = (a.world * a.local.inverse()).inverse() * world;
+  if (local.orientation.w() < 0) local.orientation.coeffs() *= -1;
+  double values[7] = {local.position.x(), local.position.y(), local.position.z(), local.orientation.w(),
+                      local.orientation.x(), local.orientation.y(), local.orientation.z()};
+  std::string num;
+  const Record& rec = doc.records[index];
+  for (int k = 0; k < 7; ++k) {
+    const Field* f = doc.positional(rec, static_cast<std::uint32_t>(a.positionToken + k));
+    if (!f) continue;
+    num.clear();
+    appendNumber(num, values[k] == 0 ? 0.0 : values[k]);
+    doc.setValue(static_cast<std::uint32_t>(f - doc.fields.data()), num);
   }
 }
 

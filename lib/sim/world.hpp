@@ -21,7 +21,10 @@
 //   compound         one btCompoundShape body about its centre of mass
 //   terrain_region   static btHeightfieldTerrainShape, group bit 63
 //   wire             stiff/custom: one-sided length limit (a rope);
-//                    compliant: spring-damper beyond its length
+//                    compliant: spring-damper beyond its length; an end on
+//                    an articulated system is on its body localIndexA/B
+//   articulated      one Featherstone btMultiBody per record
+//                    (robot_sim.hpp, robot_layout.hpp), in the same world
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -31,9 +34,13 @@
 #include <string>
 #include <vector>
 
+#include <map>
+#include <utility>
+
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "robot/instance.hpp"
 #include "scene/scene.hpp"
 
 namespace rscene::sim {
@@ -41,6 +48,8 @@ namespace rscene::sim {
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
+inline constexpr const char* kWireLocalIndex = "RS7050";  // a wire's localIndex is not a body of its articulated system
+inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
 
 // State of one simulated body (dynamic or kinematic), in the world frame.
@@ -55,6 +64,43 @@ struct BodyState {
   bool sleeping = false;
   bool departed = false;  // left the world (see Departure): frozen at its last pose
 };
+
+// State of one articulated system, RaiSim's layout (robot/kinematics.hpp).
+struct RobotState {
+  int recordIndex = -1;
+  std::string path;
+  const robot::RobotInstance* instance = nullptr;  // model, coordinate layout and names
+  Eigen::VectorXd q, u;                            // generalized coordinate and velocity
+  Pose base;                                       // the root link's frame, world
+  Eigen::Vector3d baseLinearVelocity = Eigen::Vector3d::Zero();   // of that frame's origin, world
+  Eigen::Vector3d baseAngularVelocity = Eigen::Vector3d::Zero();  // world
+  // Per body (RaiSim's body index: 0 the root, then one per movable joint
+  // in RaiSim's joint order; fixed links merged): the body frame's world
+  // pose, and its centre of mass's world velocity and angular velocity.
+  std::vector<Pose> bodyPoses;
+  std::vector<Eigen::Vector3d> bodyLinearVelocities, bodyAngularVelocities;
+};
+
+// rscene-sim --pd-gains: every movable joint of every articulated system
+// is driven toward its initial position with torque -kp e - kd e' (made
+// implicit per joint: robot_sim.hpp), gains by joint name where given.
+struct PdGains {
+  bool enabled = false;
+  double kp = 0, kd = 0;
+  std::map<std::string, std::pair<double, double>> joints;  // name -> kp, kd
+};
+
+// Reads --pd-gains values: "KP,KD" for every joint, "JOINT=KP,KD" for one
+// (the last of each wins); gains finite and >= 0.  False with `error`.
+bool parsePdGains(const std::vector<std::string>& specs, PdGains& out, std::string& error);
+// Joint names of `pd` that no robot has as a movable joint.
+std::vector<std::string> unknownPdJoints(const PdGains& pd, const std::vector<robot::RobotInstance>& robots);
+
+// The instance of every articulated record (Scene::articulated order),
+// loaded through one robot::ModelCache: the one reading of each robot's
+// state (robot::makeInstance).  Returns false after an error.
+bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::RobotInstance>& robots,
+                Diagnostics& diagnostics);
 
 // Checks what Bullet cannot simulate sensibly: checkScene() of
 // scene/check.hpp (what rscene-validate reports too) with collision mesh
@@ -87,6 +133,10 @@ struct WorldOptions {
   // The scene's document, when there is one: errors then point at the
   // record's field (line:col), as checkScene()'s do.
   const Document* document = nullptr;
+  // The articulated systems to simulate (makeRobots); null or empty: none.
+  // Instances must outlive the world.
+  const std::vector<robot::RobotInstance>* robots = nullptr;
+  PdGains pd;
 };
 
 // A simulated body whose state is no longer finite (World::nonFinite()).
@@ -95,7 +145,8 @@ struct NonFinite {
   std::string path;
   std::uint64_t step = 0;
   double time = 0;
-  std::string what;  // "position", "orientation", "linear velocity", "angular velocity"
+  std::string what;  // "position", "orientation", "linear velocity", "angular velocity",
+                     // "generalized coordinate", "generalized velocity"
 };
 
 // A dynamic body that left the world: below the lowest static geometry
@@ -133,6 +184,8 @@ class World {
   int bodyCount() const;            // simulated dynamic and kinematic bodies
   int contactCount() const;         // contact points after the last step
   std::vector<BodyState> states() const;  // in record order
+  std::vector<RobotState> robotStates() const;  // in Scene::articulated order
+  int robotCount() const;
   const std::vector<Departure>& departures() const;  // in the order they happened
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
@@ -151,12 +204,15 @@ class World {
 
   // Writes the current poses of dynamic and kinematic bodies into `doc`
   // (positional position and orientation tokens, shortest round-trip),
-  // relative to their parent frame when they inherit one.
+  // relative to their parent frame when they inherit one; and each
+  // articulated system's generalizedCoordinate and generalizedVelocity
+  // (a floating base's pose also into its positional tokens).
   void writeBack(Document& doc) const;
 
   struct Impl;
 
  private:
+  static void writeRobot(Document& doc, const RobotState& state);
   explicit World(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
