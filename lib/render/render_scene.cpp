@@ -41,23 +41,6 @@ Vector3d shapeScale(Shape s, const Vector3d& scale, double radius, double height
   }
 }
 
-Eigen::AlignedBox3d worldBounds(const Affine3d& m, const Eigen::AlignedBox3d& local) {
-  Eigen::AlignedBox3d b;
-  for (int i = 0; i < 8; ++i) b.extend(m * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
-  return b;
-}
-
-Eigen::AlignedBox3d unitBounds(Shape s, double capsuleR = 0, double capsuleH = 0) {
-  switch (s) {
-    case Shape::Sphere: return {Vector3d(-1, -1, -1), Vector3d(1, 1, 1)};
-    case Shape::Cylinder: return {Vector3d(-1, -1, -0.5), Vector3d(1, 1, 0.5)};
-    case Shape::Capsule:
-      return {Vector3d(-capsuleR, -capsuleR, -capsuleH / 2 - capsuleR), Vector3d(capsuleR, capsuleR, capsuleH / 2 + capsuleR)};
-    case Shape::Ground: return {Vector3d(-0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
-    default: return {Vector3d::Constant(-0.5), Vector3d::Constant(0.5)};
-  }
-}
-
 Affine3d affine(const Pose& p) {
   Affine3d m = Affine3d::Identity();
   m.translate(p.position);
@@ -181,7 +164,7 @@ class Preparer {
   }
 
   void addDrawable(Drawable d) {
-    d.bounds = worldBounds(d.world, unitBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
+    d.bounds = transformBox(d.world, unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
     if (d.shape == Shape::Ground) out_.hasGround = true;
     else out_.bounds.extend(d.bounds);
     out_.drawables.push_back(std::move(d));
@@ -405,7 +388,7 @@ class Preparer {
       b.worlds.push_back(m);
       float w = i < v.colorWeights.size() ? std::clamp(float(v.colorWeights[i]), 0.f, 1.f) : 0.f;
       b.colors.push_back(colorA * (1 - w) + colorB * w);
-      b.instanceBounds.push_back(worldBounds(m, unitBounds(b.shape)));
+      b.instanceBounds.push_back(transformBox(m, unitShapeBounds(b.shape)));
       b.bounds.extend(b.instanceBounds.back());
     }
     out_.bounds.extend(b.bounds);
@@ -442,6 +425,24 @@ class Preparer {
 };
 
 }  // namespace
+
+Eigen::AlignedBox3d transformBox(const Affine3d& m, const Eigen::AlignedBox3d& local) {
+  Eigen::AlignedBox3d b;
+  if (local.isEmpty()) return b;
+  for (int i = 0; i < 8; ++i) b.extend(m * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+  return b;
+}
+
+Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleR, double capsuleH) {
+  switch (s) {
+    case Shape::Sphere: return {Vector3d(-1, -1, -1), Vector3d(1, 1, 1)};
+    case Shape::Cylinder: return {Vector3d(-1, -1, -0.5), Vector3d(1, 1, 0.5)};
+    case Shape::Capsule:
+      return {Vector3d(-capsuleR, -capsuleR, -capsuleH / 2 - capsuleR), Vector3d(capsuleR, capsuleR, capsuleH / 2 + capsuleR)};
+    case Shape::Ground: return {Vector3d(-0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
+    default: return {Vector3d::Constant(-0.5), Vector3d::Constant(0.5)};
+  }
+}
 
 bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
                   const DrawLimits& limits) {

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ struct RenderMaterial {
   bool blend = false;           // alphaMode=blend or alpha < 1
   std::string albedoTexture;    // resolved path, empty when none
   std::uint32_t line = 0;
+  std::string file;             // the robot file `line` is in; empty: the scene
   bool isDefault = true;        // engine_default: meshes keep their own materials
 };
 
@@ -49,6 +51,10 @@ struct Drawable {
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
+  std::string file;  // the robot file `line` is in (a link's visual); empty: the scene
+  // Unit box -> world of the magenta box drawn for a missing mesh with
+  // --allow-missing-assets; none: `world` (a scene object's own scale).
+  std::optional<Eigen::Affine3d> placeholderWorld;
   Eigen::AlignedBox3d bounds;  // world-space, for framing and visibility
 };
 
@@ -141,6 +147,12 @@ struct DrawLimits {
   // as its 4 corners.  Not an error: the scene is drawn at bounded cost.
   std::uint64_t maxTerrainVertices = std::uint64_t{1} << 20;
 };
+
+// The world-space bounds of `local` carried by `m` (its eight corners).
+Eigen::AlignedBox3d transformBox(const Eigen::Affine3d& m, const Eigen::AlignedBox3d& local);
+// The bounds of a drawable's unit shape (Drawable::world maps it to the
+// world); a capsule's are at its own size.
+Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleRadius = 0, double capsuleHeight = 0);
 
 // Prepares `out` from a scene view built from `doc` (the Document gives
 // record lines for messages).  False with RS9014 when the instances to draw

@@ -88,19 +88,15 @@ struct Batch {
   GLsizei count = 0, inView = 0;  // the first inView instances are inside the camera's frustum
 };
 
-// What a texture or background image may cost: --max-texture-pixels
-// (lib/asset refuses a larger declared size before decoding anything).
-asset::AssetLimits assetLimits(const RenderOptions& o) {
-  asset::AssetLimits l;
-  l.image.maxPixels = o.maxTexturePixels;
-  return l;
-}
-
 // Owns every GL object of one render; released in the destructor.
 class Frame {
  public:
   Frame(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Diagnostics& diags)
-      : scene_(scene), opt_(options), diags_(diags), assets_(diskFileSystem(), assetLimits(options)) {
+      : scene_(scene),
+        opt_(options),
+        diags_(diags),
+        ownAssets_(diskFileSystem(), assetLimits(options)),
+        assets_(options.assets ? *options.assets : ownAssets_) {
     aspect_ = double(options.width) / double(options.height);
     viewProj_ = projectionMatrix(camera, aspect_) * viewMatrix(camera);
     camera_ = camera;
@@ -110,19 +106,22 @@ class Frame {
   bool draw(const Camera& camera, Image& out);
 
  private:
-  void diag(Severity s, const char* code, std::uint32_t line, std::string message) {
+  // `file`: the robot file `line` is in; empty: the scene.
+  void diag(Severity s, const char* code, std::uint32_t line, std::string message, const std::string& file = {}) {
     Diagnostic d;
     d.severity = s;
     d.code = code;
     d.line = line;
-    d.column = line ? 1 : 0;
+    d.column = line && file.empty() ? 1 : 0;
     d.message = std::move(message);
+    d.file = file;
     diags_.push_back(std::move(d));
   }
   // Missing (RS5001, the code validate --check-files and rscene-sim give the
   // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, const std::string& message, const char* code = "RS9001") {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message);
+  bool assetProblem(std::uint32_t line, const std::string& file, const std::string& message,
+                    const char* code = "RS9001") {
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, file);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -133,7 +132,8 @@ class Frame {
   GLuint texture(const Image& image);
   GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
-  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, bool& failed);
+  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, const std::string& file,
+                                            bool& failed);
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
            const Eigen::Vector3f& emissive, bool inView = true);
@@ -151,7 +151,8 @@ class Frame {
   std::map<std::string, std::vector<TexturedPart>> meshFiles_;
   std::map<std::string, GLuint> textures_;
   std::map<const Image*, GLuint> imageTextures_;
-  asset::AssetCache assets_;  // a mesh or texture named many times is read once
+  asset::AssetCache ownAssets_;
+  asset::AssetCache& assets_;  // a mesh or texture named many times is read once
   std::vector<GLuint> ownedTextures_;
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
@@ -270,34 +271,35 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   }
   textures_[m.albedoTexture] = 0;
   if (!assets_.fileSystem().exists(m.albedoTexture))
-    return assetProblem(m.line, "texture file not found: " + m.albedoTexture, scene_code::kMissingFile);
+    return assetProblem(m.line, m.file, "texture file not found: " + m.albedoTexture, scene_code::kMissingFile);
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
-    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err);
+    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err, m.file);
     return true;
   }
   out = textures_[m.albedoTexture] = texture(image);
   return true;
 }
 
-const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, bool& failed) {
+const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, const std::string& file,
+                                                bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
   if (path.empty() || !assets_.fileSystem().exists(path)) {
-    failed = !assetProblem(line, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path),
+    failed = !assetProblem(line, file, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path),
                            path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
   }
   std::string err;
   std::shared_ptr<const asset::Mesh> loaded = assets_.mesh(path, asset::MeshContent::Surface, &err);
   if (!loaded) {
-    failed = !assetProblem(line, "cannot read mesh " + path + ": " + err);
+    failed = !assetProblem(line, file, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w);
+  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, file);
   for (const asset::MeshPart& p : loaded->parts)
     parts.push_back({upload(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
                      p.material.roughness, texture(p.material.texture)});
@@ -335,11 +337,11 @@ bool Frame::prepare() {
     bool inView = boxInFrustum(viewProj_, d.bounds);
     if (d.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, failed);
+      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.file, failed);
       if (failed) return false;
       if (!parts) {
-        add(primitive(Shape::Box), 0, false, false, true, d.world, placeholderColor, {0, 0.6f, 0, 1},
-            Eigen::Vector3f::Zero(), inView);
+        add(primitive(Shape::Box), 0, false, false, true, d.placeholderWorld.value_or(d.world), placeholderColor,
+            {0, 0.6f, 0, 1}, Eigen::Vector3f::Zero(), inView);
         continue;
       }
       GLuint matTex = 0;
@@ -403,7 +405,7 @@ bool Frame::prepare() {
     std::shared_ptr<GpuMesh> mesh;
     if (b.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, failed);
+      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, {}, failed);
       if (failed) return false;
       mesh = parts ? parts->front().mesh : primitive(Shape::Box);
     } else {
@@ -798,6 +800,14 @@ bool Frame::draw(const Camera& camera, Image& out) {
 }
 
 }  // namespace
+
+// lib/asset refuses a texture larger than --max-texture-pixels by its
+// declared size, before decoding anything.
+asset::AssetLimits assetLimits(const RenderOptions& o) {
+  asset::AssetLimits l;
+  l.image.maxPixels = o.maxTexturePixels;
+  return l;
+}
 
 bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
                  Diagnostics& diags, RenderTimings* timings) {
