@@ -83,9 +83,10 @@ struct Shot {
   RenderScene scene;
 };
 
-// Renders `model` at coordinate `q` (base at `base` when fixed).
+// Renders `model` at coordinate `q` (base at `base` when fixed), `copies`
+// times, each 1 m further along +y, all through one asset cache on `fs`.
 Shot shoot(const robot::Model& model, const Eigen::VectorXd& q, const Pose& base = {}, RenderOptions options = {},
-           const std::string& cameraSel = "cam") {
+           const std::string& cameraSel = "cam", const FileSystem& fs = diskFileSystem(), int copies = 1) {
   Shot s;
   if (!context()) return s;
   LoadResult loaded = parse(kScene);
@@ -95,10 +96,14 @@ Shot shoot(const robot::Model& model, const Eigen::VectorXd& q, const Pose& base
   EXPECT_TRUE(robot::makeCoordinates(model, {}, c).empty());
   EXPECT_EQ(q.size(), c.coordinateDim);
   options.width = options.height = 200;
-  asset::AssetCache assets(diskFileSystem(), assetLimits(options));
+  asset::AssetCache assets(fs, assetLimits(options));
   options.assets = &assets;
   RobotDrawer drawer(s.scene, assets);
-  drawer.add(model, robot::linkPoses(model, c, base, q));
+  for (int k = 0; k < copies; ++k) {
+    Pose b = base;
+    b.position.y() += k;
+    drawer.add(model, robot::linkPoses(model, c, b, q));
+  }
   Camera cam;
   std::string err;
   EXPECT_TRUE(chooseCamera(s.scene, cameraSel, cam, &err)) << err;
@@ -275,4 +280,30 @@ TEST(RobotRender, MissingMeshNamesTheRobotFileAndLine) {
   EXPECT_GT(c[2], 100);
   EXPECT_LT(c[1], 40);
   EXPECT_EQ(hueAt(placeholder.image, px(0), py(0.2)), Hue::Black);  // 0.1 m: gone 0.2 m up
+}
+
+TEST(RobotRender, SixteenRobotsReadEachMeshFileOnce) {
+  MemoryFileSystem fs;
+  fs.addFile("/m/link.obj", "mtllib link.mtl\nv -0.1 -0.1 0\nv 0.1 -0.1 0\nv 0 0.1 0\nusemtl c\nf 1 2 3\n");
+  fs.addFile("/m/link.mtl", "newmtl c\nKd 0.2 0.3 0.9\n");
+  robot::Model m;
+  m.floatingBase = false;
+  m.links.resize(2);
+  m.links[0].childJoints = {0};
+  m.links[1].parentJoint = 0;
+  robot::Joint j;
+  j.type = robot::JointType::Fixed;
+  j.parentLink = 0;
+  j.childLink = 1;
+  j.origin.position = {0, 0, 0.5};
+  m.joints.push_back(j);
+  robot::Visual v;
+  v.geometry.kind = robot::GeometryKind::Mesh;
+  v.geometry.meshPath = "/m/link.obj";
+  m.links[0].visuals = {v, v};  // the same file twice in a link, and in every link
+  m.links[1].visuals = {v};
+  Shot s = shoot(m, Eigen::VectorXd::Zero(0), at(5, -8, 0), {}, "cam", fs, 16);
+  ASSERT_TRUE(s.ok);
+  EXPECT_EQ(s.scene.drawables.size(), 48u);
+  EXPECT_EQ(fs.reads(), 2);  // link.obj and link.mtl, for bounds and drawing alike
 }
