@@ -335,6 +335,10 @@ bool Frame::prepare() {
   for (const Drawable& d : scene_.drawables) {
     const RenderMaterial& mat = scene_.materials[std::size_t(d.material)];
     bool inView = boxInFrustum(viewProj_, d.bounds);
+    // A mirroring scale (a URDF's scale="1 -1 1" for the other side's leg)
+    // reverses the triangles' winding: such a drawable culls no faces (its
+    // normals, carried by the inverse transpose, still point outwards).
+    bool twoSided = mat.doubleSided || d.world.linear().determinant() < 0;
     if (d.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.file, failed);
@@ -350,7 +354,7 @@ bool Frame::prepare() {
         bool own = mat.isDefault;
         Eigen::Vector4f color = own ? p.color : mat.color;
         Eigen::Vector4f pbr = own ? Eigen::Vector4f(p.metallic, p.roughness, 0, 0) : pbrOf(mat, 0);
-        add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), mat.doubleSided,
+        add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), twoSided,
             d.castShadow, d.world, color, pbr, mat.emissive, inView);
       }
       continue;
@@ -372,7 +376,7 @@ bool Frame::prepare() {
       continue;
     }
     add(primitive(d.shape, d.capsuleRadius, d.capsuleHeight, segments), tex, mat.blend,
-        mat.doubleSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
+        twoSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
         pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive, inView);
   }
   for (const TerrainMesh& t : scene_.terrains) {

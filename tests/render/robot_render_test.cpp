@@ -307,3 +307,27 @@ TEST(RobotRender, SixteenRobotsReadEachMeshFileOnce) {
   EXPECT_EQ(s.scene.drawables.size(), 48u);
   EXPECT_EQ(fs.reads(), 2);  // link.obj and link.mtl, for bounds and drawing alike
 }
+
+TEST(RobotRender, MirroredMeshIsLitLikeTheOriginal) {
+  // scale -1 on y turns the triangles' winding; culling the wrong faces
+  // would show the unlit inside of the far wall.
+  std::string crate = std::string(RSCENE_TEST_DATA) + "/render_assets/crate.obj";
+  robot::Model m;
+  m.floatingBase = false;
+  m.links.resize(1);
+  robot::Visual v;
+  v.geometry.kind = robot::GeometryKind::Mesh;
+  v.geometry.meshPath = crate;
+  v.geometry.meshScale = {0.5, 0.5, 0.5};
+  v.origin.position = {0, 0.8, 0};
+  robot::Visual mirrored = v;
+  mirrored.geometry.meshScale = {0.5, -0.5, 0.5};
+  mirrored.origin.position = {0, -0.8, 0};
+  m.links[0].visuals = {v, mirrored};
+  Shot s = shoot(m, Eigen::VectorXd::Zero(0), at(5, 0, 0));
+  ASSERT_TRUE(s.ok);
+  const std::uint8_t* a = s.image.pixel(px(0.8), py(0));
+  const std::uint8_t* b = s.image.pixel(px(-0.8), py(0));
+  EXPECT_GT(a[1], 100);
+  EXPECT_NEAR(int(b[1]), int(a[1]), 8);
+}
