@@ -34,6 +34,7 @@ struct RenderMaterial {
   bool blend = false;           // alphaMode=blend or alpha < 1
   std::string albedoTexture;    // resolved path, empty when none
   std::uint32_t line = 0;
+  std::uint32_t textureColumn = 0;  // of albedoTexture on `line`, for messages
   std::string file;             // the robot file `line` is in; empty: the scene
   bool isDefault = true;        // engine_default: meshes keep their own materials
 };
@@ -51,6 +52,7 @@ struct Drawable {
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
+  std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
   std::string file;  // the robot file `line` is in (a link's visual); empty: the scene
   // Unit box -> world of the magenta box drawn for a missing mesh with
   // --allow-missing-assets; none: `world` (a scene object's own scale).
@@ -91,6 +93,7 @@ struct Instanced {
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
+  std::uint32_t meshColumn = 0;  // of meshPath on `line`
   Eigen::AlignedBox3d bounds;
 };
 

@@ -1,5 +1,7 @@
 #include "render/renderer.hpp"
 
+#include "core/assets.hpp"
+
 #include <GL/glcorearb.h>
 
 #include <chrono>
@@ -107,21 +109,22 @@ class Frame {
 
  private:
   // `file`: the robot file `line` is in; empty: the scene.
-  void diag(Severity s, const char* code, std::uint32_t line, std::string message, const std::string& file = {}) {
+  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0,
+            const std::string& file = {}) {
     Diagnostic d;
     d.severity = s;
     d.code = code;
     d.line = line;
-    d.column = line && file.empty() ? 1 : 0;
+    d.column = column ? column : line && file.empty() ? 1 : 0;
     d.message = std::move(message);
     d.file = file;
     diags_.push_back(std::move(d));
   }
   // Missing (RS5001, the code validate --check-files and rscene-sim give the
   // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, const std::string& file, const std::string& message,
+  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
                     const char* code = "RS9001") {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, file);
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column, file);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -132,8 +135,11 @@ class Frame {
   GLuint texture(const Image& image);
   GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
-  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, const std::string& file,
-                                            bool& failed);
+  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+                                            const std::string& file, bool& failed);
+  // A regular file (as validate --check-files and rscene-sim ask: a FIFO or
+  // /dev/zero is no asset), through the asset cache's file system.
+  bool regularFile(const std::string& path) const { return assets_.fileSystem().stat(path).kind == FileKind::Regular; }
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
            const Eigen::Vector3f& emissive, bool inView = true);
@@ -270,36 +276,41 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
     return true;
   }
   textures_[m.albedoTexture] = 0;
-  if (!assets_.fileSystem().exists(m.albedoTexture))
-    return assetProblem(m.line, m.file, "texture file not found: " + m.albedoTexture, scene_code::kMissingFile);
+  // Regular files only, as validate --check-files and rscene-sim (a FIFO
+  // or /dev/zero is not an image).
+  if (!regularFile(m.albedoTexture))
+    return assetProblem(m.line, m.textureColumn, m.file,
+                        "texture file '" + m.albedoTexture + "' " + whyNotAFile(m.albedoTexture),
+                        scene_code::kMissingFile);
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
-    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err, m.file);
+    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err, 0, m.file);
     return true;
   }
   out = textures_[m.albedoTexture] = texture(image);
   return true;
 }
 
-const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, const std::string& file,
-                                                bool& failed) {
+const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+                                                 const std::string& file, bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
-  if (path.empty() || !assets_.fileSystem().exists(path)) {
-    failed = !assetProblem(line, file, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path),
+  if (path.empty() || !regularFile(path)) {
+    failed = !assetProblem(line, column, file,
+                           path.empty() ? std::string("mesh body has no mesh file") : "mesh file '" + path + "' " + whyNotAFile(path),
                            path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
   }
   std::string err;
   std::shared_ptr<const asset::Mesh> loaded = assets_.mesh(path, asset::MeshContent::Surface, &err);
   if (!loaded) {
-    failed = !assetProblem(line, file, "cannot read mesh " + path + ": " + err);
+    failed = !assetProblem(line, column, file, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, file);
+  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, column, file);
   for (const asset::MeshPart& p : loaded->parts)
     parts.push_back({upload(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
                      p.material.roughness, texture(p.material.texture)});
@@ -341,7 +352,7 @@ bool Frame::prepare() {
     bool twoSided = mat.doubleSided || d.world.linear().determinant() < 0;
     if (d.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.file, failed);
+      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, d.file, failed);
       if (failed) return false;
       if (!parts) {
         add(primitive(Shape::Box), 0, false, false, true, d.placeholderWorld.value_or(d.world), placeholderColor,
@@ -409,7 +420,7 @@ bool Frame::prepare() {
     std::shared_ptr<GpuMesh> mesh;
     if (b.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, {}, failed);
+      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, b.meshColumn, {}, failed);
       if (failed) return false;
       mesh = parts ? parts->front().mesh : primitive(Shape::Box);
     } else {

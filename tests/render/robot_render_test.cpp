@@ -267,7 +267,7 @@ TEST(RobotRender, MissingMeshNamesTheRobotFileAndLine) {
   EXPECT_EQ(d.code, "RS5001");
   EXPECT_EQ(d.file, "/robots/arm.urdf");
   EXPECT_EQ(d.line, 17u);
-  EXPECT_EQ(d.message, "mesh file not found: /nonexistent/link.dae");
+  EXPECT_EQ(d.message, "mesh file '/nonexistent/link.dae' does not exist");
 
   // Allowed: a warning and a small magenta box at the visual, not a 1 m one.
   RenderOptions allow;
