@@ -1,7 +1,6 @@
 #include "scene/validate.hpp"
 
 #include <algorithm>
-#include <map>
 #include <string_view>
 #include <tuple>
 
@@ -12,22 +11,23 @@
 namespace rscene {
 namespace {
 
-// The scene model's findings, sorted by line and column, with the ones that
-// repeat a core finding (same line and code) to be dropped.
+// The scene model's findings, sorted by line and column.  A finding with a
+// code of lib/core's layer (a value that does not parse, a reference to no
+// node, a missing file ...) is left out: lib/core's validator checks that
+// condition itself and reports it at the same field, so keeping the
+// model's copy would double it.  (This replaces a second pass of core's
+// checks that used to find the repeats.)
 struct ModelFindings {
   Diagnostics list;
-  std::vector<bool> dropped;
-  std::multimap<std::pair<std::uint32_t, std::string_view>, std::size_t> byLineCode;
 
-  explicit ModelFindings(Diagnostics ds) : list(std::move(ds)), dropped(list.size(), false) {
+  explicit ModelFindings(Diagnostics ds) {
+    for (Diagnostic& d : ds) {
+      const CheckInfo* info = checkInfo(d.code);
+      if (!info || info->layer != CheckLayer::Core) list.push_back(std::move(d));
+    }
     std::stable_sort(list.begin(), list.end(), [](const Diagnostic& a, const Diagnostic& b) {
       return std::tie(a.line, a.column) < std::tie(b.line, b.column);
     });
-    for (std::size_t i = 0; i < list.size(); ++i) byLineCode.emplace(std::pair{list[i].line, std::string_view(list[i].code)}, i);
-  }
-  void dropRepeatsOf(const Diagnostic& core) {
-    auto [from, to] = byLineCode.equal_range({core.line, std::string_view(core.code)});
-    for (auto it = from; it != to; ++it) dropped[it->second] = true;
   }
 };
 
@@ -49,17 +49,6 @@ class HintSink : public DiagnosticSink {
   DiagnosticSink& next_;
 };
 
-// First pass when the model found something: which of its findings a core
-// finding repeats.  Keeps nothing.
-class MarkRepeats : public DiagnosticSink {
- public:
-  explicit MarkRepeats(ModelFindings& model) : model_(model) {}
-  void add(Diagnostic d) override { model_.dropRepeatsOf(d); }
-
- private:
-  ModelFindings& model_;
-};
-
 // Merges the model's findings into the stream of core findings by line and
 // column (ties keep core's first), as they pass: a model finding goes out
 // just before the first core finding that is not before it.
@@ -79,11 +68,7 @@ class MergeSink : public DiagnosticSink {
   static bool before(const Diagnostic& o, const Diagnostic& d) {
     return o.line < d.line || (o.line == d.line && o.column <= d.column);
   }
-  // Skips dropped findings; whether one is left.
-  bool next_model() {
-    while (i_ < model_.list.size() && model_.dropped[i_]) ++i_;
-    return i_ < model_.list.size();
-  }
+  bool next_model() const { return i_ < model_.list.size(); }
   ModelFindings& model_;
   DiagnosticSink& next_;
   std::size_t i_ = 0;
@@ -115,16 +100,6 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   hintContinuations(loaded.continuedLines, found);
   ModelFindings model(std::move(found));
 
-  // A model finding is dropped when any core finding repeats it, even one
-  // that streams past after it.  Knowing that takes a pass over core's
-  // findings before the one that reports: checking twice (only when the
-  // model found something) costs time, holding core's findings would cost
-  // memory without bound.
-  if (!model.list.empty()) {
-    MarkRepeats marks(model);
-    for (const Diagnostic& d : loaded.diagnostics) marks.add(d);
-    check(doc, options, marks);
-  }
   MergeSink merge(model, sink);
   for (Diagnostic& d : loaded.diagnostics) merge.add(std::move(d));
   loaded.diagnostics.clear();
