@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
@@ -132,6 +133,7 @@ struct RenderScene {
   std::vector<Instanced> instanced;
   std::vector<PointBatch> pointClouds;
   Look environment;
+  std::size_t robots = 0;              // articulated systems drawn
   std::map<std::string, int> skipped;  // record kind -> count
   Eigen::AlignedBox3d bounds;          // everything visible but the ground
   bool hasGround = false;
@@ -160,14 +162,20 @@ Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleRadius = 0, double ca
 // Prepares `out` from a scene view built from `doc` (the Document gives
 // record lines for messages).  False with RS9014 when the instances to draw
 // exceed limits.maxInstances; the batch that crosses it is left out.
+//
+// Articulated systems are loaded (lib/robot: URDF, MJCF) and drawn at
+// their record's state; a robot that does not load, or whose record does
+// not match its model (RS70xx), is an error.  Their meshes are read through
+// `assets` for their bounds (null: a cache of this call's own); give
+// renderScene the same cache (RenderOptions::assets) to read each once.
 bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
-                  const DrawLimits& limits = {});
+                  const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
 
 // buildScene(), checkScene() (scene/check.hpp: what validate and sim
 // refuse too) then prepareScene(); false when either reported an error (a
 // value that does not parse, a malformed terrain, a zero-size body ...).
 // `out` is filled as far as possible either way.
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
-                      const DrawLimits& limits = {});
+                      const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
 
 }  // namespace rscene::render

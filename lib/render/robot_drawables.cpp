@@ -75,7 +75,7 @@ std::size_t RobotDrawer::add(const robot::Model& model, const std::vector<Pose>&
       Drawable d;
       d.shape = shapeOf(g.kind);
       d.line = std::uint32_t(std::max(v.line, 0));
-      d.file = model.sourceFile;
+      d.file = link.file.empty() ? model.sourceFile : link.file;  // a module's link: the module
       d.material = materialFor(v, d.file);
       Affine3d pose = linkWorld * affine(v.origin);
       Eigen::AlignedBox3d local;
