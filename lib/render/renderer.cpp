@@ -14,6 +14,7 @@
 #include "asset/cache.hpp"
 #include "render/camera.hpp"
 #include "render/mesh.hpp"
+#include "render/mipmap.hpp"
 #include "render/shaders.hpp"
 
 namespace rscene::render {
@@ -133,6 +134,11 @@ class Frame {
   // within half a pixel of the circle at the size it is seen.
   int segmentsFor(const Eigen::AlignedBox3d& box) const;
   GLuint texture(const Image& image);
+  // Mesa's CPU rasterisers (llvmpipe, softpipe): some work is cheaper done here.
+  static bool softwareGl() {
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe"));
+  }
   GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
   const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
@@ -252,7 +258,21 @@ GLuint Frame::texture(const Image& image) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                image.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
+  if (softwareGl()) {  // mipmap.hpp: llvmpipe's glGenerateMipmap costs more than this loop
+    std::vector<std::uint8_t> level, next;
+    const std::uint8_t* from = image.rgba.data();
+    int w = image.width, h = image.height;
+    for (int i = 1; w > 1 || h > 1; ++i) {
+      halveImage(from, w, h, next);
+      w = std::max(1, w / 2);
+      h = std::max(1, h / 2);
+      glTexImage2D(GL_TEXTURE_2D, i, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, next.data());
+      level.swap(next);
+      from = level.data();
+    }
+  } else {
+    glGenerateMipmap(GL_TEXTURE_2D);
+  }
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -571,8 +591,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
   }
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
 
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  bool software = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+  bool software = softwareGl();
   int shadowSize = software ? kSoftwareShadowSize : kShadowSize;
   // Shadow map of the main light, fitted to the scene's bounds.
   Eigen::Matrix4d lightViewProj = Eigen::Matrix4d::Identity();
