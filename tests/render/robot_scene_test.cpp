@@ -235,3 +235,27 @@ TEST_F(RobotScene, AnymalStandsOnTheGroundWithItsTexturedMeshes) {
   EXPECT_EQ(meshes, 45);
   EXPECT_EQ(textured, meshes);
 }
+
+TEST_F(RobotScene, MjcfGeomsInTheirRgba) {
+  // MuJoCo's compiler turns fromto into a capsule of half-length 0.5 along
+  // the segment; the model gives its full length between the sphere centres.
+  write("rod.xml", R"(<mujoco model="rod"><worldbody>
+  <body name="rod" pos="0 0 1">
+    <geom type="capsule" fromto="0 0 0 0 0 1" size="0.1" rgba="0.1 0.2 0.9 1"/>
+    <geom type="box" pos="0.5 0 0" size="0.1 0.2 0.3"/>
+  </body></worldbody></mujoco>
+)");
+  Built b = build("articulated_resource rod_res Rod rod.xml\narticulated /World/Rod rod_res 2 0 0 1 0 0 0 true true\n");
+  ASSERT_TRUE(b.ok) << (b.diags.empty() ? "" : b.diags[0].message);
+  ASSERT_EQ(b.scene.drawables.size(), 2u);
+  const Drawable& rod = b.scene.drawables[0];
+  EXPECT_EQ(rod.shape, Shape::Capsule);
+  EXPECT_NEAR(rod.capsuleRadius, 0.1, 1e-9);
+  EXPECT_NEAR(rod.capsuleHeight, 1.0, 1e-9);
+  EXPECT_NEAR(rod.bounds.min().z(), 0.9, 1e-6);  // from z = 1 (the body) - 0.1 to 2 + 0.1, at x = 2
+  EXPECT_NEAR(rod.bounds.max().z(), 2.1, 1e-6);
+  EXPECT_NEAR(rod.bounds.center().x(), 2.0, 1e-6);
+  EXPECT_NEAR(b.scene.materials[std::size_t(rod.material)].color.z(), 0.9f, 1e-6);
+  // A box's MJCF half sizes become full sides.
+  EXPECT_NEAR(b.scene.drawables[1].bounds.sizes().z(), 0.6, 1e-6);
+}
