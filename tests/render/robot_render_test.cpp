@@ -331,3 +331,33 @@ TEST(RobotRender, MirroredMeshIsLitLikeTheOriginal) {
   EXPECT_GT(a[1], 100);
   EXPECT_NEAR(int(b[1]), int(a[1]), 8);
 }
+
+TEST(RobotRender, UrdfMaterialTextureAndStlMesh) {
+  // A box with the URDF material's texture (a 2x2 checker of yellow and
+  // blue, no colour: drawn as it is) and an STL tetrahedron, which has no
+  // material of its own: white, unless the file colours it.
+  std::string assets = std::string(RSCENE_TEST_DATA) + "/render_assets/";
+  robot::Model m;
+  m.floatingBase = false;
+  m.links.resize(1);
+  robot::Visual box = boxVisual({0, 0, 0}, 1.0, std::nullopt);
+  box.texture = assets + "checker.png";
+  robot::Visual stl;
+  stl.geometry.kind = robot::GeometryKind::Mesh;
+  stl.geometry.meshPath = assets + "tetra.stl";
+  stl.geometry.meshScale = {0.6, 0.6, 0.6};
+  stl.origin.position = {-0.3, -1.2, 0.6};  // above right of the box
+  robot::Visual redStl = stl;
+  redStl.origin.position.y() = 0.6;  // above left
+  redStl.color = kRed;
+  m.links[0].visuals = {box, stl, redStl};
+  Shot s = shoot(m, Eigen::VectorXd::Zero(0), at(5, 0, 0));
+  ASSERT_TRUE(s.ok);
+  // The two upper corners of the box's face: one yellow, one blue.
+  const std::uint8_t* a = s.image.pixel(px(0.35), py(0.35));
+  const std::uint8_t* b = s.image.pixel(px(-0.35), py(0.35));
+  EXPECT_GT(std::abs(int(a[2]) - int(b[2])), 80) << int(a[2]) << " " << int(b[2]);
+  EXPECT_GT(std::abs(int(a[0]) - int(b[0])), 80) << int(a[0]) << " " << int(b[0]);
+  EXPECT_EQ(hueAt(s.image, px(-1.2 + 0.2), py(0.75)), Hue::Grey);
+  EXPECT_EQ(hueAt(s.image, px(1.2 - 0.4), py(0.75)), Hue::Red);
+}
