@@ -335,4 +335,132 @@ PY
     run -2 --separate-stderr "$RENDER" "$DATA/render_mesh.rscene" --reference base.png --threshold "$t" -o out.png
     [[ $stderr == *"--threshold: expected a fraction from 0 to 1 (e.g. 0.01), not '$t'"* ]]
   done
+# A two-link arm fixed to the world: a red 0.6 m box at the base and a
+# green 0.4 m box 1 m up the arm, which turns about x.  $1 replaces the
+# green box's geometry.
+write_arm() {
+  local arm=${1:-'<box size="0.4 0.4 0.4"/>'}
+  cat > arm.urdf <<URDF
+<robot name="arm">
+  <material name="red"><color rgba="0.9 0.05 0.05 1"/></material>
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base">
+    <visual><geometry><box size="0.6 0.6 0.6"/></geometry><material name="red"/></visual>
+  </link>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="1 0 0"/>
+    <limit lower="-3" upper="3" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <visual>
+      <origin xyz="0 0 1"/>
+      <geometry>$arm</geometry>
+      <material name="green"><color rgba="0.05 0.9 0.05 1"/></material>
+    </visual>
+  </link>
+</robot>
+URDF
+}
+
+# The arm 5 m in front of a camera looking along +x, on black.  $1: keys
+# of the articulated record; $2: its visible flag; $3: its group's.
+write_cell() {
+  cat > cell.rscene <<SCENE
+raisim_engine_scene 2
+environment 0 0 0 0.3 0.3 0.3 0 true true 10 - backgroundMode=plain_color colorMode=linear
+articulated_resource arm_res Arm arm.urdf
+group /World id=world parentId=- visible=${3:-true}
+light /World/Sun 1 0 0 3 type=directional
+camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 64 64 rgb true id=cam
+articulated /World/Arm arm_res 5 0 0 1 0 0 0 ${2:-true} true id=arm parentGroupId=world ${1:-}
+SCENE
+}
+
+@test "robots: an articulated record is drawn; visible=false and a hidden group are not" {
+  write_arm
+  write_cell
+  grep -v '^articulated ' cell.rscene > none.rscene
+  "$RENDER" none.rscene -o none.png
+  run --separate-stderr "$RENDER" cell.rscene --reference none.png --threshold 0.02
+  [ "$status" -eq 1 ]  # the two boxes cover more than 2% of the image
+  [ -z "$stderr" ]
+  write_cell "" false
+  run "$RENDER" cell.rscene --reference none.png --threshold 0
+  [ "$status" -eq 0 ]
+  write_cell "" true false
+  run "$RENDER" cell.rscene --reference none.png --threshold 0
+  [ "$status" -eq 0 ]
+}
+
+@test "robots: generalizedCoordinate and scale= change the picture; the same state gives the same bytes" {
+  write_arm
+  write_cell
+  "$RENDER" cell.rscene -o rest.png
+  "$RENDER" cell.rscene -o again.png
+  cmp rest.png again.png
+  write_cell "generalizedCoordinate=1.5707963"
+  run "$RENDER" cell.rscene --reference rest.png --threshold 0.01
+  [ "$status" -eq 1 ]
+  write_cell "generalizedCoordinate=0"
+  run "$RENDER" cell.rscene --reference rest.png --threshold 0
+  [ "$status" -eq 0 ]
+  write_cell "scale=1.5,1.5,1.5"
+  run "$RENDER" cell.rscene --reference rest.png --threshold 0.01
+  [ "$status" -eq 1 ]
+}
+
+@test "robots: --camera auto frames a robot far from the origin" {
+  write_arm
+  write_cell
+  sed -i 's/ 5 0 0 1 0 0 0 true/ 40 -30 6 1 0 0 0 true/' cell.rscene
+  grep -v '^articulated ' cell.rscene > none.rscene
+  "$RENDER" none.rscene --camera auto -o none.png
+  run "$RENDER" cell.rscene --camera auto --reference none.png --threshold 0.05
+  [ "$status" -eq 1 ]  # the framed arm fills more than 5% of the image
+}
+
+@test "robots: a visual mesh that is not found is the loader's warning (RS7031), as in validate; the rest is drawn" {
+  write_arm
+  write_cell
+  "$RENDER" cell.rscene -o whole.png
+  write_arm '<mesh filename="gone.dae"/>'
+  run --separate-stderr "$RENDER" cell.rscene -o out.png
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "arm.urdf:15: warning: visual mesh 'gone.dae' not found; the <visual> is skipped [RS7031]" ]
+  run "$RENDER" cell.rscene --reference whole.png --threshold 0.001
+  [ "$status" -eq 1 ]  # the green box is gone
+  grep -v '^articulated ' cell.rscene > none.rscene
+  run "$RENDER" none.rscene --reference out.png --threshold 0.001
+  [ "$status" -eq 1 ]  # the red base is still there
+}
+
+@test "robots: a robot file that does not exist is an error, also with --allow-missing-assets" {
+  write_cell
+  run -2 --separate-stderr "$RENDER" cell.rscene -o out.png
+  [ "${stderr_lines[0]}" = "cell.rscene:3:34: error: robot file 'arm.urdf' does not exist [RS5001]" ]
+  [ ! -e out.png ]
+  run -2 "$RENDER" cell.rscene --allow-missing-assets -o out.png
+}
+
+@test "robots: a coordinate of the wrong length is RS7040 at the field" {
+  write_arm
+  write_cell "generalizedCoordinate=0,0"
+  run -2 --separate-stderr "$RENDER" cell.rscene -o out.png
+  [[ "${stderr_lines[0]}" == "cell.rscene:7:"*": error: generalizedCoordinate has 2 numbers; the model 'arm' has 1 (joints only: fixed base) [RS7040]" ]]
+}
+
+@test "robots: ANYmal C from ../shared renders standing, with its meshes and textures" {
+  urdf="$ROOT/../shared/corpus/robots/anymal_c/urdf/anymal.urdf"
+  [ -f "$urdf" ] || skip "no ../shared corpus"
+  bash "$ROOT/bench/render/robots.sh" "$urdf" 1 > anymal.rscene
+  # From 1.7 m front-right, 0.8 m up, looking at the robot.
+  echo "camera /World/Cam 1.2 -1.2 0.8 0.37947 -0.11947 0.04949 0.91612 50 0.05 100 160 120 rgb true id=cam" >> anymal.rscene
+  run --separate-stderr "$RENDER" anymal.rscene -v -o anymal.png
+  [ "$status" -eq 0 ]
+  [[ "$stderr" == *"1 robots"* ]]
+  [[ "$stderr" != *"warning"* && "$stderr" != *"error"* ]]
+  sed 's/ true true generalizedCoordinate/ false true generalizedCoordinate/' anymal.rscene > hidden.rscene
+  run "$RENDER" hidden.rscene --reference anymal.png --threshold 0.1
+  [ "$status" -eq 1 ]  # the robot covers more than a tenth of the picture
 }

@@ -2,8 +2,9 @@
 # Render benchmark (issue 6): rscene-render on the CPU backend (llvmpipe) at
 # 1280x800, on (a) the real warehouse scene's records from ../shared/corpus
 # (its meshes are not in the corpus: --allow-missing-assets draws
-# placeholders; skipped when ../shared is absent) and (b) the 5000-object
-# scene of bench/render/gen.sh.  Prints rscene-render -v's split (start-up =
+# placeholders; skipped when ../shared is absent), (b) the 5000-object
+# scene of bench/render/gen.sh and (c) one and sixteen ANYmal C robots of
+# bench/render/robots.sh (../shared's URDF, meshes and textures).  Prints rscene-render -v's split (start-up =
 # EGL context, scene build, upload, drawing, PNG encoding), the process's
 # wall and CPU time, best of RUNS, and the targets' verdicts.
 #   bash bench/render/run.sh BIN_DIR [BASELINE_RSCENE_RENDER]
@@ -23,6 +24,16 @@ bash "$HERE/gen.sh" 5000 > "$DIR/objects5000.rscene"
 SCENES=("$DIR/objects5000.rscene")
 WAREHOUSE="$HERE/../../../shared/corpus/rayrai_warehouse.rscene"
 if [[ -f $WAREHOUSE ]]; then SCENES=("$WAREHOUSE" "${SCENES[@]}"); else echo "render bench: no ../shared corpus; warehouse skipped"; fi
+# Robots (issue 11): one ANYmal C and sixteen, meshes and textures read cold by each run.
+ANYMAL="$HERE/../../../shared/corpus/robots/anymal_c/urdf/anymal.urdf"
+if [[ -f $ANYMAL ]]; then
+  for n in 1 16; do
+    bash "$HERE/robots.sh" "$(cd "$(dirname "$ANYMAL")" && pwd)/anymal.urdf" "$n" > "$DIR/anymal$n.rscene"
+    SCENES+=("$DIR/anymal$n.rscene")
+  done
+else
+  echo "render bench: no ../shared corpus; ANYmal scenes skipped"
+fi
 
 status=0
 declare -A TOTAL START
@@ -60,7 +71,7 @@ measure() {
 echo "rscene-render, CPU backend (llvmpipe), 1280x800, best of $RUNS:"
 for scene in "${SCENES[@]}"; do
   name=$(basename "$scene" .rscene)
-  echo "$name ($(grep -c '^object ' "$scene") objects, $(grep -c '^instanced_visual ' "$scene") instanced batches):"
+  echo "$name ($(grep -c '^object ' "$scene") objects, $(grep -c '^instanced_visual ' "$scene") instanced batches, $(grep -c '^articulated ' "$scene") robots):"
   measure now "$RENDER" "$scene"
   [[ -n $BASE ]] && measure baseline "$BASE" "$scene"
 done

@@ -53,9 +53,15 @@ int run(const Options& opt) {
   SceneOptions so;
   so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
   so.baseDir = opt.baseDir;
+  render::RenderOptions ro;
+  ro.maxTexturePixels = opt.maxTexturePixels;
+  // One cache for the scene's preparation (robot meshes, for their bounds)
+  // and the drawing: every mesh and texture file is read once.
+  asset::AssetCache assets(diskFileSystem(), render::assetLimits(ro));
+  ro.assets = &assets;
   render::RenderScene scene;
   Diagnostics diags;
-  bool built = render::buildRenderScene(loaded.document, so, scene, diags, opt.limits);
+  bool built = render::buildRenderScene(loaded.document, so, scene, diags, opt.limits, &assets);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;
   if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
@@ -66,7 +72,6 @@ int run(const Options& opt) {
     cli::error(err);
     return cli::kTrouble;
   }
-  render::RenderOptions ro;
   ro.width = opt.width > 0 ? opt.width : camera.width > 0 ? camera.width : 1280;
   ro.height = opt.height > 0 ? opt.height : camera.height > 0 ? camera.height : 720;
   // Checked before any framebuffer exists: a size the flags gave is a
@@ -80,7 +85,6 @@ int run(const Options& opt) {
     cli::printDiagnostics(diags, in.display, in.text, color);
     return cli::kTrouble;
   }
-  ro.maxTexturePixels = opt.maxTexturePixels;
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
@@ -119,9 +123,10 @@ int run(const Options& opt) {
   if (opt.verbose) {
     char line[240];
     std::snprintf(line, sizeof line,
-                  "%s: %dx%d, %zu objects; start-up %.3f s, scene build %.3f s, upload %.3f s, drawing %.3f s, "
-                  "png encoding %.3f s\n",
-                  cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), startSeconds, buildSeconds,
+                  "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
+                  "drawing %.3f s, png encoding %.3f s\n",
+                  cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), scene.robots, startSeconds,
+                  buildSeconds,
                   timings.uploadSeconds, timings.drawSeconds, encodeSeconds);
     std::cerr << line;
   }

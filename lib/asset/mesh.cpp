@@ -1,5 +1,6 @@
 #include "asset/mesh.hpp"
 
+#include <assimp/config.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -217,6 +218,11 @@ bool loadMesh(const FileSystem& fs, const std::string& path, MeshContent content
   }
   Assimp::Importer importer;
   importer.SetIOHandler(new FileSystemIO(fs, limits.maxFileBytes, path, std::move(bytes)));  // importer owns it
+  // assimp turns a COLLADA file's <up_axis>Z_UP</up_axis> into Y up by
+  // rotating its root; this toolchain's world is z-up (RaiSim, ROS), so the
+  // file's coordinates are taken as written, as RViz and MoveIt do (the
+  // <unit> scale still applies).  Without it every robot .dae lies on its side.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
                    aiProcess_SortByPType;
   if (content == MeshContent::Surface) flags |= aiProcess_GenSmoothNormals | aiProcess_FlipUVs;

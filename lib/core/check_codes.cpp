@@ -136,6 +136,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS9012", E, Render, "render", "an OpenGL call failed"},
     {"RS9013", E, Render, "render", "camera image larger than --max-pixels or 16384 on a side"},
     {"RS9014", E, Render, "render", "more instances to draw than --max-instances"},
+    // RS903x robots in rendering
+    {"RS9030", W, Render, "render", "articulated system whose model has no visual elements: nothing is drawn"},
 };
 
 }  // namespace

@@ -6,7 +6,11 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "render/robot_drawables.hpp"
+#include "robot/instance.hpp"
+#include "core/assets.hpp"
 #include "scene/check.hpp"
+#include "scene/reader.hpp"
 
 namespace rscene::render {
 namespace {
@@ -50,23 +54,6 @@ Vector3d shapeScale(Shape s, const Vector3d& scale, double radius, double height
   }
 }
 
-Eigen::AlignedBox3d worldBounds(const Affine3d& m, const Eigen::AlignedBox3d& local) {
-  Eigen::AlignedBox3d b;
-  for (int i = 0; i < 8; ++i) b.extend(m * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
-  return b;
-}
-
-Eigen::AlignedBox3d unitBounds(Shape s, double capsuleR = 0, double capsuleH = 0) {
-  switch (s) {
-    case Shape::Sphere: return {Vector3d(-1, -1, -1), Vector3d(1, 1, 1)};
-    case Shape::Cylinder: return {Vector3d(-1, -1, -0.5), Vector3d(1, 1, 0.5)};
-    case Shape::Capsule:
-      return {Vector3d(-capsuleR, -capsuleR, -capsuleH / 2 - capsuleR), Vector3d(capsuleR, capsuleR, capsuleH / 2 + capsuleR)};
-    case Shape::Ground: return {Vector3d(-0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
-    default: return {Vector3d::Constant(-0.5), Vector3d::Constant(0.5)};
-  }
-}
-
 Affine3d affine(const Pose& p) {
   Affine3d m = Affine3d::Identity();
   m.translate(p.position);
@@ -76,8 +63,9 @@ Affine3d affine(const Pose& p) {
 
 class Preparer {
  public:
-  Preparer(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags, const DrawLimits& limits)
-      : doc_(doc), s_(scene), out_(out), diags_(diags), limits_(limits) {}
+  Preparer(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags, const DrawLimits& limits,
+           asset::AssetCache* assets)
+      : doc_(doc), s_(scene), out_(out), diags_(diags), limits_(limits), assets_(assets) {}
 
   bool ok() const { return ok_; }
 
@@ -93,6 +81,7 @@ class Preparer {
     for (const Terrain& t : s_.terrains) terrain(t);
     for (const InstancedVisual& v : s_.instancedVisuals) instanced(v);
     for (const PointCloud& p : s_.pointClouds) points(p);
+    robots();
     for (const SkippedRecord& r : s_.skipped) ++out_.skipped[r.tag];
     if (!s_.wires.empty()) out_.skipped["wire"] += static_cast<int>(s_.wires.size());  // not drawn yet
   }
@@ -202,7 +191,7 @@ class Preparer {
   }
 
   void addDrawable(Drawable d) {
-    d.bounds = worldBounds(d.world, unitBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
+    d.bounds = transformBox(d.world, unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
     if (d.shape == Shape::Ground) out_.hasGround = true;
     else out_.bounds.extend(d.bounds);
     out_.drawables.push_back(std::move(d));
@@ -435,7 +424,7 @@ class Preparer {
       b.worlds.push_back(m);
       float w = i < v.colorWeights.size() ? std::clamp(float(v.colorWeights[i]), 0.f, 1.f) : 0.f;
       b.colors.push_back(colorA * (1 - w) + colorB * w);
-      b.instanceBounds.push_back(worldBounds(m, unitBounds(b.shape)));
+      b.instanceBounds.push_back(transformBox(m, unitShapeBounds(b.shape)));
       b.bounds.extend(b.instanceBounds.back());
     }
     out_.bounds.extend(b.bounds);
@@ -460,11 +449,60 @@ class Preparer {
     out_.pointClouds.push_back(std::move(pc));
   }
 
+  // Every visible articulated system at the state its record gives
+  // (robot::makeInstance, as sim and validate read it); one load per robot
+  // file and one read per mesh file, however many robots share them.
+  void robots() {
+    if (s_.articulated.empty()) return;
+    std::optional<asset::AssetCache> own;
+    asset::AssetCache& assets = assets_ ? *assets_ : own.emplace();
+    RobotDrawer drawer(out_, assets);
+    robot::ModelCache models;
+    for (const Articulated& a : s_.articulated) {
+      if (!a.visible || a.hiddenByGroup) continue;
+      if (!a.sourcePath.empty() && !fileExistsOnDisk(a.sourcePath)) {
+        missingRobotFile(a);
+        continue;
+      }
+      robot::RobotInstance r;
+      // An error (a model that does not load, a coordinate of the wrong
+      // length) fails the render; what could be read is still drawn.
+      if (!robot::makeInstance(doc_, a, models, r, diags_)) ok_ = false;
+      if (!r.model) continue;
+      if (drawer.add(*r.model, robot::linkPoses(r)) == 0) {
+        // Not an error (a collision-only model simulates), but an empty
+        // picture needs a reason.
+        Diagnostic d;
+        d.severity = Severity::Warning;
+        d.code = "RS9030";
+        d.line = lineOf(a.recordIndex);
+        d.column = d.line ? 1 : 0;
+        d.message = "articulated system '" + a.path + "' draws nothing: its model '" + r.model->name +
+                    "' has no visual elements";
+        diags_.push_back(std::move(d));
+      }
+      ++out_.robots;
+    }
+  }
+
+  // At the field that names the file (the record's sourcePath=, else its
+  // resource's path), where validate --check-files reports it, rather than
+  // in a file that is not there.
+  void missingRobotFile(const Articulated& a) {
+    RecordReader own(doc_, std::size_t(a.recordIndex), diags_);
+    bool here = own.has("sourcePath") || a.resourceRecord < 0;
+    RecordReader r(doc_, std::size_t(here ? a.recordIndex : a.resourceRecord), diags_);
+    r.error(here ? "sourcePath" : "path", scene_code::kMissingFile,
+            "robot file '" + a.sourcePath + "' " + whyNotAFile(a.sourcePath));
+    ok_ = false;
+  }
+
   const Document& doc_;
   const Scene& s_;
   RenderScene& out_;
   Diagnostics& diags_;
   const DrawLimits& limits_;
+  asset::AssetCache* assets_;
   std::uint64_t instancesDrawn_ = 0;
   bool ok_ = true;
   std::unordered_map<std::string, int> materialByRef_;
@@ -473,21 +511,39 @@ class Preparer {
 
 }  // namespace
 
+Eigen::AlignedBox3d transformBox(const Affine3d& m, const Eigen::AlignedBox3d& local) {
+  Eigen::AlignedBox3d b;
+  if (local.isEmpty()) return b;
+  for (int i = 0; i < 8; ++i) b.extend(m * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+  return b;
+}
+
+Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleR, double capsuleH) {
+  switch (s) {
+    case Shape::Sphere: return {Vector3d(-1, -1, -1), Vector3d(1, 1, 1)};
+    case Shape::Cylinder: return {Vector3d(-1, -1, -0.5), Vector3d(1, 1, 0.5)};
+    case Shape::Capsule:
+      return {Vector3d(-capsuleR, -capsuleR, -capsuleH / 2 - capsuleR), Vector3d(capsuleR, capsuleR, capsuleH / 2 + capsuleR)};
+    case Shape::Ground: return {Vector3d(-0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)};
+    default: return {Vector3d::Constant(-0.5), Vector3d::Constant(0.5)};
+  }
+}
+
 bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
-                  const DrawLimits& limits) {
-  Preparer p(doc, scene, out, diags, limits);
+                  const DrawLimits& limits, asset::AssetCache* assets) {
+  Preparer p(doc, scene, out, diags, limits, assets);
   p.run();
   return p.ok();
 }
 
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
-                      const DrawLimits& limits) {
+                      const DrawLimits& limits, asset::AssetCache* assets) {
   Scene scene;
   bool ok = buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
   ok = checkScene(doc, scene, SceneCheckOptions{}, diags) && ok;
-  return prepareScene(doc, scene, out, diags, limits) && ok;
+  return prepareScene(doc, scene, out, diags, limits, assets) && ok;
 }
 
 }  // namespace rscene::render

@@ -11,9 +11,11 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
@@ -34,6 +36,7 @@ struct RenderMaterial {
   std::string albedoTexture;    // resolved path, empty when none
   std::uint32_t line = 0;
   std::uint32_t textureColumn = 0;  // of albedoTexture on `line`, for messages
+  std::string file;             // the robot file `line` is in; empty: the scene
   bool isDefault = true;        // engine_default: meshes keep their own materials
 };
 
@@ -51,6 +54,10 @@ struct Drawable {
   bool castShadow = true;
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
+  std::string file;  // the robot file `line` is in (a link's visual); empty: the scene
+  // Unit box -> world of the magenta box drawn for a missing mesh with
+  // --allow-missing-assets; none: `world` (a scene object's own scale).
+  std::optional<Eigen::Affine3d> placeholderWorld;
   Eigen::AlignedBox3d bounds;  // world-space, for framing and visibility
 };
 
@@ -126,6 +133,7 @@ struct RenderScene {
   std::vector<Instanced> instanced;
   std::vector<PointBatch> pointClouds;
   Look environment;
+  std::size_t robots = 0;              // articulated systems drawn
   std::map<std::string, int> skipped;  // record kind -> count
   Eigen::AlignedBox3d bounds;          // everything visible but the ground
   bool hasGround = false;
@@ -145,17 +153,29 @@ struct DrawLimits {
   std::uint64_t maxTerrainVertices = std::uint64_t{1} << 20;
 };
 
+// The world-space bounds of `local` carried by `m` (its eight corners).
+Eigen::AlignedBox3d transformBox(const Eigen::Affine3d& m, const Eigen::AlignedBox3d& local);
+// The bounds of a drawable's unit shape (Drawable::world maps it to the
+// world); a capsule's are at its own size.
+Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleRadius = 0, double capsuleHeight = 0);
+
 // Prepares `out` from a scene view built from `doc` (the Document gives
 // record lines for messages).  False with RS9014 when the instances to draw
 // exceed limits.maxInstances; the batch that crosses it is left out.
+//
+// Articulated systems are loaded (lib/robot: URDF, MJCF) and drawn at
+// their record's state; a robot that does not load, or whose record does
+// not match its model (RS70xx), is an error.  Their meshes are read through
+// `assets` for their bounds (null: a cache of this call's own); give
+// renderScene the same cache (RenderOptions::assets) to read each once.
 bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
-                  const DrawLimits& limits = {});
+                  const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
 
 // buildScene(), checkScene() (scene/check.hpp: what validate and sim
 // refuse too) then prepareScene(); false when either reported an error (a
 // value that does not parse, a malformed terrain, a zero-size body ...).
 // `out` is filled as far as possible either way.
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
-                      const DrawLimits& limits = {});
+                      const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
 
 }  // namespace rscene::render

@@ -14,6 +14,7 @@
 #include "asset/cache.hpp"
 #include "render/camera.hpp"
 #include "render/mesh.hpp"
+#include "render/mipmap.hpp"
 #include "render/shaders.hpp"
 
 namespace rscene::render {
@@ -90,19 +91,15 @@ struct Batch {
   GLsizei count = 0, inView = 0;  // the first inView instances are inside the camera's frustum
 };
 
-// What a texture or background image may cost: --max-texture-pixels
-// (lib/asset refuses a larger declared size before decoding anything).
-asset::AssetLimits assetLimits(const RenderOptions& o) {
-  asset::AssetLimits l;
-  l.image.maxPixels = o.maxTexturePixels;
-  return l;
-}
-
 // Owns every GL object of one render; released in the destructor.
 class Frame {
  public:
   Frame(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Diagnostics& diags)
-      : scene_(scene), opt_(options), diags_(diags), assets_(diskFileSystem(), assetLimits(options)) {
+      : scene_(scene),
+        opt_(options),
+        diags_(diags),
+        ownAssets_(diskFileSystem(), assetLimits(options)),
+        assets_(options.assets ? *options.assets : ownAssets_) {
     aspect_ = double(options.width) / double(options.height);
     viewProj_ = projectionMatrix(camera, aspect_) * viewMatrix(camera);
     camera_ = camera;
@@ -112,19 +109,23 @@ class Frame {
   bool draw(const Camera& camera, Image& out);
 
  private:
-  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0) {
+  // `file`: the robot file `line` is in; empty: the scene.
+  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0,
+            const std::string& file = {}) {
     Diagnostic d;
     d.severity = s;
     d.code = code;
     d.line = line;
-    d.column = column ? column : line ? 1 : 0;
+    d.column = column ? column : line && file.empty() ? 1 : 0;
     d.message = std::move(message);
+    d.file = file;
     diags_.push_back(std::move(d));
   }
   // Missing (RS5001, the code validate --check-files and rscene-sim give the
   // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& message, const char* code = "RS9001") {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column);
+  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
+                    const char* code = "RS9001") {
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column, file);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -133,10 +134,18 @@ class Frame {
   // within half a pixel of the circle at the size it is seen.
   int segmentsFor(const Eigen::AlignedBox3d& box) const;
   GLuint texture(const Image& image);
+  // Mesa's CPU rasterisers (llvmpipe, softpipe): some work is cheaper done here.
+  static bool softwareGl() {
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe"));
+  }
   GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
   const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
-                                            bool& failed);
+                                            const std::string& file, bool& failed);
+  // A regular file (as validate --check-files and rscene-sim ask: a FIFO or
+  // /dev/zero is no asset), through the asset cache's file system.
+  bool regularFile(const std::string& path) const { return assets_.fileSystem().stat(path).kind == FileKind::Regular; }
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
            const Eigen::Vector3f& emissive, bool inView = true);
@@ -154,7 +163,8 @@ class Frame {
   std::map<std::string, std::vector<TexturedPart>> meshFiles_;
   std::map<std::string, GLuint> textures_;
   std::map<const Image*, GLuint> imageTextures_;
-  asset::AssetCache assets_;  // a mesh or texture named many times is read once
+  asset::AssetCache ownAssets_;
+  asset::AssetCache& assets_;  // a mesh or texture named many times is read once
   std::vector<GLuint> ownedTextures_;
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
@@ -248,7 +258,21 @@ GLuint Frame::texture(const Image& image) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                image.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
+  if (softwareGl()) {  // mipmap.hpp: llvmpipe's glGenerateMipmap costs more than this loop
+    std::vector<std::uint8_t> level, next;
+    const std::uint8_t* from = image.rgba.data();
+    int w = image.width, h = image.height;
+    for (int i = 1; w > 1 || h > 1; ++i) {
+      halveImage(from, w, h, next);
+      w = std::max(1, w / 2);
+      h = std::max(1, h / 2);
+      glTexImage2D(GL_TEXTURE_2D, i, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, next.data());
+      level.swap(next);
+      from = level.data();
+    }
+  } else {
+    glGenerateMipmap(GL_TEXTURE_2D);
+  }
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -274,13 +298,14 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   textures_[m.albedoTexture] = 0;
   // Regular files only, as validate --check-files and rscene-sim (a FIFO
   // or /dev/zero is not an image).
-  if (!fileExistsOnDisk(m.albedoTexture))
-    return assetProblem(m.line, m.textureColumn, "texture file '" + m.albedoTexture + "' " + whyNotAFile(m.albedoTexture),
+  if (!regularFile(m.albedoTexture))
+    return assetProblem(m.line, m.textureColumn, m.file,
+                        "texture file '" + m.albedoTexture + "' " + whyNotAFile(m.albedoTexture),
                         scene_code::kMissingFile);
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
-    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err);
+    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err, 0, m.file);
     return true;
   }
   out = textures_[m.albedoTexture] = texture(image);
@@ -288,13 +313,13 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
 }
 
 const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
-                                                 bool& failed) {
+                                                 const std::string& file, bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
-  if (path.empty() || !fileExistsOnDisk(path)) {
-    failed = !assetProblem(line, column,
+  if (path.empty() || !regularFile(path)) {
+    failed = !assetProblem(line, column, file,
                            path.empty() ? std::string("mesh body has no mesh file") : "mesh file '" + path + "' " + whyNotAFile(path),
                            path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
@@ -302,10 +327,10 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
   std::string err;
   std::shared_ptr<const asset::Mesh> loaded = assets_.mesh(path, asset::MeshContent::Surface, &err);
   if (!loaded) {
-    failed = !assetProblem(line, column, "cannot read mesh " + path + ": " + err);
+    failed = !assetProblem(line, column, file, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w);
+  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, column, file);
   for (const asset::MeshPart& p : loaded->parts)
     parts.push_back({upload(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
                      p.material.roughness, texture(p.material.texture)});
@@ -341,13 +366,17 @@ bool Frame::prepare() {
   for (const Drawable& d : scene_.drawables) {
     const RenderMaterial& mat = scene_.materials[std::size_t(d.material)];
     bool inView = boxInFrustum(viewProj_, d.bounds);
+    // A mirroring scale (a URDF's scale="1 -1 1" for the other side's leg)
+    // reverses the triangles' winding: such a drawable culls no faces (its
+    // normals, carried by the inverse transpose, still point outwards).
+    bool twoSided = mat.doubleSided || d.world.linear().determinant() < 0;
     if (d.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, failed);
+      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, d.file, failed);
       if (failed) return false;
       if (!parts) {
-        add(primitive(Shape::Box), 0, false, false, true, d.world, placeholderColor, {0, 0.6f, 0, 1},
-            Eigen::Vector3f::Zero(), inView);
+        add(primitive(Shape::Box), 0, false, false, true, d.placeholderWorld.value_or(d.world), placeholderColor,
+            {0, 0.6f, 0, 1}, Eigen::Vector3f::Zero(), inView);
         continue;
       }
       GLuint matTex = 0;
@@ -356,7 +385,7 @@ bool Frame::prepare() {
         bool own = mat.isDefault;
         Eigen::Vector4f color = own ? p.color : mat.color;
         Eigen::Vector4f pbr = own ? Eigen::Vector4f(p.metallic, p.roughness, 0, 0) : pbrOf(mat, 0);
-        add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), mat.doubleSided,
+        add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), twoSided,
             d.castShadow, d.world, color, pbr, mat.emissive, inView);
       }
       continue;
@@ -378,7 +407,7 @@ bool Frame::prepare() {
       continue;
     }
     add(primitive(d.shape, d.capsuleRadius, d.capsuleHeight, segments), tex, mat.blend,
-        mat.doubleSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
+        twoSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
         pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive, inView);
   }
   for (const TerrainMesh& t : scene_.terrains) {
@@ -411,7 +440,7 @@ bool Frame::prepare() {
     std::shared_ptr<GpuMesh> mesh;
     if (b.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, b.meshColumn, failed);
+      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, b.meshColumn, {}, failed);
       if (failed) return false;
       mesh = parts ? parts->front().mesh : primitive(Shape::Box);
     } else {
@@ -562,8 +591,7 @@ bool Frame::draw(const Camera& camera, Image& out) {
   }
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
 
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  bool software = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+  bool software = softwareGl();
   int shadowSize = software ? kSoftwareShadowSize : kShadowSize;
   // Shadow map of the main light, fitted to the scene's bounds.
   Eigen::Matrix4d lightViewProj = Eigen::Matrix4d::Identity();
@@ -806,6 +834,14 @@ bool Frame::draw(const Camera& camera, Image& out) {
 }
 
 }  // namespace
+
+// lib/asset refuses a texture larger than --max-texture-pixels by its
+// declared size, before decoding anything.
+asset::AssetLimits assetLimits(const RenderOptions& o) {
+  asset::AssetLimits l;
+  l.image.maxPixels = o.maxTexturePixels;
+  return l;
+}
 
 bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
                  Diagnostics& diags, RenderTimings* timings) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "render/image.hpp"
 #include "render/render_scene.hpp"
@@ -19,7 +20,15 @@ struct RenderOptions {
   // Largest texture or HDR background decoded, in pixels; a larger one is
   // not drawn (RS9002 / RS9003 warnings).  8192 x 8192: 256 MiB as RGBA8.
   std::uint64_t maxTexturePixels = std::uint64_t{1} << 26;
+  // Meshes and textures are read through this cache when given (the one
+  // prepareScene read robot meshes through, built with assetLimits() of
+  // these options), so that no file is read twice; null: one of its own.
+  asset::AssetCache* assets = nullptr;
 };
+
+// What a texture or background image may cost under `options`
+// (--max-texture-pixels): the limits of the asset cache the renderer reads through.
+asset::AssetLimits assetLimits(const RenderOptions& options);
 
 // The image size rscene-render allows by default (--max-pixels): 4096 x
 // 4096, about 1 GiB of framebuffers with 4x MSAA (README, "Resource

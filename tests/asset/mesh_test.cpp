@@ -151,3 +151,54 @@ TEST(Cache, FailuresAreCachedWithTheirReason) {
   EXPECT_FALSE(cache.image("/nope.png", &err));
   EXPECT_FALSE(cache.floatImage("/nope.hdr", &err));
 }
+
+namespace {
+
+// One triangle reaching up to z = 2 (in the file's units), written Z_UP.
+std::string colladaTriangle(const std::string& unit) {
+  return R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset>)" + unit + R"(<up_axis>Z_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="tri" name="tri"><mesh>
+      <source id="tri-pos"><float_array id="tri-pos-array" count="9">0 0 0 1 0 0 0 0 2</float_array>
+        <technique_common><accessor source="#tri-pos-array" count="3" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common></source>
+      <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
+      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>0 1 2</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes>
+    <visual_scene id="scene"><node id="n"><instance_geometry url="#tri"/></node></visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+}
+
+float maxCoordinate(const Mesh& m, int axis) {
+  float hi = -1e30f;
+  for (const MeshPart& p : m.parts)
+    for (std::size_t v = 0; v < p.vertexCount(); ++v) hi = std::max(hi, p.positions[v * 3 + std::size_t(axis)]);
+  return hi;
+}
+
+}  // namespace
+
+// Robot meshes (ANYmal's .dae files) are written Z_UP in a z-up world:
+// assimp's rotation to Y up would lay every link on its side.
+TEST(Mesh, ColladaZUpKeepsItsCoordinatesAndUnit) {
+  MemoryFileSystem fs;
+  fs.addFile("/m/tri.dae", colladaTriangle(R"(<unit name="meter" meter="1"/>)"));
+  fs.addFile("/m/tri_cm.dae", colladaTriangle(R"(<unit name="centimeter" meter="0.01"/>)"));
+  for (MeshContent content : {MeshContent::Geometry, MeshContent::Surface}) {
+    Mesh m;
+    std::string err;
+    ASSERT_TRUE(loadMesh(fs, "/m/tri.dae", content, m, &err)) << err;
+    EXPECT_NEAR(maxCoordinate(m, 2), 2.0f, 1e-6);  // still along +z
+    EXPECT_NEAR(maxCoordinate(m, 1), 0.0f, 1e-6);
+    ASSERT_TRUE(loadMesh(fs, "/m/tri_cm.dae", content, m, &err)) << err;
+    EXPECT_NEAR(maxCoordinate(m, 2), 0.02f, 1e-6);  // <unit> applies
+  }
+}
