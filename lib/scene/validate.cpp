@@ -12,22 +12,37 @@
 namespace rscene {
 namespace {
 
-// The scene model's findings, sorted by line and column, with the ones that
-// repeat a core finding (same line and code) to be dropped.
+// The scene model's findings, sorted by the scene line they are listed at
+// and column, with the ones that repeat a core finding (same line and code)
+// to be dropped.  A finding inside another file (a robot's URDF) is listed
+// after its scene record's own findings and never repeats a core finding.
 struct ModelFindings {
   Diagnostics list;
+  std::vector<std::uint32_t> lines;  // per finding: the scene line it is listed at
   std::vector<bool> dropped;
   std::multimap<std::pair<std::uint32_t, std::string_view>, std::size_t> byLineCode;
 
-  explicit ModelFindings(Diagnostics ds) : list(std::move(ds)), dropped(list.size(), false) {
-    std::stable_sort(list.begin(), list.end(), [](const Diagnostic& a, const Diagnostic& b) {
-      return std::tie(a.line, a.column) < std::tie(b.line, b.column);
+  explicit ModelFindings(std::vector<SceneFinding> found) {
+    std::stable_sort(found.begin(), found.end(), [](const SceneFinding& a, const SceneFinding& b) {
+      return std::tuple(a.sceneLine, !a.diagnostic.file.empty(), a.diagnostic.column) <
+             std::tuple(b.sceneLine, !b.diagnostic.file.empty(), b.diagnostic.column);
     });
-    for (std::size_t i = 0; i < list.size(); ++i) byLineCode.emplace(std::pair{list[i].line, std::string_view(list[i].code)}, i);
+    for (SceneFinding& f : found) {
+      lines.push_back(f.sceneLine);
+      list.push_back(std::move(f.diagnostic));
+    }
+    dropped.assign(list.size(), false);
+    for (std::size_t i = 0; i < list.size(); ++i)
+      if (list[i].file.empty()) byLineCode.emplace(std::pair{list[i].line, std::string_view(list[i].code)}, i);
   }
   void dropRepeatsOf(const Diagnostic& core) {
     auto [from, to] = byLineCode.equal_range({core.line, std::string_view(core.code)});
     for (auto it = from; it != to; ++it) dropped[it->second] = true;
+  }
+  // Where finding i sorts among core findings: its scene line, and its
+  // column (after every column when it is in another file).
+  std::pair<std::uint32_t, std::uint32_t> place(std::size_t i) const {
+    return {lines[i], list[i].file.empty() ? list[i].column : UINT32_MAX};
   }
 };
 
@@ -67,7 +82,7 @@ class MergeSink : public DiagnosticSink {
  public:
   MergeSink(ModelFindings& model, DiagnosticSink& next) : model_(model), next_(next) {}
   void add(Diagnostic o) override {
-    while (next_model() && !before(o, model_.list[i_])) next_.add(std::move(model_.list[i_++]));
+    while (next_model() && !before(o, model_.place(i_))) next_.add(std::move(model_.list[i_++]));
     next_.add(std::move(o));
   }
   // Sends the model's findings after the last core finding.
@@ -76,8 +91,8 @@ class MergeSink : public DiagnosticSink {
   }
 
  private:
-  static bool before(const Diagnostic& o, const Diagnostic& d) {
-    return o.line < d.line || (o.line == d.line && o.column <= d.column);
+  static bool before(const Diagnostic& o, std::pair<std::uint32_t, std::uint32_t> d) {
+    return o.line < d.first || (o.line == d.first && o.column <= d.second);
   }
   // Skips dropped findings; whether one is left.
   bool next_model() {
@@ -91,7 +106,8 @@ class MergeSink : public DiagnosticSink {
 
 }  // namespace
 
-void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink) {
+void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
+                   const ExtraSceneCheck& extra) {
   LoadResult loaded = parse(std::move(text));
   doc = std::move(loaded.document);
   if (!loaded.ok()) {
@@ -113,7 +129,11 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   sc.exists = options.fileExists;
   checkScene(doc, scene, sc, found);
   hintContinuations(loaded.continuedLines, found);
-  ModelFindings model(std::move(found));
+  std::vector<SceneFinding> listed;
+  listed.reserve(found.size());
+  for (Diagnostic& d : found) listed.push_back({d.line, std::move(d)});
+  if (extra) extra(doc, scene, listed);
+  ModelFindings model(std::move(listed));
 
   // A model finding is dropped when any core finding repeats it, even one
   // that streams past after it.  Knowing that takes a pass over core's
