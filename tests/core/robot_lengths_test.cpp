@@ -1,0 +1,36 @@
+// RS4007: generalizedCoordinate and generalizedVelocity lengths no robot can
+// have.  Each quaternion (floating base, spherical joint) is one coordinate
+// more than its velocities, so q = u + k with 3k <= u.
+#include <gtest/gtest.h>
+
+#include "core/check.hpp"
+
+using namespace rscene;
+
+namespace {
+
+bool rs4007(const std::string& q, const std::string& u) {
+  Document doc;
+  Diagnostics ds = validateText("raisim_engine_scene 1\narticulated_resource r r r.urdf\n"
+                                "articulated /World/r r 0 0 0 1 0 0 0 true true generalizedCoordinate=" +
+                                    q + " generalizedVelocity=" + u + "\n",
+                                CheckOptions{}, doc);
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS4007") return true;
+  return false;
+}
+
+TEST(RobotLengths, LengthsSomeRobotHasPass) {
+  EXPECT_FALSE(rs4007("0,0", "0,0"));                          // fixed base, two revolute joints
+  EXPECT_FALSE(rs4007("0,0,1,1,0,0,0", "0,0,0,0,0,0"));        // floating base alone
+  EXPECT_FALSE(rs4007("1,0,0,0,1,0,0,0", "0,0,0,0,0,0"));      // fixed base, two spherical joints
+  EXPECT_FALSE(rs4007("0,0,1,1,0,0,0,1,0,0,0,0.5", "0,0,0,0,0,0,0,0,0,0"));  // floating + spherical + revolute
+}
+
+TEST(RobotLengths, LengthsNoRobotHasAreReported) {
+  EXPECT_TRUE(rs4007("0,0", "0,0,0"));            // fewer coordinates than velocities
+  EXPECT_TRUE(rs4007("1,0,0,0,0", "0,0"));        // three quaternions would need 9 velocities
+  EXPECT_TRUE(rs4007("0,0,0", "0"));
+}
+
+}  // namespace
