@@ -279,6 +279,57 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   [ "${stderr_lines[0]}" = "denormal.rscene:2:11: error: time_step 4.94066e-324 is below the smallest simulated step, 1e-09 s [RS7022]" ]
 }
 
+@test "limits: numbers that would overflow are refused by sim and validate alike (RS7020 RS7022 RS7026 RS7021)" {
+  # Issue 10: each of these used to pass validate and stop sim with RS7024.
+  VALIDATE=$RSCENE_BIN/rscene-validate
+  { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1e300 dynamic; } | scene 0.001 > heavy.rscene
+  echo "$GROUND" | scene 1e300 > longstep.rscene
+  { echo "$GROUND"; obj /World/A "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; obj /World/B "0 0 3" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic
+    echo 'wire /World/W stiff /World/A /World/B 1 localPositionA=1e308,0,0'; } | scene 0.001 > wire.rscene
+  { echo 'scene_graph inheritedTransforms=true'; echo 'compound /World/C 1e308 0 0 1 0 0 0 1 1 1 1 dynamic true true id=c'
+    echo 'compound_child /World/C box 0 0 0 1 0 0 0 1 1 1'
+    echo 'object /World/A box 1e308 0 1 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1 parentGroupId=c'
+  } | scene 0.001 > chain.rscene
+  for f in heavy longstep wire chain; do
+    run -2 --separate-stderr bounded 500000 10 --steps 10 -o out.rscene $f.rscene
+    sim=${stderr_lines[0]}
+    [ ! -e out.rscene ]
+    run -1 --separate-stderr "$VALIDATE" $f.rscene
+    [ "${lines[0]}" = "$sim" ]
+  done
+  [[ $sim == "chain.rscene:4:19: error: compound '/World/C': position is more than 1e+12 m from its frame's origin [RS7021]" ]]
+  run -1 --separate-stderr "$VALIDATE" heavy.rscene
+  [[ ${lines[0]} == *"has mass 1e+300, which cannot be simulated [RS7020]" ]]
+  run -1 --separate-stderr "$VALIDATE" longstep.rscene
+  [[ ${lines[0]} == *"time_step 1e+300 is above the longest simulated step, 1 s [RS7022]" ]]
+  run -1 --separate-stderr "$VALIDATE" wire.rscene
+  [[ ${lines[0]} == *"localPositionA of wire '/World/W' is larger than 1e+12 in magnitude [RS7026]" ]]
+}
+
+@test "limits: a body Bullet drops has left the world (RS7012), even with no static geometry" {
+  # Bullet silently freezes a dynamic body whose swept bounds pass 10^6 m.
+  { echo 'gravity 0 0 -1e12'; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; } | scene 1 > away.rscene
+  run -0 --separate-stderr bounded 500000 10 --steps 5 -o out.rscene away.rscene
+  [[ ${stderr_lines[0]} == "away.rscene:4: warning: dynamic body '/World/Box' left the world at step "*": moved more than 1e+06 m in one step (Bullet drops such a body); "*"[RS7012]" ]]
+  grep -q '^object /World/Box box 0 0 -' out.rscene
+  ! grep -qi 'nan\|inf' out.rscene
+}
+
+@test "limits: a parent cycle is refused by sim and render as validate refuses it (RS3017)" {
+  { echo 'object /World/A box 0 0 1 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1 id=a parentGroupId=b'
+    echo 'object /World/B box 0 0 3 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1 id=b parentGroupId=a'
+  } | scene 0.001 > cycle.rscene
+  run -2 --separate-stderr bounded 500000 10 -o out.rscene cycle.rscene
+  [[ ${stderr_lines[0]} == "cycle.rscene:3:"*": error: node '/World/A' is its own ancestor [RS3017]" ]]
+  sim=${stderr_lines[0]}
+  [ ! -e out.rscene ]
+  run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" cycle.rscene
+  [[ $output == *"$sim"* ]]
+  run -2 --separate-stderr "$RSCENE_BIN/rscene-render" -o out.png cycle.rscene
+  [ "${stderr_lines[0]}" = "$sim" ]
+  [ ! -e out.png ]
+}
+
 @test "limits: --duration 1e300 and --steps past --max-steps are refused (RS7023); --max-steps raises the cap" {
   run -2 --separate-stderr bounded 500000 10 --duration 1e300 sim_drop.rscene
   [ "${stderr_lines[0]}" = "sim_drop.rscene:2:11: error: --duration 1e+300 at time_step 0.001 is 1e+303 steps, more than the limit of 10000000 steps [RS7023]" ]
@@ -292,17 +343,19 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
 }
 
 @test "limits: a state that stops being finite stops the run naming the body (RS7024); no scene, no trajectory" {
-  # 1e300 kg passes the up-front checks; its contact with the ground does not.
-  { echo "$GROUND"; obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1e300 dynamic; } | scene 0.001 > heavy.rscene
+  # A restitution of 1e308 passes the up-front checks (no bound on it); the
+  # first bounce overflows the velocity.
+  { echo 'contact_material default default 0.5 1e308 0 0.5 0.01 0 0'; echo "$GROUND"
+    obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; } | scene 0.001 > heavy.rscene
   echo old > t.jsonl
-  run -2 --separate-stderr bounded 500000 10 --steps 200 --trajectory t.jsonl -o out.rscene heavy.rscene
-  [[ ${stderr_lines[0]} == "heavy.rscene:4:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
+  run -2 --separate-stderr bounded 500000 10 --steps 2000 --trajectory t.jsonl -o out.rscene heavy.rscene
+  [[ ${stderr_lines[0]} == "heavy.rscene:5:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
   [ "${stderr_lines[-1]}" = "rscene-sim: error: t.jsonl: write cancelled" ]
   [ "$(cat t.jsonl)" = old ]
   [ ! -e out.rscene ]
   [ -z "$output" ]
   # Written through a pipe: the lines before the failure, none of them NaN or infinite.
-  run -2 --separate-stderr bounded 500000 10 --steps 200 --trajectory - heavy.rscene
+  run -2 --separate-stderr bounded 500000 10 --steps 2000 --trajectory - heavy.rscene
   [[ $output != *nan* && $output != *inf* ]]
 }
 

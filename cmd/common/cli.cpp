@@ -5,8 +5,10 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <tuple>
 
 #include "core/io.hpp"
 #include "core/output_file.hpp"
@@ -161,7 +163,14 @@ bool colorFor(int fd) {
   return ::isatty(fd) == 1;
 }
 
-void printDiagnostics(const Diagnostics& ds, std::string_view display, std::string_view text, bool color) {
+void printDiagnostics(const Diagnostics& found, std::string_view display, std::string_view text, bool color) {
+  // In line order, as rscene-validate prints them (sim and render find
+  // things body kind by body kind); findings inside other files (a robot's
+  // URDF) after the scene's.
+  Diagnostics ds = found;
+  std::stable_sort(ds.begin(), ds.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tuple(!a.file.empty(), a.file, a.line, a.column) < std::tuple(!b.file.empty(), b.file, b.line, b.column);
+  });
   LineCursor lines(text);  // one pass over the text for findings in line order
   for (const Diagnostic& d : ds)
     std::cerr << (d.file.empty() ? formatDiagnostic(d, display, lines(d.line), color)

@@ -60,7 +60,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS3014", E, Core, VSR, "node reference names no node of the right kind"},
     {"RS3015", E, Core, V, "child record with no parent record before it"},
     {"RS3016", W, Core, V, "repeated singleton record replaces the earlier one"},
-    {"RS3017", E, Core, V, "parent chain forms a cycle"},
+    {"RS3017", E, Core, VSR, "parent chain forms a cycle"},
     // RS4xxx sizes and values
     {"RS4001", E, Core, VSR, "terrain sample count per axis outside 2..16384"},
     {"RS4002", E, Core, VSR, "terrain has more than 64 Mi samples"},
@@ -98,12 +98,13 @@ constexpr CheckInfo kChecks[] = {
     {"RS7010", W, Sim, "sim", "records kept but not simulated (articulated, deformable, granular, sensor)"},
     {"RS7011", W, Scene, VSR, "wire to a node the simulator does not model, skipped"},
     {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
-    {"RS7020", E, Scene, VSR, "dynamic mass that is not a finite normal double (its inverse would be infinite)"},
-    {"RS7021", E, Scene, VSR, "body pose that is not finite, or an orientation that does not normalise to a unit quaternion"},
-    {"RS7022", E, Scene, VSR, "time_step that is not finite or is below 1e-9 s"},
+    {"RS7020", E, Scene, VSR, "dynamic mass below the smallest normal double or above 1e15 kg (Bullet would take it for immovable)"},
+    {"RS7021", E, Scene, VSR, "body pose that is not finite or more than 1e12 m from its frame's origin, or an orientation that does not normalise to a unit quaternion"},
+    {"RS7022", E, Scene, VSR, "time_step that is not finite or outside 1e-9 to 1 s"},
     {"RS7023", E, Sim, "sim", "run longer than --max-steps"},
     {"RS7024", E, Sim, "sim", "a body's state stopped being finite while stepping (nothing is written)"},
     {"RS7025", E, Sim, "sim", "more overlapping body pairs than --max-pairs"},
+    {"RS7026", E, Scene, VSR, "size, scale, wire attachment or length, or gravity larger than 1e12 in magnitude (m, m/s^2)"},
     // RS703x reading robot files (lib/robot/load.hpp); RS704x an articulated
     // record against its model (lib/robot/instance.hpp).
     {"RS7030", E, Robot, VSR, "robot file (URDF or MJCF) that does not parse or that MuJoCo's compiler refuses"},

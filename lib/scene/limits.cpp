@@ -23,17 +23,30 @@ std::string number(double v) {
 // whose norm overflowed (1e308 1e308 0 0) arrives here as zero or NaN.
 std::pair<std::string, const char*> poseProblem(const Pose& p) {
   if (!p.position.allFinite()) return {"position is not finite", "position"};
+  if (!(p.position.lpNorm<Eigen::Infinity>() <= kMaxLength))
+    return {"position is more than " + number(kMaxLength) + " m from its frame's origin", "position"};
   const Eigen::Vector4d q = p.orientation.coeffs();
   if (!q.allFinite() || !(std::abs(q.norm() - 1) < 1e-6))
     return {"orientation does not normalise to a unit quaternion", "orientation"};
   return {};
 }
 
-// A dynamic mass Bullet can invert: a finite normal double (not 4.9e-324,
-// whose inverse is infinite).  mass <= 0 is checkScene()'s RS4008.
-bool badMass(double mass) { return mass > 0 && !(mass >= DBL_MIN && mass <= DBL_MAX); }
+// A dynamic mass Bullet can invert and move: a normal double up to
+// kMaxMass.  mass <= 0 is checkScene()'s RS4008.
+bool badMass(double mass) { return mass > 0 && !(mass >= DBL_MIN && mass <= kMaxMass); }
 
-const char* kMassHint = "a dynamic mass must lie between 2.2250738585072014e-308 and 1.7976931348623157e+308 kg";
+const std::string kMassHint = "a dynamic mass must lie between 2.2250738585072014e-308 and " + number(kMaxMass) + " kg";
+
+bool tooLarge(double v) { return !(std::abs(v) <= kMaxLength); }
+bool tooLarge(const Eigen::Vector3d& v) { return !(v.lpNorm<Eigen::Infinity>() <= kMaxLength); }
+
+// RS7026 at `field` when `value` is beyond kMaxLength (or not finite).
+template <class T>
+void checkLength(const RecordReader& r, const char* field, const T& value, const std::string& what) {
+  if (tooLarge(value))
+    r.error(field, scene_code::kHugeValue, what + " is larger than " + number(kMaxLength) + " in magnitude",
+            "lengths, coordinates and accelerations must stay within 1e12 (m, m/s^2) for double precision to resolve them");
+}
 
 }  // namespace
 
@@ -48,6 +61,16 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
       r.error("dt", scene_code::kTinyTimeStep,
               "time_step " + number(dt) + " is below the smallest simulated step, " + number(kMinTimeStep) + " s",
               "a smaller step would need more than 10^9 steps per simulated second");
+    else if (dt > kMaxTimeStep)
+      r.error("dt", scene_code::kTinyTimeStep,
+              "time_step " + number(dt) + " is above the longest simulated step, " + number(kMaxTimeStep) + " s",
+              "a step longer than a second resolves no contact");
+  }
+  for (std::size_t i = 1; i < doc.records.size(); ++i) {
+    const Record& rec = doc.records[i];
+    if (!rec.kind || rec.kind->tag != "gravity") continue;
+    RecordReader r(doc, i, diagnostics);
+    checkLength(r, "gravity", r.vec3("gravity"), "gravity");
   }
   for (const Object& o : scene.objects) {
     if (o.bodyMode == BodyMode::VisualOnly) continue;
@@ -55,7 +78,15 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
     if (o.bodyMode == BodyMode::Dynamic && badMass(o.mass))
       r.error("mass", scene_code::kBadMassValue, "dynamic body '" + o.path + "' has mass " + number(o.mass) +
                                                      ", which cannot be simulated", kMassHint);
-    if (o.primitive == "ground" || o.primitive == "half_space") continue;  // only position.z is used
+    checkLength(r, "scale", o.scale, "scale of body '" + o.path + "'");
+    checkLength(r, "radius", o.radius, "radius of body '" + o.path + "'");
+    checkLength(r, "height", o.height, "height of body '" + o.path + "'");
+    if (o.primitive == "ground" || o.primitive == "half_space") {  // only position.z is used
+      if (!std::isfinite(o.local.position.z()) || tooLarge(o.local.position.z()))
+        r.error("position", scene_code::kBadPose, "plane '" + o.path + "' is more than " + number(kMaxLength) +
+                                                      " m from its frame's origin (or not finite)");
+      continue;
+    }
     auto [problem, field] = poseProblem(o.local);  // as written: bodiesOnly builds resolve no world poses
     if (!problem.empty()) r.error(field, scene_code::kBadPose, "body '" + o.path + "': " + problem);
   }
@@ -67,12 +98,23 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
                                                      ", which cannot be simulated", kMassHint);
     auto [problem, field] = poseProblem(c.local);
     if (!problem.empty()) r.error(field, scene_code::kBadPose, "compound '" + c.path + "': " + problem);
+    checkLength(r, "scale", c.scale, "scale of compound '" + c.path + "'");
     for (const CompoundChild& ch : c.children) {
-      auto [childProblem, childField] = poseProblem(ch.local);
-      if (childProblem.empty()) continue;
       RecordReader cr(doc, static_cast<std::size_t>(ch.recordIndex), diagnostics);
-      cr.error(childField, scene_code::kBadPose, "child of compound '" + c.path + "': " + childProblem);
+      checkLength(cr, "scale", ch.scale, "scale of a child of compound '" + c.path + "'");
+      checkLength(cr, "size", ch.size, "size of a child of compound '" + c.path + "'");
+      checkLength(cr, "radius", ch.radius, "radius of a child of compound '" + c.path + "'");
+      checkLength(cr, "height", ch.height, "height of a child of compound '" + c.path + "'");
+      auto [childProblem, childField] = poseProblem(ch.local);
+      if (!childProblem.empty())
+        cr.error(childField, scene_code::kBadPose, "child of compound '" + c.path + "': " + childProblem);
     }
+  }
+  for (const Wire& w : scene.wires) {
+    RecordReader r(doc, static_cast<std::size_t>(w.recordIndex), diagnostics);
+    checkLength(r, "length", w.length, "length of wire '" + w.path + "'");
+    checkLength(r, "localPositionA", w.localPositionA, "localPositionA of wire '" + w.path + "'");
+    checkLength(r, "localPositionB", w.localPositionB, "localPositionB of wire '" + w.path + "'");
   }
   for (std::size_t i = before; i < diagnostics.size(); ++i)
     if (diagnostics[i].severity == Severity::Error) return false;

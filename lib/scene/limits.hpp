@@ -1,11 +1,16 @@
 // Numbers the scene model refuses because no simulator could stand behind
 // the result (issue 10: "nothing non-finite is ever written"):
-//   RS7020  a dynamic mass that is not a finite normal double (4.9e-324:
-//           its inverse is infinite);
-//   RS7021  a body pose that is not finite, or an orientation that does not
-//           normalise to a unit quaternion (1e308 1e308 0 0);
-//   RS7022  a positive time_step that is not finite or below kMinTimeStep
-//           (time_step <= 0 is RS7008).
+//   RS7020  a dynamic mass outside [DBL_MIN, kMaxMass] (4.9e-324: its
+//           inverse is infinite; above kMaxMass Bullet takes the body for an
+//           immovable one and it falls through what it lands on);
+//   RS7021  a body pose that is not finite, farther than kMaxLength from
+//           its frame's origin, or an orientation that does not normalise to
+//           a unit quaternion (1e308 1e308 0 0);
+//   RS7022  a positive time_step that is not finite or outside
+//           [kMinTimeStep, kMaxTimeStep] (time_step <= 0 is RS7008);
+//   RS7026  a size, wire attachment or length, or gravity larger than
+//           kMaxLength (a local pose of at most kMaxLength at every level
+//           keeps every world pose finite, however deep the parent chain).
 // checkScene() runs these, so validate, sim and render agree on them.
 #pragma once
 #include "core/diagnostic.hpp"
@@ -17,6 +22,18 @@ namespace rscene {
 // Smallest time_step simulated: one simulated second is then 10^9 steps,
 // already 100 times rscene-sim's default step cap.
 inline constexpr double kMinTimeStep = 1e-9;
+// Longest time_step simulated: a step of more than a second resolves no
+// contact (a body falls 5 m in it), and 1e300 overflows positions at once.
+inline constexpr double kMaxTimeStep = 1;
+// Largest dynamic mass.  Bullet treats a body whose inverse mass is near
+// its epsilon (DBL_EPSILON, about 1/4.5e15 kg) as immovable: measured, a
+// 1 m box of 8e15 kg falls through the ground; 1e15 kg rests on it at every
+// size from 1 cm to 1 km.
+inline constexpr double kMaxMass = 1e15;
+// Largest length, coordinate or acceleration (m, m/s^2): at 1e12 m a double
+// resolves 0.2 mm, and products of two such values (inertia, energy)
+// stay far from overflow.
+inline constexpr double kMaxLength = 1e12;
 
 // Appends the refusals above, each an error at the record's field.
 // Returns false when it added an error.

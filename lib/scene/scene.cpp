@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "scene/limits.hpp"
 #include "scene/reader.hpp"
 #include "core/filesystem.hpp"
 #include "core/text.hpp"
@@ -448,44 +449,51 @@ class Builder {
                                                   "capsule", "ground", "plane",     "half_space"};
     std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
     if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
-    for (std::size_t k = 1; k < 7; ++k)
-      if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])))) return false;
+    for (std::size_t k = 1; k < 7; ++k)  // scale x3, radius, height, mass
+      if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])), k == 6 ? kMaxMass : kMaxLength))
+        return false;
     bool rotates = false;  // an orientation of four zeros does not normalise
     for (std::size_t k = 9; k < 16; ++k) {
       std::string_view v = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k]));
       if (!v.empty() && v.front() == '-') v.remove_prefix(1);
       if (!plainDecimal(v)) return false;
-      rotates = rotates || (k >= 12 && positiveNumber(v));
+      rotates = rotates || (k >= 12 && positiveNumber(v, kMaxLength));
     }
     return rotates;
   }
 
-  // Whether `s` is a short plain decimal ("0.5", "12"): finite, and its
-  // square neither overflows nor underflows to zero unless it is zero.
+  // Whether `s` is a short plain decimal ("0.5", "12") below 10^12 (so
+  // within scene/limits.hpp's kMaxLength): finite, and its square neither
+  // overflows nor underflows to zero unless it is zero.
   static bool plainDecimal(std::string_view s) {
     if (s.empty() || s.size() >= 32 || s.front() == '.') return false;
-    int dots = 0;
+    int dots = 0, whole = 0;
     for (char c : s) {
       if (c == '.') ++dots;
       else if (c < '0' || c > '9') return false;
+      else if (!dots) ++whole;
     }
-    return dots <= 1;
+    return dots <= 1 && whole <= 12;
   }
 
-  // Whether `s` is a finite number > 0.  Plain decimals ("0.5", "12") are
-  // read from their digits, which keeps a bodiesOnly build cheap on scenes
-  // with hundreds of thousands of objects; anything else is parsed.
-  static bool positiveNumber(std::string_view s) {
+  // Whether `s` is a finite number in (0, max] (a normal double: 4.9e-324
+  // is RS7020's).  Plain decimals below 10^12 ("0.5", "12") are read from
+  // their digits, which keeps a bodiesOnly build cheap on scenes with
+  // hundreds of thousands of objects; anything else is parsed.
+  static bool positiveNumber(std::string_view s, double max) {
     bool digits = !s.empty() && s.size() < 32, nonZero = false;
-    int dots = 0;
+    int dots = 0, whole = 0;
     for (char c : s) {
       if (c == '.') ++dots;
       else if (c < '0' || c > '9') digits = false;
-      else nonZero = nonZero || c != '0';
+      else {
+        nonZero = nonZero || c != '0';
+        if (!dots) ++whole;
+      }
     }
-    if (digits && dots <= 1 && s.front() != '.') return nonZero;
+    if (digits && dots <= 1 && s.front() != '.' && whole <= 12) return nonZero;
     std::optional<double> v = parseNumber(s);
-    return v && std::isnormal(*v) && *v > 0;  // 4.9e-324 is RS7020's
+    return v && std::isnormal(*v) && *v > 0 && *v <= max;
   }
 
   void readCompound(const RecordReader& r, int idx) {
@@ -979,10 +987,25 @@ class Builder {
       return static_cast<char>(parentHidden || hiddenGroup[static_cast<std::size_t>(parentIdx_[static_cast<std::size_t>(n)])]);
     };
     auto cycle = [&](const std::vector<int>& members) {
+      reportCycle(members.front());
       return static_cast<char>(std::any_of(members.begin(), members.end(),
                                            [&](int m) { return hiddenGroup[static_cast<std::size_t>(m)] != 0; }));
     };
     resolveChains(hidden_, stops, root, step, cycle);
+  }
+
+  // A parent cycle has no world pose to give its members: sim and render
+  // refuse it with lib/core's code, at the record and field lib/core's
+  // check names (both walk the records in order and report the node where
+  // the walk comes back to itself).  validate's bodiesOnly build resolves
+  // no world, so the finding is not doubled there.
+  void reportCycle(int idx) {
+    RecordReader r(doc_, static_cast<std::size_t>(idx), diags_);
+    const std::string& tag = doc_.records[static_cast<std::size_t>(idx)].kind->tag;
+    const char* field = tag == "group" ? "parentId" : "parentGroupId";
+    if (!r.has(field)) field = "parentGroupId";
+    r.error(field, "RS3017", "node '" + nodePath(doc_, r.record()) + "' is its own ancestor",
+            "break the cycle of parents");
   }
 
   Pose parentFrame(int idx) const { return frames_[static_cast<std::size_t>(idx)]; }

@@ -53,7 +53,8 @@ inline constexpr const char* kUnsupported = "RS7010";   // records kept but not 
 inline constexpr const char* kWireSkipped = "RS7011";   // wire to a node sim does not model (warning)
 inline constexpr const char* kBadMassValue = "RS7020";  // dynamic mass not a finite normal double (scene/limits.hpp)
 inline constexpr const char* kBadPose = "RS7021";       // pose not finite, orientation not normalisable
-inline constexpr const char* kTinyTimeStep = "RS7022";  // positive time_step not finite or below kMinTimeStep
+inline constexpr const char* kTinyTimeStep = "RS7022";  // positive time_step not finite or outside [kMinTimeStep, kMaxTimeStep]
+inline constexpr const char* kHugeValue = "RS7026";     // size, wire attachment or length, gravity beyond kMaxLength
 // Codes shared with lib/core's validator (same condition, same code).
 inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
 inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist

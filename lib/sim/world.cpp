@@ -3,6 +3,8 @@
 // libraries.
 #include "sim/world.hpp"
 
+#include "scene/limits.hpp"
+
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
@@ -205,6 +207,12 @@ struct World::Impl {
     else if (bounded && (p.x() < boundsMin.x() || p.y() < boundsMin.y() || p.z() < boundsMin.z() ||
                          p.x() > boundsMax.x() || p.y() > boundsMax.y() || p.z() > boundsMax.z()))
       std::snprintf(why, sizeof why, "left the broadphase bounds");
+    else if (double far = std::max({std::abs(p.x()), std::abs(p.y()), std::abs(p.z())});
+             std::isfinite(far) && far > kMaxLength)  // not finite: nonFinite()'s RS7024
+      // Beyond what the scene may hold (scene/limits.hpp), and where double
+      // precision no longer resolves a contact; also the only way out of a
+      // world with no static geometry.
+      std::snprintf(why, sizeof why, "went more than %g m from the origin", kMaxLength);
     return why;
   }
 
@@ -559,8 +567,16 @@ void World::step() {
   tPairs = nullptr;
   ++w.stepCount;
   for (Simulated& s : w.simulated) {
+    if (!s.dynamic || s.departed) continue;
+    // Bullet silently stops simulating a dynamic body whose bounding box
+    // (swept over the step) spans more than 10^6 m: it moved too fast or
+    // grew too large.  Say so instead of writing a frozen pose as if it rested.
+    if (s.body->getActivationState() == DISABLE_SIMULATION) {
+      w.depart(s, "moved more than 1e+06 m in one step (Bullet drops such a body)");
+      continue;
+    }
     // Sleeping bodies do not move; only awake dynamic ones can leave.
-    if (!s.dynamic || s.departed || !s.body->isActive()) continue;
+    if (!s.body->isActive()) continue;
     std::string why = w.departure(s);
     if (!why.empty()) w.depart(s, std::move(why));
   }

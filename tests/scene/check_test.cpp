@@ -69,6 +69,16 @@ std::vector<Case> cases() {
       {"RS7009", H + K + child("ground", ""), H + K + child("box", "")},
       {"RS7020", H + object("box", "1 1 1", "0.5", "4.9e-324"), H + object("box", "1 1 1", "0.5", "1e-3")},
       {"RS7022", H + "time_step 1e-12\n", H + "time_step 1e-9\n"},
+      // Issue 10: validate refuses what would make rscene-sim stop with RS7024.
+      {"RS7020", H + object("box", "1 1 1", "0.5", "1e300"), H + object("box", "1 1 1", "0.5", "1e15")},
+      {"RS7022", H + "time_step 1e300\n", H + "time_step 1\n"},
+      {"RS7026", H + "gravity 0 0 -1e300\n", H + "gravity 0 0 -1e12\n"},
+      {"RS7026", H + object("box", "1e300 1 1"), H + object("box", "1e12 1 1")},
+      {"RS7026",
+       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
+           "wire /World/w stiff /World/a /World/b 1 localPositionA=1e308,0,0\n",
+       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
+           "wire /World/w stiff /World/a /World/b 1 localPositionA=1e12,0,0\n"},
       {"RS7011",
        H + object("box") + "point_cloud /World/r points=0,0,0\n" + "wire /World/w stiff /World/a /World/r 1\n",
        H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
