@@ -73,12 +73,10 @@ first_x() { head -n 1 traj.jsonl | sed -n 's/.*"position":\[\([^,]*\),.*/\1/p'; 
 
 @test "a parent cycle is still reported (RS3017), not looped on" {
   chain 3 | sed 's/id=b0 parentGroupId=w/id=b0 parentGroupId=b2/' > cycle.rscene
-  # rscene-sim runs the scene model's checks, not lib/core's, so it does
-  # not report the cycle: it must only come back, with the members of the
-  # cycle in the world frame (the leaf b2 is one of them: x = 1).
+  # rscene-sim refuses it as validate does (issue 10), and comes back.
   run timeout 20 "$SIM" --steps 1 --trajectory traj.jsonl -o out.rscene cycle.rscene
-  [ "$status" -eq 0 ]
-  [ "$(first_x)" = "1" ]
+  [ "$status" -eq 2 ]
+  [[ "$output" == *"is its own ancestor [RS3017]"* ]]
   [ -x "$V" ] || return 0
   run timeout 20 "$V" cycle.rscene
   [ "$status" -eq 1 ]

@@ -1,5 +1,7 @@
 #include "render/render_scene.hpp"
 
+#include "scene/reader.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -94,6 +96,17 @@ class Preparer {
                                                                               : 0;
   }
 
+  // Column of a field of a record, for messages about the file it names.
+  std::uint32_t columnOf(int recordIndex, std::string_view field) const {
+    if (recordIndex < 0 || std::size_t(recordIndex) >= doc_.records.size()) return 0;
+    Diagnostics unused;
+    return RecordReader(doc_, std::size_t(recordIndex), unused).columnOf(field);
+  }
+  bool hasField(int recordIndex, std::string_view field) const {
+    Diagnostics unused;
+    return recordIndex >= 0 && RecordReader(doc_, std::size_t(recordIndex), unused).has(field);
+  }
+
   int materialIndex(const std::string& ref) const {
     if (ref.empty()) return 0;
     auto it = materialByRef_.find(ref);
@@ -112,6 +125,7 @@ class Preparer {
     m.blend = src.alphaMode == "blend" || m.color.w() < 0.999f;
     m.albedoTexture = src.albedoTexture;
     m.line = lineOf(src.recordIndex);
+    m.textureColumn = columnOf(src.recordIndex, "albedoTexture");
     m.isDefault = src.name == "engine_default";
     return m;
   }
@@ -204,7 +218,10 @@ class Preparer {
       d.capsuleHeight = o.physicsHeight();
       d.world = pose;
     } else {
-      if (d.shape == Shape::Mesh) d.meshPath = o.meshPath;
+      if (d.shape == Shape::Mesh) {
+        d.meshPath = o.meshPath;
+        d.meshColumn = columnOf(o.recordIndex, hasField(o.recordIndex, "renderMeshPath") ? "renderMeshPath" : "meshPath");
+      }
       d.world = pose * Eigen::Scaling(shapeScale(d.shape, o.scale, o.radius, o.height, o.scale));
     }
     addDrawable(std::move(d));
@@ -229,7 +246,10 @@ class Preparer {
         d.capsuleHeight = height;
         d.world = pose * local;
       } else {
-        if (d.shape == Shape::Mesh) d.meshPath = ch.meshPath;
+        if (d.shape == Shape::Mesh) {
+          d.meshPath = ch.meshPath;
+          d.meshColumn = columnOf(ch.recordIndex, "meshPath");
+        }
         Vector3d unit = d.shape == Shape::Box    ? childBox(c, ch)
                         : d.shape == Shape::Mesh ? childScale(c, ch)
                                                  : Vector3d(radius, radius, height);
@@ -371,7 +391,10 @@ class Preparer {
     b.shape = shapeOf(v.primitive);
     if (b.shape == Shape::Ground) b.shape = Shape::Box;
     if (b.shape == Shape::Capsule) b.shape = Shape::Cylinder;  // an instanced capsule is drawn as its cylinder
-    if (b.shape == Shape::Mesh) b.meshPath = v.meshPath;
+    if (b.shape == Shape::Mesh) {
+      b.meshPath = v.meshPath;
+      b.meshColumn = columnOf(v.recordIndex, "meshPath");
+    }
     b.castShadow = v.castShadows;
     // size is the primitive's extent: box sides, sphere/cylinder diameter.
     Vector3d unit = b.shape == Shape::Box || b.shape == Shape::Mesh ? v.size : Vector3d(v.size / 2);

@@ -33,6 +33,7 @@ struct RenderMaterial {
   bool blend = false;           // alphaMode=blend or alpha < 1
   std::string albedoTexture;    // resolved path, empty when none
   std::uint32_t line = 0;
+  std::uint32_t textureColumn = 0;  // of albedoTexture on `line`, for messages
   bool isDefault = true;        // engine_default: meshes keep their own materials
 };
 
@@ -49,6 +50,7 @@ struct Drawable {
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
+  std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
   Eigen::AlignedBox3d bounds;  // world-space, for framing and visibility
 };
 
@@ -85,6 +87,7 @@ struct Instanced {
   int material = 0;
   bool castShadow = true;
   std::uint32_t line = 0;
+  std::uint32_t meshColumn = 0;  // of meshPath on `line`
   Eigen::AlignedBox3d bounds;
 };
 

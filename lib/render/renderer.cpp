@@ -1,5 +1,7 @@
 #include "render/renderer.hpp"
 
+#include "core/assets.hpp"
+
 #include <GL/glcorearb.h>
 
 #include <chrono>
@@ -110,19 +112,19 @@ class Frame {
   bool draw(const Camera& camera, Image& out);
 
  private:
-  void diag(Severity s, const char* code, std::uint32_t line, std::string message) {
+  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0) {
     Diagnostic d;
     d.severity = s;
     d.code = code;
     d.line = line;
-    d.column = line ? 1 : 0;
+    d.column = column ? column : line ? 1 : 0;
     d.message = std::move(message);
     diags_.push_back(std::move(d));
   }
   // Missing (RS5001, the code validate --check-files and rscene-sim give the
   // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, const std::string& message, const char* code = "RS9001") {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message);
+  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& message, const char* code = "RS9001") {
+    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column);
     return opt_.allowMissingAssets;
   }
   std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
@@ -133,7 +135,8 @@ class Frame {
   GLuint texture(const Image& image);
   GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
   bool materialTexture(const RenderMaterial& m, GLuint& out);
-  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, bool& failed);
+  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+                                            bool& failed);
   void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
            const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
            const Eigen::Vector3f& emissive, bool inView = true);
@@ -269,8 +272,11 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
     return true;
   }
   textures_[m.albedoTexture] = 0;
-  if (!assets_.fileSystem().exists(m.albedoTexture))
-    return assetProblem(m.line, "texture file not found: " + m.albedoTexture, scene_code::kMissingFile);
+  // Regular files only, as validate --check-files and rscene-sim (a FIFO
+  // or /dev/zero is not an image).
+  if (!fileExistsOnDisk(m.albedoTexture))
+    return assetProblem(m.line, m.textureColumn, "texture file '" + m.albedoTexture + "' " + whyNotAFile(m.albedoTexture),
+                        scene_code::kMissingFile);
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
@@ -281,20 +287,22 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   return true;
 }
 
-const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, bool& failed) {
+const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+                                                 bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
-  if (path.empty() || !assets_.fileSystem().exists(path)) {
-    failed = !assetProblem(line, "mesh file not found: " + (path.empty() ? std::string("(no path)") : path),
+  if (path.empty() || !fileExistsOnDisk(path)) {
+    failed = !assetProblem(line, column,
+                           path.empty() ? std::string("mesh body has no mesh file") : "mesh file '" + path + "' " + whyNotAFile(path),
                            path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
   }
   std::string err;
   std::shared_ptr<const asset::Mesh> loaded = assets_.mesh(path, asset::MeshContent::Surface, &err);
   if (!loaded) {
-    failed = !assetProblem(line, "cannot read mesh " + path + ": " + err);
+    failed = !assetProblem(line, column, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
   for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w);
@@ -335,7 +343,7 @@ bool Frame::prepare() {
     bool inView = boxInFrustum(viewProj_, d.bounds);
     if (d.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, failed);
+      const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, failed);
       if (failed) return false;
       if (!parts) {
         add(primitive(Shape::Box), 0, false, false, true, d.world, placeholderColor, {0, 0.6f, 0, 1},
@@ -403,7 +411,7 @@ bool Frame::prepare() {
     std::shared_ptr<GpuMesh> mesh;
     if (b.shape == Shape::Mesh) {
       bool failed = false;
-      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, failed);
+      const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, b.meshColumn, failed);
       if (failed) return false;
       mesh = parts ? parts->front().mesh : primitive(Shape::Box);
     } else {

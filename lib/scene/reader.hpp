@@ -63,6 +63,8 @@ class RecordReader {
   bool numbers(std::string_view name, std::vector<double>& out) const;
   // Positional token index where field `name` starts, or -1.
   int positionalToken(std::string_view name) const;
+  // 1-based column of the field's value (where diagnostics point), or 0.
+  std::uint32_t columnOf(std::string_view name) const;
 
   void error(std::string_view name, const char* code, const std::string& message, std::string hint = {},
              Severity severity = Severity::Error) const;
@@ -77,7 +79,6 @@ class RecordReader {
     const Field* key = nullptr;      // key=value
   };
   Located locate(std::string_view name) const;
-  std::uint32_t columnOf(std::string_view name) const;
   void bad(std::string_view name, std::string_view value, std::string_view expected, const char* code) const;
   static const char* numberCode(std::string_view s);
   bool components(std::string_view name, std::vector<double>& out) const;

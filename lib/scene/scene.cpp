@@ -530,7 +530,7 @@ class Builder {
     std::string ref = r.str("compound");
     Compound* owner = lastNamed(s_.compounds, ref);
     if (!owner) {
-      r.error("compound", "RS3014", "compound '" + ref + "' does not exist");
+      orphan(r, "compound");
       return;
     }
     CompoundChild ch;
@@ -639,7 +639,7 @@ class Builder {
     std::string ref = r.str("terrain");
     Terrain* owner = lastNamed(s_.terrains, ref);
     if (!owner) {
-      r.error("terrain", "RS3013", "terrain '" + ref + "' does not exist");
+      orphan(r, "terrain_region");
       return;
     }
     TerrainSplatLayer l;
@@ -691,6 +691,13 @@ class Builder {
       start = end + 1;
     }
     return out;
+  }
+
+  // A child record (compound_child, terrain layer, articulated_ik) belongs
+  // to the most recent parent of its name before it; with none, lib/core's
+  // finding, in its words and at its place.
+  static void orphan(const RecordReader& r, const std::string& parentTag) {
+    r.error("", "RS3015", r.record().kind->tag + " has no " + parentTag + " record before it");
   }
 
   void readArticulatedResource(const RecordReader& r, int idx) {
@@ -772,7 +779,7 @@ class Builder {
     std::string ref = r.str("articulated");
     Articulated* owner = lastNamed(s_.articulated, ref);
     if (!owner) {
-      r.error("articulated", "RS3014", "articulated system '" + ref + "' does not exist");
+      orphan(r, "articulated");
       return;
     }
     ArticulatedIk k;

@@ -1,7 +1,6 @@
 #include "scene/validate.hpp"
 
 #include <algorithm>
-#include <map>
 #include <string_view>
 #include <tuple>
 
@@ -13,14 +12,16 @@ namespace rscene {
 namespace {
 
 // The scene model's findings, sorted by the scene line they are listed at
-// and column, with the ones that repeat a core finding (same line and code)
-// to be dropped.  A finding inside another file (a robot's URDF) is listed
-// after its scene record's own findings and never repeats a core finding.
+// and column.  A finding with a code of lib/core's layer (a value that does
+// not parse, a reference to no node, a missing file ...) is left out:
+// lib/core's validator checks that condition itself and reports it at the
+// same field, so keeping the model's copy would double it.  (This replaces
+// a second pass of core's checks that used to find the repeats.)  A finding
+// inside another file (a robot's URDF: its RS5001 for a mesh is no core
+// finding) is kept, listed after its scene record's own findings.
 struct ModelFindings {
   Diagnostics list;
   std::vector<std::uint32_t> lines;  // per finding: the scene line it is listed at
-  std::vector<bool> dropped;
-  std::multimap<std::pair<std::uint32_t, std::string_view>, std::size_t> byLineCode;
 
   explicit ModelFindings(std::vector<SceneFinding> found) {
     std::stable_sort(found.begin(), found.end(), [](const SceneFinding& a, const SceneFinding& b) {
@@ -28,16 +29,11 @@ struct ModelFindings {
              std::tuple(b.sceneLine, !b.diagnostic.file.empty(), b.diagnostic.column);
     });
     for (SceneFinding& f : found) {
+      const CheckInfo* info = checkInfo(f.diagnostic.code);
+      if (f.diagnostic.file.empty() && info && info->layer == CheckLayer::Core) continue;
       lines.push_back(f.sceneLine);
       list.push_back(std::move(f.diagnostic));
     }
-    dropped.assign(list.size(), false);
-    for (std::size_t i = 0; i < list.size(); ++i)
-      if (list[i].file.empty()) byLineCode.emplace(std::pair{list[i].line, std::string_view(list[i].code)}, i);
-  }
-  void dropRepeatsOf(const Diagnostic& core) {
-    auto [from, to] = byLineCode.equal_range({core.line, std::string_view(core.code)});
-    for (auto it = from; it != to; ++it) dropped[it->second] = true;
   }
   // Where finding i sorts among core findings: its scene line, and its
   // column (after every column when it is in another file).
@@ -64,17 +60,6 @@ class HintSink : public DiagnosticSink {
   DiagnosticSink& next_;
 };
 
-// First pass when the model found something: which of its findings a core
-// finding repeats.  Keeps nothing.
-class MarkRepeats : public DiagnosticSink {
- public:
-  explicit MarkRepeats(ModelFindings& model) : model_(model) {}
-  void add(Diagnostic d) override { model_.dropRepeatsOf(d); }
-
- private:
-  ModelFindings& model_;
-};
-
 // Merges the model's findings into the stream of core findings by line and
 // column (ties keep core's first), as they pass: a model finding goes out
 // just before the first core finding that is not before it.
@@ -94,11 +79,7 @@ class MergeSink : public DiagnosticSink {
   static bool before(const Diagnostic& o, std::pair<std::uint32_t, std::uint32_t> d) {
     return o.line < d.first || (o.line == d.first && o.column <= d.second);
   }
-  // Skips dropped findings; whether one is left.
-  bool next_model() {
-    while (i_ < model_.list.size() && model_.dropped[i_]) ++i_;
-    return i_ < model_.list.size();
-  }
+  bool next_model() const { return i_ < model_.list.size(); }
   ModelFindings& model_;
   DiagnosticSink& next_;
   std::size_t i_ = 0;
@@ -135,16 +116,6 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   if (extra) extra(doc, scene, listed);
   ModelFindings model(std::move(listed));
 
-  // A model finding is dropped when any core finding repeats it, even one
-  // that streams past after it.  Knowing that takes a pass over core's
-  // findings before the one that reports: checking twice (only when the
-  // model found something) costs time, holding core's findings would cost
-  // memory without bound.
-  if (!model.list.empty()) {
-    MarkRepeats marks(model);
-    for (const Diagnostic& d : loaded.diagnostics) marks.add(d);
-    check(doc, options, marks);
-  }
   MergeSink merge(model, sink);
   for (Diagnostic& d : loaded.diagnostics) merge.add(std::move(d));
   loaded.diagnostics.clear();

@@ -196,7 +196,7 @@ TEST(Render, MissingMeshIsAnErrorUnlessAllowed) {
   EXPECT_FALSE(r.ok);
   ASSERT_FALSE(r.diags.empty());
   EXPECT_EQ(r.diags.back().severity, Severity::Error);
-  EXPECT_EQ(r.diags.back().message, "mesh file not found: /nonexistent/missing.obj");
+  EXPECT_EQ(r.diags.back().message, "mesh file '/nonexistent/missing.obj' does not exist");
   EXPECT_EQ(r.diags.back().line, 6u);  // header, environment, 2 materials, camera, object
   Result allowed = renderText(body, kPlainBlack, RenderOptions{200, 200, 4, false, true}, "", "/nonexistent");
   ASSERT_TRUE(allowed.ok);
