@@ -12,6 +12,7 @@ OUT=${RSCENE_DEMO_OUT:-$ROOT/out/demo}
 rm -rf "$OUT"
 mkdir -p "$OUT"
 cp "$ROOT"/examples/*.rscene "$OUT"/
+cp -R "$ROOT"/examples/robots "$OUT"/  # robot files the scenes name
 cd "$OUT"
 
 # step TOOL TITLE 'COMMAND' : runs the shell COMMAND (with $BIN first on

@@ -116,8 +116,8 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 @test "examples/robot_cell simulates: its wire to the articulated robot is skipped with a warning" {
   run -0 --separate-stderr "$SIM" --steps 2 "$ROOT/examples/robot_cell.rscene"
-  [[ "$stderr" == *"robot_cell.rscene:14:26: warning: wire '/World/Tether' is not simulated: bodyA 'articulated_anymal' is an articulated, which rscene-sim does not model [RS7011]"* ]]
-  grep -q '^wire /World/Tether stiff articulated_anymal compound_cart 2' <<<"$output"
+  [[ "$stderr" == *"robot_cell.rscene:14:26: warning: wire '/World/Tether' is not simulated: bodyA 'articulated_quadruped' is an articulated, which rscene-sim does not model [RS7011]"* ]]
+  grep -q '^wire /World/Tether stiff articulated_quadruped compound_cart 2' <<<"$output"
   # the README's batch recipe no longer halts on it
   if command -v parallel > /dev/null; then
     mkdir out

@@ -105,7 +105,7 @@ setup() {
 
 @test "a wire to an articulated system is a warning, and sim still runs" {
   run -0 --separate-stderr "$V" "$BATS_TEST_DIRNAME/../examples/robot_cell.rscene"
-  [[ "$output" == *"warning: wire '/World/Tether' is not simulated: bodyA 'articulated_anymal' is an articulated, which rscene-sim does not model [RS7011]"* ]]
+  [[ "$output" == *"warning: wire '/World/Tether' is not simulated: bodyA 'articulated_quadruped' is an articulated, which rscene-sim does not model [RS7011]"* ]]
 }
 
 @test "--format json: one document with findings, counts and truncated" {
@@ -303,4 +303,26 @@ repeated_time_steps() {
   echo "$output" > out.sarif
   run -0 jq -r '.runs[0].results | "\(length) \(.[0].ruleId) \(.[0].locations[0].physicalLocation.region.startLine)"' out.sarif
   [ "$output" = "3 RS3016 3" ]
+}
+
+@test "JSON and SARIF stream: a million findings without --max-issues in bounded memory" {
+  repeated_time_steps 1000000
+  # Written as found: ~560 B per finding held would need 560 MB here.
+  bash -c "ulimit -v 350000; timeout 120 '$V' --format json ts.rscene" > out.json 2> err.txt
+  run -0 jq -r '"\(.files[0].findings | length) \(.files[0].warnings) \(.counts.warnings) \(.truncated) \(.files[0].findings[999998].line)"' out.json
+  [ "$output" = "999999 999999 999999 false 1000001" ]
+  bash -c "ulimit -v 350000; timeout 120 '$V' --format sarif ts.rscene" > out.sarif 2> err.txt
+  run -0 jq -r '.runs[0].results | "\(length) \(.[999998].locations[0].physicalLocation.region.startLine)"' out.sarif
+  [ "$output" = "999999 1000001" ]
+}
+
+@test "JSON and SARIF: a file without findings and several files are valid documents" {
+  printf 'raisim_engine_scene 2\ntime_step 0.001\n' > clean.rscene
+  printf 'raisim_engine_scene 2\nx\n' > dirty.rscene
+  run -0 --separate-stderr "$V" --format json clean.rscene
+  jq -e '.files == [{"file": "clean.rscene", "findings": [], "errors": 0, "warnings": 0}] and .truncated == false' <<<"$output"
+  run -0 --separate-stderr "$V" --format json clean.rscene dirty.rscene clean.rscene
+  jq -e '(.files | length) == 3 and .files[1].findings[0].code == "RS3001" and .counts.warnings == 1' <<<"$output"
+  run -0 --separate-stderr "$V" --format sarif clean.rscene
+  jq -e '.runs[0].results == [] and .version == "2.1.0"' <<<"$output"
 }

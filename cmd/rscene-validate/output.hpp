@@ -30,9 +30,9 @@ class Reporter {
   virtual void file(const std::string& name, std::string_view text, const Diagnostics& shown,
                     const FileCounts& counts) = 0;
   // A reporter that streams is handed each finding to show as it is found,
-  // instead of in file()'s `shown` (then empty): the text output needs no
-  // memory per finding.  JSON and SARIF write counts before findings, so
-  // they gather the shown ones (at most --max-issues).
+  // instead of in file()'s `shown` (then empty): it needs no memory per
+  // finding.  All three formats stream (JSON writes a file's counts after
+  // its findings).
   virtual bool streams() const { return false; }
   virtual void finding(const std::string& /*name*/, std::string_view /*text*/, const Diagnostic& /*d*/) {}
   // Writes what is left; false when standard output failed.

@@ -1,3 +1,7 @@
+// --format json, written as findings come: memory does not grow with the
+// number of findings (10 million repeated records print in constant
+// space).  Within a file object the counts follow the findings; JSON
+// readers do not depend on key order.
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -6,36 +10,53 @@
 namespace rscene::validate {
 namespace {
 
+// Messages quote user text; a cut multi-byte character must not throw.
+std::string dump(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
+
 class JsonReporter : public Reporter {
  public:
-  void file(const std::string& name, std::string_view, const Diagnostics& shown, const FileCounts& counts) override {
-    nlohmann::json findings = nlohmann::json::array();
-    for (const Diagnostic& d : shown)
-      findings.push_back({{"code", d.code},
-                          {"severity", severityName(d.severity)},
-                          {"line", d.line},
-                          {"column", d.column},
-                          {"tag", d.tag},
-                          {"field", d.field},
-                          {"message", d.message},
-                          {"hint", d.hint}});
-    files_.push_back({{"file", name},
-                      {"errors", counts.errors},
-                      {"warnings", counts.warnings},
-                      {"findings", std::move(findings)}});
+  bool streams() const override { return true; }
+  void finding(const std::string& name, std::string_view, const Diagnostic& d) override {
+    if (!open_ || name != file_) openFile(name);
+    nlohmann::json f = {{"code", d.code},           {"severity", severityName(d.severity)},
+                        {"line", d.line},           {"column", d.column},
+                        {"tag", d.tag},             {"field", d.field},
+                        {"message", d.message},     {"hint", d.hint}};
+    if (!d.file.empty()) f["file"] = d.file;  // a finding inside a robot file
+    std::cout << (firstFinding_ ? "\n" : ",\n") << "        " << dump(f);
+    firstFinding_ = false;
+  }
+  void file(const std::string& name, std::string_view, const Diagnostics&, const FileCounts& counts) override {
+    if (!open_ || name != file_) openFile(name);
+    std::cout << (firstFinding_ ? "" : "\n      ") << "],\n      \"errors\": " << counts.errors
+              << ",\n      \"warnings\": " << counts.warnings << "\n    }";
+    open_ = false;
   }
   bool finish(const Totals& t) override {
-    nlohmann::json doc = {{"files", std::move(files_)},
-                          {"counts", {{"files", t.files}, {"errors", t.errors}, {"warnings", t.warnings}}},
-                          {"truncated", t.truncated()}};
-    // Messages quote user text; a cut multi-byte character must not throw.
-    std::cout << doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    start();
+    std::cout << (firstFile_ ? "]" : "\n  ]") << ",\n  \"counts\": "
+              << dump({{"files", t.files}, {"errors", t.errors}, {"warnings", t.warnings}})
+              << ",\n  \"truncated\": " << (t.truncated() ? "true" : "false") << "\n}\n";
     std::cout.flush();
     return static_cast<bool>(std::cout);
   }
 
  private:
-  nlohmann::json files_ = nlohmann::json::array();
+  void start() {
+    if (!started_) std::cout << "{\n  \"files\": [";
+    started_ = true;
+  }
+  void openFile(const std::string& name) {
+    start();
+    std::cout << (firstFile_ ? "\n" : ",\n") << "    {\n      \"file\": " << dump(name) << ",\n      \"findings\": [";
+    firstFile_ = false;
+    firstFinding_ = true;
+    open_ = true;
+    file_ = name;
+  }
+
+  bool started_ = false, firstFile_ = true, firstFinding_ = true, open_ = false;
+  std::string file_;
 };
 
 }  // namespace

@@ -22,7 +22,9 @@ class TextReporter : public Reporter {
       text_ = text;
       cursor_.emplace(text);
     }
-    std::cout << formatDiagnostic(d, name, (*cursor_)(d.line), color_);
+    // A finding inside another file (a robot's URDF) names that file.
+    std::cout << (d.file.empty() ? formatDiagnostic(d, name, (*cursor_)(d.line), color_)
+                                 : formatDiagnostic(d, d.file, {}, color_));
   }
   void file(const std::string&, std::string_view, const Diagnostics& shown, const FileCounts&) override {
     (void)shown;  // empty: findings were printed as they came

@@ -36,14 +36,24 @@ struct LoadOptions {
   std::size_t maxFileBytes = std::size_t{256} << 20;  // robot file size cap
 };
 
-// Reads `path` by its root element (<robot>: URDF, <mujoco>: MJCF).
-// Returns false after an error diagnostic; warnings do not fail.
+// Reads `path` by its root element (<robot>: URDF, <mujoco>: MJCF), then
+// scales it by options.scale.  Returns false after an error diagnostic;
+// warnings do not fail.  loadUrdf and loadMjcf read the file as written
+// (they do not scale).
 bool loadModel(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
 bool loadUrdf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
 bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics);
 
-// Multiplies every length of the model by `scale` (per axis, in each
-// element's frame), masses by the volume ratio, inertias to match.
+// Scales the model as if its every link frame were stretched by `scale`
+// (x, y, z of the link frame): origins of joints, inertials, visuals and
+// collisions scale per axis; shapes by how much each of their own axes
+// grows (a box rotated 90 degrees about z takes sx for its y side);
+// sphere radii by the cube root of sx*sy*sz, cylinder and capsule radii by
+// the geometric mean of their two cross axes.  Density is kept: masses
+// scale by sx*sy*sz and inertias as the same body stretched (exact for a
+// uniform scale, where inertia grows by s^5).  Prismatic limits scale with
+// the length of their axis; angles, damping and spring constants are
+// unchanged.
 void scaleModel(Model& model, const Eigen::Vector3d& scale);
 
 // One load per distinct (file, resource directory, modules, scale) in a run:

@@ -71,6 +71,12 @@ struct Link {
   int parentJoint = -1;          // index into Model::joints; -1 for the root
   std::vector<int> childJoints;  // in file order
   int line = 0;
+  // The file `line` (and the lines of the link's elements) are in when it
+  // is not Model::sourceFile: a URDF module.  Empty: Model::sourceFile.
+  std::string file;
+  // RaiSim's <link sensor="FILE">: the sensor set file as written (kept,
+  // not read: no tool uses sensor sets yet).
+  std::string sensorSet;
 };
 
 // Floating only ever joins the world to the root (an MJCF free joint, or a
@@ -84,7 +90,10 @@ struct Joint {
   Pose origin;  // child link frame in the parent link frame at q = 0
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit, in the joint (child) frame
   // Limits (revolute, prismatic): position [lower, upper] when hasLimits;
-  // effort and velocity 0 = none.
+  // effort and velocity 0 = none.  Spherical: hasLimits when the URDF's
+  // <limit> gives lower or upper, the numbers as written (RaiSim's
+  // chain/robot_short.urdf writes only lower="1"; RaiSim does not document
+  // what a ball joint's limit means).
   bool hasLimits = false;
   double lower = 0, upper = 0, effort = 0, velocity = 0;
   // <dynamics>: viscous damping (N m s/rad or N s/m), Coulomb friction,
@@ -94,6 +103,7 @@ struct Joint {
   // quaternion w x y z (spherical); empty = the zero position.
   std::vector<double> springMount;
   int line = 0;
+  std::string file;  // as Link::file: the module the joint is in, empty = Model::sourceFile
 
   int coordinateDim() const;  // entries in the generalized coordinate: 0, 1 or 4
   int velocityDim() const;    // entries in the generalized velocity: 0, 1 or 3

@@ -1,0 +1,116 @@
+// loadModel: one read of the robot file, dispatched by its root element;
+// scaleModel; ModelCache.
+#include <cmath>
+
+#include "robot/load.hpp"
+#include "robot/urdf_reader.hpp"
+#include "robot/xml_file.hpp"
+
+namespace rscene::robot {
+namespace {
+
+bool validScale(const Eigen::Vector3d& s) { return s.allFinite() && (s.array() > 0).all(); }
+
+// How much a unit length along each axis of a frame rotated by `r` (in the
+// link frame) grows when the link frame is scaled by `s`.
+Eigen::Vector3d axisFactors(const Eigen::Vector3d& s, const Eigen::Quaterniond& r) {
+  Eigen::Matrix3d m = s.asDiagonal() * r.toRotationMatrix();
+  return m.colwise().norm().transpose();
+}
+
+void scaleGeometry(Geometry& g, const Eigen::Vector3d& s, const Eigen::Quaterniond& r) {
+  Eigen::Vector3d f = axisFactors(s, r);
+  switch (g.kind) {
+    case GeometryKind::Box: g.size = g.size.cwiseProduct(f); break;
+    case GeometryKind::Sphere: g.radius *= std::cbrt(s.prod()); break;  // stays a sphere: same volume ratio
+    case GeometryKind::Cylinder:
+    case GeometryKind::Capsule:
+      g.length *= f.z();
+      g.radius *= std::sqrt(f.x() * f.y());
+      break;
+    case GeometryKind::Mesh: g.meshScale = g.meshScale.cwiseProduct(f); break;
+  }
+}
+
+// A body scaled by S keeps its density: mass grows by det S, and the second
+// moment of mass about the centre, Sigma = integral rho r r^T, becomes
+// det(A) A Sigma A^T with A = S written in the inertia frame.  The inertia
+// tensor is I = tr(Sigma) 1 - Sigma, so Sigma = tr(I)/2 1 - I.
+void scaleInertial(Inertial& in, const Eigen::Vector3d& s) {
+  double det = s.prod();
+  Eigen::Matrix3d r = in.origin.orientation.toRotationMatrix();
+  Eigen::Matrix3d a = r.transpose() * s.asDiagonal() * r;
+  Eigen::Matrix3d sigma = 0.5 * in.inertia.trace() * Eigen::Matrix3d::Identity() - in.inertia;
+  Eigen::Matrix3d scaled = det * a * sigma * a.transpose();
+  in.inertia = scaled.trace() * Eigen::Matrix3d::Identity() - scaled;
+  in.mass *= det;
+  in.origin.position = in.origin.position.cwiseProduct(s);
+}
+
+}  // namespace
+
+void scaleModel(Model& model, const Eigen::Vector3d& s) {
+  for (Link& link : model.links) {
+    scaleInertial(link.inertial, s);
+    for (Visual& v : link.visuals) {
+      v.origin.position = v.origin.position.cwiseProduct(s);
+      scaleGeometry(v.geometry, s, v.origin.orientation);
+    }
+    for (Collision& c : link.collisions) {
+      c.origin.position = c.origin.position.cwiseProduct(s);
+      scaleGeometry(c.geometry, s, c.origin.orientation);
+    }
+  }
+  for (Joint& j : model.joints) {
+    j.origin.position = j.origin.position.cwiseProduct(s);
+    if (j.type == JointType::Prismatic) {
+      // A slide's travel is a length along its axis (in the parent frame).
+      double f = (s.asDiagonal() * (j.origin.orientation * j.axis)).norm();
+      j.lower *= f;
+      j.upper *= f;
+      for (double& m : j.springMount) m *= f;
+    }
+  }
+}
+
+bool loadModel(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics) {
+  if (!validScale(options.scale)) {
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadFile, path, 0,
+                                          "robot scale must be three positive finite numbers"));
+    return false;
+  }
+  tinyxml2::XMLDocument doc;
+  if (!readXmlFile(path, options.maxFileBytes, doc, diagnostics)) return false;
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  std::string kind = root ? root->Name() : "";
+  Model model;
+  bool ok = false;
+  if (kind == "robot") {
+    ok = urdf::loadDocument(path, doc, options, model, diagnostics);
+  } else if (kind == "mujoco") {
+    doc.Clear();  // MuJoCo's compiler reads the file itself
+    ok = loadMjcf(path, options, model, diagnostics);
+  } else {
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadFile, path, root ? root->GetLineNum() : 0,
+                                          "robot file's root element is <" + kind +
+                                              ">, not <robot> (URDF) or <mujoco> (MJCF)"));
+  }
+  if (!ok) return false;
+  if (options.scale != Eigen::Vector3d::Ones()) scaleModel(model, options.scale);
+  out = std::move(model);
+  return true;
+}
+
+std::shared_ptr<const Model> ModelCache::get(const std::string& path, const LoadOptions& options,
+                                             Diagnostics& diagnostics) {
+  Key key{path, options.resourceDirectory, options.modules, options.scale.x(), options.scale.y(), options.scale.z()};
+  auto found = models_.find(key);
+  if (found != models_.end()) return found->second;
+  std::shared_ptr<const Model> model;
+  Model m;
+  if (loadModel(path, options, m, diagnostics)) model = std::make_shared<const Model>(std::move(m));
+  models_.emplace(std::move(key), model);  // a failed load is remembered too: reported once
+  return model;
+}
+
+}  // namespace rscene::robot
