@@ -105,10 +105,18 @@ class Solver {
     Eigen::VectorXd du;
     switch (settings_.method) {
       case IkMethod::DampedLeastSquares: {
+        // J^T (J J^T + l^2 I)^-1 e, or the same (J^T J + l^2 I)^-1 J^T e
+        // when there are fewer coordinates than rows: the smaller system.
         double l2 = settings_.damping * settings_.damping;
-        Eigen::MatrixXd A = J * J.transpose();
-        A.diagonal().array() += l2;
-        du = J.transpose() * A.ldlt().solve(e);
+        if (J.rows() <= J.cols()) {
+          Eigen::MatrixXd A = J * J.transpose();
+          A.diagonal().array() += l2;
+          du = J.transpose() * A.ldlt().solve(e);
+        } else {
+          Eigen::MatrixXd A = J.transpose() * J;
+          A.diagonal().array() += l2;
+          du = A.ldlt().solve(J.transpose() * e);
+        }
         break;
       }
       case IkMethod::PseudoInverse: {
@@ -233,7 +241,9 @@ void integrate(const Model& model, const Coordinates& c, Eigen::VectorXd& q, con
 IkResult solveTargets(const Model& model, const Coordinates& c, const Pose& base, const std::vector<IkTarget>& targets,
                       const IkSettings& settings, Eigen::VectorXd& q) {
   IkResult result;
-  if (targets.empty() || q.size() != c.coordinateDim) return result;
+  if (targets.empty() || targets.size() > kMaxIkTargets || q.size() != c.coordinateDim) return result;
+  for (const IkTarget& t : targets)
+    if (t.link < 0 || static_cast<std::size_t>(t.link) >= model.links.size()) return result;
   Solver solver(model, c, base, targets, settings);
   const int maxIterations = std::clamp(settings.maxIterations, 0, kMaxIkIterations);
   std::vector<Pose> poses;
@@ -317,6 +327,11 @@ bool solveIk(const Document& doc, RobotInstance& robot, Diagnostics& diags) {
     for (const auto& [field, message] : ikSettingsProblems(ik)) {
       r.error(field, code::kIkSettings, message);
       ok = false;
+    }
+    if (targets.size() == kMaxIkTargets) {
+      r.error("frame", code::kIkSettings,
+              "more than " + std::to_string(kMaxIkTargets) + " enabled IK targets on one articulated system");
+      return false;
     }
     IkTarget t;
     t.link = frameLink(model, ik.frame);

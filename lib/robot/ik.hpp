@@ -33,8 +33,11 @@ inline constexpr const char* kIkNotReached = "RS7047";   // IK target not reache
 inline constexpr const char* kIkSettings = "RS7048";     // articulated_ik knob that cannot be used
 }  // namespace code
 
-// Iterations are capped so a hostile maxIterations cannot hang a run.
+// Iterations are capped so a hostile maxIterations cannot hang a run, and
+// the enabled targets of one robot so the stacked Jacobian (6 rows each)
+// stays small whatever the scene holds (RS7048 past either).
 inline constexpr int kMaxIkIterations = 10000;
+inline constexpr std::size_t kMaxIkTargets = 1000;
 
 enum class IkMethod { DampedLeastSquares, PseudoInverse, Transpose };
 
