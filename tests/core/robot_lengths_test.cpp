@@ -34,3 +34,22 @@ TEST(RobotLengths, LengthsNoRobotHasAreReported) {
 }
 
 }  // namespace
+
+namespace {
+
+// --check-files: a robot's resourceDirectory is a directory, not a missing file.
+TEST(RobotFiles, ResourceDirectoryIsNoFileToFind) {
+  Document doc;
+  CheckOptions o;
+  o.checkFiles = true;
+  o.fileExists = [](const std::string& p) { return p.find("robot.urdf") != std::string::npos; };
+  Diagnostics ds = validateText("raisim_engine_scene 1\narticulated_resource r r robot.urdf resourceDirectory=robots\n"
+                                "articulated /World/r r 0 0 0 1 0 0 0 true true resourceDirectory=robots "
+                                "sourcePath=gone.urdf\n",
+                                o, doc);
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS5001");
+  EXPECT_EQ(ds[0].field, "sourcePath");
+}
+
+}  // namespace
