@@ -53,3 +53,26 @@ TEST(RobotFiles, ResourceDirectoryIsNoFileToFind) {
 }
 
 }  // namespace
+
+namespace {
+
+// articulated_ik's target is a vector in one positional token (csv3): its
+// numbers are checked like a vec3 key's.
+TEST(RobotFiles, IkTargetNumbersAreChecked) {
+  auto codes = [](const std::string& target) {
+    Document doc;
+    std::string out;
+    for (const Diagnostic& d : validateText("raisim_engine_scene 1\narticulated_resource r r r.urdf\n"
+                                            "articulated /World/r r 0 0 0 1 0 0 0 true true\n"
+                                            "articulated_ik /World/r foot " + target + "\n",
+                                            CheckOptions{}, doc))
+      out += d.code + " ";
+    return out;
+  };
+  EXPECT_EQ(codes("0.1,0.2,0.3"), "");
+  EXPECT_EQ(codes("nan,0,0"), "RS2002 ");
+  EXPECT_EQ(codes("0,x,0"), "RS2001 ");
+  EXPECT_EQ(codes("1,2"), "RS2008 ");
+}
+
+}  // namespace
