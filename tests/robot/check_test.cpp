@@ -72,6 +72,11 @@ TEST(RobotCheck, LengthsAgainstTheModel) {
   EXPECT_EQ(u.codes(), std::vector<std::string>{"RS7041"});
 }
 
+TEST(RobotCheck, AnEmptyListIsNoState) {
+  EXPECT_TRUE(Checked(kResource + walker(" generalizedVelocity=-", "-")).found.empty());
+  EXPECT_TRUE(Checked(kResource + walker(" generalizedVelocity=", "")).found.empty());
+}
+
 TEST(RobotCheck, JointOrderNamesWithDidYouMean) {
   Checked r(kResource + walker(" jointOrder=R_HIP;R_KNEE;L_HIP;L_KNE"));
   ASSERT_EQ(r.codes(), (std::vector<std::string>{"RS7042", "RS7042"}));  // unknown, and L_KNEE left out
