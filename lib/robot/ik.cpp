@@ -102,7 +102,8 @@ class Solver {
   }
 
   Eigen::VectorXd step(const Eigen::MatrixXd& J, const Eigen::VectorXd& e) const {
-    Eigen::VectorXd du;
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(J.cols());
+    if (J.size() == 0) return du;  // nothing moves (Eigen's SVD asserts on an empty matrix)
     switch (settings_.method) {
       case IkMethod::DampedLeastSquares: {
         // J^T (J J^T + l^2 I)^-1 e, or the same (J^T J + l^2 I)^-1 J^T e

@@ -187,6 +187,22 @@ TEST(Ik, SphericalJointReachesAPointOffThePlane) {
   EXPECT_NEAR(a.q.head<4>().norm(), 1.0, 1e-12);  // still a unit quaternion
 }
 
+// Nothing can move (fixed joints only, fixed base): every method gives up
+// at once with the residual, no empty-matrix arithmetic (an Eigen assertion
+// in builds with assertions, found by fuzzing).
+TEST_P(EachMethod, ARobotWithNothingToMoveReportsItsResidual) {
+  Model m;
+  m.name = "rigid";
+  m.floatingBase = false;
+  for (const char* n : {"base", "tip"}) m.links.emplace_back().name = n;
+  join(m, "weld", JointType::Fixed, 0, 1, {1, 0, 0});
+  Arm a(std::move(m));
+  ASSERT_EQ(a.c.velocityDim, 0);
+  IkResult r = solveTargets(a.model, a.c, Pose{}, {target(1, {2, 0, 0})}, settings(GetParam()), a.q);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NEAR(r.residuals[0].position, 1.0, 1e-12);
+}
+
 // The analytic Jacobian against finite differences of forward kinematics,
 // on a floating base with a spherical and a prismatic joint.
 TEST(Ik, AnalyticJacobianMatchesFiniteDifferences) {
