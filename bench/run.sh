@@ -8,7 +8,8 @@
 # of CPU time on the 128 MB scene, peak RSS <= 3x) are marked PASS or MISS.  Quote the ratio to
 # `cat` from the same run; absolute MB/s move with the machine's load.
 # At the end, when rscene-sim is built, bench/sim/run.sh compares it with
-# a hand-written Bullet program (several minutes; SIM_BENCH_* there).
+# a hand-written Bullet program (several minutes; SIM_BENCH_* there), and
+# bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2.
 #
 # Environment:
 #   BENCH_DIR     where the scenes go (default: a temporary directory, removed)
@@ -199,4 +200,7 @@ if [[ -x $BIN/rscene-sim && -x $BIN/rscene-sim-baseline && -x $BIN/rscene-sim-be
   bash "$(dirname "${BASH_SOURCE[0]}")/sim/run.sh" "$BIN" || status=1
 fi
 [[ -x $BIN/rscene-render ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/render/run.sh" "$BIN" || status=1; }
+# Robots against MuJoCo (issue 11); skips itself without ../shared or MuJoCo.
+echo
+bash "$(dirname "${BASH_SOURCE[0]}")/robot/run.sh" "$BIN" || status=1
 exit $status

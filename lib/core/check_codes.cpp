@@ -112,6 +112,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS7032", E, Robot, VSR, "robot model that is not a tree (no root, two roots, a joint to an unknown link, a cycle)"},
     {"RS7033", E, Robot, VSR, "module (a URDF fragment) not found in RaiSim's search order"},
     {"RS7034", E, Robot, VSR, "articulated record with no robot file to load"},
+    {"RS7036", E, Robot, VSR, "model from MJCF that the robot model cannot hold (a free joint below the top level or beside other joints, a second top-level body beside a floating base)"},
+    {"RS7037", W, Robot, VSR, "element of an MJCF file converted approximately (an ellipsoid geom as a sphere), or a warning of MuJoCo's compiler"},
     {"RS7040", E, Robot, VSR, "generalizedCoordinate length differs from the model's"},
     {"RS7041", E, Robot, VSR, "generalizedVelocity length differs from the model's"},
     {"RS7042", E, Robot, VSR, "jointOrder names an unknown, fixed or repeated joint, or leaves one out"},

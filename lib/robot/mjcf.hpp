@@ -1,0 +1,61 @@
+// MJCF specifics of robot loading (loadMjcf itself is declared in
+// load.hpp): the diagnostic codes only the MJCF reader raises, and the
+// conversion of a compiled MuJoCo model into the robot model, apart from
+// the loading so that tests can convert a model they compiled themselves.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "robot/model.hpp"
+
+struct mjModel_;
+
+namespace rscene::robot {
+
+namespace code {
+// MJCF the robot model cannot hold: a free joint below the top level or
+// beside other joints, a second top-level body beside a floating base.
+inline constexpr const char* kMjcfUnsupported = "RS7036";
+// MJCF element converted approximately (an ellipsoid geom as a sphere), or
+// a warning of MuJoCo's compiler.
+inline constexpr const char* kMjcfApproximated = "RS7037";
+}  // namespace code
+
+// Reads the compiled model `m` (compiled from `path`, named in
+// diagnostics) into `out`.  Returns false after an error diagnostic.
+//
+// The coordinates are MuJoCo's qpos: a joint's value in the robot model is
+// its qpos entry, including a joint's `ref` offset (the joint origin holds
+// the offset), so a qpos logged in MuJoCo is a generalizedCoordinate here.
+// `meshFiles` maps mesh names to their files (mjcfMeshFiles); a mesh geom
+// whose mesh has none is skipped with a warning.
+bool convertMjcf(const mjModel_& m, const std::string& path, const std::map<std::string, std::string>& meshFiles,
+                 Model& out, Diagnostics& diagnostics);
+
+// What an MJCF file names, read before MuJoCo reads it (mjcf_files.cpp).
+struct MjcfFiles {
+  struct Named {
+    std::string path;  // resolved as MuJoCo resolves it
+    std::string from;  // the XML file that names it
+    int line = 0;
+  };
+  std::vector<Named> files;                    // includes and asset files (mesh, texture, hfield, skin)
+  std::map<std::string, std::string> meshes;   // <asset><mesh file=> by mesh name
+  std::string compositeFile;                   // the first <composite>, if any
+  int compositeLine = 0;                       // 0: none
+  bool tooDeep = false;                        // includes past the scan's depth or count cap
+};
+
+// Scans the MJCF file `path` and its includes (tinyxml2).
+MjcfFiles scanMjcf(const std::string& path);
+
+// Where the vertices of mesh `file` lie in the frame of MuJoCo's compiled
+// copy of it (`count` float vertices x y z): compiled = frame * (scale *
+// file vertex).  False with the reason when they cannot be matched.  Calls
+// MuJoCo: the caller holds the MuJoCo lock (mjcf.cpp).
+bool mjcfMeshFrame(const std::string& file, const float* vertices, int count, Pose& frame, Eigen::Vector3d& scale,
+                   std::string& why);
+
+}  // namespace rscene::robot
