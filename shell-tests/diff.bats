@@ -246,3 +246,70 @@ EOF2
   [[ $output == "rscene-diff "* ]]
   run -2 "$DIFF" --no-such-flag "$OLD" "$NEW"
 }
+
+# Robots (issue 11): generalizedCoordinate entries named by joint.
+ROBOTS="$DATA/robots/check"
+
+walker() {  # $1: the knee value of the left leg; $2: the robot file
+  printf '%s\n' "raisim_engine_scene 1" "articulated_resource walker_res Walker ${2:-$ROBOTS/walker.urdf}" \
+    "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true id=walker generalizedCoordinate=0,0,0.5,1,0,0,0,0.3,$1,0.3,-0.6 generalizedVelocity=0,0,0,0,0,0,0,0,0,0"
+}
+
+@test "robots: generalizedCoordinate diffs name the joint when the model is readable; JSON too" {
+  walker -0.6 > a.rscene
+  walker -0.55 > b.rscene
+  run -1 "$DIFF" a.rscene b.rscene
+  [ "$output" = "~ articulated /World/W
+    generalizedCoordinate[L_KNEE]: -0.6 -> -0.55" ]
+  run -1 "$DIFF" --format json a.rscene b.rscene
+  echo "$output" > d.json
+  run -0 jq -r '.records[0].fields[0] | "\(.name) \(.old) \(.new)"' d.json
+  [ "$output" = "generalizedCoordinate[L_KNEE] -0.6 -0.55" ]
+  run -0 "$DIFF" --tolerance 0.1 a.rscene b.rscene
+}
+
+@test "robots: without a readable model the list changes as a whole" {
+  walker -0.6 nowhere.urdf > a.rscene
+  walker -0.55 nowhere.urdf > b.rscene
+  run -1 "$DIFF" a.rscene b.rscene
+  [ "${lines[1]}" = "    generalizedCoordinate: 0,0,0.5,1,0,0,0,0.3,-0.6,0.3,-0.6 -> 0,0,0.5,1,0,0,0,0.3,-0.55,0.3,-0.6" ]
+}
+
+@test "robots: a new jointOrder that reorders the numbers to match is no change in the coordinate" {
+  # Left leg 0.3,-0.6 and right leg 0.2,-0.5 on both sides, written in two orders.
+  order() {
+    printf '%s\n' "raisim_engine_scene 1" "articulated_resource walker_res Walker $ROBOTS/walker.urdf" \
+      "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true id=walker $1 generalizedCoordinate=0,0,0.5,1,0,0,0,$2"
+  }
+  order "" 0.3,-0.6,0.2,-0.5 > a.rscene
+  order "jointOrder=R_HIP;R_KNEE;L_HIP;L_KNEE" 0.2,-0.5,0.3,-0.6 > b.rscene
+  run -1 "$DIFF" a.rscene b.rscene
+  [ "$output" = "~ articulated /World/W
+    + jointOrder: R_HIP;R_KNEE;L_HIP;L_KNEE" ]
+}
+
+@test "robots: the ANYmal C's 19 coordinates keep the summary line, the changed entry named" {
+  [ -d "$ROOT/../shared/corpus/robots/anymal_c" ] || skip "no ../shared corpus"
+  anymal() {
+    printf '%s\n' "raisim_engine_scene 1" \
+      "articulated_resource anymal_res ANYmal $ROOT/../shared/corpus/robots/anymal_c/urdf/anymal.urdf" \
+      "articulated /World/Anymal anymal_res 0 0 0.54 1 0 0 0 true true generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,$1,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8"
+  }
+  anymal -0.8 > a.rscene
+  anymal -0.75 > b.rscene
+  run -1 "$DIFF" a.rscene b.rscene
+  [ "${lines[2]}" = "    generalizedCoordinate[LF_KFE]: -0.8 -> -0.75" ]
+}
+
+@test "robots: git's external diff names joints too (the old side is a temporary file)" {
+  git init -q repo && cd repo
+  git config user.email t@example.org && git config user.name t
+  cp "$ROBOTS/walker.urdf" .
+  walker -0.6 walker.urdf > s.rscene
+  git add . && git commit -qm one
+  walker -0.5 walker.urdf > s.rscene
+  echo '*.rscene diff=rscene' > .gitattributes
+  git config diff.rscene.command "$DIFF"
+  run -0 git diff
+  [[ "$output" == *"generalizedCoordinate[L_KNEE]: -0.6 -> -0.5"* ]]
+}

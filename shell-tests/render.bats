@@ -335,6 +335,8 @@ PY
     run -2 --separate-stderr "$RENDER" "$DATA/render_mesh.rscene" --reference base.png --threshold "$t" -o out.png
     [[ $stderr == *"--threshold: expected a fraction from 0 to 1 (e.g. 0.01), not '$t'"* ]]
   done
+}
+
 # A two-link arm fixed to the world: a red 0.6 m box at the base and a
 # green 0.4 m box 1 m up the arm, which turns about x.  $1 replaces the
 # green box's geometry.

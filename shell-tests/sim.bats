@@ -465,6 +465,8 @@ wire /World/W compliant object_box object_b2 1 stiffness=1e308|RS7027"
     [ "${sim%%: error*}" = "${v%%: error*}" ]
     [ "${sim##*[}" = "${v##*[}" ]
   done
+}
+
 # generalizedCoordinate entry N (0-based) of the articulated record at PATH
 # in scene text on stdin.
 qof() {
@@ -525,12 +527,12 @@ qof() {
   cmp a.jsonl b.jsonl
 }
 
-@test "robots: a wire's localIndexB past the robot's bodies is RS7050 at the wire" {
+@test "robots: a wire's localIndexB past the robot's bodies is RS7046 at the wire, as validate says" {
   sed 's|^wire /World/Tether stiff articulated_quadruped compound_cart 2.0|wire /World/Tether stiff compound_cart articulated_quadruped 2.0 localIndexB=13|' \
     "$ROOT/examples/robot_cell.rscene" > w.rscene
   sed -i "s|robots/quadruped|$ROOT/examples/robots/quadruped|g" w.rscene
   run -2 --separate-stderr "$SIM" --steps 1 w.rscene
-  [[ "$stderr" == *"w.rscene:14:"*": error: body '/World/Tether': localIndexB 13 is not a body of articulated system 'articulated_quadruped' (it has 13, 0 to 12) [RS7050]"* ]]
+  [[ "$stderr" == *"w.rscene:14:"*": error: body '/World/Tether': localIndexB 13 is not a body of articulated system 'articulated_quadruped' (it has 13, 0 to 12) [RS7046]"* ]]
 }
 
 @test "robots: a mesh collision is a convex hull; convexifyCollisionMeshes=false says so (RS7051)" {
@@ -556,4 +558,26 @@ URDF
   sed -i 's/ convexifyCollisionMeshes=false//' arm.rscene
   run -0 --separate-stderr "$SIM" --steps 10 arm.rscene
   [ -z "$stderr" ]
+}
+
+@test "robots: enabled articulated_ik targets are solved before stepping; --steps 0 writes the solved pose" {
+  mkdir -p cell && cp -r "$ROOT/examples/robots" cell/
+  grep -v '^wire\|^sensor' "$ROOT/examples/robot_cell.rscene" > cell/ik.rscene
+  echo 'articulated_ik /World/Robot LF_FOOT 0.35,0.25,0.05 enabled=true' >> cell/ik.rscene
+  run -0 --separate-stderr "$SIM" --steps 0 cell/ik.rscene
+  # The left front leg moved (its three joints, entries 7..9); the others did not.
+  [ "$(qof /World/Robot 7 <<<"$output")" != 0 ]
+  [ "$(qof /World/Robot 10 <<<"$output")" = 0 ]
+  [ "$(qof /World/Robot 11 <<<"$output")" = 0.6 ]
+  # Unreachable: a warning naming the residual, the best pose kept, exit 0.
+  sed 's/LF_FOOT 0.35,0.25,0.05/LF_FOOT 3,0,0/' cell/ik.rscene > cell/far.rscene
+  run -0 --separate-stderr "$SIM" --steps 0 -o /dev/null cell/far.rscene
+  [[ $stderr == *"far.rscene:13:"*": warning: IK target of frame 'LF_FOOT' not reached after 80 iterations: position residual "*" m (tolerance 0.001); the best pose found is used [RS7047]"* ]]
+  # A frame the robot lacks: an error with a suggestion, as validate gives it.
+  sed 's/LF_FOOT 0.35/LF_FOTO 0.35/' cell/ik.rscene > cell/bad.rscene
+  run -2 --separate-stderr "$SIM" --steps 0 -o /dev/null cell/bad.rscene
+  [[ $stderr == *"bad.rscene:13:29: error: frame 'LF_FOTO' is no joint or link of the model 'quadruped' [RS7044]"* ]]
+  [[ $stderr == *"did you mean 'LF_FOOT'?"* ]]
+  run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" cell/bad.rscene
+  [[ $output == *"bad.rscene:13:29: error: "*"[RS7044]"* ]]
 }

@@ -326,3 +326,104 @@ repeated_time_steps() {
   run -0 --separate-stderr "$V" --format sarif clean.rscene
   jq -e '.runs[0].results == [] and .version == "2.1.0"' <<<"$output"
 }
+
+# Robots (issue 11): records read against their URDF model.
+ROBOTS="$DATA/robots/check"
+
+walker_scene() {  # $1: extra records and keys, appended; URDF by absolute path
+  printf '%s\n' "raisim_engine_scene 1" \
+    "articulated_resource walker_res Walker $ROBOTS/walker.urdf" \
+    "object /World/Box box 1 0 0.5 1 0 0 0 0.2 0.2 0.2 0.5 1 1 default - false true false - dynamic true 1 18446744073709551615 id=box" \
+    "$@"
+}
+
+@test "robots: the walker fixture has no robot findings; its model is read with and without --check-files" {
+  run -0 "$V" "$ROBOTS/walker.rscene"
+  [[ "$output" != *RS704* ]]
+  run -0 "$V" --check-files "$ROBOTS/walker.rscene"
+  [[ "$output" != *RS70[34]* ]]
+}
+
+@test "robots: lengths, jointOrder, quaternions, IK frames and knobs, sensor links, wire bodies, with did-you-mean" {
+  walker_scene \
+    "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true id=walker jointOrder=R_HIP;R_KNEE;L_HIP;L_KNE generalizedCoordinate=0,0,0.5,2,0,0,0,0.3,-0.6,0.3,-0.6 generalizedVelocity=0,0,0" \
+    "articulated_ik /World/W L_FOTO 0,0,0 maxIterations=0" \
+    "sensor /World/W/Cam rgb walker 0 0 0 1 0 0 0 parentLink=L_THIG" \
+    "wire /World/Leash stiff walker box 1.5 localIndexA=5" > bad.rscene
+  run -1 --separate-stderr "$V" --only RS7041,RS7042,RS7043,RS7044,RS7045,RS7046,RS7048 bad.rscene
+  [[ "$output" == *"bad.rscene:4:"*": error: jointOrder names 'L_KNE', which is not a joint of the model [RS7042]"* ]]
+  [[ "$output" == *"hint: did you mean 'L_KNEE'?"* ]]
+  [[ "$output" == *"error: jointOrder leaves out movable joints: L_KNEE [RS7042]"* ]]
+  [[ "$output" == *"warning: quaternion at entries 3..6 has length 2.000000; it is normalised [RS7043]"* ]]
+  [[ "$output" == *"error: generalizedVelocity has 3 numbers; the model 'walker' has 10 [RS7041]"* ]]
+  [[ "$output" == *"bad.rscene:5:"*": error: maxIterations is 0; it must be 1 to 10000 [RS7048]"* ]]
+  [[ "$output" == *"bad.rscene:5:25: error: frame 'L_FOTO' is no joint or link of the model 'walker' [RS7044]"* ]]
+  [[ "$output" == *"hint: did you mean 'L_FOOT'?"* ]]
+  [[ "$output" == *"bad.rscene:6:"*": error: parentLink 'L_THIG' is no link of the model 'walker' of '/World/W' [RS7045]"* ]]
+  [[ "$output" == *"hint: did you mean 'L_THIGH'?"* ]]
+  [[ "$output" == *"bad.rscene:7:"*": error: localIndexA is 5; '/World/W' has bodies 0 to 4 [RS7046]"* ]]
+  [ "$stderr" = "7 errors, 1 warning in 1 file" ]
+}
+
+@test "robots: a coordinate of the wrong length is RS7040; the model's lengths make RS4007 quiet for spherical joints" {
+  walker_scene "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true generalizedCoordinate=0,0,0.5,1,0,0,0,0.3,-0.6" > short.rscene
+  run -1 "$V" short.rscene
+  [[ "$output" == *"error: generalizedCoordinate has 9 numbers; the model 'walker' has 11 (7 for the floating base, then the joints) [RS7040]"* ]]
+  # Two spherical joints, fixed base: 8 coordinates, 6 velocities.
+  printf '%s\n' "raisim_engine_scene 1" "articulated_resource c C chain.urdf" \
+    "articulated /World/C c 0 0 0 1 0 0 0 true true generalizedCoordinate=1,0,0,0,1,0,0,0 generalizedVelocity=0,0,0,0,0,0" > chain.rscene
+  run -0 "$V" chain.rscene
+  [[ "$output" != *RS4007* ]]
+}
+
+@test "robots: an unreadable model is --check-files' finding, naming the URDF and its line; text, JSON and SARIF" {
+  walker_scene "articulated /World/B walker_res 0 0 0 1 0 0 0 true true sourcePath=$ROBOTS/broken.urdf generalizedCoordinate=1,2,3" > broken.rscene
+  run -0 "$V" broken.rscene      # without --check-files: not a word, no model checks
+  [[ "$output" != *RS70[34]* ]]
+  run -1 "$V" --check-files broken.rscene
+  [[ "${lines[0]}" == "$ROBOTS/broken.urdf:"[0-9]*": error: "*"[RS7030]" ]]
+  run -1 "$V" --check-files --format json broken.rscene
+  echo "$output" > out.json
+  run -0 jq -r '.files[0].findings[] | select(.code == "RS7030") | "\(.file) \(.line > 0)"' out.json
+  [ "$output" = "$ROBOTS/broken.urdf true" ]
+  run -1 "$V" --check-files --format sarif broken.rscene
+  echo "$output" > out.sarif
+  run -0 jq -r '.runs[0].results[] | select(.ruleId == "RS7030") | .locations[0].physicalLocation.artifactLocation.uri' out.sarif
+  [ "$output" = "$ROBOTS/broken.urdf" ]
+}
+
+@test "robots: --check-files names a missing collision mesh inside the URDF (RS5001) and a missing visual one (RS7031)" {
+  printf '%s\n' "raisim_engine_scene 1" "articulated_resource m M $ROBOTS/missing_mesh.urdf" > mesh.rscene
+  run -1 "$V" --check-files mesh.rscene
+  [[ "$output" == *"$ROBOTS/missing_mesh.urdf:4:"*"error: collision mesh 'meshes/missing.stl' not found"*"[RS5001]"* ]]
+  [[ "$output" == *"$ROBOTS/missing_mesh.urdf:5:"*"warning: "*"[RS7031]"* ]]
+  run -0 "$V" mesh.rscene
+}
+
+@test "robots: the corpus ANYmal C in its standing pose, with its meshes, passes --check-files" {
+  [ -d "$CORPUS/robots/anymal_c" ] || skip "no ../shared corpus"
+  anymal() {
+    printf '%s\n' "raisim_engine_scene 1" \
+      "articulated_resource anymal_res ANYmal $CORPUS/robots/anymal_c/urdf/anymal.urdf" \
+      "articulated /World/Anymal anymal_res 0 0 0.54 1 0 0 0 true true generalizedCoordinate=$1" \
+      "articulated_ik /World/Anymal LF_FOOT 0.3,0.2,0 enabled=false" > anymal.rscene
+  }
+  anymal 0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8
+  run -0 "$V" --check-files --strict anymal.rscene
+  anymal 0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4
+  run -1 "$V" anymal.rscene
+  [[ "$output" == *"generalizedCoordinate has 18 numbers; the model 'anymal' has 19"*"[RS7040]"* ]]
+}
+
+@test "robots: the corpus chain (three spherical joints): 12 coordinates and 9 velocities pass" {
+  [ -d "$CORPUS/robots/chain" ] || skip "no ../shared corpus"
+  chain() {
+    printf '%s\n' "raisim_engine_scene 1" "articulated_resource c C $CORPUS/robots/chain/robot.urdf" \
+      "articulated /World/C c 0 0 0 1 0 0 0 true true generalizedCoordinate=1,0,0,0,1,0,0,0,1,0,0,0 generalizedVelocity=$1" > chain.rscene
+  }
+  chain 0,0,0,0,0,0,0,0,0
+  run -0 "$V" --check-files --strict chain.rscene
+  chain 0,0,0,0,0,0,0,0,0,0,0,0
+  run -1 "$V" chain.rscene
+  [[ "$output" == *"generalizedVelocity has 12 numbers; the model '2DrobotArm' has 9 [RS7041]"* ]]
+}

@@ -1,15 +1,18 @@
 // rscene-diff: semantic diff of two scenes; also git's external diff driver.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <functional>
 #include <iostream>
 #include <thread>
 
 #include "common/cli.hpp"
+#include "core/assets.hpp"
 #include "core/diff.hpp"
 #include "core/diff_lines.hpp"
 #include "core/loader.hpp"
 #include "core/report.hpp"
 #include "rscene-diff/render.hpp"
+#include "rscene-diff/robot_names.hpp"
 
 namespace {
 
@@ -159,6 +162,13 @@ int main(int argc, char** argv) {
         cli::error("--ignore: " + *problem);
         return trouble;
       }
+    // generalizedCoordinate[LF_KFE]: entries named by joint where the robot
+    // model is readable.  git's old side is a temporary file: its robot
+    // files resolve from the repository path (git runs this at the top).
+    diffout::RobotNames joints;
+    joints.addSide(a.loaded.document, directoryOf(git ? files[0] : a.in.path));
+    joints.addSide(b.loaded.document, directoryOf(git ? files[files.size() == 9 ? 7 : 0] : b.in.path));
+    opt.entryNames = std::ref(joints);
     DiffResult result = diff(a.loaded.document, b.loaded.document, opt);
     different = !result.same();
     if (format == "json") {

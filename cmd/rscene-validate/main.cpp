@@ -8,6 +8,7 @@
 
 #include "common/cli.hpp"
 #include "core/check.hpp"
+#include "robot/check.hpp"
 #include "scene/validate.hpp"
 #include "rscene-validate/output.hpp"
 
@@ -92,7 +93,14 @@ struct Run {
     co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
     Document doc;
     Keep keep(*this, in.display, doc);
-    validateScene(std::move(in.text), co, doc, keep);
+    // Robots are checked against their models (lib/robot, above lib/scene):
+    // one model cache per scene, so each scene reports its robots' files.
+    robot::ModelCache models;
+    robot::RobotCheckOptions ro{co.checkFiles, co.fileExists};
+    validateScene(std::move(in.text), co, doc, keep,
+                  [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
+                    robot::checkRobots(d, s, ro, models, out);
+                  });
     totals.errors += keep.counts.errors;
     totals.warnings += keep.counts.warnings;
     ++totals.files;

@@ -95,7 +95,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7007", E, Sim, "sim", "mesh file that cannot be read or has no triangles"},
     {"RS7008", E, Scene, VSR, "time_step not positive"},
     {"RS7009", E, Scene, VSR, "compound child that is a plane (ground or half_space)"},
-    {"RS7010", W, Sim, "sim", "records kept but not simulated (deformable, granular, sensor, articulated_ik)"},
+    {"RS7010", W, Sim, "sim", "records kept but not simulated (deformable, granular, sensor)"},
     {"RS7011", W, Scene, VSR, "wire to a node the simulator does not model, skipped"},
     {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
     {"RS7020", E, Scene, VSR, "dynamic mass below the smallest normal double or above 1e15 kg (Bullet would take it for immovable)"},
@@ -120,8 +120,12 @@ constexpr CheckInfo kChecks[] = {
     {"RS7041", E, Robot, VSR, "generalizedVelocity length differs from the model's"},
     {"RS7042", E, Robot, VSR, "jointOrder names an unknown, fixed or repeated joint, or leaves one out"},
     {"RS7043", W, Robot, VSR, "quaternion in generalizedCoordinate not of unit length (normalised), or zero (error)"},
+    {"RS7044", E, Robot, "validate sim", "articulated_ik frame that is no joint or link of the robot (a warning when the target is disabled)"},
+    {"RS7045", E, Robot, V, "sensor parentLink that is no link of the articulated system its parentObject names"},
+    {"RS7046", E, Robot, "validate sim", "wire localIndexA/B past the body count of the articulated system it names (movable bodies, base included)"},
+    {"RS7047", W, Robot, "sim", "articulated_ik target not reached within its tolerances (the message names the residual)"},
+    {"RS7048", E, Robot, "validate sim", "articulated_ik setting that cannot be used (iterations, tolerances, gains, unknown inverseMethod)"},
     // RS705x simulating robots (lib/sim)
-    {"RS7050", E, Sim, "sim", "wire localIndexA/B that is not a body of its articulated system"},
     {"RS7051", W, Sim, "sim", "convexifyCollisionMeshes=false: robot mesh collisions are simulated as convex hulls all the same"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},

@@ -7,10 +7,12 @@
 namespace rscene::checks {
 
 void checkFiles(Context& ctx, const Record& r) {
-  // asset_root names a directory, and output paths are written, not read.
+  // asset_root and a robot's resourceDirectory name directories (lib/robot
+  // reads what is in them: --check-files reads the robot), and output paths
+  // are written, not read.
   if (r.kind->tag == "asset_root") return;
   forEachValue(ctx, r, [&](const FieldDef& def, const Field& f) {
-    if (def.type != ValueType::Path || def.name.rfind("output", 0) == 0) return;
+    if (def.type != ValueType::Path || def.name.rfind("output", 0) == 0 || def.name == "resourceDirectory") return;
     std::string path = percentDecode(ctx.doc.text(f.value));
     if (path.empty()) return;
     std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.index.assetRoot, path, ctx.opt.fileExists);

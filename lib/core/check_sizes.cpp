@@ -99,10 +99,14 @@ void articulated(Context& ctx, const Record& r) {
   FieldRef gc = ctx.get(r, "generalizedCoordinate"), gv = ctx.get(r, "generalizedVelocity");
   if (!gc || !gv) return;
   std::size_t q = itemCount(ctx.doc.text(gc.first->value)), u = itemCount(ctx.doc.text(gv.first->value));
-  if (q == 0 || u == 0 || q == u || q == u + 1) return;
+  // Each quaternion (the floating base's, a spherical joint's) is one
+  // coordinate more than its velocities (6 and 3 of them): q = u + k with
+  // 3k <= u.  The robot model gives the exact lengths (RS7040, RS7041).
+  if (q == 0 || u == 0 || (q >= u && 3 * (q - u) <= u)) return;
   ctx.report("RS4007", r, gv.first->value, "generalizedVelocity",
              "generalizedVelocity has " + std::to_string(u) + " values for " + std::to_string(q) + " coordinates",
-             "a floating base has one more coordinate than velocities (its quaternion); a fixed base as many");
+             "each quaternion (a floating base, a spherical joint) is one coordinate more than its velocities; "
+             "no robot has these lengths");
 }
 
 // Sizes that are lengths by their meaning; negative values draw and

@@ -49,7 +49,9 @@ class TypeChecker {
     for (std::size_t t = 0; t < layout.tokens.size();) {
       const FieldDef& def = layout.fields[static_cast<std::size_t>(layout.tokens[t].first)];
       const Field* f = r_.interleaved ? doc_.positional(r_, static_cast<std::uint32_t>(t)) : &doc_.field(r_, static_cast<std::uint32_t>(t));
-      if (def.width == 1) {
+      if (def.width == 1 && componentCount(def.type) > 0) {
+        vectorKey(def, f->value, doc_.text(f->value));  // csv3: a vector in one token (articulated_ik target)
+      } else if (def.width == 1) {
         scalar(def, f->value, doc_.text(f->value));
       } else {
         double q[4] = {0, 0, 0, 0};

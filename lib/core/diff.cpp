@@ -210,8 +210,11 @@ class Differ {
     for (DiffValue& b : vb) {
       if (skip(b)) continue;
       std::size_t before = d.fields.size();
-      if (DiffValue* a = lookup(va, b)) values_.compare(*a, b, d.fields);
-      else add(b, false);
+      if (DiffValue* a = lookup(va, b)) {
+        if (!compareNamed(ra, rb, *a, b, d.fields)) values_.compare(*a, b, d.fields);
+      } else {
+        add(b, false);
+      }
       if (keyForm(b))
         for (std::size_t i = before; i < d.fields.size(); ++i) d.fields[i].keyForm = true;
     }
@@ -221,6 +224,16 @@ class Differ {
       if (keyForm(a))
         for (std::size_t i = before; i < d.fields.size(); ++i) d.fields[i].keyForm = true;
     }
+  }
+
+  // A number list whose entries the caller names (DiffOptions::entryNames).
+  bool compareNamed(const Record& ra, const Record& rb, const DiffValue& a, const DiffValue& b,
+                    std::vector<FieldDiff>& out) const {
+    if (!opt_.entryNames || b.positional || b.type != ValueType::NumberList) return false;
+    std::vector<std::string> na = opt_.entryNames(a_, static_cast<std::size_t>(&ra - a_.records.data()), b.name);
+    if (na.empty()) return false;
+    std::vector<std::string> nb = opt_.entryNames(b_, static_cast<std::size_t>(&rb - b_.records.data()), b.name);
+    return !nb.empty() && values_.compareNamed(a, b, na, nb, out);
   }
 
   const Document& a_;

@@ -5,6 +5,7 @@
 // changed entries.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,15 @@ struct DiffOptions {
   std::vector<std::string> ignore;  // field names, or tag.field
   std::size_t summarizeAbove = 16;  // lists with more values are summarised
   std::size_t listEntries = 10;     // changed entries of a summarised list named one by one
+  // Names of the entries of a number list that a layer above lib/core
+  // understands: rscene-diff names generalizedCoordinate's and
+  // generalizedVelocity's entries by joint from the robot model (lib/robot).
+  // Called with a side's document, the record's index and the field; empty
+  // when the entries have no names.  When both sides name every entry of
+  // their list, the list is compared by name (a reordered jointOrder is no
+  // change) and a changed entry shows as `field[NAME]`; otherwise by index.
+  std::function<std::vector<std::string>(const Document&, std::size_t record, std::string_view field)> entryNames =
+      nullptr;
 };
 
 enum class Change { Added, Removed, Changed };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "core/text.hpp"
 
@@ -314,6 +315,75 @@ void ValueComparer::compareList(const DiffValue& a, const DiffValue& b, std::vec
     out.push_back(std::move(f));
   }
   out[at].listedCount = listed;
+}
+
+bool ValueComparer::compareNamed(const DiffValue& a, const DiffValue& b, const std::vector<std::string>& namesA,
+                                 const std::vector<std::string>& namesB, std::vector<FieldDiff>& out) const {
+  if (!isList(a) || !isList(b) || b.type != ValueType::NumberList) return false;
+  std::string sa, sb;
+  Entries la, lb;
+  split(decoded(a.tokens[0], sa), b.type, la);
+  split(decoded(b.tokens[0], sb), b.type, lb);
+  if (la.size() != namesA.size() || lb.size() != namesB.size()) return false;
+  std::unordered_map<std::string_view, std::size_t> inA;
+  for (std::size_t i = 0; i < namesA.size(); ++i)
+    if (!inA.emplace(namesA[i], i).second) return false;  // names that do not identify entries
+  std::unordered_map<std::string_view, std::size_t> inB;
+  for (std::size_t j = 0; j < namesB.size(); ++j)
+    if (!inB.emplace(namesB[j], j).second) return false;
+
+  std::vector<FieldDiff> entries;
+  std::size_t changed = 0;
+  double maxDelta = 0;
+  auto entry = [&](const std::string& name, Change c, std::string oldText, std::string newText) {
+    FieldDiff f;
+    f.name = std::string(b.name) + "[" + name + "]";
+    f.type = ValueType::Number;
+    f.change = c;
+    f.oldValue = std::move(oldText);
+    f.newValue = std::move(newText);
+    entries.push_back(std::move(f));
+  };
+  std::vector<char> matched(namesA.size(), 0);
+  for (std::size_t j = 0; j < namesB.size(); ++j) {
+    auto it = inA.find(namesB[j]);
+    if (it == inA.end()) {
+      entry(namesB[j], Change::Added, {}, joinItems(lb, j, 0, 1, false, newVersion_));
+      continue;
+    }
+    matched[it->second] = 1;
+    std::string_view x = la.item(it->second, 0), y = lb.item(j, 0);
+    if (x == y) continue;
+    auto px = parseNumber(x), py = parseNumber(y);
+    if (px && py) {
+      maxDelta = std::max(maxDelta, std::fabs(*px - *py));
+      if (closeEnough(*px, *py)) continue;
+    }
+    ++changed;
+    entry(namesB[j], Change::Changed, joinItems(la, it->second, 0, 1, false, oldVersion_),
+          joinItems(lb, j, 0, 1, false, newVersion_));
+  }
+  for (std::size_t i = 0; i < namesA.size(); ++i)
+    if (!matched[i]) entry(namesA[i], Change::Removed, joinItems(la, i, 0, 1, false, oldVersion_), {});
+  if (entries.empty()) return true;
+
+  // A long list keeps its summary line, with the first listEntries below it.
+  if (std::max(la.items.size(), lb.items.size()) > opt_.summarizeAbove) {
+    FieldDiff summary;
+    summary.name = b.name;
+    summary.type = b.type;
+    summary.summarized = true;
+    summary.oldCount = la.size();
+    summary.newCount = lb.size();
+    summary.changedCount = changed;
+    summary.maxDelta = maxDelta;
+    if (entries.size() > opt_.listEntries) entries.resize(opt_.listEntries);
+    summary.listedCount = entries.size();
+    for (FieldDiff& f : entries) f.entry = true;
+    out.push_back(std::move(summary));
+  }
+  for (FieldDiff& f : entries) out.push_back(std::move(f));
+  return true;
 }
 
 std::string ValueComparer::display(const DiffValue& v, int version) {

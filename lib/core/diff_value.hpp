@@ -34,6 +34,13 @@ class ValueComparer {
   // summary followed by its changed entries.
   void compare(const DiffValue& a, const DiffValue& b, std::vector<FieldDiff>& out) const;
 
+  // A number list whose entries have names on both sides (`namesA` for a,
+  // `namesB` for b): compared by name, a changed entry shown as
+  // `field[NAME]`.  False, with nothing appended, when a side's list does
+  // not have one entry per name (then compare() by index is the answer).
+  bool compareNamed(const DiffValue& a, const DiffValue& b, const std::vector<std::string>& namesA,
+                    const std::vector<std::string>& namesB, std::vector<FieldDiff>& out) const;
+
   // Canonical text of a value, written for a file of `version`.
   static std::string display(const DiffValue& v, int version);
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/suggest.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::robot {
@@ -25,8 +26,17 @@ std::vector<int> quaternionStarts(const Model& model, const Coordinates& c) {
   return at;
 }
 
-void reportJointOrder(const Document& doc, const Articulated& a, const std::vector<JointOrderProblem>& problems,
-                      Diagnostics& diags) {
+// "did you mean" among the model's movable joints.
+std::string jointHint(const Model& model, const std::string& name) {
+  std::vector<std::string_view> movable;
+  for (const Joint& j : model.joints)
+    if (j.type != JointType::Fixed) movable.push_back(j.name);
+  std::string best = closestName(name, movable);
+  return best.empty() ? std::string() : "did you mean '" + best + "'?";
+}
+
+void reportJointOrder(const Document& doc, const Articulated& a, const Model& model,
+                      const std::vector<JointOrderProblem>& problems, Diagnostics& diags) {
   // The record that wrote jointOrder: the articulated record, else its resource.
   RecordReader own(doc, static_cast<std::size_t>(a.recordIndex), diags);
   bool here = own.has("jointOrder") || a.resourceRecord < 0;
@@ -35,7 +45,8 @@ void reportJointOrder(const Document& doc, const Articulated& a, const std::vect
   for (const JointOrderProblem& p : problems) {
     switch (p.kind) {
       case JointOrderProblem::Unknown:
-        r.error("jointOrder", code::kJointOrder, "jointOrder names '" + p.name + "', which is not a joint of the model");
+        r.error("jointOrder", code::kJointOrder, "jointOrder names '" + p.name + "', which is not a joint of the model",
+                jointHint(model, p.name));
         break;
       case JointOrderProblem::Fixed:
         r.error("jointOrder", code::kJointOrder,
@@ -83,7 +94,7 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
   bool ok = true;
   std::vector<JointOrderProblem> problems = makeCoordinates(model, a.jointOrder, out.coordinates);
   if (!problems.empty()) {
-    reportJointOrder(doc, a, problems, diags);
+    reportJointOrder(doc, a, model, problems, diags);
     ok = false;
   }
   const Coordinates& c = out.coordinates;

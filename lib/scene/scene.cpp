@@ -751,8 +751,11 @@ class Builder {
     a.collidable = r.flag("collidable");
     a.collisionGroup = r.group("collisionGroup");
     a.collisionMask = r.group("collisionMask");
-    a.hasCoordinate = r.has("generalizedCoordinate") && r.numbers("generalizedCoordinate", a.generalizedCoordinate);
-    a.hasVelocity = r.has("generalizedVelocity") && r.numbers("generalizedVelocity", a.generalizedVelocity);
+    // An empty list (`-` or nothing after `=`) gives no state, like no key.
+    a.hasCoordinate = r.has("generalizedCoordinate") && r.numbers("generalizedCoordinate", a.generalizedCoordinate) &&
+                      !a.generalizedCoordinate.empty();
+    a.hasVelocity = r.has("generalizedVelocity") && r.numbers("generalizedVelocity", a.generalizedVelocity) &&
+                    !a.generalizedVelocity.empty();
     a.semanticClass = r.str("semanticClass");
     parentOf_[idx] = a.parentId;
     s_.articulated.push_back(std::move(a));

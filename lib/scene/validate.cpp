@@ -11,23 +11,34 @@
 namespace rscene {
 namespace {
 
-// The scene model's findings, sorted by line and column.  A finding with a
-// code of lib/core's layer (a value that does not parse, a reference to no
-// node, a missing file ...) is left out: lib/core's validator checks that
-// condition itself and reports it at the same field, so keeping the
-// model's copy would double it.  (This replaces a second pass of core's
-// checks that used to find the repeats.)
+// The scene model's findings, sorted by the scene line they are listed at
+// and column.  A finding with a code of lib/core's layer (a value that does
+// not parse, a reference to no node, a missing file ...) is left out:
+// lib/core's validator checks that condition itself and reports it at the
+// same field, so keeping the model's copy would double it.  (This replaces
+// a second pass of core's checks that used to find the repeats.)  A finding
+// inside another file (a robot's URDF: its RS5001 for a mesh is no core
+// finding) is kept, listed after its scene record's own findings.
 struct ModelFindings {
   Diagnostics list;
+  std::vector<std::uint32_t> lines;  // per finding: the scene line it is listed at
 
-  explicit ModelFindings(Diagnostics ds) {
-    for (Diagnostic& d : ds) {
-      const CheckInfo* info = checkInfo(d.code);
-      if (!info || info->layer != CheckLayer::Core) list.push_back(std::move(d));
-    }
-    std::stable_sort(list.begin(), list.end(), [](const Diagnostic& a, const Diagnostic& b) {
-      return std::tie(a.line, a.column) < std::tie(b.line, b.column);
+  explicit ModelFindings(std::vector<SceneFinding> found) {
+    std::stable_sort(found.begin(), found.end(), [](const SceneFinding& a, const SceneFinding& b) {
+      return std::tuple(a.sceneLine, !a.diagnostic.file.empty(), a.diagnostic.column) <
+             std::tuple(b.sceneLine, !b.diagnostic.file.empty(), b.diagnostic.column);
     });
+    for (SceneFinding& f : found) {
+      const CheckInfo* info = checkInfo(f.diagnostic.code);
+      if (f.diagnostic.file.empty() && info && info->layer == CheckLayer::Core) continue;
+      lines.push_back(f.sceneLine);
+      list.push_back(std::move(f.diagnostic));
+    }
+  }
+  // Where finding i sorts among core findings: its scene line, and its
+  // column (after every column when it is in another file).
+  std::pair<std::uint32_t, std::uint32_t> place(std::size_t i) const {
+    return {lines[i], list[i].file.empty() ? list[i].column : UINT32_MAX};
   }
 };
 
@@ -56,7 +67,7 @@ class MergeSink : public DiagnosticSink {
  public:
   MergeSink(ModelFindings& model, DiagnosticSink& next) : model_(model), next_(next) {}
   void add(Diagnostic o) override {
-    while (next_model() && !before(o, model_.list[i_])) next_.add(std::move(model_.list[i_++]));
+    while (next_model() && !before(o, model_.place(i_))) next_.add(std::move(model_.list[i_++]));
     next_.add(std::move(o));
   }
   // Sends the model's findings after the last core finding.
@@ -65,8 +76,8 @@ class MergeSink : public DiagnosticSink {
   }
 
  private:
-  static bool before(const Diagnostic& o, const Diagnostic& d) {
-    return o.line < d.line || (o.line == d.line && o.column <= d.column);
+  static bool before(const Diagnostic& o, std::pair<std::uint32_t, std::uint32_t> d) {
+    return o.line < d.first || (o.line == d.first && o.column <= d.second);
   }
   bool next_model() const { return i_ < model_.list.size(); }
   ModelFindings& model_;
@@ -76,7 +87,8 @@ class MergeSink : public DiagnosticSink {
 
 }  // namespace
 
-void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink) {
+void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
+                   const ExtraSceneCheck& extra) {
   LoadResult loaded = parse(std::move(text));
   doc = std::move(loaded.document);
   if (!loaded.ok()) {
@@ -98,7 +110,11 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   sc.exists = options.fileExists;
   checkScene(doc, scene, sc, found);
   hintContinuations(loaded.continuedLines, found);
-  ModelFindings model(std::move(found));
+  std::vector<SceneFinding> listed;
+  listed.reserve(found.size());
+  for (Diagnostic& d : found) listed.push_back({d.line, std::move(d)});
+  if (extra) extra(doc, scene, listed);
+  ModelFindings model(std::move(listed));
 
   MergeSink merge(model, sink);
   for (Diagnostic& d : loaded.diagnostics) merge.add(std::move(d));

@@ -3,13 +3,31 @@
 // (scene/check.hpp), i.e. everything rscene-sim and rscene-render refuse.
 // It lives here because lib/core cannot see the scene model.
 #pragma once
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "core/check.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 
 namespace rscene {
+
+struct Scene;
+
+// A finding of a check a layer above lib/scene adds (rscene-validate
+// composes lib/robot's robot checks this way: lib/scene cannot see
+// lib/robot), with the scene line it is listed at: its own line, or, for a
+// finding inside another file (Diagnostic::file: a robot's URDF), the line
+// of the scene record that named that file.
+struct SceneFinding {
+  std::uint32_t sceneLine = 0;
+  Diagnostic diagnostic;
+};
+// Runs after the scene model's checks, on the same scene model (built with
+// SceneOptions::bodiesOnly, which includes the articulated records).
+using ExtraSceneCheck = std::function<void(const Document&, const Scene&, std::vector<SceneFinding>&)>;
 
 // Loads `text` and checks it.  The loader's errors stop the check, as in
 // validateText().  Scene-model findings are merged in by line, and one that
@@ -19,6 +37,8 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
 // The same findings in the same order, handed to `sink` one at a time: the
 // core's are not held, so a caller that keeps few holds little.  `doc`
 // holds the text from the first call of the sink on, for source lines.
-void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink);
+// `extra`'s findings merge with the scene model's.
+void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
+                   const ExtraSceneCheck& extra = {});
 
 }  // namespace rscene

@@ -26,12 +26,6 @@ std::optional<Diagnostic> unsupportedWarning(const Scene& scene) {
     for (const SkippedRecord& t : scene.skipped) n += t.tag == s.tag;
     list += (list.empty() ? "" : ", ") + s.tag + " (" + std::to_string(n) + ")";
   }
-  // Robots are simulated; their IK targets are not solved (yet): the
-  // joints start where generalizedCoordinate puts them.
-  std::size_t targets = 0;
-  for (const Articulated& a : scene.articulated)
-    for (const ArticulatedIk& k : a.ik) targets += k.enabled;
-  if (targets) list += (list.empty() ? "" : ", ") + std::string("articulated_ik (") + std::to_string(targets) + ")";
   if (list.empty()) return std::nullopt;
   Diagnostic d;
   d.severity = Severity::Warning;

@@ -1,5 +1,7 @@
 // The articulated records of a scene read against their models, once per
-// run (robot::makeInstance through one robot::ModelCache).
+// run (robot::makeInstance through one robot::ModelCache), with their
+// enabled articulated_ik targets solved before the first step.
+#include "robot/ik.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {
@@ -10,8 +12,15 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
   robots.clear();
   robots.resize(scene.articulated.size());
   bool ok = true;
-  for (std::size_t i = 0; i < scene.articulated.size(); ++i)
-    ok = robot::makeInstance(doc, scene.articulated[i], cache, robots[i], diagnostics) && ok;
+  for (std::size_t i = 0; i < scene.articulated.size(); ++i) {
+    if (!robot::makeInstance(doc, scene.articulated[i], cache, robots[i], diagnostics)) {
+      ok = false;
+      continue;
+    }
+    // The joints start where the targets put them (a target not reached is
+    // a warning, RS7047); --steps 0 writes that pose back.
+    ok = robot::solveIk(doc, robots[i], diagnostics) && ok;
+  }
   return ok;
 }
 

@@ -48,7 +48,7 @@ namespace rscene::sim {
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
-inline constexpr const char* kWireLocalIndex = "RS7050";  // a wire's localIndex is not a body of its articulated system
+inline constexpr const char* kWireLocalIndex = "RS7046";  // a wire's localIndex is not a body of its articulated system (validate's code)
 inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
 

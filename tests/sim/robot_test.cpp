@@ -503,7 +503,7 @@ TEST(RobotSim, WireToABodyTheRobotDoesNotHaveIsAnError) {
   wo.document = &loaded.document;
   EXPECT_FALSE(World::create(r->scene, r->diags, wo));
   ASSERT_FALSE(r->diags.empty());
-  EXPECT_EQ(r->diags.back().code, "RS7050");
+  EXPECT_EQ(r->diags.back().code, "RS7046");  // validate's code for it
   EXPECT_EQ(r->diags.back().line, 3u);
   EXPECT_NE(r->diags.back().message.find("localIndexB 3 is not a body of articulated system '/World/R0' (it has 1, 0 to 0)"),
             std::string::npos)

@@ -1,0 +1,189 @@
+#include "robot/check.hpp"
+
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "core/suggest.hpp"
+#include "robot/ik.hpp"
+#include "robot/instance.hpp"
+#include "scene/reader.hpp"
+
+namespace rscene::robot {
+namespace {
+
+// A robot whose model was read, by its articulated record.
+struct Checked {
+  const Articulated* record = nullptr;
+  std::shared_ptr<const Model> model;
+  Coordinates coordinates;
+};
+
+class RobotChecker {
+ public:
+  RobotChecker(const Document& doc, const Scene& scene, const RobotCheckOptions& options, ModelCache& cache,
+               std::vector<SceneFinding>& out)
+      : doc_(doc), scene_(scene), options_(options), cache_(cache), out_(out) {}
+
+  void run() {
+    for (const Articulated& a : scene_.articulated) {
+      byName_[a.id] = &a;  // the last of a name, as everywhere in the scene model
+      byName_[a.path] = &a;
+      used_.insert(a.resource);
+    }
+    for (const Articulated& a : scene_.articulated) articulated(a);
+    if (options_.checkFiles) unusedResources();
+    sensors();
+    wires();
+  }
+
+ private:
+  std::uint32_t lineOf(int recordIndex) const {
+    return recordIndex >= 0 ? doc_.records[static_cast<std::size_t>(recordIndex)].line : 0;
+  }
+
+  // Findings in the scene are listed at their line; findings in a robot
+  // file at `anchor`, the record that named the file.
+  void take(Diagnostics& found, std::uint32_t anchor) {
+    for (Diagnostic& d : found) out_.push_back({d.file.empty() ? d.line : anchor, std::move(d)});
+    found.clear();
+  }
+
+  void articulated(const Articulated& a) {
+    Diagnostics found;
+    std::size_t enabled = 0;
+    for (const ArticulatedIk& ik : a.ik) {
+      if (!ik.enabled) continue;  // knobs of a target nobody solves are not used
+      RecordReader r(doc_, static_cast<std::size_t>(ik.recordIndex), found);
+      for (const auto& [field, message] : ikSettingsProblems(ik)) r.error(field, code::kIkSettings, message);
+      if (++enabled == kMaxIkTargets + 1)
+        r.error("frame", code::kIkSettings,
+                "more than " + std::to_string(kMaxIkTargets) + " enabled IK targets on one articulated system");
+    }
+    take(found, 0);
+
+    // RS3010 already names a resource that does not exist; with
+    // --check-files lib/core's RS5001 names a robot file that does not.
+    if (a.resource < 0 && a.sourcePath.empty()) return;
+    if (options_.checkFiles && !a.sourcePath.empty() && !options_.exists(a.sourcePath)) return;
+    RobotInstance instance;
+    InstanceOptions io;
+    io.reportModel = options_.checkFiles;
+    makeInstance(doc_, a, cache_, instance, found, io);
+    // The record that names the robot file: the articulated record's own
+    // sourcePath=, else its resource's path.
+    RecordReader own(doc_, static_cast<std::size_t>(a.recordIndex), found);
+    int naming = own.has("sourcePath") || a.resourceRecord < 0 ? a.recordIndex : a.resourceRecord;
+    take(found, lineOf(naming));
+    if (!instance.model) return;
+
+    const Model& model = *instance.model;
+    for (const ArticulatedIk& ik : a.ik) {
+      if (frameLink(model, ik.frame) >= 0) continue;
+      RecordReader r(doc_, static_cast<std::size_t>(ik.recordIndex), found);
+      r.error("frame", code::kUnknownFrame,
+              "frame '" + ik.frame + "' is no joint or link of the model '" + model.name + "'" +
+                  (ik.enabled ? "" : " (the target is disabled)"),
+              frameHint(model, ik.frame), ik.enabled ? Severity::Error : Severity::Warning);
+    }
+    take(found, 0);
+    robots_[a.recordIndex] = {&a, instance.model, instance.coordinates};
+  }
+
+  // --check-files reads a resource no articulated record instantiates too,
+  // as written (its directory and modules, scale 1).
+  void unusedResources() {
+    Diagnostics found;
+    for (std::size_t i = 0; i < scene_.articulatedResources.size(); ++i) {
+      const ArticulatedResource& res = scene_.articulatedResources[i];
+      if (used_.count(static_cast<int>(i)) || res.path.empty() || !options_.exists(res.path)) continue;
+      LoadOptions lo;
+      lo.resourceDirectory = res.resourceDirectory;
+      lo.modules = res.modules;
+      cache_.get(res.path, lo, found);
+      take(found, lineOf(res.recordIndex));
+    }
+  }
+
+  // The checked robot a reference (an id or a path) names, the last of
+  // that name as everywhere in the scene model; nullptr when it names none
+  // or its model was not read.
+  const Checked* robotNamed(const std::string& ref) const {
+    auto named = byName_.find(ref);
+    if (named == byName_.end()) return nullptr;
+    auto it = robots_.find(named->second->recordIndex);
+    return it == robots_.end() ? nullptr : &it->second;
+  }
+
+  void sensors() {
+    if (robots_.empty()) return;
+    Diagnostics found;
+    for (std::size_t i = 1; i < doc_.records.size(); ++i) {
+      const Record& rec = doc_.records[i];
+      if (!rec.kind || rec.kind->tag != "sensor") continue;
+      RecordReader r(doc_, i, found);
+      std::string link = r.str("parentLink");
+      if (link.empty()) continue;
+      const Checked* robot = robotNamed(r.str("parentObject"));
+      if (!robot || robot->model->findLink(link) >= 0) continue;
+      const Model& model = *robot->model;
+      std::string hint;
+      if (int j = model.findJoint(link); j >= 0 && model.joints[static_cast<std::size_t>(j)].childLink >= 0) {
+        hint = "'" + link + "' is a joint; its child link is '" +
+               model.links[static_cast<std::size_t>(model.joints[static_cast<std::size_t>(j)].childLink)].name + "'";
+      } else {
+        std::vector<std::string_view> names;
+        for (const Link& l : model.links) names.push_back(l.name);
+        std::string best = closestName(link, names);
+        if (!best.empty()) hint = "did you mean '" + best + "'?";
+      }
+      r.error("parentLink", code::kSensorLink,
+              "parentLink '" + link + "' is no link of the model '" + model.name + "' of '" + robot->record->path + "'",
+              hint);
+    }
+    take(found, 0);
+  }
+
+  void wires() {
+    if (robots_.empty()) return;
+    Diagnostics found;
+    for (const Wire& w : scene_.wires) {
+      RecordReader r(doc_, static_cast<std::size_t>(w.recordIndex), found);
+      auto end = [&](WireEnd kind, const std::string& ref, int index, const char* field) {
+        if (kind != WireEnd::Articulated) return;
+        const Checked* robot = robotNamed(ref);
+        if (!robot) return;
+        int bodies = bodyCount(robot->coordinates);
+        if (index >= 0 && index < bodies) return;
+        r.error(field, code::kWireBody,
+                std::string(field) + " is " + std::to_string(index) + "; '" + robot->record->path + "' has bodies 0 to " +
+                    std::to_string(bodies - 1),
+                "RaiSim's body index: the base is 0, then one body per movable joint in joint order");
+      };
+      end(w.endA, w.bodyA, w.localIndexA, "localIndexA");
+      end(w.endB, w.bodyB, w.localIndexB, "localIndexB");
+    }
+    take(found, 0);
+  }
+
+  const Document& doc_;
+  const Scene& scene_;
+  const RobotCheckOptions& options_;
+  ModelCache& cache_;
+  std::vector<SceneFinding>& out_;
+  std::map<int, Checked> robots_;  // by articulated record index
+  std::unordered_map<std::string, const Articulated*> byName_;  // by id and by path
+  std::unordered_set<int> used_;  // resources some articulated record instantiates
+};
+
+}  // namespace
+
+int bodyCount(const Coordinates& c) { return static_cast<int>(c.joints.size()) + 1; }
+
+void checkRobots(const Document& doc, const Scene& scene, const RobotCheckOptions& options, ModelCache& cache,
+                 std::vector<SceneFinding>& out) {
+  RobotChecker(doc, scene, options, cache, out).run();
+}
+
+}  // namespace rscene::robot

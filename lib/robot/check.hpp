@@ -1,0 +1,45 @@
+// What rscene-validate says about robots: each articulated record read
+// against its model (robot::makeInstance: RS7040-RS7043), its IK targets
+// (frames RS7044, knobs RS7048), sensors on its links (RS7045) and wires
+// to its bodies (RS7046).  With checkFiles, also whether the robot file
+// loads (RS7030-RS7034, RS5001 for its meshes), findings that name the
+// robot file and the line in it (Diagnostic::file).
+//
+// Without checkFiles, a model that cannot be read is not mentioned (that is
+// --check-files' job) and the checks that need it are skipped.  A robot
+// file that does not exist is lib/core's RS5001 at the scene's path field.
+#pragma once
+#include <vector>
+
+#include "core/assets.hpp"
+#include "core/document.hpp"
+#include "robot/kinematics.hpp"
+#include "robot/load.hpp"
+#include "scene/scene.hpp"
+#include "scene/validate.hpp"
+
+namespace rscene::robot {
+
+namespace code {
+inline constexpr const char* kSensorLink = "RS7045";  // sensor parentLink that is no link of its robot
+inline constexpr const char* kWireBody = "RS7046";    // wire localIndexA/B past the robot's body count
+}  // namespace code
+
+struct RobotCheckOptions {
+  bool checkFiles = false;
+  FileExists exists = fileExistsOnDisk;
+};
+
+// RaiSim's body count of a robot: every movable body, the base included
+// (fixed bodies merge into the movable body they hang from), so a wire's
+// localIndex runs from 0 to movable joints.
+int bodyCount(const Coordinates& c);
+
+// Appends the findings about every articulated record of `scene` to `out`,
+// a finding inside a robot file listed at the line of the record that
+// names the file.  `cache` should live for one scene: a model's load
+// findings are reported by its first request only.
+void checkRobots(const Document& doc, const Scene& scene, const RobotCheckOptions& options, ModelCache& cache,
+                 std::vector<SceneFinding>& out);
+
+}  // namespace rscene::robot
