@@ -43,6 +43,9 @@ step rscene-to-json "JSON for scripts (records per tag)" \
 step rscene-sim "drop the crates: simulate 2 s" \
   'rscene-sim --duration 2 --report -o warehouse_crates.settled.rscene warehouse_crates.rscene'
 step rscene-diff "what the simulation moved" 'rscene-diff --stat warehouse_crates.rscene warehouse_crates.settled.rscene'
+step rscene-sim "a robot held standing by PD for 2 s (robot_cell: our quadruped, a cart on a wire)" \
+  'rscene-sim --duration 2 --pd-gains 100,2 --report --trajectory robot_cell.csv --trajectory-format csv --every 100 -o robot_cell.settled.rscene robot_cell.rscene && head -c 300 robot_cell.csv | head -1 | cut -c1-160'
+step rscene-diff "what the robot's joints did, by joint name" 'rscene-diff robot_cell.rscene robot_cell.settled.rscene | head -20'
 step rscene-render "thumbnails (CPU, headless EGL)" \
   'for f in *.rscene; do rscene-render --width 480 --height 300 --allow-missing-assets -o "${f%.rscene}.png" "$f" || exit $?; done; ls *.png'
 
