@@ -107,6 +107,20 @@ bool isList(const DiffValue& v) {
   return isNumericList(v.type) && componentCount(v.type) == 0 && v.tokens.size() == 1;
 }
 
+// The one line that stands for a long list's change ("19 values, 3
+// changed, max |delta| ...") above the entries listed under it.
+FieldDiff listSummary(const DiffValue& b, const Entries& la, const Entries& lb, std::size_t changed, double maxDelta) {
+  FieldDiff summary;
+  summary.name = b.name;
+  summary.type = b.type;
+  summary.summarized = true;
+  summary.oldCount = la.size();
+  summary.newCount = lb.size();
+  summary.changedCount = changed;
+  summary.maxDelta = maxDelta;
+  return summary;
+}
+
 }  // namespace
 
 bool ValueComparer::closeEnough(double x, double y) const {
@@ -265,16 +279,8 @@ void ValueComparer::compareList(const DiffValue& a, const DiffValue& b, std::vec
     out.push_back(wholeChange(a, b));
     return;
   }
-  FieldDiff summary;
-  summary.name = b.name;
-  summary.type = b.type;
-  summary.summarized = true;
-  summary.oldCount = la.size();
-  summary.newCount = lb.size();
-  summary.changedCount = changed;
-  summary.maxDelta = maxDelta;
   const std::size_t at = out.size();
-  out.push_back(std::move(summary));
+  out.push_back(listSummary(b, la, lb, changed, maxDelta));
 
   const ValueType itemType = entryType(b.type);
   auto entryName = [&](std::size_t e) { return std::string(b.name) + "[" + std::to_string(e) + "]"; };
@@ -369,14 +375,7 @@ bool ValueComparer::compareNamed(const DiffValue& a, const DiffValue& b, const s
 
   // A long list keeps its summary line, with the first listEntries below it.
   if (std::max(la.items.size(), lb.items.size()) > opt_.summarizeAbove) {
-    FieldDiff summary;
-    summary.name = b.name;
-    summary.type = b.type;
-    summary.summarized = true;
-    summary.oldCount = la.size();
-    summary.newCount = lb.size();
-    summary.changedCount = changed;
-    summary.maxDelta = maxDelta;
+    FieldDiff summary = listSummary(b, la, lb, changed, maxDelta);
     if (entries.size() > opt_.listEntries) entries.resize(opt_.listEntries);
     summary.listedCount = entries.size();
     for (FieldDiff& f : entries) f.entry = true;
