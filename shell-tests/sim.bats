@@ -581,3 +581,35 @@ URDF
   run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" cell/bad.rscene
   [[ $output == *"bad.rscene:13:29: error: "*"[RS7044]"* ]]
 }
+
+@test "robots: hostile values stop the run with one verdict (diverged RS7024, too large RS7052, RS7035, RS7049, missing file at the scene)" {
+  # Gains far too stiff for the step: diverged, nothing written (it used to
+  # write the base 90 km up, exit 0).
+  run -2 --separate-stderr "$SIM" --duration 2 --pd-gains 1e4,100 -o out.rscene "$ROOT/examples/robot_cell.rscene"
+  [[ $stderr == *"error: the state of articulated system '/World/Robot' diverged at step "*"[RS7024]"* ]]
+  [ ! -e out.rscene ]
+  # 1,100 movable joints: refused up front (20,000 took 8 GB and crashed).
+  awk 'BEGIN { print "<robot name=\"deep\"><link name=\"world\"/>"; p = "world"
+    for (i = 0; i < 1100; ++i) { printf "<link name=\"l%d\"><inertial><mass value=\"0.1\"/><inertia ixx=\"0.001\" iyy=\"0.001\" izz=\"0.001\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n", i
+      printf "<joint name=\"j%d\" type=\"revolute\"><origin xyz=\"0 0 0.05\"/><parent link=\"%s\"/><child link=\"l%d\"/><axis xyz=\"1 0 0\"/></joint>\n", i, p, i; p = "l" i }
+    print "</robot>" }' > deep.urdf
+  printf 'raisim_engine_scene 1\ntime_step 0.001\narticulated_resource res R deep.urdf\narticulated /World/R res 0 0 1 1 0 0 0 true true id=r\n' > deep.rscene
+  run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene deep.rscene
+  [[ $stderr == *"deep.rscene:4:22: error: articulated system '/World/R' has 1101 bodies; rscene-sim simulates at most 1000 per robot [RS7052]"* ]]
+  # An inertia of 1e308: validate --check-files and sim both refuse it, in the URDF.
+  printf '<robot name="b"><link name="world"/><link name="l1"><inertial><mass value="1"/>\n<inertia ixx="1e308" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>\n<joint name="j1" type="revolute"><parent link="world"/><child link="l1"/><axis xyz="1 0 0"/></joint></robot>\n' > big.urdf
+  sed 's/deep.urdf/big.urdf/' deep.rscene > big.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene big.rscene
+  [[ $stderr == *"big.urdf:1: error: link 'l1' has an inertia that is not finite, has a negative diagonal entry or is beyond 1e21 kg m^2 [RS7035]"* ]]
+  run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" --check-files big.rscene
+  [[ $output == *"[RS7035]"* ]]
+  # A coordinate of 1e308: refused, not written back.
+  sed 's/true true id=r/true true id=r generalizedCoordinate=1e308/; s/big.urdf/big1.urdf/' big.rscene > q.rscene
+  sed 's/ixx="1e308"/ixx="1"/' big.urdf > big1.urdf
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene q.rscene
+  [[ $stderr == *"q.rscene:4:"*": error: generalizedCoordinate holds a number beyond 1e12 in magnitude [RS7049]"* ]]
+  # A robot file that is not there: at the scene's field, as render and validate say.
+  sed 's/big.urdf/nope.urdf/' big.rscene > nope.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene nope.rscene
+  [ "${stderr_lines[0]}" = "nope.rscene:3:28: error: robot file 'nope.urdf' does not exist [RS5001]" ]
+}

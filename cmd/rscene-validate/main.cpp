@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
   app.add_option("--profile", opt.profile, "engine2 (what Engine 2 loads) or raisim (also what RaiSim refuses)")
       ->check(CLI::IsMember({"engine2", "raisim"}))
       ->type_name("PROFILE");
-  app.add_flag("--check-files", opt.checkFiles, "Check that every referenced asset file exists");
+  app.add_flag("--check-files", opt.checkFiles, "Check that every referenced asset file exists, and read robot files (URDF, MJCF)");
   cli::addBaseDir(app, opt.baseDir, "Resolve standard input's asset paths from DIR");
   cli::addStdinFilename(app, opt.stdinName, true);
   app.add_option("--color", opt.color, "Color the text output: auto, always or never")

@@ -102,7 +102,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7021", E, Scene, VSR, "body pose that is not finite or more than 1e12 m from its frame's origin, or an orientation that does not normalise to a unit quaternion"},
     {"RS7022", E, Scene, VSR, "time_step that is not finite or outside 1e-9 to 1 s"},
     {"RS7023", E, Sim, "sim", "run longer than --max-steps"},
-    {"RS7024", E, Sim, "sim", "a body's state stopped being finite while stepping (nothing is written)"},
+    {"RS7024", E, Sim, "sim", "a body's state stopped being finite, or a robot's diverged (a joint at 1e6 rad/s), while stepping (nothing is written)"},
     {"RS7025", E, Sim, "sim", "more overlapping body pairs than --max-pairs"},
     {"RS7026", E, Scene, VSR, "size, scale, wire attachment or length, terrain size, centre or height, or gravity larger than 1e12 in magnitude (m, m/s^2)"},
     {"RS7027", E, Scene, VSR, "wire stiffness, damping or compliance, friction or restitution negative or above 1e15; solver iterations outside 0..10000"},
@@ -114,6 +114,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7032", E, Robot, VSR, "robot model that is not a tree (no root, two roots, a joint to an unknown link, a cycle)"},
     {"RS7033", E, Robot, VSR, "module (a URDF fragment) not found in RaiSim's search order"},
     {"RS7034", E, Robot, VSR, "articulated record with no robot file to load"},
+    {"RS7035", E, Robot, VSR, "robot model number no simulator can stand behind: mass outside 0..1e15 kg, inertia not finite, negative or beyond 1e21, length beyond 1e12 m, joint coefficient outside 0..1e15"},
     {"RS7036", E, Robot, VSR, "model from MJCF that the robot model cannot hold (a free joint below the top level or beside other joints, a second top-level body beside a floating base, a <composite>)"},
     {"RS7037", W, Robot, VSR, "element of an MJCF file converted approximately (an ellipsoid geom as a sphere), or a warning of MuJoCo's compiler"},
     {"RS7040", E, Robot, VSR, "generalizedCoordinate length differs from the model's"},
@@ -125,8 +126,10 @@ constexpr CheckInfo kChecks[] = {
     {"RS7046", E, Robot, "validate sim", "wire localIndexA/B past the body count of the articulated system it names (movable bodies, base included)"},
     {"RS7047", W, Robot, "sim", "articulated_ik target not reached within its tolerances (the message names the residual)"},
     {"RS7048", E, Robot, "validate sim", "articulated_ik setting that cannot be used (iterations, tolerances, gains, unknown inverseMethod)"},
+    {"RS7049", E, Robot, VSR, "generalizedCoordinate or generalizedVelocity entry beyond 1e12 in magnitude"},
     // RS705x simulating robots (lib/sim)
     {"RS7051", W, Sim, "sim", "convexifyCollisionMeshes=false: robot mesh collisions are simulated as convex hulls all the same"},
+    {"RS7052", E, Sim, "sim", "robot with more than 1000 bodies (movable joints + 1): Bullet's cost grows with their square"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/suggest.hpp"
+#include "scene/limits.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::robot {
@@ -108,6 +109,12 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
                   "' has " + std::to_string(c.coordinateDim) +
                   (model.floatingBase ? " (7 for the floating base, then the joints)" : " (joints only: fixed base)"));
       ok = false;
+    } else if (Eigen::Map<const Eigen::VectorXd> m(gc.data(), static_cast<Eigen::Index>(gc.size()));
+               !(m.lpNorm<Eigen::Infinity>() <= kMaxLength)) {
+      // As a body's position (RS7021): beyond it no simulator resolves the
+      // state, and 1e308 was written back as is.
+      r.error("generalizedCoordinate", code::kStateRange, "generalizedCoordinate holds a number beyond 1e12 in magnitude");
+      ok = false;
     } else {
       out.q = Eigen::Map<const Eigen::VectorXd>(gc.data(), static_cast<Eigen::Index>(gc.size()));
       for (int at : quaternionStarts(model, c)) {
@@ -137,6 +144,10 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
       r.error("generalizedVelocity", code::kVelocityLength,
               "generalizedVelocity has " + std::to_string(gv.size()) + " numbers; the model '" + model.name +
                   "' has " + std::to_string(c.velocityDim));
+      ok = false;
+    } else if (Eigen::Map<const Eigen::VectorXd> m(gv.data(), static_cast<Eigen::Index>(gv.size()));
+               !(m.lpNorm<Eigen::Infinity>() <= kMaxLength)) {
+      r.error("generalizedVelocity", code::kStateRange, "generalizedVelocity holds a number beyond 1e12 in magnitude");
       ok = false;
     } else {
       out.u = Eigen::Map<const Eigen::VectorXd>(gv.data(), static_cast<Eigen::Index>(gv.size()));

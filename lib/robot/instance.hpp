@@ -20,6 +20,7 @@ inline constexpr const char* kCoordinateLength = "RS7040";  // generalizedCoordi
 inline constexpr const char* kVelocityLength = "RS7041";    // generalizedVelocity length differs from the model's
 inline constexpr const char* kJointOrder = "RS7042";        // jointOrder names an unknown, fixed or repeated joint, or omits one
 inline constexpr const char* kQuaternion = "RS7043";        // quaternion in generalizedCoordinate not of unit length (warning) or zero
+inline constexpr const char* kStateRange = "RS7049";        // coordinate or velocity entry beyond 1e12 (or not finite)
 }  // namespace code
 
 struct RobotInstance {

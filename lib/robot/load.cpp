@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "robot/load.hpp"
+
+#include "scene/limits.hpp"
 #include "robot/urdf_reader.hpp"
 #include "robot/xml_file.hpp"
 
@@ -73,6 +75,49 @@ void scaleModel(Model& model, const Eigen::Vector3d& s) {
   }
 }
 
+// The numbers of a model no simulator can stand behind, refused as the
+// scene model refuses them for bodies (scene/limits.hpp), so that validate
+// --check-files says what rscene-sim would stop on: a mass outside
+// 0..1e15 kg, an inertia not finite, with a negative diagonal or beyond
+// 1e21 kg m^2, a length beyond 1e12 m, a joint coefficient negative or
+// beyond 1e15.  RS7035 at the element's line.
+bool checkModelLimits(const Model& model, Diagnostics& diagnostics) {
+  bool ok = true;
+  auto refuse = [&](const std::string& file, int line, const std::string& message) {
+    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadNumber, file.empty() ? model.sourceFile : file,
+                                          line, message));
+    ok = false;
+  };
+  auto tooLong = [](const Eigen::Vector3d& v) { return !(v.lpNorm<Eigen::Infinity>() <= kMaxLength); };
+  for (const Link& l : model.links) {
+    const Inertial& in = l.inertial;
+    if (!(in.mass >= 0 && in.mass <= kMaxMass))
+      refuse(l.file, l.line, "link '" + l.name + "' has mass " + std::to_string(in.mass) + ", outside 0..1e15 kg");
+    if (!in.inertia.allFinite() || in.inertia.diagonal().minCoeff() < 0 ||
+        in.inertia.cwiseAbs().maxCoeff() > kMaxMass * 1e6)
+      refuse(l.file, l.line, "link '" + l.name + "' has an inertia that is not finite, has a negative diagonal "
+                             "entry or is beyond 1e21 kg m^2");
+    if (tooLong(in.origin.position)) refuse(l.file, l.line, "link '" + l.name + "': inertial origin beyond 1e12 m");
+    for (const Visual& v : l.visuals)
+      if (tooLong(v.origin.position) || tooLong(v.geometry.size) || !(v.geometry.radius <= kMaxLength) ||
+          !(v.geometry.length <= kMaxLength))
+        refuse(l.file, v.line, "link '" + l.name + "': a visual's origin or size is beyond 1e12 m");
+    for (const Collision& c : l.collisions)
+      if (tooLong(c.origin.position) || tooLong(c.geometry.size) || !(c.geometry.radius <= kMaxLength) ||
+          !(c.geometry.length <= kMaxLength))
+        refuse(l.file, c.line, "link '" + l.name + "': a collision's origin or size is beyond 1e12 m");
+  }
+  for (const Joint& j : model.joints) {
+    if (tooLong(j.origin.position)) refuse(j.file, j.line, "joint '" + j.name + "': origin beyond 1e12 m");
+    for (double v : {j.damping, j.friction, j.rotorInertia, j.stiffness})
+      if (!(v >= 0 && v <= kMaxCoefficient)) {
+        refuse(j.file, j.line, "joint '" + j.name + "': damping, friction, rotor_inertia or stiffness outside 0..1e15");
+        break;
+      }
+  }
+  return ok;
+}
+
 bool loadModel(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics) {
   if (!validScale(options.scale)) {
     diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadFile, path, 0,
@@ -97,6 +142,7 @@ bool loadModel(const std::string& path, const LoadOptions& options, Model& out, 
   }
   if (!ok) return false;
   if (options.scale != Eigen::Vector3d::Ones()) scaleModel(model, options.scale);
+  if (!checkModelLimits(model, diagnostics)) return false;
   out = std::move(model);
   return true;
 }

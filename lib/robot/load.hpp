@@ -25,6 +25,7 @@ inline constexpr const char* kSkipped = "RS7031";       // element that cannot b
 inline constexpr const char* kBadModel = "RS7032";      // not a tree: no root, two roots, unknown link, cycle
 inline constexpr const char* kNoModule = "RS7033";      // module file not found in RaiSim's search order
 inline constexpr const char* kNoResource = "RS7034";    // articulated record with no robot file to load
+inline constexpr const char* kBadNumber = "RS7035";     // mass, inertia, length or joint coefficient out of range
 }  // namespace code
 
 struct LoadOptions {

@@ -44,6 +44,13 @@ Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad) {
   }
   char at[96];
   std::snprintf(at, sizeof at, "at step %llu (t = %.6g s)", static_cast<unsigned long long>(bad.step), bad.time);
+  if (bad.diverged) {
+    d.message = "the state of articulated system '" + bad.path + "' diverged " + at +
+                " (a joint reached 1e6 rad/s or m/s, or the base went past 1e12 m); the simulation stopped and "
+                "nothing was written";
+    d.hint = "springs or --pd-gains too stiff for the time step: a shorter time_step or smaller gains keep it stable";
+    return d;
+  }
   d.message = "the " + bad.what + " of body '" + bad.path + "' is no longer finite " + at +
               "; the simulation stopped and nothing was written";
   d.hint = "look for extreme masses, sizes, speeds or time steps";

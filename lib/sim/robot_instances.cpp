@@ -2,6 +2,7 @@
 // run (robot::makeInstance through one robot::ModelCache), with their
 // enabled articulated_ik targets solved before the first step.
 #include "robot/ik.hpp"
+#include "scene/reader.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {
@@ -13,7 +14,32 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
   robots.resize(scene.articulated.size());
   bool ok = true;
   for (std::size_t i = 0; i < scene.articulated.size(); ++i) {
+    const Articulated& a = scene.articulated[i];
+    // A robot file that is not there: at the field that names it (the
+    // record's sourcePath=, else its resource's path), in render's and
+    // validate --check-files' place, not in a file that does not exist.
+    if (!a.sourcePath.empty() && !fileExistsOnDisk(a.sourcePath)) {
+      RecordReader own(doc, static_cast<std::size_t>(a.recordIndex), diagnostics);
+      bool here = own.has("sourcePath") || a.resourceRecord < 0;
+      RecordReader(doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diagnostics)
+          .error(here ? "sourcePath" : "path", scene_code::kMissingFile,
+                 "robot file '" + a.sourcePath + "' " + whyNotAFile(a.sourcePath));
+      ok = false;
+      continue;
+    }
     if (!robot::makeInstance(doc, scene.articulated[i], cache, robots[i], diagnostics)) {
+      ok = false;
+      continue;
+    }
+    // Bullet's cost grows with the square of a robot's bodies (its
+    // self-collision pairs): 20,000 links took 8 GB and then crashed.
+    std::size_t bodies = robots[i].coordinates.joints.size() + 1;
+    if (bodies > kMaxRobotBodies) {
+      RecordReader(doc, static_cast<std::size_t>(scene.articulated[i].recordIndex), diagnostics)
+          .error("resource", sim_code::kRobotTooLarge,
+                 "articulated system '" + scene.articulated[i].path + "' has " + std::to_string(bodies) +
+                     " bodies; rscene-sim simulates at most " + std::to_string(kMaxRobotBodies) + " per robot",
+                 "each movable joint adds a body; fixed joints merge into their parent");
       ok = false;
       continue;
     }

@@ -69,7 +69,7 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
   mb->setLinearDamping(0);
   mb->setAngularDamping(0);
   mb->setUseGyroTerm(true);
-  mb->setMaxCoordinateVelocity(1e6);
+  mb->setMaxCoordinateVelocity(kMaxJointSpeed);
   mb->setMaxAppliedImpulse(1e12);
   mb->setHasSelfCollision(true);  // which pairs meet is the world's filter's business
   mb->setBaseWorldTransform(bt(instance.base * root.com));

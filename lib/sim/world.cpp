@@ -853,8 +853,15 @@ std::optional<NonFinite> World::nonFinite() const {
   for (const auto& r : w.robots) {
     r->state(q, u);
     const char* what = !q.allFinite() ? "generalized coordinate" : !u.allFinite() ? "generalized velocity" : nullptr;
+    // Finite but diverged: a joint at the speed cap, or the base far away.
+    const robot::Coordinates& c = r->instance().coordinates;
+    bool diverged = !what && ((u.size() > c.baseVelocities &&
+                               u.tail(u.size() - c.baseVelocities).lpNorm<Eigen::Infinity>() >= 0.999 * kMaxJointSpeed) ||
+                              (c.baseCoordinates && q.head<3>().lpNorm<Eigen::Infinity>() > kMaxLength));
+    if (diverged) what = "generalized velocity";
     if (!what) continue;
     NonFinite bad;
+    bad.diverged = diverged;
     bad.recordIndex = r->instance().record->recordIndex;
     bad.path = r->instance().record->path;
     bad.step = w.stepCount;

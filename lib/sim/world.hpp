@@ -48,6 +48,7 @@ namespace rscene::sim {
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
+inline constexpr const char* kRobotTooLarge = "RS7052";  // a robot with more than kMaxRobotBodies bodies
 inline constexpr const char* kWireLocalIndex = "RS7046";  // a wire's localIndex is not a body of its articulated system (validate's code)
 inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
@@ -147,7 +148,17 @@ struct NonFinite {
   double time = 0;
   std::string what;  // "position", "orientation", "linear velocity", "angular velocity",
                      // "generalized coordinate", "generalized velocity"
+  // A robot whose state is finite but diverged: a joint speed at Bullet's
+  // cap (kMaxJointSpeed), or its base farther than kMaxLength.  Stiff
+  // springs or gains for the time step; nothing it writes would be physics.
+  bool diverged = false;
 };
+
+// The joint speed cap set on every robot (btMultiBody::setMaxCoordinateVelocity):
+// a joint that reaches it has diverged.
+inline constexpr double kMaxJointSpeed = 1e6;
+// Most bodies (movable joints + 1) of one robot rscene-sim builds.
+inline constexpr std::size_t kMaxRobotBodies = 1000;
 
 // A dynamic body that left the world: below the lowest static geometry
 // by WorldOptions::leaveMargin, or outside the solver's broadphase bounds
