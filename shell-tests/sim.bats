@@ -499,6 +499,8 @@ qof() {
   run -2 --separate-stderr "$SIM" --pd-gains LF_KNEE=1,2 "$ROOT/examples/robot_cell.rscene"
   [[ "$stderr" == *"--pd-gains names joint 'LF_KNEE', which no articulated system has as a movable joint"* ]]
   [ -z "$output" ]
+  run -2 --separate-stderr "$SIM" --pd-gains LF_KFF=1,2 "$ROOT/examples/robot_cell.rscene"
+  [[ "$stderr" == *"'LF_KFF', which no articulated system has as a movable joint; did you mean 'LF_KFE'?" ]]
 }
 
 @test "robots: --steps 0 writes the record's state back as written" {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.hpp"
+#include "core/suggest.hpp"
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
 #include "core/writer.hpp"
@@ -90,7 +91,13 @@ int run(const Options& opt) {
   }
   if (ok)
     for (const std::string& name : sim::unknownPdJoints(wo.pd, robots)) {
-      cli::error("--pd-gains names joint '" + name + "', which no articulated system has as a movable joint");
+      std::vector<std::string_view> movable;  // every robot's movable joints, for the suggestion
+      for (const robot::RobotInstance& r : robots)
+        if (r.model)
+          for (int j : r.coordinates.joints) movable.push_back(r.model->joints[static_cast<std::size_t>(j)].name);
+      std::string close = closestName(name, movable);
+      cli::error("--pd-gains names joint '" + name + "', which no articulated system has as a movable joint" +
+                 (close.empty() ? std::string() : "; did you mean '" + close + "'?"));
       return cli::kTrouble;
     }
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
