@@ -466,3 +466,11 @@ SCENE
   run "$RENDER" hidden.rscene --reference anymal.png --threshold 0.1
   [ "$status" -eq 1 ]  # the robot covers more than a tenth of the picture
 }
+
+@test "robots: a pipe from rscene-sim loses the scene's folder; the error says how to give it back" {
+  run -2 --separate-stderr bash -c "cd '$ROOT/examples' && '$RSCENE_BIN/rscene-sim' --steps 1 robot_cell.rscene 2>/dev/null | (cd '$BATS_TEST_TMPDIR' && '$RENDER' -o p.png)"
+  [[ $stderr == *"<stdin>:"*": error: robot file 'robots/quadruped/quadruped.urdf' does not exist [RS5001]"* ]]
+  [[ $stderr == *"hint: standard input has no folder, so relative paths resolve against the current one: name the scene with --stdin-filename PATH or give --base-dir DIR"* ]]
+  run -0 --separate-stderr bash -c "cd '$ROOT/examples' && '$RSCENE_BIN/rscene-sim' --steps 1 robot_cell.rscene 2>/dev/null | '$RENDER' --width 64 --height 48 --stdin-filename robot_cell.rscene -o '$BATS_TEST_TMPDIR/p.png'"
+  [ -s "$BATS_TEST_TMPDIR/p.png" ]
+}

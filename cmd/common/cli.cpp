@@ -182,6 +182,14 @@ void printDiagnostics(const Diagnostics& found, std::string_view display, std::s
                                  : formatDiagnostic(d, d.file, {}, color));
 }
 
+void hintStdinPaths(const Input& in, const std::string& baseDir, Diagnostics& ds) {
+  if (!in.isStdin || !in.path.empty() || !baseDir.empty()) return;
+  for (Diagnostic& d : ds)
+    if (d.code == "RS5001" && d.hint.empty())
+      d.hint = "standard input has no folder, so relative paths resolve against the current one: "
+               "name the scene with --stdin-filename PATH or give --base-dir DIR";
+}
+
 void setup(CLI::App& app, const char* tool) {
   gTool = tool;
   installSignalHandlers();

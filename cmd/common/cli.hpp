@@ -33,6 +33,12 @@ struct Input {
   std::string text;
 };
 
+// A scene read from standard input without --stdin-filename or --base-dir
+// has no folder: its relative asset and robot paths resolve against the
+// current one, which is rarely what a pipe (`rscene-sim ... | rscene-render`)
+// meant.  Adds that hint to each file-not-found finding (RS5001) without one.
+void hintStdinPaths(const Input& in, const std::string& baseDir, Diagnostics& ds);
+
 // Reads `operand` ("-" = stdin).  On failure prints `tool: error: ...`.
 bool readInput(const std::string& operand, const std::string& stdinName, Input& in);
 

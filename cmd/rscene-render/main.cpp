@@ -62,6 +62,7 @@ int run(const Options& opt) {
   render::RenderScene scene;
   Diagnostics diags;
   bool built = render::buildRenderScene(loaded.document, so, scene, diags, opt.limits, &assets);
+  cli::hintStdinPaths(in, opt.baseDir, diags);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;
   if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
@@ -82,7 +83,8 @@ int run(const Options& opt) {
       return cli::kTrouble;
     }
   } else if (!render::checkCameraImageSize(loaded.document, camera, ro.width, ro.height, opt.maxPixels, diags)) {
-    cli::printDiagnostics(diags, in.display, in.text, color);
+    cli::hintStdinPaths(in, opt.baseDir, diags);
+  cli::printDiagnostics(diags, in.display, in.text, color);
     return cli::kTrouble;
   }
   ro.samples = opt.samples;
@@ -115,6 +117,7 @@ int run(const Options& opt) {
   render::RenderTimings timings;
   diags.clear();
   bool ok = render::renderScene(scene, camera, ro, image, diags, &timings);
+  cli::hintStdinPaths(in, opt.baseDir, diags);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!ok) return cli::kTrouble;
   auto tEncode = Clock::now();

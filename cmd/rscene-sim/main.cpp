@@ -48,7 +48,10 @@ int run(const Options& opt) {
   LoadResult loaded = parse(std::move(in.text));
   Clock::time_point parsedAt = Clock::now();
   Document& doc = loaded.document;
-  auto print = [&](const Diagnostics& ds) { cli::printDiagnostics(ds, in.display, doc.buffer(), color); };
+  auto print = [&](Diagnostics ds) {
+    cli::hintStdinPaths(in, opt.baseDir, ds);
+    cli::printDiagnostics(ds, in.display, doc.buffer(), color);
+  };
   if (!loaded.ok()) return print(loaded.diagnostics), cli::kTrouble;
 
   SceneOptions so;
