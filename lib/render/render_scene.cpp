@@ -460,8 +460,8 @@ class Preparer {
     robot::ModelCache models;
     for (const Articulated& a : s_.articulated) {
       if (!a.visible || a.hiddenByGroup) continue;
-      if (!a.sourcePath.empty() && !fileExistsOnDisk(a.sourcePath)) {
-        missingRobotFile(a);
+      if (!robot::checkRobotFile(doc_, a, diags_)) {
+        ok_ = false;
         continue;
       }
       robot::RobotInstance r;
@@ -483,18 +483,6 @@ class Preparer {
       }
       ++out_.robots;
     }
-  }
-
-  // At the field that names the file (the record's sourcePath=, else its
-  // resource's path), where validate --check-files reports it, rather than
-  // in a file that is not there.
-  void missingRobotFile(const Articulated& a) {
-    RecordReader own(doc_, std::size_t(a.recordIndex), diags_);
-    bool here = own.has("sourcePath") || a.resourceRecord < 0;
-    RecordReader r(doc_, std::size_t(here ? a.recordIndex : a.resourceRecord), diags_);
-    r.error(here ? "sourcePath" : "path", scene_code::kMissingFile,
-            "robot file '" + a.sourcePath + "' " + whyNotAFile(a.sourcePath));
-    ok_ = false;
   }
 
   const Document& doc_;

@@ -71,11 +71,7 @@ class RobotChecker {
     InstanceOptions io;
     io.reportModel = options_.checkFiles;
     makeInstance(doc_, a, cache_, instance, found, io);
-    // The record that names the robot file: the articulated record's own
-    // sourcePath=, else its resource's path.
-    RecordReader own(doc_, static_cast<std::size_t>(a.recordIndex), found);
-    int naming = own.has("sourcePath") || a.resourceRecord < 0 ? a.recordIndex : a.resourceRecord;
-    take(found, lineOf(naming));
+    take(found, lineOf(writtenBy(doc_, a, "sourcePath").record));
     if (!instance.model) return;
 
     const Model& model = *instance.model;

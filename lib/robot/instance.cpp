@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "core/suggest.hpp"
+#include "core/assets.hpp"
 #include "scene/limits.hpp"
 #include "scene/reader.hpp"
 
@@ -38,10 +40,7 @@ std::string jointHint(const Model& model, const std::string& name) {
 
 void reportJointOrder(const Document& doc, const Articulated& a, const Model& model,
                       const std::vector<JointOrderProblem>& problems, Diagnostics& diags) {
-  // The record that wrote jointOrder: the articulated record, else its resource.
-  RecordReader own(doc, static_cast<std::size_t>(a.recordIndex), diags);
-  bool here = own.has("jointOrder") || a.resourceRecord < 0;
-  RecordReader r(doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diags);
+  RecordReader r(doc, static_cast<std::size_t>(writtenBy(doc, a, "jointOrder").record), diags);
   std::vector<std::string> missing;
   for (const JointOrderProblem& p : problems) {
     switch (p.kind) {
@@ -64,6 +63,21 @@ void reportJointOrder(const Document& doc, const Articulated& a, const Model& mo
 }
 
 }  // namespace
+
+FieldSource writtenBy(const Document& doc, const Articulated& a, const char* field) {
+  Diagnostics unused;  // has() reports nothing
+  bool own = a.resourceRecord < 0 || RecordReader(doc, static_cast<std::size_t>(a.recordIndex), unused).has(field);
+  if (own) return {a.recordIndex, field};
+  return {a.resourceRecord, std::string_view(field) == "sourcePath" ? "path" : field};
+}
+
+bool checkRobotFile(const Document& doc, const Articulated& a, Diagnostics& diags) {
+  if (a.sourcePath.empty() || fileExistsOnDisk(a.sourcePath)) return true;
+  FieldSource at = writtenBy(doc, a, "sourcePath");
+  RecordReader(doc, static_cast<std::size_t>(at.record), diags)
+      .error(at.field, scene_code::kMissingFile, "robot file '" + a.sourcePath + "' " + whyNotAFile(a.sourcePath));
+  return false;
+}
 
 LoadOptions loadOptionsOf(const Articulated& record) {
   LoadOptions o;

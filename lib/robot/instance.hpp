@@ -45,6 +45,21 @@ struct InstanceOptions {
 bool makeInstance(const Document& doc, const Articulated& record, ModelCache& cache, RobotInstance& out,
                   Diagnostics& diagnostics, const InstanceOptions& options = {});
 
+// Where a field an articulated record shares with its resource was
+// written: the articulated record when it writes it (or names no
+// resource), else its resource record.  Findings about the field point
+// there.  The record's `sourcePath` is the resource's `path`.
+struct FieldSource {
+  int record = -1;            // record index
+  const char* field = nullptr;  // the field's name in that record
+};
+FieldSource writtenBy(const Document& doc, const Articulated& record, const char* field);
+
+// RS5001 at the field that names the robot file when that file is not a
+// regular file (render, sim and validate --check-files say it there, not
+// in a file that does not exist).  False after the error.
+bool checkRobotFile(const Document& doc, const Articulated& record, Diagnostics& diagnostics);
+
 // LoadOptions of a record (its resource directory, modules and scale).
 LoadOptions loadOptionsOf(const Articulated& record);
 

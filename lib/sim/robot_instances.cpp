@@ -14,16 +14,7 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
   robots.resize(scene.articulated.size());
   bool ok = true;
   for (std::size_t i = 0; i < scene.articulated.size(); ++i) {
-    const Articulated& a = scene.articulated[i];
-    // A robot file that is not there: at the field that names it (the
-    // record's sourcePath=, else its resource's path), in render's and
-    // validate --check-files' place, not in a file that does not exist.
-    if (!a.sourcePath.empty() && !fileExistsOnDisk(a.sourcePath)) {
-      RecordReader own(doc, static_cast<std::size_t>(a.recordIndex), diagnostics);
-      bool here = own.has("sourcePath") || a.resourceRecord < 0;
-      RecordReader(doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diagnostics)
-          .error(here ? "sourcePath" : "path", scene_code::kMissingFile,
-                 "robot file '" + a.sourcePath + "' " + whyNotAFile(a.sourcePath));
+    if (!robot::checkRobotFile(doc, scene.articulated[i], diagnostics)) {
       ok = false;
       continue;
     }

@@ -132,10 +132,9 @@ void warnNotConvexified(const Document* doc, const Articulated& a, Diagnostics& 
                         "': convexifyCollisionMeshes=false, but its mesh collisions are simulated as convex hulls "
                         "(Bullet collides no triangle mesh on a moving body)";
   if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
-    RecordReader r(*doc, static_cast<std::size_t>(a.recordIndex), diagnostics);
-    bool here = r.has("convexifyCollisionMeshes") || a.resourceRecord < 0;
-    RecordReader(*doc, static_cast<std::size_t>(here ? a.recordIndex : a.resourceRecord), diagnostics)
-        .error("convexifyCollisionMeshes", sim_code::kNotConvexified, message, "", Severity::Warning);
+    robot::FieldSource at = robot::writtenBy(*doc, a, "convexifyCollisionMeshes");
+    RecordReader(*doc, static_cast<std::size_t>(at.record), diagnostics)
+        .error(at.field, sim_code::kNotConvexified, message, "", Severity::Warning);
     return;
   }
   Diagnostic d;
