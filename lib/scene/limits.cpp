@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <unordered_map>
 
 #include "core/text.hpp"
 #include "scene/reader.hpp"
@@ -67,7 +68,12 @@ void checkCoefficient(const RecordReader& r, const char* field, double v, const 
 
 // The records validate's bodies-only scene does not build, read here from
 // the document: solver, contact materials, cameras, terrains.
-void checkRecords(const Document& doc, Diagnostics& diagnostics) {
+void checkRecords(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
+  // A full build has parsed each terrain's heights already; a bodies-only
+  // one (validate) has not, and they are read here once.
+  std::unordered_map<int, const std::vector<double>*> parsedHeights;
+  for (const Terrain& t : scene.terrains)
+    if (!t.heights.empty()) parsedHeights.emplace(t.recordIndex, &t.heights);
   for (std::size_t i = 1; i < doc.records.size(); ++i) {
     const Record& rec = doc.records[i];
     if (!rec.kind) continue;
@@ -104,10 +110,13 @@ void checkRecords(const Document& doc, Diagnostics& diagnostics) {
       checkLength(r, "xSize", r.number("xSize", 0), "terrain xSize");
       checkLength(r, "ySize", r.number("ySize", 0), "terrain ySize");
       checkLength(r, "center", r.vec3("center", Eigen::Vector3d::Zero()), "terrain center");
-      std::vector<double> heights;
-      if (r.has("heights") && r.numbers("heights", heights)) {
+      std::vector<double> read;
+      auto it = parsedHeights.find(static_cast<int>(i));
+      const std::vector<double>* heights = it != parsedHeights.end() ? it->second : nullptr;
+      if (!heights && r.has("heights") && r.numbers("heights", read)) heights = &read;
+      if (heights) {
         double largest = 0;
-        for (double h : heights) largest = std::isnan(h) ? h : std::max(largest, std::abs(h));
+        for (double h : *heights) largest = std::isnan(h) ? h : std::max(largest, std::abs(h));
         checkLength(r, "heights", largest, "a terrain height");
       }
     }
@@ -132,7 +141,7 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
               "time_step " + number(dt) + " is above the longest simulated step, " + number(kMaxTimeStep) + " s",
               "a step longer than a second resolves no contact");
   }
-  checkRecords(doc, diagnostics);
+  checkRecords(doc, scene, diagnostics);
   for (std::size_t i = 1; i < doc.records.size(); ++i) {
     const Record& rec = doc.records[i];
     if (!rec.kind || rec.kind->tag != "gravity") continue;
