@@ -235,11 +235,11 @@ const KindRow kKinds[] = {
  "transposeGain:num=0"},
 {"sensor", 27, Role::Node, "", "",
  "path:text kind:name@sensor_kind parentObject:ref@body position:vec3 orientation:quat",
- "id:id parentGroupId:ref@node parentLink:text width:int height:int updateRate:num verticalFov:num "
- "horizontalFov:num nearPlane:num farPlane:num lidarChannels:int lidarSamples:int lidarMinRange:num "
- "lidarMaxRange:num lidarVerticalFov:num segmentation:flag calibrationFx:num calibrationFy:num "
- "calibrationCx:num calibrationCy:num noiseMean:num noiseStddev:num noiseSeed:int enabled:flag=true "
- "outputPath:path"},
+ "id:id parentGroupId:ref@node parentLink:text width:int=640 height:int=480 updateRate:num=0 verticalFov:num=60 "
+ "horizontalFov:num=0 nearPlane:num=0.05 farPlane:num=100 lidarChannels:int=16 lidarSamples:int=1024 "
+ "lidarMinRange:num=0.1 lidarMaxRange:num=100 lidarVerticalFov:num=30 segmentation:flag=false calibrationFx:num=0 "
+ "calibrationFy:num=0 calibrationCx:num=0 calibrationCy:num=0 noiseMean:num=0 noiseStddev:num=0 noiseSeed:int=0 "
+ "enabled:flag=true outputPath:path"},
 {"wire", 28, Role::Node, "", "",
  "path:text kind:name@wire_kind bodyA:ref@body bodyB:ref@body length:num",
  "id:id parentGroupId:ref@node localIndexA:int=0 localIndexB:int=0 localPositionA:vec3=0,0,0 "
@@ -315,8 +315,8 @@ const EnumRow kEnums[] = {
 {"transform_space", "global local"},
 {"terrain_source", "samples png procedural clone"},
 {"material_type", "pbr ..."},
-{"render_mode", "rgb depth segmentation rgb_depth ..."},
-{"sensor_kind", "rgb depth segmentation rgb_depth imu lidar force_torque ..."},
+{"render_mode", "rgb=color depth segmentation rgb_depth=rgbd ..."},
+{"sensor_kind", "rgb=rgb_camera,camera,color depth=depth_camera segmentation rgb_depth=rgbd imu lidar=spinning_lidar force_torque ..."},
 {"deformable_kind", "cloth mass_spring fem ..."},
 {"ik_method", "damped_least_squares=dls pseudo_inverse=pinv,pseudoinverse transpose=jacobian_transpose ..."},
 };

@@ -73,8 +73,8 @@ class Preparer {
     out_ = RenderScene{};
     materials();
     look();
-    for (const Object& o : s_.objects) object(o);
-    for (const Compound& c : s_.compounds) compound(c);
+    for (std::size_t i = 0; i < s_.objects.size(); ++i) object(s_.objects[i], static_cast<int>(i));
+    for (std::size_t i = 0; i < s_.compounds.size(); ++i) compound(s_.compounds[i], static_cast<int>(i));
     for (const Light& l : s_.lights) light(l);
     for (const Camera& c : s_.cameras) camera(c);
     terrainColors();
@@ -190,16 +190,46 @@ class Preparer {
     e.sunDirection = Vector3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)).normalized();
   }
 
+  // The legend entry of a record, added once per record.
+  int segment(const char* kind, int recordIndex, const std::string& path, const std::string& id,
+              const std::string& semanticClass, std::int64_t instanceId,
+              const std::optional<Eigen::Vector4d>& color = std::nullopt) {
+    auto [it, added] = segmentOf_.try_emplace(recordIndex, static_cast<int>(out_.segments.size()));
+    if (!added) return it->second;
+    Segment g;
+    segmentColor(color, instanceId, semanticClass, path, g.rgb);
+    g.kind = kind;
+    g.path = path;
+    g.id = id;
+    g.semanticClass = semanticClass;
+    g.instanceId = instanceId;
+    g.line = lineOf(recordIndex);
+    out_.segments.push_back(std::move(g));
+    return it->second;
+  }
+
+  // `body` moves it (rscene-render --trajectory): the drawable keeps its
+  // transform relative to the body's pose.
+  static void attach(Drawable& d, Mount::Kind kind, int index, const Pose& body, int link = -1) {
+    d.attachment.kind = kind;
+    d.attachment.index = index;
+    d.attachment.link = link;
+    d.attachment.local = affine(body).inverse() * d.world;
+  }
+
   void addDrawable(Drawable d) {
-    d.bounds = transformBox(d.world, unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
+    d.localBounds = unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight);
+    d.bounds = transformBox(d.world, d.localBounds);
     if (d.shape == Shape::Ground) out_.hasGround = true;
     else out_.bounds.extend(d.bounds);
     out_.drawables.push_back(std::move(d));
   }
 
-  void object(const Object& o) {
+  void object(const Object& o, int index) {
     if (!o.visible || o.hiddenByGroup) return;
     Drawable d;
+    d.segment = segment("object", o.recordIndex, o.path, o.id, o.semanticClass, o.instanceId, o.segmentationColor);
+    d.worldObject = o.bodyMode != BodyMode::VisualOnly;
     d.line = lineOf(o.recordIndex);
     d.shape = shapeOf(o.primitive);
     d.material = materialIndex(o.material);
@@ -220,15 +250,20 @@ class Preparer {
       }
       d.world = pose * Eigen::Scaling(shapeScale(d.shape, o.scale, o.radius, o.height, o.scale));
     }
+    // A static body never moves; the ground is drawn about its position only.
+    if (o.bodyMode != BodyMode::Static && d.shape != Shape::Ground) attach(d, Mount::Kind::Object, index, o.world);
     addDrawable(std::move(d));
   }
 
-  void compound(const Compound& c) {
+  void compound(const Compound& c, int index) {
     if (!c.visible || c.hiddenByGroup) return;
     Affine3d pose = affine(c.world);
     int fallbackMaterial = materialIndex(c.material);
+    int seg = segment("compound", c.recordIndex, c.path, c.id, c.semanticClass, -1);
     for (const CompoundChild& ch : c.children) {
       Drawable d;
+      d.segment = seg;
+      d.worldObject = c.bodyMode != BodyMode::VisualOnly;
       d.line = lineOf(ch.recordIndex);
       d.shape = shapeOf(ch.primitive);
       if (d.shape == Shape::Ground) d.shape = Shape::Box;
@@ -252,6 +287,7 @@ class Preparer {
         if (d.shape == Shape::Sphere) unit = Vector3d::Constant(radius);
         d.world = pose * local * Eigen::Scaling(unit);
       }
+      if (c.bodyMode != BodyMode::Static) attach(d, Mount::Kind::Compound, index, c.world);
       addDrawable(std::move(d));
     }
   }
@@ -331,6 +367,7 @@ class Preparer {
     if (uniform(src)) step = std::max(src.xSamples, src.ySamples);
     std::vector<int> xs = axisSamples(src.xSamples, step), ys = axisSamples(src.ySamples, step);
     TerrainMesh t;
+    t.segment = segment("terrain_region", src.recordIndex, src.path, src.id, "", -1);
     t.xSamples = int(xs.size());
     t.ySamples = int(ys.size());
     std::size_t drawn = xs.size() * ys.size();
@@ -384,6 +421,7 @@ class Preparer {
     if (!v.enabled || v.hiddenByGroup || v.instances.empty()) return;
     Instanced b;
     b.line = lineOf(v.recordIndex);
+    b.segment = segment("instanced_visual", v.recordIndex, v.path, v.id, "", -1);
     b.shape = shapeOf(v.primitive);
     if (b.shape == Shape::Ground) b.shape = Shape::Box;
     if (b.shape == Shape::Capsule) b.shape = Shape::Cylinder;  // an instanced capsule is drawn as its cylinder
@@ -434,6 +472,7 @@ class Preparer {
   void points(const PointCloud& src) {
     if (!src.enabled || src.hiddenByGroup || src.points.empty()) return;
     PointBatch pc;
+    pc.segment = segment("point_cloud", src.recordIndex, src.path, src.id, "", -1);
     pc.pointSize = float(std::clamp(src.pointSize, 1.0, 64.0));
     std::size_t stride = std::size_t(std::max<std::int64_t>(src.renderedStride, 1));
     std::size_t count = drawnCount(src.points.size(), src.maxRendered, src.renderedStride);
@@ -458,8 +497,9 @@ class Preparer {
     asset::AssetCache& assets = assets_ ? *assets_ : own.emplace();
     RobotDrawer drawer(out_, assets);
     robot::ModelCache models;
-    for (const Articulated& a : s_.articulated) {
-      if (!a.visible || a.hiddenByGroup) continue;
+    out_.robotModels.assign(s_.articulated.size(), nullptr);
+    for (std::size_t i = 0; i < s_.articulated.size(); ++i) {
+      const Articulated& a = s_.articulated[i];
       if (!robot::checkRobotFile(doc_, a, diags_)) {
         ok_ = false;
         continue;
@@ -469,7 +509,10 @@ class Preparer {
       // length) fails the render; what could be read is still drawn.
       if (!robot::makeInstance(doc_, a, models, r, diags_)) ok_ = false;
       if (!r.model) continue;
-      if (drawer.add(*r.model, robot::linkPoses(r)) == 0) {
+      out_.robotModels[i] = r.model;
+      if (!a.visible || a.hiddenByGroup) continue;
+      int seg = segment("articulated", a.recordIndex, a.path, a.id, a.semanticClass, -1);
+      if (drawer.add(*r.model, robot::linkPoses(r), static_cast<int>(i), seg) == 0) {
         // Not an error (a collision-only model simulates), but an empty
         // picture needs a reason.
         Diagnostic d;
@@ -494,6 +537,7 @@ class Preparer {
   std::uint64_t instancesDrawn_ = 0;
   bool ok_ = true;
   std::unordered_map<std::string, int> materialByRef_;
+  std::unordered_map<int, int> segmentOf_;  // record index -> RenderScene::segments
   std::map<int, Vector4f> slotColors_;
 };
 
@@ -517,6 +561,66 @@ Eigen::AlignedBox3d unitShapeBounds(Shape s, double capsuleR, double capsuleH) {
   }
 }
 
+void segmentColor(const std::optional<Eigen::Vector4d>& written, std::int64_t instanceId,
+                  const std::string& semanticClass, const std::string& path, std::uint8_t rgb[3]) {
+  if (written) {
+    for (int k = 0; k < 3; ++k) rgb[k] = static_cast<std::uint8_t>(std::lround(std::clamp((*written)[k], 0.0, 1.0) * 255));
+    if (rgb[0] || rgb[1] || rgb[2]) return;
+    rgb[0] = rgb[1] = rgb[2] = 1;  // black is the background's: the nearest color that is not
+    return;
+  }
+  // FNV-1a of what names the segment, so that a color never depends on the
+  // order of the records or on the tool's version.
+  std::string key = instanceId >= 0 ? "instance:" + std::to_string(instanceId)
+                    : !semanticClass.empty() ? "class:" + semanticClass
+                                             : "path:" + path;
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : key) h = (h ^ c) * 1099511628211ull;
+  // Each channel in 32..255: bright enough to tell from the background.
+  for (int k = 0; k < 3; ++k) rgb[k] = static_cast<std::uint8_t>(32 + (h >> (8 * k + 16)) % 224);
+}
+
+void poseScene(RenderScene& scene, const BodyPoseView& poses) {
+  auto bodyPose = [&](const Attachment& a, Pose& out) {
+    auto in = [](const auto* list, int i) { return list && i >= 0 && std::size_t(i) < list->size(); };
+    switch (a.kind) {
+      case Mount::Kind::Object:
+        if (!in(poses.objects, a.index)) return false;
+        out = (*poses.objects)[std::size_t(a.index)];
+        return true;
+      case Mount::Kind::Compound:
+        if (!in(poses.compounds, a.index)) return false;
+        out = (*poses.compounds)[std::size_t(a.index)];
+        return true;
+      case Mount::Kind::Articulated: {
+        if (!in(poses.robotLinks, a.index)) return false;
+        const std::vector<Pose>& links = (*poses.robotLinks)[std::size_t(a.index)];
+        if (a.link < 0 || std::size_t(a.link) >= links.size()) return false;
+        out = links[std::size_t(a.link)];
+        return true;
+      }
+      case Mount::Kind::World: break;
+    }
+    return false;
+  };
+  Eigen::AlignedBox3d bounds;
+  for (Drawable& d : scene.drawables) {
+    Pose body;
+    if (d.attachment.kind != Mount::Kind::World && bodyPose(d.attachment, body)) {
+      Affine3d world = affine(body) * d.attachment.local;
+      if (d.placeholderWorld && std::abs(d.world.linear().determinant()) > 0)
+        d.placeholderWorld = world * d.world.inverse() * *d.placeholderWorld;
+      d.world = world;
+      d.bounds = transformBox(d.world, d.localBounds);
+    }
+    if (d.shape != Shape::Ground) bounds.extend(d.bounds);
+  }
+  for (const TerrainMesh& t : scene.terrains) bounds.extend(t.bounds);
+  for (const Instanced& b : scene.instanced) bounds.extend(b.bounds);
+  for (const PointBatch& p : scene.pointClouds) bounds.extend(p.bounds);
+  scene.bounds = bounds;
+}
+
 bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Diagnostics& diags,
                   const DrawLimits& limits, asset::AssetCache* assets) {
   Preparer p(doc, scene, out, diags, limits, assets);
@@ -527,6 +631,12 @@ bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Dia
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
                       const DrawLimits& limits, asset::AssetCache* assets) {
   Scene scene;
+  return buildRenderScene(doc, options, scene, out, diags, limits, assets);
+}
+
+bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& scene, RenderScene& out,
+                      Diagnostics& diags, const DrawLimits& limits, asset::AssetCache* assets) {
+  scene = Scene{};
   bool ok = buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "robot/model.hpp"
 #include "scene/scene.hpp"
 
 namespace rscene::render {
@@ -42,6 +44,30 @@ struct RenderMaterial {
 
 enum class Shape { Box, Sphere, Cylinder, Capsule, Ground, Mesh };
 
+// The body a drawable moves with (rscene-render --trajectory): its world
+// transform is the body's current pose times `local`.  World: it never
+// moves.  Indices as in robot::BodyPoses (Scene::objects, compounds,
+// articulated; `link` into the robot model's links).
+struct Attachment {
+  Mount::Kind kind = Mount::Kind::World;
+  int index = -1;
+  int link = -1;
+  Eigen::Affine3d local = Eigen::Affine3d::Identity();
+};
+
+// One entry of the segmentation legend: a record drawn in one flat color
+// in segmentation images.  The color is the record's segmentationColor
+// when it writes one, else derived from its instanceId (>= 0), else from
+// its semanticClass, else from its path (segmentColor()); never black, the
+// background's.
+struct Segment {
+  std::uint8_t rgb[3] = {0, 0, 0};
+  std::string kind;  // record kind: object, compound, articulated, terrain_region, ...
+  std::string path, id, semanticClass;
+  std::int64_t instanceId = -1;
+  std::uint32_t line = 0;
+};
+
 struct Drawable {
   Shape shape = Shape::Box;
   // Unit shape -> world: boxes are unit cubes, spheres unit radius,
@@ -59,6 +85,12 @@ struct Drawable {
   // --allow-missing-assets; none: `world` (a scene object's own scale).
   std::optional<Eigen::Affine3d> placeholderWorld;
   Eigen::AlignedBox3d bounds;  // world-space, for framing and visibility
+  Eigen::AlignedBox3d localBounds;  // in the frame `world` maps from (bounds = world x localBounds)
+  Attachment attachment;       // what it moves with
+  int segment = -1;            // index into RenderScene::segments
+  // A simulated body (not visual-only), a terrain or a robot: what sensor
+  // views draw (RaiSim renders sensors from world objects only).
+  bool worldObject = false;
 };
 
 enum class LightType { Directional, Point, Spot, Area };
@@ -83,6 +115,7 @@ struct TerrainMesh {
   int material = 0;
   bool castShadow = true;
   Eigen::AlignedBox3d bounds;
+  int segment = -1;
 };
 
 struct Instanced {
@@ -96,6 +129,7 @@ struct Instanced {
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of meshPath on `line`
   Eigen::AlignedBox3d bounds;
+  int segment = -1;
 };
 
 struct PointBatch {
@@ -103,6 +137,7 @@ struct PointBatch {
   std::vector<Eigen::Vector4f> colors;
   float pointSize = 1;
   Eigen::AlignedBox3d bounds;
+  int segment = -1;
 };
 
 enum class Background { PlainColor, Hdr, Sky };
@@ -132,8 +167,12 @@ struct RenderScene {
   std::vector<TerrainMesh> terrains;
   std::vector<Instanced> instanced;
   std::vector<PointBatch> pointClouds;
+  std::vector<Segment> segments;  // the segmentation legend
   Look environment;
   std::size_t robots = 0;              // articulated systems drawn
+  // Every articulated system's model, indexed like Scene::articulated
+  // (hidden ones too: their sensors still see); null when it did not load.
+  std::vector<std::shared_ptr<const robot::Model>> robotModels;
   std::map<std::string, int> skipped;  // record kind -> count
   Eigen::AlignedBox3d bounds;          // everything visible but the ground
   bool hasGround = false;
@@ -152,6 +191,20 @@ struct DrawLimits {
   // as its 4 corners.  Not an error: the scene is drawn at bounded cost.
   std::uint64_t maxTerrainVertices = std::uint64_t{1} << 20;
 };
+
+// The segmentation color of a record (see Segment): never black.
+void segmentColor(const std::optional<Eigen::Vector4d>& written, std::int64_t instanceId,
+                  const std::string& semanticClass, const std::string& path, std::uint8_t rgb[3]);
+
+// Moves every attached drawable to its body's pose in `poses` (indices as
+// robot::BodyPoses: objects, compounds, robot links) and recomputes its
+// bounds; a body `poses` lacks stays where it is.
+struct BodyPoseView {
+  const std::vector<Pose>* objects = nullptr;
+  const std::vector<Pose>* compounds = nullptr;
+  const std::vector<std::vector<Pose>>* robotLinks = nullptr;
+};
+void poseScene(RenderScene& scene, const BodyPoseView& poses);
 
 // The world-space bounds of `local` carried by `m` (its eight corners).
 Eigen::AlignedBox3d transformBox(const Eigen::Affine3d& m, const Eigen::AlignedBox3d& local);
@@ -177,5 +230,9 @@ bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Dia
 // `out` is filled as far as possible either way.
 bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderScene& out, Diagnostics& diags,
                       const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
+// The same, keeping the scene model it built in `scene` (cameras, sensors,
+// bodies: what views and trajectories are read against).
+bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& scene, RenderScene& out,
+                      Diagnostics& diags, const DrawLimits& limits = {}, asset::AssetCache* assets = nullptr);
 
 }  // namespace rscene::render

@@ -65,7 +65,7 @@ const Eigen::AlignedBox3d& RobotDrawer::meshBounds(const std::string& path) {
   return it->second;
 }
 
-std::size_t RobotDrawer::add(const robot::Model& model, const std::vector<Pose>& poses) {
+std::size_t RobotDrawer::add(const robot::Model& model, const std::vector<Pose>& poses, int robot, int segment) {
   std::size_t added = 0;
   for (std::size_t li = 0; li < model.links.size() && li < poses.size(); ++li) {
     const robot::Link& link = model.links[li];
@@ -97,10 +97,23 @@ std::size_t RobotDrawer::add(const robot::Model& model, const std::vector<Pose>&
         case Shape::Ground: break;
       }
       if (d.shape == Shape::Mesh)
-        d.bounds = local.isEmpty() ? transformBox(*d.placeholderWorld, unitShapeBounds(Shape::Box))
-                                   : transformBox(d.world, local);
+        // A mesh that cannot be read is drawn as its placeholder box (a
+        // zero mesh scale leaves nothing to invert: then a point).
+        d.localBounds = !local.isEmpty()                             ? local
+                        : std::abs(d.world.linear().determinant()) > 0 ? transformBox(d.world.inverse() * *d.placeholderWorld,
+                                                                                      unitShapeBounds(Shape::Box))
+                                                                       : Eigen::AlignedBox3d(Vector3d::Zero(), Vector3d::Zero());
       else
-        d.bounds = transformBox(d.world, unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight));
+        d.localBounds = unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight);
+      d.bounds = transformBox(d.world, d.localBounds);
+      d.segment = segment;
+      d.worldObject = true;
+      if (robot >= 0) {
+        d.attachment.kind = Mount::Kind::Articulated;
+        d.attachment.index = robot;
+        d.attachment.link = static_cast<int>(li);
+        d.attachment.local = linkWorld.inverse() * d.world;
+      }
       out_.bounds.extend(d.bounds);
       out_.drawables.push_back(std::move(d));
       ++added;

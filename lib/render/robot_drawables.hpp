@@ -36,8 +36,10 @@ class RobotDrawer {
   RobotDrawer(RenderScene& out, asset::AssetCache& assets) : out_(out), assets_(assets) {}
 
   // Adds the visuals of `model` with its links at `poses` (indexed like
-  // model.links, world frame).  Returns the number of drawables added.
-  std::size_t add(const robot::Model& model, const std::vector<Pose>& poses);
+  // model.links, world frame), attached to the links of robot `robot`
+  // (its index in Scene::articulated), in legend entry `segment`.
+  // Returns the number of drawables added.
+  std::size_t add(const robot::Model& model, const std::vector<Pose>& poses, int robot = -1, int segment = -1);
 
  private:
   int materialFor(const robot::Visual& v, const std::string& file);

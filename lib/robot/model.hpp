@@ -74,9 +74,23 @@ struct Link {
   // The file `line` (and the lines of the link's elements) are in when it
   // is not Model::sourceFile: a URDF module.  Empty: Model::sourceFile.
   std::string file;
-  // RaiSim's <link sensor="FILE">: the sensor set file as written (kept,
-  // not read: no tool uses sensor sets yet).
+  // RaiSim's <link sensor="FILE">: the sensor set file as written; its
+  // sensors are in Model::sensors.
   std::string sensorSet;
+};
+
+// One sensor of a sensor set a URDF link names (RaiSim's <link
+// sensor="FILE">, Sensors.rst): `<sensor name type update_rate>` of the
+// set's file, placed on the link that names the set.
+struct SensorDef {
+  std::string set;    // the link's name (RaiSim names the set by it)
+  std::string name;   // the sensor's name in the set ("color", "depth", "imu", "lidar")
+  std::string kind;   // canonical sensor_kind: rgb, depth, imu, lidar (spinning_lidar), or as written
+  int link = -1;      // index into Model::links
+  Pose origin;        // in the link frame: the set's <origin> then the sensor's
+  SensorParams params;  // degrees, metres, Hz (scene/scene.hpp)
+  std::string file;   // the sensor-set file (resolved)
+  int line = 0;       // of the <sensor> element in `file`
 };
 
 // Floating only ever joins the world to the root (an MJCF free joint, or a
@@ -114,6 +128,7 @@ struct Model {
   std::string sourceFile;  // the file the lines refer to
   std::vector<Link> links;
   std::vector<Joint> joints;
+  std::vector<SensorDef> sensors;  // the sensor sets' sensors, in link order
   int root = 0;  // index of the root link
   // A URDF whose root link is named `world`, or an MJCF model whose first
   // body has no free joint, is fixed to the world at the record's pose.

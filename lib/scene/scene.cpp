@@ -29,7 +29,7 @@ Node* lastNamed(std::vector<Node>& nodes, const std::string& ref) {
 constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
                                           "camera", "object",         "compound",            "compound_child",
                                           "wire",   "instanced_visual", "point_cloud", "articulated",
-                                          "articulated_ik"};
+                                          "articulated_ik", "sensor"};
 
 bool modelled(std::string_view tag) {
   return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
@@ -94,6 +94,7 @@ class Builder {
       else if (tag == "articulated_resource") readArticulatedResource(r, idx);
       else if (tag == "articulated") readArticulated(r, idx);
       else if (tag == "articulated_ik") readArticulatedIk(r, idx);
+      else if (tag == "sensor") readSensor(r, idx);
       else if ((rec.kind->role == Role::Node || rec.kind->role == Role::Child) && !modelled(tag))
         s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
     }
@@ -346,6 +347,7 @@ class Builder {
     c.projection = r.name("projection");
     c.orthoScale = r.number("orthoScale");
     c.enabled = r.flag("enabled");
+    c.outputPath = r.str("outputPath");
     parentOf_[idx] = r.str("parentGroupId");
     s_.cameras.push_back(std::move(c));
   }
@@ -371,6 +373,10 @@ class Builder {
     o.bodyMode = objectMode(r, o.primitive, o.collidable);
     o.visible = r.flag("visible");
     o.castShadow = r.flag("castShadow");
+    o.semanticClass = r.str("semanticClass");
+    if (o.semanticClass == "-") o.semanticClass.clear();
+    o.instanceId = r.has("instanceId") ? r.integer("instanceId") : -1;
+    if (r.has("segmentationColor")) o.segmentationColor = r.color("segmentationColor");
     std::string mesh = r.str("meshPath");
     if (std::string render = r.str("renderMeshPath"); !render.empty()) mesh = render;
     std::string collision = r.str("collisionMeshPath");
@@ -522,6 +528,8 @@ class Builder {
     c.collisionMask = r.group("collisionMask");
     c.contactMaterial = r.str("contactMaterial");
     c.material = r.str("material");
+    c.semanticClass = r.str("semanticClass");
+    if (c.semanticClass == "-") c.semanticClass.clear();
     parentOf_[idx] = c.parentId;
     s_.compounds.push_back(std::move(c));
   }
@@ -719,6 +727,46 @@ class Builder {
     a.doNotCollideWithParent = r.flag("doNotCollideWithParent");
     a.convexifyCollisionMeshes = r.flag("convexifyCollisionMeshes");
     s_.articulatedResources.push_back(std::move(a));
+  }
+
+  void readSensor(const RecordReader& r, int idx) {
+    Sensor v;
+    v.recordIndex = idx;
+    v.path = nodePath(doc_, r.record());
+    v.id = nodeId(doc_, r.record());
+    v.kind = r.name("kind");
+    v.parentObject = r.str("parentObject");
+    if (v.parentObject == "-") v.parentObject.clear();
+    v.parentLink = r.str("parentLink");
+    if (v.parentLink == "-") v.parentLink.clear();
+    v.local = readPose(r, "position", "orientation");
+    SensorParams& p = v.params;
+    p.width = pixelCount(r, "width");
+    p.height = pixelCount(r, "height");
+    p.updateRate = r.number("updateRate");
+    p.verticalFov = r.number("verticalFov");
+    p.horizontalFov = r.number("horizontalFov");
+    p.nearPlane = r.number("nearPlane");
+    p.farPlane = r.number("farPlane");
+    p.lidarChannels = static_cast<int>(std::clamp<std::int64_t>(r.integer("lidarChannels"), 0, INT32_MAX));
+    p.lidarSamples = static_cast<int>(std::clamp<std::int64_t>(r.integer("lidarSamples"), 0, INT32_MAX));
+    p.lidarMinRange = r.number("lidarMinRange");
+    p.lidarMaxRange = r.number("lidarMaxRange");
+    // lidarVerticalFov: a span centred on the horizon.
+    p.lidarMaxPitch = r.number("lidarVerticalFov") / 2;
+    p.lidarMinPitch = -p.lidarMaxPitch;
+    p.segmentation = r.flag("segmentation");
+    p.fx = r.number("calibrationFx");
+    p.fy = r.number("calibrationFy");
+    p.cx = r.number("calibrationCx");
+    p.cy = r.number("calibrationCy");
+    p.noiseMean = r.number("noiseMean");
+    p.noiseStddev = r.number("noiseStddev");
+    p.noiseSeed = static_cast<std::uint64_t>(r.integer("noiseSeed"));
+    v.enabled = r.flag("enabled");
+    v.outputPath = r.str("outputPath");
+    parentOf_[idx] = r.str("parentGroupId");
+    s_.sensors.push_back(std::move(v));
   }
 
   void readArticulated(const RecordReader& r, int idx) {
@@ -1027,6 +1075,47 @@ class Builder {
   }
 
   Pose parentFrame(int idx) const { return frames_[static_cast<std::size_t>(idx)]; }
+
+  // The body a record index is, as a Mount (World when it is none).
+  Mount mountOf(int record) const {
+    Mount m;
+    auto find = [&](const auto& list, Mount::Kind kind) {
+      for (std::size_t i = 0; i < list.size(); ++i)
+        if (list[i].recordIndex == record) {
+          m.kind = kind;
+          m.index = static_cast<int>(i);
+          return true;
+        }
+      return false;
+    };
+    if (record >= 0) find(s_.objects, Mount::Kind::Object) || find(s_.compounds, Mount::Kind::Compound) ||
+                         find(s_.articulated, Mount::Kind::Articulated);
+    return m;
+  }
+
+  // A camera rides on the body its parentGroupId names; a sensor on its
+  // parentObject (at parentLink on a robot).  An unknown name is lib/core's
+  // RS3012 (validate) and leaves the sensor in the world.
+  void resolveMounts() {
+    for (Camera& c : s_.cameras) c.mount = mountOf(parentIdx_[static_cast<std::size_t>(c.recordIndex)]);
+    for (Sensor& v : s_.sensors) {
+      v.mount = mountOf(lookup(v.parentObject));
+      if (v.mount.kind == Mount::Kind::Articulated) v.mount.link = v.parentLink;
+    }
+  }
+
+  // The world pose of the frame a sensor's local pose is written in: its
+  // mount body's (a robot's base: lib/robot's sensor rig places it on the
+  // link), else its parent folder's.
+  Pose mountFrame(const Mount& m, int record) const {
+    switch (m.kind) {
+      case Mount::Kind::Object: return s_.objects[static_cast<std::size_t>(m.index)].world;
+      case Mount::Kind::Compound: return s_.compounds[static_cast<std::size_t>(m.index)].world;
+      case Mount::Kind::Articulated: return s_.articulated[static_cast<std::size_t>(m.index)].world;
+      case Mount::Kind::World: break;
+    }
+    return parentFrame(record);
+  }
   bool hiddenByGroup(int idx) const { return hidden_[static_cast<std::size_t>(idx)] != 0; }
 
   void resolveWorld() {
@@ -1039,11 +1128,13 @@ class Builder {
     resolveHidden();
     for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
     for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex) * c.local;
+    resolveMounts();
     for (Camera& c : s_.cameras) c.world = parentFrame(c.recordIndex) * c.local;
     for (Articulated& a : s_.articulated) {
       a.world = parentFrame(a.recordIndex) * a.local;
       a.hiddenByGroup = hiddenByGroup(a.recordIndex);
     }
+    for (Sensor& v : s_.sensors) v.world = mountFrame(v.mount, v.recordIndex) * v.local;
     for (Object& o : s_.objects) o.hiddenByGroup = hiddenByGroup(o.recordIndex);
     for (Compound& c : s_.compounds) c.hiddenByGroup = hiddenByGroup(c.recordIndex);
     for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);

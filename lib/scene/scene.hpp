@@ -224,6 +224,17 @@ struct Light {
   bool hiddenByGroup = false;  // an ancestor group has visible=false
 };
 
+// What a camera or sensor rides on: the body its `local` pose is written
+// in.  A camera rides on the object, compound or articulated system its
+// parentGroupId names (a group is a folder: World); a sensor on its
+// parentObject, at its parentLink when that names a robot link or frame.
+struct Mount {
+  enum class Kind { World, Object, Compound, Articulated };
+  Kind kind = Kind::World;
+  int index = -1;    // into Scene::objects, compounds or articulated
+  std::string link;  // Articulated: a link or frame name; empty = the root link
+};
+
 struct Camera {
   int recordIndex = -1;
   std::string path, id;
@@ -236,6 +247,52 @@ struct Camera {
   std::string projection{};
   double orthoScale{};
   bool enabled{};
+  std::string outputPath;  // as written ("-" and empty: none); not an asset, never resolved
+  Mount mount;             // the body parentGroupId names (World: a group or nothing)
+};
+
+// The numbers of a camera-like or physical sensor, from a sensor record or
+// from a robot's sensor-set file (lib/robot).  Angles in degrees, lengths
+// in metres, rates in Hz; 0 means "not given" where a comment says so.
+struct SensorParams {
+  int width{}, height{};                  // image size (camera-like kinds)
+  double verticalFov{}, horizontalFov{};  // degrees; 0: not given
+  double nearPlane{}, farPlane{};         // 0: not given
+  // Pinhole intrinsics in pixels (RaiSim's frame: a point (x forward, y
+  // left, z up) lands at column cx - fx*y/x, row cy - fy*z/x); all four
+  // given or none (0: not given).
+  double fx{}, fy{}, cx{}, cy{};
+  double updateRate{};  // Hz; 0: every simulation step
+  // LiDAR: channels (rows, pitch) x samples (columns, yaw), the pitch span
+  // [minPitch, maxPitch] in degrees, ranges; spinRate (Hz) and direction.
+  int lidarChannels{}, lidarSamples{};
+  double lidarMinPitch{}, lidarMaxPitch{};
+  double lidarMinRange{}, lidarMaxRange{};
+  double lidarSpinRate{};
+  bool lidarClockwise{};
+  bool segmentation{};  // a camera that also writes segmentation
+  // Additive Gaussian noise on depth, range and IMU readings; the same seed
+  // gives the same noise.
+  double noiseMean{}, noiseStddev{};
+  std::uint64_t noiseSeed{};
+  // IMU saturation (RaiSim's <limit acc_limit ang_vel_limit>); 0: none.
+  double accelerationLimit{}, angularVelocityLimit{};
+};
+
+// sensor record.  `kind` is the canonical sensor_kind (rgb, depth,
+// segmentation, rgb_depth, imu, lidar, force_torque, or as written when
+// the schema does not know it).
+struct Sensor {
+  int recordIndex = -1;
+  std::string path, id;
+  std::string kind{};
+  std::string parentObject;  // as written (id or path of a body); empty: the world
+  std::string parentLink;    // as written
+  Mount mount;               // parentObject/parentLink resolved; World when it names nothing known
+  Pose local, world;         // world: at the scene's state (robots at their record's q)
+  SensorParams params;
+  bool enabled{};
+  std::string outputPath;  // as written ("-" and empty: none)
 };
 
 struct Object {
@@ -246,6 +303,11 @@ struct Object {
   Eigen::Vector3d scale{Eigen::Vector3d::Zero()};
   double radius{}, height{};  // as written (#12, #13)
   double mass{};  // as written
+  // Segmentation (rscene-render): the record's color when it writes one,
+  // else a color derived from instanceId (>= 0) or semanticClass.
+  std::string semanticClass;  // "" and "-": none
+  std::int64_t instanceId{};  // -1: none
+  std::optional<Eigen::Vector4d> segmentationColor;
   std::string contactMaterial;      // contact-material name (may be empty / "default")
   std::string material;             // visual material id
   bool visible{};
@@ -296,6 +358,7 @@ struct Compound {
   std::uint64_t collisionGroup{};
   std::uint64_t collisionMask{};
   std::string contactMaterial, material;
+  std::string semanticClass;
   std::vector<CompoundChild> children;
   int positionToken = -1;
 };
@@ -470,7 +533,7 @@ struct PointCloud {
 };
 
 // A scene-content record the view does not model (deformable,
-// granular, sensor, decals, fog volumes, probes, foliage layers ...).
+// granular, decals, fog volumes, probes, foliage layers ...).
 struct SkippedRecord {
   int recordIndex = -1;
   std::string tag, path;
@@ -501,6 +564,7 @@ struct Scene {
   std::vector<Articulated> articulated;
   std::vector<InstancedVisual> instancedVisuals;
   std::vector<PointCloud> pointClouds;
+  std::vector<Sensor> sensors;
   std::vector<SkippedRecord> skipped;
 
   const Material* findMaterial(const std::string& id) const;

@@ -185,9 +185,45 @@ TEST(Scene, CompoundsWiresAndSkippedRecords) {
   ASSERT_EQ(b.scene.wires.size(), 1u);
   EXPECT_EQ(b.scene.wires[0].kind, "compliant");
   EXPECT_DOUBLE_EQ(b.scene.wires[0].stiffness, 50);
-  ASSERT_EQ(b.scene.skipped.size(), 2u);
-  EXPECT_EQ(b.scene.skipped[0].tag, "sensor");
-  EXPECT_EQ(b.scene.skipped[1].recordIndex, 6);
+  ASSERT_EQ(b.scene.skipped.size(), 1u);
+  EXPECT_EQ(b.scene.skipped[0].recordIndex, 6);
+  ASSERT_EQ(b.scene.sensors.size(), 1u);
+  EXPECT_EQ(b.scene.sensors[0].kind, "imu");
+  EXPECT_EQ(b.scene.sensors[0].mount.kind, Mount::Kind::World);
+}
+
+TEST(Scene, SensorsAndCamerasRideOnTheirBodies) {
+  Built b = build(
+      "raisim_engine_scene 1\n"
+      "object /World/Box box 1 2 3 0.7071068 0 0 0.7071068 1 1 1 0 0 1 default default false true false - dynamic "
+      "true 1 18446744073709551615 id=box semanticClass=crate instanceId=7\n"
+      "sensor /World/Box/Cam spinning_lidar box 1 0 0 1 0 0 0 parentLink=- lidarChannels=8\n"
+      "sensor /World/Free camera - 0 0 5 1 0 0 0 calibrationFx=500 noiseSeed=42 outputPath=cam.png\n"
+      "camera /World/Box/View 0 0 1 1 0 0 0 60 0.1 100 64 48 depth true parentGroupId=box outputPath=out.png\n");
+  ASSERT_TRUE(b.ok) << codes(b.diags);
+  ASSERT_EQ(b.scene.sensors.size(), 2u);
+  const Sensor& lidar = b.scene.sensors[0];
+  EXPECT_EQ(lidar.kind, "lidar");  // spinning_lidar is RaiSim's name
+  EXPECT_EQ(lidar.mount.kind, Mount::Kind::Object);
+  EXPECT_EQ(lidar.mount.index, 0);
+  EXPECT_TRUE(lidar.mount.link.empty());
+  EXPECT_EQ(lidar.params.lidarChannels, 8);
+  EXPECT_EQ(lidar.params.lidarSamples, 1024);  // the schema's default
+  EXPECT_DOUBLE_EQ(lidar.params.lidarMaxPitch, 15);
+  // The box is turned 90 degrees about z: its local +x is world +y.
+  EXPECT_TRUE(lidar.world.position.isApprox(Eigen::Vector3d(1, 3, 3), 1e-6)) << lidar.world.position.transpose();
+  const Sensor& free = b.scene.sensors[1];
+  EXPECT_EQ(free.kind, "rgb");
+  EXPECT_EQ(free.mount.kind, Mount::Kind::World);
+  EXPECT_DOUBLE_EQ(free.params.fx, 500);
+  EXPECT_EQ(free.params.noiseSeed, 42u);
+  EXPECT_EQ(free.outputPath, "cam.png");
+  ASSERT_EQ(b.scene.cameras.size(), 1u);
+  EXPECT_EQ(b.scene.cameras[0].mount.kind, Mount::Kind::Object);
+  EXPECT_EQ(b.scene.cameras[0].outputPath, "out.png");
+  EXPECT_EQ(b.scene.objects[0].semanticClass, "crate");
+  EXPECT_EQ(b.scene.objects[0].instanceId, 7);
+  EXPECT_FALSE(b.scene.objects[0].segmentationColor);
 }
 
 TEST(Scene, LightsCamerasInstances) {

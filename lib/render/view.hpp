@@ -1,0 +1,74 @@
+// Views: what one camera record or camera-like sensor sees, as images
+// (RGB, depth, segmentation), and the Renderer that draws many views of
+// one scene with one upload (rscene-render --all-cameras, --trajectory).
+//
+// Frames: a view looks along its local +x with +z up (RaiSim's sensor
+// frame: +x forward, +y left, +z up).  Depth is the distance along +x in
+// metres, NaN where nothing is hit within [near, far].
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "render/image.hpp"
+#include "render/render_scene.hpp"
+#include "render/renderer.hpp"
+
+namespace rscene::render {
+
+enum class Pass { Color, Depth, Segmentation };
+const char* passName(Pass p);  // "rgb", "depth", "segmentation" (the {kind} of output patterns)
+
+struct View {
+  std::string name;  // the camera's or sensor's path ("<robot>/<set>/<sensor>" for a URDF sensor)
+  std::string id;    // record id, may be empty
+  bool sensor = false;  // a sensor: draws world objects only (Drawable::worldObject)
+  // Pose (world), fields of view, near/far, projection, orthoScale, image
+  // size; Camera::renderMode as written.
+  Camera camera;
+  // Pinhole intrinsics in pixels, all > 0 or all 0 (then the fields of
+  // view give them).  A point at (x, y, z) in the view frame lands on
+  // column cx - fx*y/x and row cy - fy*z/x (row 0 at the top).
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  std::vector<Pass> passes;  // at least one
+  // Additive Gaussian noise on depth (metres), from noiseSeed: the same
+  // seed gives the same image.
+  double noiseMean = 0, noiseStddev = 0;
+  std::uint64_t noiseSeed = 0;
+  std::string outputPath;  // as written; "-" and empty: none
+  int recordIndex = -1;    // the camera or sensor record; -1 for a URDF sensor
+  int sensorIndex = -1;  // into the robot::collectSensors list (sensor views), else -1
+};
+
+// The images of one view.  `color` and `segmentation` are RGBA8 rows top
+// to bottom; `depth` width*height floats, rows top to bottom.
+struct ViewImages {
+  int width = 0, height = 0;
+  Image color;
+  std::vector<float> depth;
+  Image segmentation;
+};
+
+// Draws views of one RenderScene with the current EGL context.  Meshes and
+// textures are uploaded once, by create(); updatePoses() carries new
+// drawable transforms (after poseScene()) to the GPU without uploading
+// anything else.
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  // Null (with an error diagnostic) when an asset is missing and
+  // !options.allowMissingAssets, or GL fails.  `scene` must outlive the
+  // renderer.  options.width/height are ignored: each view has its size.
+  static std::unique_ptr<Renderer> create(const RenderScene& scene, const RenderOptions& options,
+                                          Diagnostics& diagnostics);
+  // The scene's drawables moved (poseScene()): same drawables, new
+  // Drawable::world and bounds.
+  virtual void updatePoses() = 0;
+  // Renders the passes of `view` at view.camera.width x height.
+  virtual bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) = 0;
+  virtual RenderTimings timings() const = 0;  // upload (create) and drawing so far
+};
+
+}  // namespace rscene::render
