@@ -918,6 +918,59 @@ btRigidBody* dynamicBody(const World::Impl& w, const std::string& name) {
 }
 }  // namespace
 
+bool World::pointVelocity(const std::string& pathOrId, const Eigen::Vector3d& p, Eigen::Vector3d& v,
+                          Eigen::Vector3d& w) const {
+  auto it = impl_->byName.find(pathOrId);
+  if (it == impl_->byName.end()) return false;
+  const btRigidBody* body = it->second;
+  btVector3 rel = bt(p) - body->getCenterOfMassPosition();
+  v = eig(body->getVelocityInLocalPoint(rel));
+  w = eig(body->getAngularVelocity());
+  return true;
+}
+
+bool World::robotPointVelocity(const std::string& pathOrId, int link, const Eigen::Vector3d& p, Eigen::Vector3d& v,
+                               Eigen::Vector3d& w) const {
+  auto it = impl_->robotByName.find(pathOrId);
+  if (it == impl_->robotByName.end()) return false;
+  const SimRobot& r = *impl_->robots[static_cast<std::size_t>(it->second)];
+  const std::vector<int>& bodyOf = r.layout().bodyOfLink;
+  int body = link >= 0 && std::size_t(link) < bodyOf.size() ? bodyOf[std::size_t(link)] : 0;
+  v = r.pointVelocity(body, p, &w);
+  return true;
+}
+
+const btCollisionWorld& World::collisionWorld() const { return *impl_->world; }
+
+std::vector<const btCollisionObject*> World::rayTargets() const {
+  std::vector<const btCollisionObject*> out;
+  const btCollisionObjectArray& all = impl_->world->getCollisionObjectArray();
+  for (int i = 0; i < all.size(); ++i) {
+    const btCollisionObject* o = all[i];
+    int k = o->getUserIndex();
+    if (k < 0 || std::size_t(k) >= impl_->info.size()) continue;
+    const BodyInfo& bi = impl_->info[std::size_t(k)];
+    if (bi.group == 0 || bi.mask == 0) continue;  // collides with nothing (collidable=false)
+    if (o->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE) continue;
+    out.push_back(o);
+  }
+  return out;
+}
+
+const btCollisionObject* World::collisionObject(const std::string& pathOrId) const {
+  auto it = impl_->byName.find(pathOrId);
+  return it == impl_->byName.end() ? nullptr : it->second;
+}
+
+const btCollisionObject* World::robotCollisionObject(const std::string& pathOrId, int link) const {
+  auto it = impl_->robotByName.find(pathOrId);
+  if (it == impl_->robotByName.end()) return nullptr;
+  const SimRobot& r = *impl_->robots[static_cast<std::size_t>(it->second)];
+  const std::vector<int>& bodyOf = r.layout().bodyOfLink;
+  int body = link >= 0 && std::size_t(link) < bodyOf.size() ? bodyOf[std::size_t(link)] : 0;
+  return r.colliders()[static_cast<std::size_t>(body)];
+}
+
 bool World::setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity) {
   btRigidBody* body = dynamicBody(*impl_, pathOrId);
   if (!body || !velocity.allFinite()) return false;

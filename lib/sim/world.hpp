@@ -43,6 +43,9 @@
 #include "robot/instance.hpp"
 #include "scene/scene.hpp"
 
+class btCollisionObject;
+class btCollisionWorld;
+
 namespace rscene::sim {
 
 // Codes of the simulator's own findings (the scene view's are scene_code).
@@ -212,6 +215,25 @@ class World {
   // nothing) when no dynamic body has that name or a value is not finite.
   bool setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
   bool setAngularVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
+
+  // For sensors (sensor_recorder.hpp).  The world-frame velocity `v` of a
+  // point `p` (world coordinates) fixed in a body and the body's angular
+  // velocity `w`: an object or compound by path or id (a static one does
+  // not move), or the link `link` (Model::links index) of the articulated
+  // system named by path or id.  False when no body has that name.
+  bool pointVelocity(const std::string& pathOrId, const Eigen::Vector3d& p, Eigen::Vector3d& v,
+                     Eigen::Vector3d& w) const;
+  bool robotPointVelocity(const std::string& pathOrId, int link, const Eigen::Vector3d& p, Eigen::Vector3d& v,
+                          Eigen::Vector3d& w) const;
+  // For ray casts (lidar_geometry.hpp; Bullet's types, so lib/sim only):
+  // the collision world, every collision object a ray can meet (those that
+  // collide with something: not collidable=false, not a robot body without
+  // shapes, not a body that left the world), and the collision object of a
+  // body named as above (nullptr when none).
+  const btCollisionWorld& collisionWorld() const;
+  std::vector<const btCollisionObject*> rayTargets() const;
+  const btCollisionObject* collisionObject(const std::string& pathOrId) const;
+  const btCollisionObject* robotCollisionObject(const std::string& pathOrId, int link) const;
 
   // Writes the current poses of dynamic and kinematic bodies into `doc`
   // (positional position and orientation tokens, shortest round-trip),

@@ -1,0 +1,25 @@
+// Where rscene-sim --sensors DIR writes a sensor's stream, relative to DIR.
+//
+// A sensor's default name is its path made one safe file name: the leading
+// '/' dropped, every other '/' written '+', bytes other than ASCII letters,
+// digits, '.', '_' and '-' (so '+' and '%' themselves too) written %XX
+// (upper-case hex), and a '.' that starts a component written %2E (no
+// hidden file, never "." or "..").  Every output byte sequence decodes back
+// to one path, so two sensors (whose paths all start with '/') never share
+// a name:  /World/Robot/Imu -> World+Robot+Imu,
+//   /World/anymal/os1_64/lidar (a URDF sensor set) -> World+anymal+os1_64+lidar.
+// A record's outputPath, where set, is used instead, as written, relative
+// to DIR: an absolute path or one with a '..' component is refused (RS7070).
+#pragma once
+#include <string>
+
+namespace rscene::sim {
+
+std::string sensorFileName(const std::string& sensorPath);
+
+// Whether `outputPath` may name a place under the sensors directory; why
+// not in `why` (lower-case).  Empty and "-" mean "not set" and are not
+// asked about.
+bool safeRelativePath(const std::string& outputPath, std::string& why);
+
+}  // namespace rscene::sim

@@ -1,0 +1,237 @@
+#include "sim/sensor_recorder.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "robot/kinematics.hpp"
+#include "scene/reader.hpp"
+#include "sim/sensor_paths.hpp"
+
+namespace rscene::sim {
+namespace {
+
+bool endsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// A finding about a sensor: at the record's field, or at the sensor's line
+// of its robot's sensor-set file.
+void report(const Document& doc, const robot::SensorSpec& s, const char* field, const char* code,
+            const std::string& message, Severity severity, Diagnostics& ds) {
+  if (s.recordIndex >= 0) {
+    RecordReader r(doc, static_cast<std::size_t>(s.recordIndex), ds);
+    r.error(field, code, message, {}, severity);
+    return;
+  }
+  Diagnostic d;
+  d.severity = severity;
+  d.code = code;
+  d.file = s.file;
+  d.line = static_cast<std::uint32_t>(std::max(0, s.line));
+  d.message = message;
+  ds.push_back(std::move(d));
+}
+
+// What is wrong with a sensor's numbers for recording (empty: nothing),
+// and the field it is in.
+std::pair<const char*, std::string> badSetting(const robot::SensorSpec& s) {
+  const SensorParams& p = s.params;
+  if (!(std::isfinite(p.updateRate) && p.updateRate >= 0)) return {"updateRate", "updateRate must be finite and >= 0"};
+  if (!std::isfinite(p.noiseMean) || !(std::isfinite(p.noiseStddev) && p.noiseStddev >= 0))
+    return {"noiseStddev", "noise mean must be finite and noiseStddev finite and >= 0"};
+  if (s.kind == robot::SensorKind::Imu) {
+    if (!(std::isfinite(p.accelerationLimit) && p.accelerationLimit >= 0) ||
+        !(std::isfinite(p.angularVelocityLimit) && p.angularVelocityLimit >= 0))
+      return {"", "IMU limits must be finite and >= 0"};
+    return {};
+  }
+  if (p.lidarChannels <= 0 || p.lidarSamples <= 0)
+    return {"lidarChannels", "a lidar needs lidarChannels and lidarSamples > 0 (it has " +
+                                 std::to_string(p.lidarChannels) + " x " + std::to_string(p.lidarSamples) + ")"};
+  if (std::uint64_t(p.lidarChannels) * std::uint64_t(p.lidarSamples) > kMaxLidarRays)
+    return {"lidarSamples", "a lidar scan of " + std::to_string(p.lidarChannels) + " x " +
+                                std::to_string(p.lidarSamples) + " rays is more than the " +
+                                std::to_string(kMaxLidarRays) + " rscene-sim casts"};
+  if (!(std::isfinite(p.lidarMinRange) && std::isfinite(p.lidarMaxRange) && p.lidarMinRange >= 0 &&
+        p.lidarMaxRange > p.lidarMinRange))
+    return {"lidarMaxRange", "a lidar needs 0 <= lidarMinRange < lidarMaxRange, both finite"};
+  if (!(std::isfinite(p.lidarMinPitch) && std::isfinite(p.lidarMaxPitch) && std::abs(p.lidarMinPitch) <= 90 &&
+        std::abs(p.lidarMaxPitch) <= 90))
+    return {"lidarVerticalFov", "a lidar's pitch span must lie within -90..90 degrees"};
+  return {};
+}
+
+}  // namespace
+
+std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<robot::SensorSpec>& all,
+                                        const SensorPlanOptions& options, Diagnostics& ds) {
+  std::vector<RecordedSensor> out;
+  std::map<std::string, std::size_t> taken;  // output -> index into out
+  for (const robot::SensorSpec& s : all) {
+    if (!s.enabled || robot::cameraLike(s.kind)) continue;
+    if (s.kind != robot::SensorKind::Lidar && s.kind != robot::SensorKind::Imu) {
+      report(doc, s, "kind", sim_code::kSensorNotRecorded,
+             "sensor '" + s.name + "' of kind '" + s.kindName + "' is not recorded (rscene-sim records lidar and imu)",
+             Severity::Warning, ds);
+      continue;
+    }
+    if (auto [field, why] = badSetting(s); !why.empty()) {
+      report(doc, s, field, sim_code::kSensorSetting, "sensor '" + s.name + "': " + why, Severity::Error, ds);
+      continue;
+    }
+    RecordedSensor r;
+    r.spec = s;
+    bool named = !s.outputPath.empty() && s.outputPath != "-";
+    if (named) {
+      std::string why;
+      if (!safeRelativePath(s.outputPath, why)) {
+        report(doc, s, "outputPath", sim_code::kSensorOutputPath,
+               "outputPath '" + s.outputPath + "' of sensor '" + s.name + "' cannot be used: " + why, Severity::Error,
+               ds);
+        continue;
+      }
+      r.output = s.outputPath;
+    } else {
+      r.output = sensorFileName(s.name);
+    }
+    if (s.kind == robot::SensorKind::Imu) {
+      r.imuFormat = endsWith(r.output, ".jsonl") ? ImuFormat::Jsonl
+                    : endsWith(r.output, ".csv") ? ImuFormat::Csv
+                                                 : options.imuFormat;
+      if (!named) r.output += r.imuFormat == ImuFormat::Csv ? ".csv" : ".jsonl";
+    } else {
+      r.directions = lidarDirections(s.params);
+    }
+    if (auto it = taken.find(r.output); it != taken.end()) {
+      report(doc, s, "outputPath", sim_code::kSensorSameOutput,
+             "sensors '" + out[it->second].spec.name + "' and '" + s.name + "' would both write '" + r.output + "'",
+             Severity::Error, ds);
+      continue;
+    }
+    taken.emplace(r.output, out.size());
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+robot::BodyPoses currentPoses(const Scene& scene, const World& world) {
+  robot::BodyPoses p;
+  std::map<int, Pose*> byRecord;
+  for (const Object& o : scene.objects) p.objects.push_back(o.world);
+  for (const Compound& c : scene.compounds) p.compounds.push_back(c.world);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) byRecord[scene.objects[i].recordIndex] = &p.objects[i];
+  for (std::size_t i = 0; i < scene.compounds.size(); ++i) byRecord[scene.compounds[i].recordIndex] = &p.compounds[i];
+  for (const BodyState& b : world.states())
+    if (auto it = byRecord.find(b.recordIndex); it != byRecord.end()) *it->second = Pose{b.position, b.orientation};
+  p.robotLinks.resize(scene.articulated.size());
+  std::map<int, std::size_t> robotOf;
+  for (std::size_t i = 0; i < scene.articulated.size(); ++i) robotOf[scene.articulated[i].recordIndex] = i;
+  for (const RobotState& r : world.robotStates()) {
+    auto it = robotOf.find(r.recordIndex);
+    if (it == robotOf.end() || !r.instance || !r.instance->model) continue;
+    p.robotLinks[it->second] = robot::linkPoses(*r.instance->model, r.instance->coordinates, r.instance->base, r.q);
+  }
+  return p;
+}
+
+struct SensorRecorder::State {
+  double period = 0;           // 1 / updateRate; 0: every step
+  std::uint64_t nextSlot = 0;  // the multiple of period the next reading waits for
+  std::uint64_t readings = 0;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // an IMU's point, at the last step
+  const btCollisionObject* exclude = nullptr;          // a LiDAR's own body
+};
+
+namespace {
+
+// The path of the body a sensor rides on, for World's lookups (empty: the world).
+const std::string* mountPath(const Scene& scene, const Mount& m) {
+  auto at = [](const auto& list, int i) { return i >= 0 && std::size_t(i) < list.size(); };
+  switch (m.kind) {
+    case Mount::Kind::Object: return at(scene.objects, m.index) ? &scene.objects[std::size_t(m.index)].path : nullptr;
+    case Mount::Kind::Compound:
+      return at(scene.compounds, m.index) ? &scene.compounds[std::size_t(m.index)].path : nullptr;
+    case Mount::Kind::Articulated:
+      return at(scene.articulated, m.index) ? &scene.articulated[std::size_t(m.index)].path : nullptr;
+    case Mount::Kind::World: break;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+SensorRecorder::SensorRecorder(const Scene& scene, const World& world, std::vector<RecordedSensor> sensors,
+                               int threads)
+    : scene_(scene), world_(world), sensors_(std::move(sensors)), states_(sensors_.size()), threads_(threads) {
+  bool lidar = false;
+  for (std::size_t i = 0; i < sensors_.size(); ++i) {
+    const robot::SensorSpec& s = sensors_[i].spec;
+    State& st = states_[i];
+    st.period = s.params.updateRate > 0 ? 1 / s.params.updateRate : 0;
+    if (s.kind != robot::SensorKind::Lidar) continue;
+    lidar = true;
+    if (const std::string* path = mountPath(scene, s.mount))
+      st.exclude = s.mount.kind == Mount::Kind::Articulated ? world.robotCollisionObject(*path, s.link)
+                                                             : world.collisionObject(*path);
+  }
+  if (lidar) geometry_ = std::make_unique<RayGeometry>(world);
+}
+
+SensorRecorder::~SensorRecorder() = default;
+
+bool SensorRecorder::due(State& s, double time, bool first) const {
+  if (s.period == 0) return true;
+  // Slots are multiples of the period; a step that passes several takes
+  // one reading (never more than one a step).
+  double tolerance = 1e-9 * std::max(1.0, time);
+  if (!first && time + tolerance < double(s.nextSlot) * s.period) return false;
+  s.nextSlot = static_cast<std::uint64_t>(std::floor((time + tolerance) / s.period)) + 1;
+  return true;
+}
+
+bool SensorRecorder::sample(SensorOutput& out) {
+  if (sensors_.empty()) return true;
+  const double time = world_.time(), dt = world_.timeStep();
+  const bool first = world_.steps() == 0;
+  robot::BodyPoses poses = currentPoses(scene_, world_);
+  bool geometryFresh = first;
+  for (std::size_t i = 0; i < sensors_.size(); ++i) {
+    const RecordedSensor& r = sensors_[i];
+    const robot::SensorSpec& s = r.spec;
+    State& st = states_[i];
+    Pose pose = robot::sensorPose(s, scene_, poses);
+    if (s.kind == robot::SensorKind::Imu) {
+      Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+      if (const std::string* path = mountPath(scene_, s.mount)) {
+        bool known = s.mount.kind == Mount::Kind::Articulated ? world_.robotPointVelocity(*path, s.link, pose.position, v, w)
+                                                              : world_.pointVelocity(*path, pose.position, v, w);
+        if (!known) v.setZero(), w.setZero();  // a body not simulated (visual only) stays put
+      }
+      if (first) {
+        st.velocity = v;
+        continue;
+      }
+      if (due(st, time, false)) {
+        ImuReading reading = imuReading(time, pose, st.velocity, v, w, scene_.gravity, dt, s.params, st.readings++);
+        if (!out.imuReading(i, reading)) return false;
+      }
+      st.velocity = v;
+      continue;
+    }
+    if (!due(st, time, first)) continue;
+    auto start = std::chrono::steady_clock::now();
+    if (!geometryFresh) geometry_->update(world_), geometryFresh = true;
+    LidarScanOptions o;
+    o.exclude = st.exclude;
+    o.scanIndex = st.readings;
+    o.threads = threads_;
+    std::vector<Eigen::Vector3f> points = scanLidar(*geometry_, pose, s.params, r.directions, o);
+    scanSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++scans_;
+    if (!out.lidarScan(i, st.readings++, time, pose, points)) return false;
+  }
+  return true;
+}
+
+}  // namespace rscene::sim
