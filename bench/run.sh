@@ -9,7 +9,8 @@
 # `cat` from the same run; absolute MB/s move with the machine's load.
 # At the end, when rscene-sim is built, bench/sim/run.sh compares it with
 # a hand-written Bullet program (several minutes; SIM_BENCH_* there), and
-# bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2.
+# bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2, and
+# bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest.
 #
 # Environment:
 #   BENCH_DIR     where the scenes go (default: a temporary directory, removed)
@@ -203,4 +204,7 @@ fi
 # Robots against MuJoCo (issue 11); skips itself without ../shared or MuJoCo.
 echo
 bash "$(dirname "${BASH_SOURCE[0]}")/robot/run.sh" "$BIN" || status=1
+# One LiDAR scan of the warehouse (issue 12); skips itself without ../shared.
+echo
+bash "$(dirname "${BASH_SOURCE[0]}")/lidar/run.sh" "$BIN" || status=1
 exit $status

@@ -130,6 +130,10 @@ constexpr CheckInfo kChecks[] = {
     // RS705x simulating robots (lib/sim)
     {"RS7051", W, Sim, "sim", "convexifyCollisionMeshes=false: robot mesh collisions are simulated as convex hulls all the same"},
     {"RS7052", E, Sim, "sim", "robot with more than 1000 bodies (movable joints + 1): Bullet's cost grows with their square"},
+    {"RS7070", E, Sim, "sim", "sensor outputPath that is absolute or has a '..' component (rscene-sim --sensors writes under its folder only)"},
+    {"RS7071", E, Sim, "sim", "two sensors whose streams would be written to the same path under --sensors"},
+    {"RS7072", W, Sim, "sim", "physical sensor kind rscene-sim does not record (force_torque, unknown kinds), skipped"},
+    {"RS7073", E, Sim, "sim", "lidar or imu setting that cannot be recorded: no channels or samples, more than 4194304 rays a scan, an empty range span, a pitch beyond 90 degrees, a negative or non-finite rate, noise or limit"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
