@@ -22,7 +22,7 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 @test "--help lists every option" {
   run -0 "$SIM" --help
   for opt in --output --duration --steps --trajectory --every --trajectory-format --until-rest --report --pd-gains \
-             --stdin-filename --base-dir --version; do
+             --sensors --imu-format --pcd-encoding --stdin-filename --base-dir --version; do
     [[ $output == *"$opt"* ]] || { echo "missing $opt"; false; }
   done
 }

@@ -16,7 +16,9 @@
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
 #include "core/writer.hpp"
+#include "sensor_files.hpp"
 #include "sim/limits.hpp"
+#include "sim/sensor_recorder.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/world.hpp"
 
@@ -29,6 +31,7 @@ volatile std::sig_atomic_t gInterrupted = 0;  // set by SIGINT between outputs (
 
 struct Options {
   std::string file = "-", output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
+  std::string sensors, imuFormat = "csv", pcdEncoding = "binary";
   double duration = 1;
   long long steps = -1;
   long long every = 1;
@@ -103,10 +106,30 @@ int run(const Options& opt) {
                  (close.empty() ? std::string() : "; did you mean '" + close + "'?"));
       return cli::kTrouble;
     }
+  // --sensors: what will be recorded, checked before anything is built.
+  std::vector<sim::RecordedSensor> sensors;
+  if (ok && !opt.sensors.empty()) {
+    std::vector<std::shared_ptr<const robot::Model>> models;
+    for (const robot::RobotInstance& r : robots) models.push_back(r.model);
+    sim::SensorPlanOptions po;
+    po.imuFormat = opt.imuFormat == "jsonl" ? sim::ImuFormat::Jsonl : sim::ImuFormat::Csv;
+    sensors = sim::planSensors(doc, robot::collectSensors(doc, scene, models, ds), po, ds);
+    ok = !hasErrors(ds);
+  }
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
   if (!world) return cli::kTrouble;
+  simcmd::SensorFiles files(opt.sensors, sensors,
+                            opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary);
+  if (!opt.sensors.empty() && !files.prepare({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) return cli::kTrouble;
+  std::unique_ptr<sim::SensorRecorder> recorder;
+  if (!sensors.empty()) recorder = std::make_unique<sim::SensorRecorder>(scene, *world, sensors);
+  bool sensorsFailed = false;  // a sensor file could not be written (the message is printed)
+  auto record = [&] {
+    if (recorder && !recorder->sample(files)) sensorsFailed = true;
+    return !sensorsFailed;
+  };
   Clock::time_point loadedAt = Clock::now();
 
   // Steps the world, streaming trajectory samples to `traj` (when given) as
@@ -128,13 +151,13 @@ int run(const Options& opt) {
     constexpr std::size_t kChunk = 1 << 16;
     std::string buffer;
     if (traj) buffer = lines.header();
-    if (!healthy()) return false;
+    if (!healthy() || !record()) return false;
     if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates());
     bool progress = isatty(2);
     Clock::time_point lastProgress = Clock::now();
     while (world->steps() < total && !gInterrupted) {
       world->step();
-      if (!healthy()) break;
+      if (!healthy() || !record()) break;
       contacts += world->contactCount();
       std::uint64_t n = world->steps();
       if (traj && n % static_cast<std::uint64_t>(opt.every) == 0) {
@@ -151,19 +174,20 @@ int run(const Options& opt) {
       }
     }
     if (progress) std::cerr << "\r\033[K" << std::flush;
-    if (failure) return false;
+    if (failure || sensorsFailed) return false;
     if (traj) traj->write(buffer);
     return true;
   };
   // A failed run cancels the trajectory (no file is left at its path) and
   // writes no scene; the failure is printed before the cancelled write is.
-  bool simulated = opt.trajectory.empty()
-                       ? simulate(nullptr)
-                       : cli::writeOutput(opt.trajectory, [&](Sink& s) {
-                           bool good = simulate(&s);
-                           if (failure) print(Diagnostics{*failure});
-                           return good;
-                         });
+  auto withTrajectory = [&] {
+    return opt.trajectory.empty() ? simulate(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) {
+      bool good = simulate(&s);
+      if (failure) print(Diagnostics{*failure});
+      return good;
+    });
+  };
+  bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
   if (failure && opt.trajectory.empty()) print(Diagnostics{*failure});
   if (!simulated) return cli::kTrouble;
   if (gInterrupted) return cli::kInterrupted;
@@ -192,6 +216,9 @@ int run(const Options& opt) {
                         {"robots", world->robotCount()},
                         {"leftWorld", world->departures().size()},
                         {"contactsPerStep", steps ? contacts / steps : 0.0},
+                        {"sensors", sensors.size()},
+                        {"lidarScans", recorder ? recorder->scans() : 0},
+                        {"lidarScanTime", recorder ? recorder->scanSeconds() : 0.0},
                         {"atRest", rested || world->atRest()}};
     std::cerr << r.dump() << '\n';
   }
@@ -229,6 +256,15 @@ int main(int argc, char** argv) {
       ->type_name("GAINS")->allow_extra_args(false);
   app.add_flag("--allow-missing-assets", opt.allowMissing,
                "Leave out a body whose collision mesh is missing or unreadable and warn, instead of failing");
+  app.add_option("--sensors", opt.sensors,
+                 "Record every enabled lidar and imu sensor into DIR (created if missing): IMU readings as CSV or JSON "
+                 "Lines, LiDAR scans as PCD files with an index")
+      ->type_name("DIR");
+  app.add_option("--imu-format", opt.imuFormat,
+                 "IMU files: csv (default) or jsonl; an outputPath ending in .csv or .jsonl picks its own")
+      ->type_name("FORMAT")->check(CLI::IsMember({"csv", "jsonl"}));
+  app.add_option("--pcd-encoding", opt.pcdEncoding, "LiDAR scans' PCD data: binary (default) or ascii")
+      ->type_name("ENCODING")->check(CLI::IsMember({"binary", "ascii"}));
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;

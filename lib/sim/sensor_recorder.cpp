@@ -210,6 +210,7 @@ bool SensorRecorder::sample(SensorOutput& out) {
       }
       if (first) {
         st.velocity = v;
+        st.nextSlot = 1;  // slot 0 (time 0) has no acceleration yet: the first reading waits for 1/r
         continue;
       }
       if (due(st, time, false)) {

@@ -7,7 +7,8 @@
 // at or past each multiple of 1/r (so never more often than the steps; a
 // rate above 1/time_step gives one reading per step); r = 0: every step.
 // A LiDAR scans at time 0 (before the first step) too; an IMU's first
-// reading is after the first step (an acceleration needs a step).
+// reading is at 1/r (or after the first step when r = 0): an acceleration
+// needs a step.
 //
 // A LiDAR does not see the body it rides on (an object or compound, or the
 // robot body its link belongs to, RaiSim's rule for its cameras): its

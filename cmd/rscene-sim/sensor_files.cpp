@@ -1,0 +1,101 @@
+#include "sensor_files.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "common/cli.hpp"
+
+namespace rscene::simcmd {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kChunk = 1 << 16;
+
+bool makeFolder(const fs::path& p) {
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) return true;
+  fs::create_directories(p, ec);
+  if (ec || !fs::is_directory(p)) {
+    std::string why = ec ? ec.message() : "something else is there";
+    if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
+    cli::error(p.string() + ": cannot create the folder: " + why);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>& sensors, sim::PcdEncoding encoding)
+    : dir_(std::move(dir)), sensors_(sensors), encoding_(encoding) {
+  for (const sim::RecordedSensor& s : sensors_) {
+    fs::path out = fs::path(dir_) / s.output;
+    paths_.push_back((s.spec.kind == robot::SensorKind::Lidar ? out / "scans.csv" : out).string());
+  }
+  buffers_.resize(paths_.size());
+  sinks_.resize(paths_.size(), nullptr);
+}
+
+bool SensorFiles::prepare(std::vector<cli::NamedOutput> outputs) {
+  if (!makeFolder(dir_)) return false;
+  for (std::size_t i = 0; i < sensors_.size(); ++i) {
+    bool lidar = sensors_[i].spec.kind == robot::SensorKind::Lidar;
+    fs::path folder = lidar ? fs::path(dir_) / sensors_[i].output : fs::path(paths_[i]).parent_path();
+    if (!makeFolder(folder)) return false;
+    outputs.push_back({"--sensors", paths_[i]});
+  }
+  return cli::checkOutputs(outputs);
+}
+
+bool SensorFiles::open(std::size_t stream, const std::function<bool()>& simulate) {
+  if (stream == paths_.size()) return simulate();
+  // Nested: each file is written inside the one before, so all of them are
+  // put in place together when the simulation succeeds, none when it fails.
+  return cli::writeOutput(paths_[stream], [&](Sink& sink) {
+    sinks_[stream] = &sink;
+    const sim::RecordedSensor& s = sensors_[stream];
+    buffers_[stream] = s.spec.kind == robot::SensorKind::Lidar ? "index,time,points,file\n" : sim::imuHeader(s.imuFormat);
+    bool ok = open(stream + 1, simulate);
+    if (ok) flush(stream, true);
+    sinks_[stream] = nullptr;
+    return ok;
+  });
+}
+
+bool SensorFiles::run(const std::function<bool()>& simulate) { return open(0, simulate); }
+
+void SensorFiles::flush(std::size_t stream, bool all) {
+  if (!sinks_[stream] || (!all && buffers_[stream].size() < kChunk)) return;
+  sinks_[stream]->write(buffers_[stream]);
+  buffers_[stream].clear();
+}
+
+bool SensorFiles::lidarScan(std::size_t sensor, std::uint64_t index, double time, const Pose& pose,
+                            const std::vector<Eigen::Vector3f>& points) {
+  char name[40];
+  std::snprintf(name, sizeof name, "scan_%06llu.pcd", static_cast<unsigned long long>(index));
+  fs::path file = fs::path(dir_) / sensors_[sensor].output / name;
+  if (!cli::writeOutput(file.string(), [&](Sink& s) {
+        sim::writePcd(s, points, pose, time, encoding_);
+        return true;
+      }))
+    return false;
+  std::string& b = buffers_[sensor];
+  char t[32];
+  auto end = std::to_chars(t, t + sizeof t, time).ptr;
+  b += std::to_string(index) + ',' + std::string(t, end) + ',' + std::to_string(points.size()) + ',' + name + '\n';
+  flush(sensor, false);
+  return true;
+}
+
+bool SensorFiles::imuReading(std::size_t sensor, const sim::ImuReading& reading) {
+  sim::appendImu(buffers_[sensor], sensors_[sensor].imuFormat, reading);
+  flush(sensor, false);
+  return true;
+}
+
+}  // namespace rscene::simcmd

@@ -1,0 +1,176 @@
+#!/usr/bin/env bats
+# End-to-end tests of rscene-sim --sensors (with --imu-format and
+# --pcd-encoding): the files, their formats, closed-form readings in a box
+# room, refused outputPath values, the output rules, determinism.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+ROOT="$BATS_TEST_DIRNAME/.."
+SIM="$BIN/rscene-sim"
+
+bats_require_minimum_version 1.5.0
+
+# A closed room (inside x -4..4, y -3..3, z 0..2), a crate resting on its
+# floor carrying an IMU, and a 1 x 4 LiDAR at its centre, 1 m up.
+room() {
+  cat <<'EOF2'
+raisim_engine_scene 1
+time_step 0.01
+gravity 0 0 -9.81
+object /World/Floor box 0 0 -0.1 1 0 0 0 8.4 6.4 0.2 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/East box 4.1 0 1 1 0 0 0 0.2 6 2 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/West box -4.1 0 1 1 0 0 0 0.2 6 2 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/North box 0 3.1 1 1 0 0 0 8.4 0.2 2 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/South box 0 -3.1 1 1 0 0 0 8.4 0.2 2 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Crate box 1 1 0.25 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615 id=crate
+EOF2
+  echo "sensor /World/Imu imu crate 0 0 0.25 1 0 0 0 updateRate=10 ${IMU_EXTRA:-}"
+  echo "sensor /World/Lidar lidar - 0 0 1 1 0 0 0 updateRate=5 lidarChannels=1 lidarSamples=4 lidarVerticalFov=0 ${LIDAR_EXTRA:-}"
+}
+
+setup() {
+  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
+  mkdir "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w"
+  room > room.rscene
+}
+
+@test "--sensors writes an IMU file and LiDAR scans with an index, named by sensor path" {
+  run -0 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  [ -z "$stderr" ]
+  [ -f out/World+Imu.csv ]
+  [ -f out/World+Lidar/scans.csv ]
+  # 5 Hz over 1 s: at 0, 0.2 ... 1.
+  run -0 cat out/World+Lidar/scans.csv
+  [ "${lines[0]}" = "index,time,points,file" ]
+  [ "${lines[1]}" = "0,0,4,scan_000000.pcd" ]
+  [ "${lines[6]}" = "5,1,4,scan_000005.pcd" ]
+  [ "${#lines[@]}" -eq 7 ]
+  for i in 0 1 2 3 4 5; do [ -f "out/World+Lidar/scan_00000$i.pcd" ]; done
+  # 10 Hz IMU: 0.1 ... 1, after a header.
+  run -0 cat out/World+Imu.csv
+  [ "${lines[0]}" = "time,ax,ay,az,wx,wy,wz" ]
+  [ "${#lines[@]}" -eq 11 ]
+  [[ ${lines[1]} == 0.1,* ]]
+  [[ ${lines[10]} == 1,* ]]
+}
+
+@test "the IMU of a crate at rest reads +9.81 up and no rotation" {
+  run -0 "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  tail -n 1 out/World+Imu.csv | awk -F, '{
+    ok = ($2 * $2 + $3 * $3 < 1e-4) && ($4 > 9.80 && $4 < 9.82) && ($5 * $5 + $6 * $6 + $7 * $7 < 1e-6)
+    if (!ok) print "bad reading: " $0
+    exit !ok }'
+}
+
+@test "--pcd-encoding ascii: the LiDAR sees the room's walls 4 m and 3 m away, in its own frame" {
+  run -0 "$SIM" --steps 0 --sensors out --pcd-encoding ascii -o /dev/null room.rscene
+  run -0 cat out/World+Lidar/scan_000000.pcd
+  [ "${lines[0]}" = "# .PCD v0.7 - Point Cloud Data file format" ]
+  [ "${lines[1]}" = "# time 0" ]
+  [ "${lines[3]}" = "FIELDS x y z" ]
+  [ "${lines[5]}" = "TYPE F F F" ]
+  [ "${lines[7]}" = "WIDTH 4" ]
+  [ "${lines[9]}" = "VIEWPOINT 0 0 1 1 0 0 0" ]
+  [ "${lines[10]}" = "POINTS 4" ]
+  [ "${lines[11]}" = "DATA ascii" ]
+  # yaw 0, 90, 180, 270 (counter-clockwise): east 4, north 3, west 4, south 3.
+  sed -n '13,16p' out/World+Lidar/scan_000000.pcd | awk '
+    BEGIN { split("4 0 -4 0", ex); split("0 3 0 -3", ey) }
+    { n++; d = ($1 - ex[n]) ^ 2 + ($2 - ey[n]) ^ 2 + $3 ^ 2; if (d > 1e-6) { print "point " n ": " $0; bad = 1 } }
+    END { exit bad || n != 4 }'
+}
+
+@test "binary PCD (the default) holds 12 bytes a point after the header" {
+  run -0 "$SIM" --steps 0 --sensors out -o /dev/null room.rscene
+  f=out/World+Lidar/scan_000000.pcd
+  header=$(head -n 12 "$f" | wc -c)
+  [ "$(sed -n 12p "$f")" = "DATA binary" ]
+  [ "$(stat -c %s "$f")" -eq $((header + 4 * 12)) ]
+  # The first point, float32 little-endian: (4, 0, 0).
+  [ "$(tail -c 48 "$f" | od -An -f -N 12 | xargs)" = "4 0 0" ]
+}
+
+@test "--imu-format jsonl writes JSON Lines; an outputPath ending in .csv keeps CSV" {
+  run -0 "$SIM" --duration 0.2 --sensors out --imu-format jsonl -o /dev/null room.rscene
+  [ -f out/World+Imu.jsonl ]
+  [ ! -e out/World+Imu.csv ]
+  run -0 head -n 1 out/World+Imu.jsonl
+  [[ $output == '{"time":0.1,"acceleration":['*'],"angularVelocity":['*']}' ]]
+  IMU_EXTRA="outputPath=streams/imu.csv" room > named.rscene
+  run -0 "$SIM" --duration 0.2 --sensors out2 --imu-format jsonl -o /dev/null named.rscene
+  run -0 head -n 1 out2/streams/imu.csv
+  [ "$output" = "time,ax,ay,az,wx,wy,wz" ]
+  LIDAR_EXTRA="outputPath=scans/front" room > lidar.rscene
+  run -0 "$SIM" --steps 0 --sensors out3 -o /dev/null lidar.rscene
+  [ -f out3/scans/front/scan_000000.pcd ]
+}
+
+@test "an absolute or '..' outputPath is refused before anything runs" {
+  IMU_EXTRA="outputPath=/tmp/imu.csv" room > abs.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null abs.rscene
+  [ "${stderr_lines[0]}" = "abs.rscene:10:71: error: outputPath '/tmp/imu.csv' of sensor '/World/Imu' cannot be used: it is absolute; name a place under the --sensors folder [RS7070]" ]
+  [ ! -e out ]
+  IMU_EXTRA="outputPath=a/../../imu.csv" room > up.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null up.rscene
+  [[ ${stderr_lines[0]} == "up.rscene:10:71: error: outputPath 'a/../../imu.csv' of sensor '/World/Imu' cannot be used: it has a '..' component; "* ]]
+  [ ! -e out ]
+}
+
+@test "two sensors writing one path are refused; force_torque is skipped with a warning" {
+  LIDAR_EXTRA="outputPath=World+Imu.csv" room > same.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null same.rscene
+  [[ ${stderr_lines[0]} == "same.rscene:11:"*": error: sensors '/World/Imu' and '/World/Lidar' would both write 'World+Imu.csv' [RS7071]" ]]
+  { room; echo "sensor /World/Ft force_torque crate 0 0 0 1 0 0 0"; } > ft.rscene
+  run -0 --separate-stderr "$SIM" --steps 1 --sensors out -o /dev/null ft.rscene
+  [ "${stderr_lines[0]}" = "ft.rscene:12:18: warning: sensor '/World/Ft' of kind 'force_torque' is not recorded (rscene-sim records lidar and imu) [RS7072]" ]
+  { room; echo "sensor /World/Big lidar - 0 0 1 1 0 0 0 lidarChannels=4096 lidarSamples=4096"; } > big.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null big.rscene
+  [[ ${stderr_lines[0]} == "big.rscene:12:"*"a lidar scan of 4096 x 4096 rays is more than the 4194304 rscene-sim casts [RS7073]" ]]
+}
+
+@test "without --sensors, sensors are not recorded and nothing is written" {
+  run -0 --separate-stderr "$SIM" --steps 5 -o /dev/null room.rscene
+  [ -z "$stderr" ]
+  [ -z "$(ls)" ] || [ "$(ls)" = "room.rscene" ]
+}
+
+@test "--sensors refuses a file in the way and an output that is also --trajectory" {
+  touch afile
+  run -2 --separate-stderr "$SIM" --steps 1 --sensors afile -o /dev/null room.rscene
+  [ "$stderr" = "rscene-sim: error: afile: cannot create the folder: not a directory" ]
+  mkdir out
+  run -2 --separate-stderr "$SIM" --steps 1 --sensors out --trajectory out/World+Imu.csv -o /dev/null room.rscene
+  [ "$stderr" = "rscene-sim: error: --trajectory 'out/World+Imu.csv' and --sensors 'out/World+Imu.csv' are the same file; one would overwrite the other" ]
+}
+
+@test "a symlink at a sensor's file stays a link; its target gets the stream" {
+  mkdir out
+  echo old > target.csv
+  ln -s ../target.csv out/World+Imu.csv
+  run -0 "$SIM" --duration 0.2 --sensors out -o /dev/null room.rscene
+  [ -L out/World+Imu.csv ]
+  run -0 head -n 1 target.csv
+  [ "$output" = "time,ax,ay,az,wx,wy,wz" ]
+}
+
+@test "the same noiseSeed gives the same noisy streams; another seed does not" {
+  IMU_EXTRA="noiseStddev=0.1 noiseSeed=3" LIDAR_EXTRA="noiseStddev=0.01 noiseSeed=3" room > noisy.rscene
+  IMU_EXTRA="noiseStddev=0.1 noiseSeed=4" LIDAR_EXTRA="noiseStddev=0.01 noiseSeed=4" room > other.rscene
+  "$SIM" --duration 0.5 --sensors a -o /dev/null noisy.rscene
+  "$SIM" --duration 0.5 --sensors b -o /dev/null noisy.rscene
+  "$SIM" --duration 0.5 --sensors c -o /dev/null other.rscene
+  diff -r a b
+  ! cmp -s a/World+Imu.csv c/World+Imu.csv
+  ! cmp -s a/World+Lidar/scan_000001.pcd c/World+Lidar/scan_000001.pcd
+}
+
+@test "--report counts sensors and scans" {
+  run -0 --separate-stderr "$SIM" --duration 1 --sensors out --report -o /dev/null room.rscene
+  [[ $stderr == *'"lidarScans":6'* ]]
+  [[ $stderr == *'"sensors":2'* ]]
+}
+
+@test "a bad --imu-format or --pcd-encoding is a usage error" {
+  run -2 "$SIM" --sensors out --imu-format xml room.rscene
+  run -2 "$SIM" --sensors out --pcd-encoding zip room.rscene
+}
