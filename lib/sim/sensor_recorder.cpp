@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "robot/kinematics.hpp"
 #include "scene/reader.hpp"
@@ -194,16 +195,24 @@ bool SensorRecorder::sample(SensorOutput& out) {
   if (sensors_.empty()) return true;
   const double time = world_.time(), dt = world_.timeStep();
   const bool first = world_.steps() == 0;
-  robot::BodyPoses poses = currentPoses(scene_, world_);
+  static const robot::BodyPoses kScenePoses;  // empty: robot::sensorPose falls back to the scene's poses
   bool geometryFresh = first;
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     const RecordedSensor& r = sensors_[i];
     const robot::SensorSpec& s = r.spec;
     State& st = states_[i];
-    Pose pose = robot::sensorPose(s, scene_, poses);
+    // Where its body is now: asked of the world for just that body (the
+    // whole currentPoses() every step would cost more than the step).
+    Pose pose = robot::sensorPose(s, scene_, kScenePoses);
+    const std::string* path = mountPath(scene_, s.mount);
+    if (path) {
+      std::optional<Pose> body = s.mount.kind == Mount::Kind::Articulated ? world_.robotLinkPose(*path, s.link)
+                                                                           : world_.bodyPose(*path);
+      if (body) pose = *body * s.local;
+    }
     if (s.kind == robot::SensorKind::Imu) {
       Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
-      if (const std::string* path = mountPath(scene_, s.mount)) {
+      if (path) {
         bool known = s.mount.kind == Mount::Kind::Articulated ? world_.robotPointVelocity(*path, s.link, pose.position, v, w)
                                                               : world_.pointVelocity(*path, pose.position, v, w);
         if (!known) v.setZero(), w.setZero();  // a body not simulated (visual only) stays put

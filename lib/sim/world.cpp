@@ -940,6 +940,27 @@ bool World::robotPointVelocity(const std::string& pathOrId, int link, const Eige
   return true;
 }
 
+std::optional<Pose> World::bodyPose(const std::string& pathOrId) const {
+  auto it = impl_->byName.find(pathOrId);
+  if (it == impl_->byName.end()) return std::nullopt;
+  for (const Simulated& s : impl_->simulated)  // a few pointer compares per sensor and step
+    if (s.body == it->second) return pose(s.body->getWorldTransform() * s.toRecord);
+  return std::nullopt;
+}
+
+std::optional<Pose> World::robotLinkPose(const std::string& pathOrId, int link) const {
+  auto it = impl_->robotByName.find(pathOrId);
+  if (it == impl_->robotByName.end()) return std::nullopt;
+  const SimRobot& r = *impl_->robots[static_cast<std::size_t>(it->second)];
+  const RobotLayout& layout = r.layout();
+  if (link < 0 || std::size_t(link) >= layout.bodyOfLink.size()) return r.bodyPose(0);
+  int body = layout.bodyOfLink[std::size_t(link)];
+  const RobotBody& b = layout.bodies[std::size_t(body)];
+  for (std::size_t k = 0; k < b.links.size(); ++k)
+    if (b.links[k] == link) return r.bodyPose(body) * b.linkInBody[k];
+  return r.bodyPose(body);
+}
+
 const btCollisionWorld& World::collisionWorld() const { return *impl_->world; }
 
 std::vector<const btCollisionObject*> World::rayTargets() const {

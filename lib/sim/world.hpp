@@ -225,6 +225,11 @@ class World {
                      Eigen::Vector3d& w) const;
   bool robotPointVelocity(const std::string& pathOrId, int link, const Eigen::Vector3d& p, Eigen::Vector3d& v,
                           Eigen::Vector3d& w) const;
+  // The world pose now of a dynamic or kinematic body's record frame
+  // (nullopt for a static body or no such name: it is where the scene puts
+  // it), and of a robot's link (nullopt: no such robot).
+  std::optional<Pose> bodyPose(const std::string& pathOrId) const;
+  std::optional<Pose> robotLinkPose(const std::string& pathOrId, int link) const;
   // For ray casts (lidar_geometry.hpp; Bullet's types, so lib/sim only):
   // the collision world, every collision object a ray can meet (those that
   // collide with something: not collidable=false, not a robot body without
