@@ -6,6 +6,7 @@
 
 #include "robot/kinematics.hpp"
 #include "sim/imu.hpp"
+#include "sim/lidar_geometry.hpp"
 #include "sim/sensor_test_scene.hpp"
 
 using namespace rscene;
@@ -209,4 +210,50 @@ TEST(Imu, ASensorOnARobotLinkMovesWithTheLink) {
   ASSERT_FALSE(c.scans.empty());
   EXPECT_NEAR(c.scans.front().pose.position.x(), -std::sin(0.3), 1e-9);
   EXPECT_GT(std::abs(c.scans.back().pose.position.x() - c.scans.front().pose.position.x()), 0.05);
+}
+
+TEST(SensorSets, ARobotsSensorSetIsRecordedUnderItsPathAndKeepsItsSettings) {
+  // RaiSim's sensor sets (lib/robot fills Model::sensors from a URDF): a
+  // clockwise LiDAR looking 80 degrees up from just under the arm, and an
+  // IMU with limits, both on link "arm".
+  auto model = pendulum();
+  robot::SensorDef lidar;
+  lidar.set = "arm";
+  lidar.name = "lidar";
+  lidar.kind = "lidar";
+  lidar.link = 1;
+  lidar.origin.position = {0, 0, -1.1};
+  lidar.params.lidarChannels = 1;
+  lidar.params.lidarSamples = 4;
+  lidar.params.lidarMinPitch = lidar.params.lidarMaxPitch = 80;
+  lidar.params.lidarMinRange = 0.05;
+  lidar.params.lidarMaxRange = 10;
+  lidar.params.lidarClockwise = true;
+  robot::SensorDef imu = lidar;
+  imu.name = "imu";
+  imu.kind = "imu";
+  imu.params = {};
+  imu.params.accelerationLimit = 5;
+  model->sensors = {lidar, imu};
+  auto r = makeSensorRun("", nullptr, {model});
+  ASSERT_EQ(r->sensors.size(), 2u);
+  EXPECT_EQ(r->sensors[0].output, "World+R0+arm+lidar");
+  EXPECT_EQ(r->sensors[1].output, "World+R0+arm+imu.csv");
+  // Clockwise: the second ray of a turn points to -y.
+  EXPECT_LT((r->sensors[0].directions[1] - Vector3d(0, -std::cos(80 * kPi / 180), std::sin(80 * kPi / 180))).norm(),
+            1e-12);
+  SensorRecorder rec(r->scene, *r->world, r->sensors);
+  Collected c;
+  ASSERT_TRUE(rec.sample(c));
+  r->world->step();
+  ASSERT_TRUE(rec.sample(c));
+  // The arm's own box, 0.1 m above, is the body the LiDAR rides on: not seen.
+  ASSERT_EQ(c.scans.size(), 2u);
+  EXPECT_TRUE(c.scans[0].points.empty());
+  RayGeometry g(*r->world);
+  Vector3d up = c.scans[0].pose.orientation * r->sensors[0].directions[0];
+  EXPECT_NEAR(g.cast(c.scans[0].pose.position, up, 10), 0.1 / std::sin(80 * kPi / 180), 1e-9);
+  // At rest (hanging straight down) the IMU reads +9.81 up, clamped to 5.
+  ASSERT_EQ(c.imu.size(), 1u);
+  EXPECT_NEAR(c.imu[0].second.specificForce.z(), 5, 1e-12);
 }
