@@ -141,7 +141,8 @@ void SensorReader::camera(const XMLElement* e, SensorValues& v) {
     // vertical one follows from the image's aspect (square pixels).
     p.horizontalFov = hfov * kDegrees;
     double aspect = v.width > 0 && v.height > 0 ? double(v.height) / double(v.width) : 1;
-    p.verticalFov = hfov > 0 && hfov < kPi ? 2 * std::atan(std::tan(hfov / 2) * aspect) * kDegrees : p.horizontalFov;
+    // (An hfov out of bounds is reported by itself; the vertical one keeps the default.)
+    p.verticalFov = hfov > 0 && hfov < kPi ? 2 * std::atan(std::tan(hfov / 2) * aspect) * kDegrees : verticalFov;
   } else {
     p.verticalFov = verticalFov;
   }
