@@ -73,7 +73,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS4009", E, Core, VSR, "zero quaternion (length below 1e-12)"},
     {"RS4010", W, Core, V, "quaternion not of unit length (off by more than 1e-3)"},
     {"RS4011", E, Core, V, "negative size, radius or length"},
-    {"RS4012", E, Core, V, "camera near plane not positive or not below the far plane"},
+    {"RS4012", E, Core, VSR, "camera or sensor near plane not positive or not below the far plane (sim and render: sensors)"},
     {"RS4013", W, Core, V, "field of view outside the range it is clamped to"},
     {"RS4014", E, Core, VSR, "terrain size not positive"},
     // RS5xxx files (--check-files)
@@ -135,7 +135,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},
     {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number"},
     {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, unexpanded template)"},
-    {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384, field of view outside (0, 180) degrees, near plane not positive or far plane not beyond it"},
+    {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384 or field of view outside (0, 180) degrees; sensor far plane beyond 1e12 m"},
     {"RS7065", E, Scene, VSR, "sensor calibration given in part (fx, fy, cx, cy: all four or none), or fx or fy not positive"},
     {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},
     {"RS7067", E, Scene, VSR, "sensor updateRate outside 0..1e6 Hz, noise standard deviation negative, noise or IMU limit beyond 1e12"},

@@ -118,8 +118,6 @@ void SensorReader::camera(const XMLElement* e, SensorValues& v) {
   SensorParams& p = v.params;
   v.width = static_cast<std::int64_t>(recordDefault("width"));
   v.height = static_cast<std::int64_t>(recordDefault("height"));
-  p.nearPlane = recordDefault("nearPlane");
-  p.farPlane = recordDefault("farPlane");
   double verticalFov = recordDefault("verticalFov");
   const XMLElement* cam = e->FirstChildElement("camera");
   if (!cam) cam = e;  // image and clip written directly in the sensor
@@ -230,6 +228,9 @@ bool SensorReader::read(const XMLElement* e, SensorDef& out, bool& skipped) {
     }
   Pose local;
   origin(e, local);
+  // Every kind carries near and far, as a sensor record does (a camera's <clip> sets them).
+  v.params.nearPlane = recordDefault("nearPlane");
+  v.params.farPlane = recordDefault("farPlane");
   if (isCameraLikeSensor(kind)) camera(e, v);
   if (kind == "lidar") lidar(e, v);
   if (kind == "imu") {

@@ -53,12 +53,6 @@ void imageProblems(const SensorValues& s, Bounds& b) {
   b.side("height", "image height", s.height);
   b.fov("verticalFov", "vertical field of view", p.verticalFov, false);
   b.fov("horizontalFov", "horizontal field of view", p.horizontalFov, true);
-  if (!(p.nearPlane > 0 && p.nearPlane <= kMaxLength))
-    b.add(sensor_code::kImage, "nearPlane", "near plane is " + num(p.nearPlane) + ", outside (0, 1e12]");
-  else if (!(p.farPlane > p.nearPlane && p.farPlane <= kMaxLength))
-    b.add(sensor_code::kImage, "farPlane",
-          "far plane is " + num(p.farPlane) + "; it must be beyond the near plane (" + num(p.nearPlane) +
-              ") and at most 1e12");
 
   // Intrinsics: all four or none, so that a half-written calibration is
   // not silently mixed with the fields of view.
@@ -130,6 +124,15 @@ std::vector<SensorProblem> sensorProblems(const SensorValues& s) {
   std::vector<SensorProblem> out;
   Bounds b(out);
   const SensorParams& p = s.params;
+  // Near and far for every kind, in lib/core's words and code: validate's
+  // core check says so of any sensor record (and drops this copy).
+  if (!(p.nearPlane > 0))
+    b.add(sensor_code::kClip, "nearPlane", "near plane " + num(p.nearPlane) + " is not positive");
+  else if (!(p.farPlane > p.nearPlane))
+    b.add(sensor_code::kClip, "farPlane",
+          "far plane " + num(p.farPlane) + " is not beyond the near plane " + num(p.nearPlane));
+  else if (!(p.farPlane <= kMaxLength))
+    b.add(sensor_code::kImage, "farPlane", "far plane " + num(p.farPlane) + " is beyond 1e12 m");
   if (isCameraLikeSensor(s.kind)) imageProblems(s, b);
   if (s.kind == "lidar") lidarProblems(s, b);
   if (!(p.updateRate >= 0 && p.updateRate <= kMaxUpdateRate))

@@ -7,8 +7,10 @@
 //   RS2007  warning: sensor kind the schema does not know (lib/core's code:
 //           validate reports it from its own check, sim and render from
 //           this one; the sensor is neither rendered nor simulated)
+//   RS4012  nearPlane <= 0 or farPlane <= nearPlane (lib/core's code and
+//           words: validate's core check says it of every sensor record)
 //   RS7064  camera-like image size outside 1..16384, a field of view
-//           outside (0, 180) degrees, nearPlane <= 0 or farPlane <= near
+//           outside (0, 180) degrees; farPlane beyond 1e12 m
 //   RS7065  calibration given in part, or fx, fy not positive
 //   RS7066  LiDAR channels or samples below 1 or more than kMaxLidarRays
 //           rays per scan, ranges not 0 <= min < max <= 1e12, vertical
@@ -32,6 +34,7 @@ namespace rscene {
 
 namespace sensor_code {
 inline constexpr const char* kUnknownKind = "RS2007";  // lib/core's open-enumeration warning
+inline constexpr const char* kClip = "RS4012";  // lib/core's near/far check
 inline constexpr const char* kImage = "RS7064";
 inline constexpr const char* kCalibration = "RS7065";
 inline constexpr const char* kLidar = "RS7066";

@@ -236,7 +236,7 @@ TEST(SensorSet, EachProblemIsReportedInTheSetFileAtItsLine) {
       {setWith("<sensor name=\"a\" type=\"rgb\">\n<camera>\n<image width=\"1e30\" height=\"48\"/></camera></sensor>"),
        "RS7064", 6, false},
       {setWith("<sensor name=\"a\" type=\"depth\">\n<camera horizontal_fov=\"3.2\"/></sensor>"), "RS7064", 5, false},
-      {setWith("<sensor name=\"a\" type=\"depth\">\n<camera>\n<clip near=\"2\" far=\"1\"/></camera></sensor>"), "RS7064",
+      {setWith("<sensor name=\"a\" type=\"depth\">\n<camera>\n<clip near=\"2\" far=\"1\"/></camera></sensor>"), "RS4012",
        6, false},
       {setWith("<sensor name=\"a\" type=\"spinning_lidar\">\n<yaw samples=\"1000000\"/>\n<pitch samples=\"1000000\" "
                "min_angle=\"-0.1\" max_angle=\"0.1\"/></sensor>"),

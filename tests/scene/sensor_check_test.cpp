@@ -49,11 +49,11 @@ std::string describe(const Diagnostics& ds) {
   return s;
 }
 
-// "CODE line:col" of the findings with codes RS2007 or RS706x.
+// "CODE line:col" of the findings with codes RS2007, RS4012 or RS706x.
 std::vector<std::string> sensorFindings(const Diagnostics& ds) {
   std::vector<std::string> out;
   for (const Diagnostic& d : ds)
-    if (d.code == "RS2007" || d.code.rfind("RS706", 0) == 0)
+    if (d.code == "RS2007" || d.code == "RS4012" || d.code.rfind("RS706", 0) == 0)
       out.push_back(d.code + " " + std::to_string(d.line) + ":" + std::to_string(d.column));
   return out;
 }
@@ -81,8 +81,9 @@ TEST(SensorCheck, EachBoundFiresAtItsFieldAndNotWithinIt) {
       {"RS7064", "verticalFov", sensor("rgb", "verticalFov=180"), sensor("rgb", "verticalFov=179.9")},
       {"RS7064", "verticalFov", sensor("rgb", "verticalFov=0"), sensor("rgb", "verticalFov=0.1")},
       {"RS7064", "horizontalFov", sensor("segmentation", "horizontalFov=-1"), sensor("segmentation", "horizontalFov=0")},
-      {"RS7064", "nearPlane", sensor("rgb_depth", "nearPlane=0"), sensor("rgb_depth", "nearPlane=0.001")},
-      {"RS7064", "farPlane", sensor("rgb", "nearPlane=2 farPlane=2"), sensor("rgb", "nearPlane=2 farPlane=2.5")},
+      // lib/core's near/far code, for every kind (validate's core check says it of any sensor).
+      {"RS4012", "nearPlane", sensor("rgb_depth", "nearPlane=0"), sensor("rgb_depth", "nearPlane=0.001")},
+      {"RS4012", "farPlane", sensor("imu", "nearPlane=2 farPlane=2"), sensor("imu", "nearPlane=2 farPlane=2.5")},
       {"RS7064", "farPlane", sensor("rgb", "farPlane=2e12"), sensor("rgb", "farPlane=1e12")},
       {"RS7065", "calibrationFx", sensor("rgb", "calibrationFx=500 calibrationFy=500 calibrationCx=320"),
        sensor("rgb", "calibrationFx=500 calibrationFy=500 calibrationCx=320 calibrationCy=240")},
@@ -168,6 +169,8 @@ TEST(SensorCheck, ProblemsOfValuesAsARobotFileGivesThem) {
   v.lidarSamples = std::int64_t{1} << 40;
   v.params.lidarMinRange = 0.1;
   v.params.lidarMaxRange = 100;
+  v.params.nearPlane = 0.05;  // every kind carries near and far
+  v.params.farPlane = 100;
   std::vector<SensorProblem> p = sensorProblems(v);
   ASSERT_EQ(p.size(), 1u);
   EXPECT_STREQ(p[0].code, "RS7066");
