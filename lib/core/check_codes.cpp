@@ -133,7 +133,7 @@ constexpr CheckInfo kChecks[] = {
     // RS706x sensors: sensor sets of robot files (lib/robot/sensor_set.hpp),
     // sensor records and output paths (lib/scene/sensor_check.hpp).
     {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},
-    {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number"},
+    {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number (or a whole number where one is needed), an origin beyond 1e12 m"},
     {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, unexpanded template)"},
     {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384 or field of view outside (0, 180) degrees; sensor far plane beyond 1e12 m"},
     {"RS7065", E, Scene, VSR, "sensor calibration given in part (fx, fy, cx, cy: all four or none), or fx or fy not positive"},
