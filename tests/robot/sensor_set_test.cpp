@@ -275,6 +275,17 @@ TEST(SensorSet, TwoLinksNamingOneBrokenFileHearOfItOnce) {
   EXPECT_EQ(l.diagnostics.size(), 1u) << messages(l.diagnostics);
 }
 
+TEST(SensorSet, AnEmptySensorAttributeIsAWarning) {
+  Scratch dir;
+  std::string urdf = dir.write("r.urdf", robotNaming(""));
+  Loaded l = loadRobot(urdf);
+  ASSERT_TRUE(l.ok);
+  ASSERT_EQ(l.diagnostics.size(), 1u) << messages(l.diagnostics);
+  EXPECT_EQ(l.diagnostics[0].code, "RS7062");
+  EXPECT_EQ(l.diagnostics[0].line, 3u);
+  EXPECT_TRUE(l.model.sensors.empty());
+}
+
 // ---------------------------------------------------------------------------
 // Values
 
