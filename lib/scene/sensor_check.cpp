@@ -172,9 +172,10 @@ class SensorChecker {
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind) continue;
-      if (rec.kind->tag == "sensor")
+      // Kinds by pointer: validate runs this over scenes of millions of records.
+      if (rec.kind == sensorKind_)
         sensor(i);
-      else if (rec.kind->tag == "camera")
+      else if (rec.kind == cameraKind_)
         outputPath(RecordReader(doc_, i, out_), "camera");
     }
   }
@@ -258,6 +259,8 @@ class SensorChecker {
   const Document& doc_;
   const Scene& scene_;
   Diagnostics& out_;
+  const KindDef* sensorKind_ = Schema::get().kind("sensor");
+  const KindDef* cameraKind_ = Schema::get().kind("camera");
   std::unordered_set<std::string> nodes_;
 };
 
