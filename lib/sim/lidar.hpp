@@ -22,9 +22,6 @@
 
 namespace rscene::sim {
 
-// Most rays of one scan (a 128 x 32768 LiDAR); more is an error (RS7073).
-inline constexpr std::uint64_t kMaxLidarRays = std::uint64_t{1} << 22;
-
 // Unit ray directions in the sensor frame, channel-major.
 std::vector<Eigen::Vector3d> lidarDirections(const SensorParams& p);
 

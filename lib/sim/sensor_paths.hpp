@@ -9,7 +9,8 @@
 // a name:  /World/Robot/Imu -> World+Robot+Imu,
 //   /World/anymal/os1_64/lidar (a URDF sensor set) -> World+anymal+os1_64+lidar.
 // A record's outputPath, where set, is used instead, as written, relative
-// to DIR: an absolute path or one with a '..' component is refused (RS7070).
+// to DIR: an absolute path or one with a '..' component is refused (RS7069,
+// scene/sensor_check.hpp).
 #pragma once
 #include <string>
 

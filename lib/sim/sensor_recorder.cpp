@@ -7,6 +7,7 @@
 
 #include "robot/kinematics.hpp"
 #include "scene/reader.hpp"
+#include "scene/sensor_check.hpp"
 #include "sim/sensor_paths.hpp"
 
 namespace rscene::sim {
@@ -34,32 +35,36 @@ void report(const Document& doc, const robot::SensorSpec& s, const char* field, 
   ds.push_back(std::move(d));
 }
 
-// What is wrong with a sensor's numbers for recording (empty: nothing),
-// and the field it is in.
-std::pair<const char*, std::string> badSetting(const robot::SensorSpec& s) {
+// What is wrong with a sensor's numbers for recording (empty: nothing):
+// the bounds of scene/sensor_check.hpp that a checked scene already meets,
+// so a scan never allocates past kMaxLidarRays.
+struct Bad {
+  const char* code = nullptr;
+  const char* field = "";
+  std::string why;
+};
+Bad badSetting(const robot::SensorSpec& s) {
   const SensorParams& p = s.params;
-  if (!(std::isfinite(p.updateRate) && p.updateRate >= 0)) return {"updateRate", "updateRate must be finite and >= 0"};
-  if (!std::isfinite(p.noiseMean) || !(std::isfinite(p.noiseStddev) && p.noiseStddev >= 0))
-    return {"noiseStddev", "noise mean must be finite and noiseStddev finite and >= 0"};
+  auto finite = [](double v, double lo) { return std::isfinite(v) && v >= lo && v <= 1e12; };
+  if (!(std::isfinite(p.updateRate) && p.updateRate >= 0 && p.updateRate <= kMaxUpdateRate))
+    return {sensor_code::kRate, "updateRate", "updateRate must be within 0..1e6 Hz"};
+  if (!finite(std::abs(p.noiseMean), 0) || !finite(p.noiseStddev, 0))
+    return {sensor_code::kRate, "noiseStddev", "noise must be finite, its standard deviation >= 0"};
   if (s.kind == robot::SensorKind::Imu) {
-    if (!(std::isfinite(p.accelerationLimit) && p.accelerationLimit >= 0) ||
-        !(std::isfinite(p.angularVelocityLimit) && p.angularVelocityLimit >= 0))
-      return {"", "IMU limits must be finite and >= 0"};
+    if (!finite(p.accelerationLimit, 0) || !finite(p.angularVelocityLimit, 0))
+      return {sensor_code::kRate, "", "IMU limits must be within 0..1e12"};
     return {};
   }
-  if (p.lidarChannels <= 0 || p.lidarSamples <= 0)
-    return {"lidarChannels", "a lidar needs lidarChannels and lidarSamples > 0 (it has " +
-                                 std::to_string(p.lidarChannels) + " x " + std::to_string(p.lidarSamples) + ")"};
-  if (std::uint64_t(p.lidarChannels) * std::uint64_t(p.lidarSamples) > kMaxLidarRays)
-    return {"lidarSamples", "a lidar scan of " + std::to_string(p.lidarChannels) + " x " +
-                                std::to_string(p.lidarSamples) + " rays is more than the " +
-                                std::to_string(kMaxLidarRays) + " rscene-sim casts"};
-  if (!(std::isfinite(p.lidarMinRange) && std::isfinite(p.lidarMaxRange) && p.lidarMinRange >= 0 &&
-        p.lidarMaxRange > p.lidarMinRange))
-    return {"lidarMaxRange", "a lidar needs 0 <= lidarMinRange < lidarMaxRange, both finite"};
+  if (p.lidarChannels <= 0 || p.lidarSamples <= 0 ||
+      std::int64_t(p.lidarChannels) * std::int64_t(p.lidarSamples) > kMaxLidarRays)
+    return {sensor_code::kLidar, "lidarChannels",
+            "a lidar scan of " + std::to_string(p.lidarChannels) + " x " + std::to_string(p.lidarSamples) +
+                " rays is not within 1.." + std::to_string(kMaxLidarRays)};
+  if (!(finite(p.lidarMinRange, 0) && finite(p.lidarMaxRange, 0) && p.lidarMaxRange > p.lidarMinRange))
+    return {sensor_code::kLidar, "lidarMaxRange", "a lidar needs 0 <= lidarMinRange < lidarMaxRange <= 1e12"};
   if (!(std::isfinite(p.lidarMinPitch) && std::isfinite(p.lidarMaxPitch) && std::abs(p.lidarMinPitch) <= 90 &&
         std::abs(p.lidarMaxPitch) <= 90))
-    return {"lidarVerticalFov", "a lidar's pitch span must lie within -90..90 degrees"};
+    return {sensor_code::kLidar, "lidarVerticalFov", "a lidar's pitch span must lie within -90..90 degrees"};
   return {};
 }
 
@@ -77,8 +82,8 @@ std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<r
              Severity::Warning, ds);
       continue;
     }
-    if (auto [field, why] = badSetting(s); !why.empty()) {
-      report(doc, s, field, sim_code::kSensorSetting, "sensor '" + s.name + "': " + why, Severity::Error, ds);
+    if (Bad bad = badSetting(s); bad.code) {
+      report(doc, s, bad.field, bad.code, "sensor '" + s.name + "': " + bad.why, Severity::Error, ds);
       continue;
     }
     RecordedSensor r;
@@ -87,7 +92,7 @@ std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<r
     if (named) {
       std::string why;
       if (!safeRelativePath(s.outputPath, why)) {
-        report(doc, s, "outputPath", sim_code::kSensorOutputPath,
+        report(doc, s, "outputPath", sensor_code::kOutputPath,
                "outputPath '" + s.outputPath + "' of sensor '" + s.name + "' cannot be used: " + why, Severity::Error,
                ds);
         continue;

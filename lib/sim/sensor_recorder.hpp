@@ -30,10 +30,8 @@
 namespace rscene::sim {
 
 namespace sim_code {
-inline constexpr const char* kSensorOutputPath = "RS7070";  // outputPath absolute or with '..'
-inline constexpr const char* kSensorSameOutput = "RS7071";  // two sensors, one output
-inline constexpr const char* kSensorNotRecorded = "RS7072";  // a physical kind rscene-sim does not record (warning)
-inline constexpr const char* kSensorSetting = "RS7073";     // a lidar/imu setting that cannot be used
+inline constexpr const char* kSensorSameOutput = "RS7070";   // two sensors, one output
+inline constexpr const char* kSensorNotRecorded = "RS7071";  // a physical kind rscene-sim does not record (warning)
 }  // namespace sim_code
 
 // One physical sensor to record.
@@ -51,10 +49,13 @@ struct SensorPlanOptions {
 
 // The enabled lidar and imu sensors of `all` (sensorFileName() or the
 // record's outputPath naming their outputs; IMU files get ".csv" or
-// ".jsonl"), after checking what can be recorded: RS7070 (outputPath),
-// RS7071 (two outputs at one place), RS7073 (settings) are errors, RS7072
+// ".jsonl"): RS7070 (two outputs at one place) is an error, RS7071
 // (force_torque and unknown kinds) a warning.  Camera-like sensors are
-// rscene-render's and left out without a word.
+// rscene-render's and left out without a word.  The numbers and output
+// paths are checkScene()'s (records) and the sensor-set reader's (robots)
+// to refuse, with RS7066, RS7067 and RS7069 (scene/sensor_check.hpp); a
+// caller that skipped those gets the same codes here, and the sensor is
+// not recorded.
 std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<robot::SensorSpec>& all,
                                         const SensorPlanOptions& options, Diagnostics& diagnostics);
 

@@ -52,5 +52,5 @@ TEST(SensorPaths, PlanNamesOutputsAndRefusesBadOnes) {
   EXPECT_EQ(r->sensors[2].directions.size(), 16u * 1024u);  // the schema's defaults
   std::vector<std::string> codes;
   for (const Diagnostic& d : r->diags) codes.push_back(d.code + ":" + std::to_string(d.line));
-  EXPECT_EQ(codes, (std::vector<std::string>{"RS7070:7", "RS7070:8", "RS7071:9"}));
+  EXPECT_EQ(codes, (std::vector<std::string>{"RS7069:7", "RS7069:8", "RS7070:9"}));
 }
