@@ -11,7 +11,9 @@
 // lidarMaxRange (or that meets nothing) returns no point.  Noise: the
 // range of each return gets noiseMean + noiseStddev N(0, 1) from
 // sensor_noise.hpp (stream: the scan number, index: the ray), a noisy
-// range of zero or less gives no point.
+// range of zero or less gives no point.  A scan is one instant: a real
+// spinning LiDAR's turn takes 1/lidarSpinRate seconds while the robot
+// moves (motion distortion); that is not modelled, lidarSpinRate is unused.
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>

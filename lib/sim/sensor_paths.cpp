@@ -36,7 +36,6 @@ bool safeRelativePath(const std::string& p, std::string& why) {
       return why = "it has a '..' component; name a place under the --sensors folder", false;
     start = end + 1;
   }
-  if (p.back() == '/') return why = "it ends with '/'; name a file (an IMU) or a folder (a LiDAR) without it", false;
   return true;
 }
 

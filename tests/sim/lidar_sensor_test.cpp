@@ -234,3 +234,22 @@ TEST(Lidar, SettingsThatCannotScanAreErrors) {
   for (const Diagnostic& d : r->diags) codes.push_back(d.code + ":" + std::to_string(d.line));
   EXPECT_EQ(codes, (std::vector<std::string>{"RS7066:3", "RS7066:4", "RS7066:5", "RS7071:6"}));
 }
+
+TEST(Lidar, TerrainAndCompoundsAreHitWhereTheyAre) {
+  // A sloped terrain z = -0.2 x (11 x 11 samples over 10 x 10 m, centred
+  // at the origin) and a compound of two boxes; rays straight down.
+  std::string heights;
+  for (int y = 0; y < 11; ++y)
+    for (int x = 0; x < 11; ++x) heights += (heights.empty() ? "" : ",") + std::to_string(-0.2 * (x - 5));
+  std::string s = "terrain_region /World/T 11 11 10 10 0 0 0 heights=" + heights + "\n" +
+                  "compound /World/C 20 0 1 1 0 0 0 1 1 1 0 static true true id=c\n"
+                  "compound_child c box -0.5 0 0 1 0 0 0 1 1 1 size=0.5,0.5,0.5\n"
+                  "compound_child c box 0.5 0 0.25 1 0 0 0 1 1 1 size=0.5,0.5,0.5\n";
+  auto r = makeSensorRun(s);
+  RayGeometry g(*r->world);
+  EXPECT_GT(g.triangleCount(), 0u);
+  for (double x : {-4.0, -1.3, 0.0, 2.7})
+    EXPECT_NEAR(g.cast({x, 0.4, 5}, {0, 0, -1}, 100), 5 + 0.2 * x, 1e-9) << x;
+  EXPECT_NEAR(g.cast({19.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.25, 1e-9);  // the lower child's top
+  EXPECT_NEAR(g.cast({20.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.5, 1e-9);   // the upper one's
+}
