@@ -198,3 +198,16 @@ EOF2
   [ "${#lines[@]}" -eq 2 ]
   [[ ${lines[1]} == 0.1,* ]]
 }
+
+@test "a run that fails leaves no IMU file and no scan index" {
+  # The smallest normal mass passes the checks; stepping it does not stay finite (RS7024).
+  { room; echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615 id=heavy"
+    echo "sensor /World/HeavyImu imu heavy 0 0 0 1 0 0 0"; } > heavy.rscene
+  run -2 --separate-stderr "$SIM" --steps 2000 --sensors out -o /dev/null heavy.rscene
+  [[ ${stderr_lines[0]} == *"[RS7024]" ]]
+  [ ! -e out/World+Imu.csv ]
+  [ ! -e out/World+HeavyImu.csv ]
+  [ ! -e out/World+Lidar/scans.csv ]
+  [ -f out/World+Lidar/scan_000000.pcd ]  # taken before the failure
+  [ -z "$(find out -name '.*')" ]         # no temporary file left
+}

@@ -180,15 +180,16 @@ int run(const Options& opt) {
   };
   // A failed run cancels the trajectory (no file is left at its path) and
   // writes no scene; the failure is printed before the cancelled write is.
+  // The failure is printed before any cancelled write says so.
   auto withTrajectory = [&] {
-    return opt.trajectory.empty() ? simulate(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) {
-      bool good = simulate(&s);
+    auto run = [&](Sink* s) {
+      bool good = simulate(s);
       if (failure) print(Diagnostics{*failure});
       return good;
-    });
+    };
+    return opt.trajectory.empty() ? run(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); });
   };
   bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
-  if (failure && opt.trajectory.empty()) print(Diagnostics{*failure});
   if (!simulated) return cli::kTrouble;
   if (gInterrupted) return cli::kInterrupted;
   Diagnostics departures;
