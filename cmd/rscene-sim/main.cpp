@@ -108,14 +108,7 @@ int run(const Options& opt) {
     }
   // --sensors: what will be recorded, checked before anything is built.
   std::vector<sim::RecordedSensor> sensors;
-  if (ok && !opt.sensors.empty()) {
-    std::vector<std::shared_ptr<const robot::Model>> models;
-    for (const robot::RobotInstance& r : robots) models.push_back(r.model);
-    sim::SensorPlanOptions po;
-    po.imuFormat = opt.imuFormat == "jsonl" ? sim::ImuFormat::Jsonl : sim::ImuFormat::Csv;
-    sensors = sim::planSensors(doc, robot::collectSensors(doc, scene, models, ds), po, ds);
-    ok = !hasErrors(ds);
-  }
+  if (ok && !opt.sensors.empty()) ok = simcmd::planSensors(doc, scene, robots, opt.imuFormat, sensors, ds);
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
