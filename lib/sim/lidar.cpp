@@ -1,6 +1,7 @@
 #include "sim/lidar.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <thread>
 
@@ -48,11 +49,17 @@ std::vector<Eigen::Vector3f> scanLidar(const RayGeometry& geometry, const Pose& 
   };
   int threads = std::clamp(options.threads, 1, 64);
   if (n < 4096) threads = 1;  // not worth a thread
+  // Chunks of rays handed out as threads ask: on a loaded machine a thread
+  // that is not scheduled leaves its share to the others instead of
+  // making the scan wait for it.
+  constexpr std::size_t kChunk = 1024;
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t begin; (begin = next.fetch_add(kChunk)) < n;) work(begin, std::min(n, begin + kChunk));
+  };
   std::vector<std::thread> pool;
-  std::size_t chunk = (n + static_cast<std::size_t>(threads) - 1) / static_cast<std::size_t>(threads);
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(work, std::min(n, chunk * std::size_t(t)), std::min(n, chunk * std::size_t(t + 1)));
-  work(0, std::min(n, chunk));
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
   for (std::thread& t : pool) t.join();
   std::vector<Eigen::Vector3f> points;
   points.reserve(n);

@@ -24,7 +24,9 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
 struct Solid {
-  enum Kind : std::uint8_t { Box, Sphere, Cylinder, Capsule, Convex } kind = Box;
+  // AlignedBox: a box whose frame is the world's (most static boxes of a
+  // scene): tested in world coordinates, no rotation of the ray.
+  enum Kind : std::uint8_t { Box, AlignedBox, Sphere, Cylinder, Capsule, Convex } kind = Box;
   Matrix3d toLocal = Matrix3d::Identity();  // world -> local rotation (R^T)
   Vector3d origin = Vector3d::Zero();       // the local frame's origin, world
   Vector3d size = Vector3d::Zero();         // box: half extents; sphere: r; cylinder, capsule: r, half height
@@ -194,7 +196,8 @@ struct TargetSet {
       const Solid& s = solids[i];
       Vector3d lo = Vector3d::Zero(), hi = Vector3d::Zero();
       switch (s.kind) {
-        case Solid::Box: hi = s.size; break;
+        case Solid::Box:
+        case Solid::AlignedBox: hi = s.size; break;
         case Solid::Sphere: hi = Vector3d::Constant(s.size.x()); break;
         case Solid::Cylinder: hi = Vector3d(s.size.x(), s.size.x(), s.size.y()); break;
         case Solid::Capsule: hi = Vector3d(s.size.x(), s.size.x(), s.size.y() + s.size.x()); break;
@@ -223,10 +226,20 @@ struct TargetSet {
       if (std::size_t(r) >= solids.size()) r = triangleRef(std::size_t(r) - solids.size());
   }
 
-  double hitSolid(const Solid& s, const Vector3d& o, const Vector3d& d, const std::vector<ray::Plane>& planes) const {
+  double hitSolid(const Solid& s, const Vector3d& o, const Vector3d& d, const Vector3d& inv,
+                  const std::vector<ray::Plane>& planes) const {
+    if (s.kind == Solid::AlignedBox) {
+      double lo = -ray::kInf, hi = ray::kInf;
+      for (int k = 0; k < 3; ++k) {
+        double t1 = (s.origin[k] - s.size[k] - o[k]) * inv[k], t2 = (s.origin[k] + s.size[k] - o[k]) * inv[k];
+        lo = std::max(lo, std::min(t1, t2)), hi = std::min(hi, std::max(t1, t2));
+      }
+      return ray::entry(lo, hi);
+    }
     Vector3d lo = s.toLocal * (o - s.origin), ld = s.toLocal * d;
     switch (s.kind) {
-      case Solid::Box: return ray::box(lo, ld, s.size);
+      case Solid::Box:
+      case Solid::AlignedBox: return ray::box(lo, ld, s.size);
       case Solid::Sphere: return ray::sphere(lo, ld, s.size.x());
       case Solid::Cylinder: return ray::cylinder(lo, ld, s.size.x(), s.size.y());
       case Solid::Capsule: return ray::capsule(lo, ld, s.size.x(), s.size.y());
@@ -264,7 +277,7 @@ struct TargetSet {
           if (ref >= 0) {
             const Solid& s = solids[std::size_t(ref)];
             if (s.owner == exclude) continue;
-            t = hitSolid(s, o, d, planes);
+            t = hitSolid(s, o, d, inv, planes);
           } else {
             const Triangle& tr = triangles[std::size_t(-ref - 1)];
             if (tr.owner == exclude) continue;
@@ -383,10 +396,12 @@ struct RayGeometry::Impl {
   void add(const btCollisionShape* shape, const btTransform& at, const btCollisionObject* owner, TargetSet& set) {
     switch (shape->getShapeType()) {
       case EMPTY_SHAPE_PROXYTYPE: return;
-      case BOX_SHAPE_PROXYTYPE:
-        set.solids.push_back(
-            solid(Solid::Box, at, sim::eig(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin()), owner));
+      case BOX_SHAPE_PROXYTYPE: {
+        Solid s = solid(Solid::Box, at, sim::eig(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin()), owner);
+        if (s.toLocal == Matrix3d::Identity()) s.kind = Solid::AlignedBox;
+        set.solids.push_back(s);
         return;
+      }
       case SPHERE_SHAPE_PROXYTYPE:
         set.solids.push_back(solid(Solid::Sphere, at,
                                    Vector3d::Constant(static_cast<const btSphereShape*>(shape)->getRadius()), owner));
