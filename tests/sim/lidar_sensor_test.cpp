@@ -8,6 +8,7 @@
 
 #include "sim/lidar.hpp"
 #include "sim/lidar_geometry.hpp"
+#include "sim/lidar_primitives.hpp"
 #include "sim/sensor_test_scene.hpp"
 
 using namespace rscene;
@@ -252,4 +253,63 @@ TEST(Lidar, TerrainAndCompoundsAreHitWhereTheyAre) {
     EXPECT_NEAR(g.cast({x, 0.4, 5}, {0, 0, -1}, 100), 5 + 0.2 * x, 1e-9) << x;
   EXPECT_NEAR(g.cast({19.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.25, 1e-9);  // the lower child's top
   EXPECT_NEAR(g.cast({20.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.5, 1e-9);   // the upper one's
+}
+
+TEST(Lidar, TheHierarchyFindsWhatTestingEveryPrimitiveFinds) {
+  // 160 boxes, spheres, cylinders and capsules at random poses; 3000 random
+  // rays.  The BVH's answer must be the nearest of every primitive's own
+  // closed-form test (lidar_primitives.hpp), to rounding.
+  std::uint64_t state = 12345;
+  auto uniform = [&](double lo, double hi) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  struct Prim {
+    int kind;
+    Vector3d at, size;
+    Eigen::Quaterniond q;
+  };
+  std::vector<Prim> prims;
+  std::string s = "gravity 0 0 0\n";
+  for (int i = 0; i < 160; ++i) {
+    Prim p;
+    p.kind = i % 4;
+    p.at = {uniform(-20, 20), uniform(-20, 20), uniform(0, 6)};
+    p.q = Eigen::Quaterniond(Eigen::AngleAxisd(uniform(0, 6.28), Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(uniform(-1, 1), Vector3d::UnitX()));
+    p.size = {uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2)};
+    char size[96];
+    std::snprintf(size, sizeof size, "%.17g %.17g %.17g", p.size.x(), p.size.y(), p.size.z());
+    const char* names[] = {"box", "sphere", "cylinder", "capsule"};
+    s += object("/World/P" + std::to_string(i), names[p.kind], p.at, p.kind == 0 ? size : "1 1 1", p.size.x() / 2,
+                p.size.y(), 0, "static", "", p.q);
+    prims.push_back(p);
+  }
+  auto r = makeSensorRun(s);
+  RayGeometry g(*r->world);
+  ASSERT_EQ(g.solidCount(), 160u);
+  int hits = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Vector3d o(uniform(-25, 25), uniform(-25, 25), uniform(-1, 7));
+    Vector3d d = Vector3d(uniform(-1, 1), uniform(-1, 1), uniform(-0.5, 0.5)).normalized();
+    double expected = ray::kMiss;
+    for (const Prim& p : prims) {
+      Eigen::Matrix3d toLocal = p.q.toRotationMatrix().transpose();
+      Vector3d lo = toLocal * (o - p.at), ld = toLocal * d;
+      double t = p.kind == 0   ? ray::box(lo, ld, p.size / 2)
+                 : p.kind == 1 ? ray::sphere(lo, ld, p.size.x() / 2)
+                 : p.kind == 2 ? ray::cylinder(lo, ld, p.size.x() / 2, p.size.y() / 2)
+                               : ray::capsule(lo, ld, p.size.x() / 2, p.size.y() / 2);
+      expected = std::min(expected, t);
+    }
+    if (expected > 60) expected = kNoHit;
+    double got = g.cast(o, d, 60);
+    if (expected == kNoHit) {
+      EXPECT_EQ(got, kNoHit) << k;
+    } else {
+      ++hits;
+      EXPECT_NEAR(got, expected, 1e-9) << k;
+    }
+  }
+  EXPECT_GT(hits, 300);  // the rays do meet things
 }
