@@ -118,13 +118,12 @@ int main(int argc, char** argv) {
       ++onlyOne;
     }
   }
-  std::printf("lidar scan 64x1024 of %s: %zu solids, %zu triangles (read in %.1f ms)\n", argv[1],
-              geometry.solidCount(), geometry.triangleCount(), buildMs);
+  std::printf("lidar scan 64x1024 of %s: %zu solids, %zu triangles (read in %.1f ms)\n", argv[1], geometry.solidCount(),
+              geometry.triangleCount(), buildMs);
   std::printf("  %-28s %9.2f ms  %zu points\n", "rscene exact, 1 thread", ms1, one.size());
   std::printf("  %-28s %9.2f ms  %zu points  %s (target < 20 ms)\n", "rscene exact, 2 threads", ms2, two.size(),
               ms2 < 20 ? "PASS" : "MISS");
-  std::printf("  %-28s %9.2f ms  (%.1fx slower than 2 threads)\n", "Bullet rayTest per ray", msBullet,
-              msBullet / ms2);
+  std::printf("  %-28s %9.2f ms  (%.1fx slower than 2 threads)\n", "Bullet rayTest per ray", msBullet, msBullet / ms2);
   std::printf("  agreement with Bullet: %zu rays both hit (worst %.2g m, %zu beyond 1 mm), %zu only one hit\n", both,
               worst, far, onlyOne);
   return 0;

@@ -69,7 +69,8 @@ bool SensorFiles::open(std::size_t stream, const std::function<bool()>& simulate
   return cli::writeOutput(paths_[stream], [&](Sink& sink) {
     sinks_[stream] = &sink;
     const sim::RecordedSensor& s = sensors_[stream];
-    buffers_[stream] = s.spec.kind == robot::SensorKind::Lidar ? "index,time,points,file\n" : sim::imuHeader(s.imuFormat);
+    buffers_[stream] =
+        s.spec.kind == robot::SensorKind::Lidar ? "index,time,points,file\n" : sim::imuHeader(s.imuFormat);
     bool ok = open(stream + 1, simulate);
     if (ok) flush(stream, true);
     sinks_[stream] = nullptr;

@@ -15,8 +15,9 @@ std::vector<Eigen::Vector3d> lidarDirections(const SensorParams& p) {
   out.reserve(static_cast<std::size_t>(p.lidarChannels) * static_cast<std::size_t>(p.lidarSamples));
   constexpr double kDeg = M_PI / 180;
   for (int i = 0; i < p.lidarChannels; ++i) {
-    double pitch = p.lidarChannels == 1 ? (p.lidarMinPitch + p.lidarMaxPitch) / 2
-                                        : p.lidarMinPitch + i * (p.lidarMaxPitch - p.lidarMinPitch) / (p.lidarChannels - 1);
+    double pitch = p.lidarChannels == 1
+                       ? (p.lidarMinPitch + p.lidarMaxPitch) / 2
+                       : p.lidarMinPitch + i * (p.lidarMaxPitch - p.lidarMinPitch) / (p.lidarChannels - 1);
     double cp = std::cos(pitch * kDeg), sp = std::sin(pitch * kDeg);
     for (int j = 0; j < p.lidarSamples; ++j) {
       double yaw = 2 * M_PI * j / p.lidarSamples * (p.lidarClockwise ? -1 : 1);

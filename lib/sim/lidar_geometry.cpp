@@ -197,10 +197,18 @@ struct TargetSet {
       Vector3d lo = Vector3d::Zero(), hi = Vector3d::Zero();
       switch (s.kind) {
         case Solid::Box:
-        case Solid::AlignedBox: hi = s.size; break;
-        case Solid::Sphere: hi = Vector3d::Constant(s.size.x()); break;
-        case Solid::Cylinder: hi = Vector3d(s.size.x(), s.size.x(), s.size.y()); break;
-        case Solid::Capsule: hi = Vector3d(s.size.x(), s.size.x(), s.size.y() + s.size.x()); break;
+        case Solid::AlignedBox:
+          hi = s.size;
+          break;
+        case Solid::Sphere:
+          hi = Vector3d::Constant(s.size.x());
+          break;
+        case Solid::Cylinder:
+          hi = Vector3d(s.size.x(), s.size.x(), s.size.y());
+          break;
+        case Solid::Capsule:
+          hi = Vector3d(s.size.x(), s.size.x(), s.size.y() + s.size.x());
+          break;
         case Solid::Convex: {
           const Aabb& b = convexBoxes[std::size_t(s.firstPlane)];
           lo = b.lo, hi = b.hi;
@@ -239,10 +247,14 @@ struct TargetSet {
     Vector3d lo = s.toLocal * (o - s.origin), ld = s.toLocal * d;
     switch (s.kind) {
       case Solid::Box:
-      case Solid::AlignedBox: return ray::box(lo, ld, s.size);
-      case Solid::Sphere: return ray::sphere(lo, ld, s.size.x());
-      case Solid::Cylinder: return ray::cylinder(lo, ld, s.size.x(), s.size.y());
-      case Solid::Capsule: return ray::capsule(lo, ld, s.size.x(), s.size.y());
+      case Solid::AlignedBox:
+        return ray::box(lo, ld, s.size);
+      case Solid::Sphere:
+        return ray::sphere(lo, ld, s.size.x());
+      case Solid::Cylinder:
+        return ray::cylinder(lo, ld, s.size.x(), s.size.y());
+      case Solid::Capsule:
+        return ray::capsule(lo, ld, s.size.x(), s.size.y());
       case Solid::Convex:
         return ray::convex(lo, ld, planes.data() + s.firstPlane, static_cast<std::size_t>(s.planeCount));
     }
@@ -345,7 +357,8 @@ struct RayGeometry::Impl {
   // and capsules run along x, y or z).
   static btTransform alongZ(const btTransform& at, int up) {
     if (up == 2) return at;
-    btQuaternion q = up == 1 ? btQuaternion(btVector3(1, 0, 0), -SIMD_HALF_PI) : btQuaternion(btVector3(0, 1, 0), SIMD_HALF_PI);
+    btQuaternion q =
+        up == 1 ? btQuaternion(btVector3(1, 0, 0), -SIMD_HALF_PI) : btQuaternion(btVector3(0, 1, 0), SIMD_HALF_PI);
     return at * btTransform(q);
   }
 
@@ -395,16 +408,18 @@ struct RayGeometry::Impl {
 
   void add(const btCollisionShape* shape, const btTransform& at, const btCollisionObject* owner, TargetSet& set) {
     switch (shape->getShapeType()) {
-      case EMPTY_SHAPE_PROXYTYPE: return;
+      case EMPTY_SHAPE_PROXYTYPE:
+        return;
       case BOX_SHAPE_PROXYTYPE: {
-        Solid s = solid(Solid::Box, at, sim::eig(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin()), owner);
+        Solid s =
+            solid(Solid::Box, at, sim::eig(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin()), owner);
         if (s.toLocal == Matrix3d::Identity()) s.kind = Solid::AlignedBox;
         set.solids.push_back(s);
         return;
       }
       case SPHERE_SHAPE_PROXYTYPE:
-        set.solids.push_back(solid(Solid::Sphere, at,
-                                   Vector3d::Constant(static_cast<const btSphereShape*>(shape)->getRadius()), owner));
+        set.solids.push_back(
+            solid(Solid::Sphere, at, Vector3d::Constant(static_cast<const btSphereShape*>(shape)->getRadius()), owner));
         return;
       case CYLINDER_SHAPE_PROXYTYPE: {
         auto* c = static_cast<const btCylinderShape*>(shape);
@@ -440,7 +455,8 @@ struct RayGeometry::Impl {
         addHull(shape, points, at, owner, set);
         return;
       }
-      default: break;
+      default:
+        break;
     }
     if (shape->isConcave()) {  // triangle meshes, height fields
       struct Collect : btTriangleCallback {

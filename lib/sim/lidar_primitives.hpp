@@ -18,8 +18,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 // Where a ray is inside the slab |x_axis| <= h: [lo, hi] (empty: lo > hi).
 inline void slab(double o, double d, double h, double& lo, double& hi) {
   if (d == 0) {
-    if (std::abs(o) <= h) lo = -kInf, hi = kInf;
-    else lo = kInf, hi = -kInf;
+    if (std::abs(o) <= h)
+      lo = -kInf, hi = kInf;
+    else
+      lo = kInf, hi = -kInf;
     return;
   }
   double inv = 1 / d, a = (-h - o) * inv, b = (h - o) * inv;
@@ -53,8 +55,10 @@ inline double sphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double 
 inline void tube(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double r, double& lo, double& hi) {
   double a = d.x() * d.x() + d.y() * d.y(), c = o.x() * o.x() + o.y() * o.y() - r * r;
   if (a < 1e-300) {  // parallel to the axis
-    if (c <= 0) lo = -kInf, hi = kInf;
-    else lo = kInf, hi = -kInf;
+    if (c <= 0)
+      lo = -kInf, hi = kInf;
+    else
+      lo = kInf, hi = -kInf;
     return;
   }
   double b = o.x() * d.x() + o.y() * d.y(), disc = b * b - a * c;
@@ -100,8 +104,10 @@ inline double convex(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const P
       continue;
     }
     double t = dist / denom;
-    if (denom < 0) lo = std::max(lo, t);
-    else hi = std::min(hi, t);
+    if (denom < 0)
+      lo = std::max(lo, t);
+    else
+      hi = std::min(hi, t);
     if (lo > hi) return kMiss;
   }
   return entry(lo, hi);

@@ -155,20 +155,21 @@ namespace {
 const std::string* mountPath(const Scene& scene, const Mount& m) {
   auto at = [](const auto& list, int i) { return i >= 0 && std::size_t(i) < list.size(); };
   switch (m.kind) {
-    case Mount::Kind::Object: return at(scene.objects, m.index) ? &scene.objects[std::size_t(m.index)].path : nullptr;
+    case Mount::Kind::Object:
+      return at(scene.objects, m.index) ? &scene.objects[std::size_t(m.index)].path : nullptr;
     case Mount::Kind::Compound:
       return at(scene.compounds, m.index) ? &scene.compounds[std::size_t(m.index)].path : nullptr;
     case Mount::Kind::Articulated:
       return at(scene.articulated, m.index) ? &scene.articulated[std::size_t(m.index)].path : nullptr;
-    case Mount::Kind::World: break;
+    case Mount::Kind::World:
+      break;
   }
   return nullptr;
 }
 
 }  // namespace
 
-SensorRecorder::SensorRecorder(const Scene& scene, const World& world, std::vector<RecordedSensor> sensors,
-                               int threads)
+SensorRecorder::SensorRecorder(const Scene& scene, const World& world, std::vector<RecordedSensor> sensors, int threads)
     : scene_(scene), world_(world), sensors_(std::move(sensors)), states_(sensors_.size()), threads_(threads) {
   bool lidar = false;
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
@@ -179,7 +180,7 @@ SensorRecorder::SensorRecorder(const Scene& scene, const World& world, std::vect
     lidar = true;
     if (const std::string* path = mountPath(scene, s.mount))
       st.exclude = s.mount.kind == Mount::Kind::Articulated ? world.robotCollisionObject(*path, s.link)
-                                                             : world.collisionObject(*path);
+                                                            : world.collisionObject(*path);
   }
   if (lidar) geometry_ = std::make_unique<RayGeometry>(world);
 }
@@ -211,15 +212,16 @@ bool SensorRecorder::sample(SensorOutput& out) {
     Pose pose = robot::sensorPose(s, scene_, kScenePoses);
     const std::string* path = mountPath(scene_, s.mount);
     if (path) {
-      std::optional<Pose> body = s.mount.kind == Mount::Kind::Articulated ? world_.robotLinkPose(*path, s.link)
-                                                                           : world_.bodyPose(*path);
+      std::optional<Pose> body =
+          s.mount.kind == Mount::Kind::Articulated ? world_.robotLinkPose(*path, s.link) : world_.bodyPose(*path);
       if (body) pose = *body * s.local;
     }
     if (s.kind == robot::SensorKind::Imu) {
       Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
       if (path) {
-        bool known = s.mount.kind == Mount::Kind::Articulated ? world_.robotPointVelocity(*path, s.link, pose.position, v, w)
-                                                              : world_.pointVelocity(*path, pose.position, v, w);
+        bool known = s.mount.kind == Mount::Kind::Articulated
+                         ? world_.robotPointVelocity(*path, s.link, pose.position, v, w)
+                         : world_.pointVelocity(*path, pose.position, v, w);
         if (!known) v.setZero(), w.setZero();  // a body not simulated (visual only) stays put
       }
       if (first) {

@@ -168,10 +168,11 @@ TEST(Imu, ASensorOnARobotLinkMovesWithTheLink) {
   // (1 m below the hinge) follows the link's forward kinematics and reads
   // the hinge's rate about its y axis.
   auto model = pendulum();
-  auto r = makeSensorRun("sensor /World/R0/Tip imu /World/R0 0 0 -1 1 0 0 0 parentLink=arm\n"
-                         "sensor /World/R0/Scan lidar /World/R0 0 0 -1 1 0 0 0 parentLink=arm lidarChannels=1 "
-                         "lidarSamples=8 updateRate=50\n",
-                         nullptr, {model});
+  auto r = makeSensorRun(
+      "sensor /World/R0/Tip imu /World/R0 0 0 -1 1 0 0 0 parentLink=arm\n"
+      "sensor /World/R0/Scan lidar /World/R0 0 0 -1 1 0 0 0 parentLink=arm lidarChannels=1 "
+      "lidarSamples=8 updateRate=50\n",
+      nullptr, {model});
   ASSERT_EQ(r->sensors.size(), 2u);
   ASSERT_EQ(r->sensors[0].spec.link, 1);
   // Tilt the arm: a new world whose robot starts at q = 0.3.

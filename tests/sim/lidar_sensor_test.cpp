@@ -78,8 +78,8 @@ TEST(Lidar, BoxRoomRangesEqualTheGeometryAndEveryRayReturns) {
 TEST(Lidar, PointsAreInTheSensorFrameOfARotatedSensor) {
   const double hx = 4, hy = 3, hz = 1.5;
   // Yawed 30 degrees and rolled 10: world point = R p + c must lie on a wall.
-  Eigen::Quaterniond q = Eigen::AngleAxisd(30 * kPi / 180, Vector3d::UnitZ()) *
-                         Eigen::AngleAxisd(10 * kPi / 180, Vector3d::UnitX());
+  Eigen::Quaterniond q =
+      Eigen::AngleAxisd(30 * kPi / 180, Vector3d::UnitZ()) * Eigen::AngleAxisd(10 * kPi / 180, Vector3d::UnitX());
   char line[256];
   std::snprintf(line, sizeof line,
                 "sensor /World/Lidar lidar - 1 -0.5 1.2 %.17g %.17g %.17g %.17g lidarChannels=8 lidarSamples=180 "
@@ -92,8 +92,8 @@ TEST(Lidar, PointsAreInTheSensorFrameOfARotatedSensor) {
   EXPECT_TRUE(scans[0].pose.orientation.isApprox(q, 1e-12));
   for (const Eigen::Vector3f& pf : scans[0].points) {
     Vector3d w = q * pf.cast<double>() + Vector3d(1, -0.5, 1.2);
-    double off = std::min({std::abs(std::abs(w.x()) - hx), std::abs(std::abs(w.y()) - hy), std::abs(w.z()),
-                           std::abs(w.z() - 2 * hz)});
+    double off = std::min(
+        {std::abs(std::abs(w.x()) - hx), std::abs(std::abs(w.y()) - hy), std::abs(w.z()), std::abs(w.z() - 2 * hz)});
     ASSERT_LT(off, 1e-3) << w.transpose();
   }
 }
@@ -129,8 +129,9 @@ TEST(Lidar, MinRangeDropsCloseReturns) {
 
 TEST(Lidar, TheSameSeedGivesTheSameNoisyScan) {
   auto scene = [](int seed) {
-    return room(4, 3, 1.5) + "sensor /World/Lidar lidar - 0 0 1.5 1 0 0 0 lidarChannels=16 lidarSamples=512 "
-                             "noiseStddev=0.02 noiseMean=0.01 noiseSeed=" +
+    return room(4, 3, 1.5) +
+           "sensor /World/Lidar lidar - 0 0 1.5 1 0 0 0 lidarChannels=16 lidarSamples=512 "
+           "noiseStddev=0.02 noiseMean=0.01 noiseSeed=" +
            std::to_string(seed) + "\n";
   };
   auto a = makeSensorRun(scene(7)), b = makeSensorRun(scene(7)), c = makeSensorRun(scene(8));
@@ -163,36 +164,36 @@ TEST(Lidar, TheSameSeedGivesTheSameNoisyScan) {
 
 TEST(Lidar, EachPrimitiveIsHitWhereItsSurfaceIs) {
   MemoryFileSystem fs;
-  fs.addFile("/s/cube.obj",
-             "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
-             "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
-             "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+  fs.addFile(
+      "/s/cube.obj",
+      "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+      "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
+      "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
   Eigen::Quaterniond yaw45(Eigen::AngleAxisd(kPi / 4, Vector3d::UnitZ()));
-  std::string s = "gravity 0 0 0\n" + object("/World/Ground", "ground", {0, 0, 0}, "50 50 1", 0.5, 1, 0, "static") +
-                  object("/World/Ball", "sphere", {5, 0, 1}, "1 1 1", 0.5, 1, 1, "dynamic") +
-                  object("/World/Can", "cylinder", {0, 5, 1}, "1 1 1", 0.5, 2, 0, "static") +
-                  object("/World/Pill", "capsule", {-5, 0, 2}, "1 1 1", 0.3, 1, 0, "static") +
-                  object("/World/Turned", "box", {0, -5, 1}, "1 1 1", 0.5, 1, 0, "static", "", yaw45) +
-                  object("/World/Hull", "mesh", {10, 10, 1}, "2 2 2", 0.5, 1, 1, "dynamic",
-                         "collisionMeshPath=cube.obj") +
-                  object("/World/Tris", "mesh", {-10, 10, 1}, "2 2 2", 0.5, 1, 0, "static",
-                         "collisionMeshPath=cube.obj");
+  std::string s =
+      "gravity 0 0 0\n" + object("/World/Ground", "ground", {0, 0, 0}, "50 50 1", 0.5, 1, 0, "static") +
+      object("/World/Ball", "sphere", {5, 0, 1}, "1 1 1", 0.5, 1, 1, "dynamic") +
+      object("/World/Can", "cylinder", {0, 5, 1}, "1 1 1", 0.5, 2, 0, "static") +
+      object("/World/Pill", "capsule", {-5, 0, 2}, "1 1 1", 0.3, 1, 0, "static") +
+      object("/World/Turned", "box", {0, -5, 1}, "1 1 1", 0.5, 1, 0, "static", "", yaw45) +
+      object("/World/Hull", "mesh", {10, 10, 1}, "2 2 2", 0.5, 1, 1, "dynamic", "collisionMeshPath=cube.obj") +
+      object("/World/Tris", "mesh", {-10, 10, 1}, "2 2 2", 0.5, 1, 0, "static", "collisionMeshPath=cube.obj");
   auto r = makeSensorRun(s, &fs);
   RayGeometry g(*r->world);
   const Vector3d o(0, 0, 1);
-  EXPECT_NEAR(g.cast(o, {1, 0, 0}, 100), 4.5, 1e-9);   // sphere r 0.5 at x = 5
-  EXPECT_NEAR(g.cast(o, {0, 1, 0}, 100), 4.5, 1e-9);   // cylinder r 0.5 at y = 5
-  EXPECT_NEAR(g.cast({0, 5, 10}, {0, 0, -1}, 100), 8, 1e-9);  // its top at z = 2
-  EXPECT_NEAR(g.cast({-5, 0, 1.9}, {0, 0, -1}, 100), 1.9, 1e-9);  // from inside the capsule: the ground
-  EXPECT_NEAR(g.cast({0, 0, 2}, {-1, 0, 0}, 100), 4.7, 1e-9);      // its side, radius 0.3
-  EXPECT_NEAR(g.cast({-5, 0, 10}, {0, 0, -1}, 100), 10 - 2.8, 1e-9);  // its cap: 2 + 0.5 + 0.3
+  EXPECT_NEAR(g.cast(o, {1, 0, 0}, 100), 4.5, 1e-9);                        // sphere r 0.5 at x = 5
+  EXPECT_NEAR(g.cast(o, {0, 1, 0}, 100), 4.5, 1e-9);                        // cylinder r 0.5 at y = 5
+  EXPECT_NEAR(g.cast({0, 5, 10}, {0, 0, -1}, 100), 8, 1e-9);                // its top at z = 2
+  EXPECT_NEAR(g.cast({-5, 0, 1.9}, {0, 0, -1}, 100), 1.9, 1e-9);            // from inside the capsule: the ground
+  EXPECT_NEAR(g.cast({0, 0, 2}, {-1, 0, 0}, 100), 4.7, 1e-9);               // its side, radius 0.3
+  EXPECT_NEAR(g.cast({-5, 0, 10}, {0, 0, -1}, 100), 10 - 2.8, 1e-9);        // its cap: 2 + 0.5 + 0.3
   EXPECT_NEAR(g.cast(o, {0, -1, 0}, 100), 5 - 0.5 * std::sqrt(2.0), 1e-9);  // the turned box's edge
-  EXPECT_NEAR(g.cast({3, 3, 5}, {0, 0, -1}, 100), 5, 1e-9);        // the ground
-  EXPECT_EQ(g.cast({3, 3, 5}, {0, 0, -1}, 4.9), kNoHit);          // beyond the range
-  EXPECT_NEAR(g.cast({10, 0, 2}, {0, 1, 0}, 100), 9, 1e-9);       // the hull (a 2 m cube) at y = 10
-  EXPECT_NEAR(g.cast({-10, 0, 1.5}, {0, 1, 0}, 100), 9, 1e-9);    // the triangle mesh at y = 10
-  EXPECT_NEAR(g.cast({-10, 10, 1}, {0, 1, 0}, 100), 1, 1e-9);     // triangles seen from inside too
-  Vector3d slanted = Vector3d(1, 1, -1).normalized();             // onto the ground from (0, 0, 1)...
+  EXPECT_NEAR(g.cast({3, 3, 5}, {0, 0, -1}, 100), 5, 1e-9);                 // the ground
+  EXPECT_EQ(g.cast({3, 3, 5}, {0, 0, -1}, 4.9), kNoHit);                    // beyond the range
+  EXPECT_NEAR(g.cast({10, 0, 2}, {0, 1, 0}, 100), 9, 1e-9);                 // the hull (a 2 m cube) at y = 10
+  EXPECT_NEAR(g.cast({-10, 0, 1.5}, {0, 1, 0}, 100), 9, 1e-9);              // the triangle mesh at y = 10
+  EXPECT_NEAR(g.cast({-10, 10, 1}, {0, 1, 0}, 100), 1, 1e-9);               // triangles seen from inside too
+  Vector3d slanted = Vector3d(1, 1, -1).normalized();                       // onto the ground from (0, 0, 1)...
   EXPECT_NEAR(g.cast({20, 20, 1}, slanted, 100), std::sqrt(3.0), 1e-9);
 }
 
@@ -225,11 +226,12 @@ TEST(Lidar, UpdateRateSetsTheScanTimes) {
 // checkScene() refuses these first (RS7066, for validate too); the
 // recorder refuses them again for a caller that did not run it.
 TEST(Lidar, SettingsThatCannotScanAreErrors) {
-  auto r = makeSensorRun("sensor /World/A lidar - 0 0 1 1 0 0 0 lidarChannels=0\n"
-                         "sensor /World/B lidar - 0 0 1 1 0 0 0 lidarMinRange=5 lidarMaxRange=2\n"
-                         "sensor /World/C lidar - 0 0 1 1 0 0 0 lidarChannels=4096 lidarSamples=4096\n"
-                         "sensor /World/D force_torque - 0 0 1 1 0 0 0\n"
-                         "sensor /World/E rgb - 0 0 1 1 0 0 0\n");
+  auto r = makeSensorRun(
+      "sensor /World/A lidar - 0 0 1 1 0 0 0 lidarChannels=0\n"
+      "sensor /World/B lidar - 0 0 1 1 0 0 0 lidarMinRange=5 lidarMaxRange=2\n"
+      "sensor /World/C lidar - 0 0 1 1 0 0 0 lidarChannels=4096 lidarSamples=4096\n"
+      "sensor /World/D force_torque - 0 0 1 1 0 0 0\n"
+      "sensor /World/E rgb - 0 0 1 1 0 0 0\n");
   EXPECT_TRUE(r->sensors.empty());
   std::vector<std::string> codes;
   for (const Diagnostic& d : r->diags) codes.push_back(d.code + ":" + std::to_string(d.line));
@@ -249,8 +251,7 @@ TEST(Lidar, TerrainAndCompoundsAreHitWhereTheyAre) {
   auto r = makeSensorRun(s);
   RayGeometry g(*r->world);
   EXPECT_GT(g.triangleCount(), 0u);
-  for (double x : {-4.0, -1.3, 0.0, 2.7})
-    EXPECT_NEAR(g.cast({x, 0.4, 5}, {0, 0, -1}, 100), 5 + 0.2 * x, 1e-9) << x;
+  for (double x : {-4.0, -1.3, 0.0, 2.7}) EXPECT_NEAR(g.cast({x, 0.4, 5}, {0, 0, -1}, 100), 5 + 0.2 * x, 1e-9) << x;
   EXPECT_NEAR(g.cast({19.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.25, 1e-9);  // the lower child's top
   EXPECT_NEAR(g.cast({20.5, 0, 5}, {0, 0, -1}, 100), 5 - 1.5, 1e-9);   // the upper one's
 }
