@@ -85,8 +85,10 @@ void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool 
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D, b.texture);
       }
-      if (b.doubleSided) glDisable(GL_CULL_FACE);
-      else glEnable(GL_CULL_FACE);
+      if (b.doubleSided)
+        glDisable(GL_CULL_FACE);
+      else
+        glEnable(GL_CULL_FACE);
     }
     GLsizei n = shadowPass ? b.count : b.inView;
     if (n == 0) continue;
@@ -187,8 +189,10 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
   for (int i = 0; i < 2; ++i) {
     GLuint tex = i == 0 ? t.resolved : t.final;
     glBindTexture(GL_TEXTURE_2D, tex);
-    if (i == 0) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
-    else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    if (i == 0)
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
+    else
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, t.fbo[1 + i]);
@@ -196,8 +200,9 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
     complete = complete && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   }
   if (complete) return true;
-  diag(Severity::Error, "RS9011", 0, "cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
-                                         " framebuffer with " + std::to_string(samples) + " samples");
+  diag(Severity::Error, "RS9011", 0,
+       "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " framebuffer with " +
+           std::to_string(samples) + " samples");
   t.width = t.height = 0;
   return false;
 }
@@ -287,8 +292,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
                 std::cos(std::min(l.innerConeDegrees, l.coneDegrees - 0.01f) * kDeg));
     float areaGain = l.type == LightType::Area ? std::max(l.areaSize.x() * l.areaSize.y(), 0.f) : 1.f;
     glUniform4f(loc(surface, ("uLightAtt" + idx).c_str()), l.attenuation.x() / std::max(areaGain, 1e-3f),
-                l.attenuation.y() / std::max(areaGain, 1e-3f), l.attenuation.z() / std::max(areaGain, 1e-3f),
-                l.range);
+                l.attenuation.y() / std::max(areaGain, 1e-3f), l.attenuation.z() / std::max(areaGain, 1e-3f), l.range);
   }
   glUniform1i(loc(surface, "uShadowLight"), shadowLight_);
   glUniform1f(loc(surface, "uShadowTexel"), 1.0f / float(std::max(shadowSize_, 1)));

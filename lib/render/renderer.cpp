@@ -154,8 +154,7 @@ std::shared_ptr<GpuMesh> GlRenderer::uploadMesh(const MeshData& m, const std::ve
   if (colors) {
     glGenBuffers(1, &g->colorVbo);
     glBindBuffer(GL_ARRAY_BUFFER, g->colorVbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(colors->size() * sizeof(Eigen::Vector4f)), colors->data(),
-                 GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(colors->size() * sizeof(Eigen::Vector4f)), colors->data(), GL_STATIC_DRAW);
   }
   g->indexCount = GLsizei(m.indices.size());
   meshes_.push_back(g);
@@ -182,7 +181,8 @@ int GlRenderer::segmentsFor(const Eigen::AlignedBox3d& box) const {
   double radius = 0.5 * box.sizes().maxCoeff();
   double pixels = 0;  // radius on screen, in the view that sees it largest
   for (const Camera& c : lodCameras_) {
-    double height = c.height > 0 ? c.height : 720, aspect = c.width > 0 && c.height > 0 ? double(c.width) / c.height : 16.0 / 9.0;
+    double height = c.height > 0 ? c.height : 720,
+           aspect = c.width > 0 && c.height > 0 ? double(c.width) / c.height : 16.0 / 9.0;
     if (c.projection == "orthographic") {
       pixels = std::max(pixels, radius / std::max(c.orthoScale / 2, 1e-9) * height / 2);
     } else {
@@ -204,8 +204,7 @@ GLuint GlRenderer::texture(const Image& image) {
   ownedTextures_.push_back(t);
   glBindTexture(GL_TEXTURE_2D, t);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               image.rgba.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
   if (software_) {  // mipmap.hpp: llvmpipe's glGenerateMipmap costs more than this loop
     std::vector<std::uint8_t> level, next;
     const std::uint8_t* from = image.rgba.data();
@@ -261,15 +260,16 @@ bool GlRenderer::materialTexture(const RenderMaterial& m, GLuint& out) {
 }
 
 const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
-                                                 const std::string& file, bool& failed) {
+                                                      const std::string& file, bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
   if (it != meshFiles_.end()) return it->second.empty() ? nullptr : &it->second;
   std::vector<TexturedPart>& parts = meshFiles_[path];
   if (path.empty() || !regularFile(path)) {
-    failed = !assetProblem(line, column, file,
-                           path.empty() ? std::string("mesh body has no mesh file") : "mesh file '" + path + "' " + whyNotAFile(path),
-                           path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
+    failed = !assetProblem(
+        line, column, file,
+        path.empty() ? std::string("mesh body has no mesh file") : "mesh file '" + path + "' " + whyNotAFile(path),
+        path.empty() ? scene_code::kNoMesh : scene_code::kMissingFile);
     return nullptr;
   }
   std::string err;
@@ -318,7 +318,9 @@ InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bo
 
 bool GlRenderer::uploadDrawables() {
   const Eigen::Vector4f placeholderColor(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: cannot be mistaken for content
-  auto pbrOf = [](const RenderMaterial& m, float checker) { return Eigen::Vector4f(m.metallic, m.roughness, checker, 0); };
+  auto pbrOf = [](const RenderMaterial& m, float checker) {
+    return Eigen::Vector4f(m.metallic, m.roughness, checker, 0);
+  };
   drawableRefs_.assign(scene_.drawables.size(), {});
   for (std::size_t di = 0; di < scene_.drawables.size(); ++di) {
     const Drawable& d = scene_.drawables[di];
@@ -400,8 +402,8 @@ void GlRenderer::uploadTerrains() {
       for (int x = 0; x + 1 < nx; ++x) {
         auto i = std::uint32_t(y * nx + x);
         if (t.holes[i] || t.holes[i + 1] || t.holes[i + nx] || t.holes[i + nx + 1]) continue;
-        m.indices.insert(m.indices.end(), {i, i + 1, i + std::uint32_t(nx) + 1, i, i + std::uint32_t(nx) + 1,
-                                           i + std::uint32_t(nx)});
+        m.indices.insert(m.indices.end(),
+                         {i, i + 1, i + std::uint32_t(nx) + 1, i, i + std::uint32_t(nx) + 1, i + std::uint32_t(nx)});
       }
     const RenderMaterial& mat = scene_.materials[std::size_t(t.material)];
     add(uploadMesh(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(),
@@ -425,8 +427,8 @@ bool GlRenderer::uploadInstanced() {
     // Visuals only: never drawn by sensor views.
     for (std::size_t i = 0; i < b.worlds.size(); ++i)
       add(mesh, 0, b.colors[i].w() < 0.999f, false, b.castShadow, b.worlds[i], b.colors[i],
-          Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(), b.segment,
-          b.instanceBounds[i], false);
+          Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i],
+          false);
   }
   return true;
 }

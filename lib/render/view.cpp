@@ -9,9 +9,12 @@ namespace rscene::render {
 
 const char* passName(Pass p) {
   switch (p) {
-    case Pass::Color: return "rgb";
-    case Pass::Depth: return "depth";
-    case Pass::Segmentation: return "segmentation";
+    case Pass::Color:
+      return "rgb";
+    case Pass::Depth:
+      return "depth";
+    case Pass::Segmentation:
+      return "segmentation";
   }
   return "rgb";
 }

@@ -89,11 +89,15 @@ std::string segmentationLegendJson(const RenderScene& scene) {
     out += ", \"path\": ";
     appendText(out, g.path);
     out += ", \"id\": ";
-    if (g.id.empty()) out += "null";
-    else appendText(out, g.id);
+    if (g.id.empty())
+      out += "null";
+    else
+      appendText(out, g.id);
     out += ", \"semanticClass\": ";
-    if (g.semanticClass.empty()) out += "null";
-    else appendText(out, g.semanticClass);
+    if (g.semanticClass.empty())
+      out += "null";
+    else
+      appendText(out, g.semanticClass);
     out += ", \"instanceId\": ";
     out += g.instanceId >= 0 ? std::to_string(g.instanceId) : "null";
     out += "}";

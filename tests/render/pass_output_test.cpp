@@ -74,8 +74,8 @@ TEST(PassOutput, MillimetreRule) {
   EXPECT_EQ(depthMillimetres(5.0f), 5000);
   EXPECT_EQ(depthMillimetres(1.2344f), 1234);
   EXPECT_EQ(depthMillimetres(1.2346f), 1235);
-  EXPECT_EQ(depthMillimetres(0.0001f), 1);   // a return is never 0
-  EXPECT_EQ(depthMillimetres(-0.3f), 1);     // noise below 0 too
+  EXPECT_EQ(depthMillimetres(0.0001f), 1);  // a return is never 0
+  EXPECT_EQ(depthMillimetres(-0.3f), 1);    // noise below 0 too
   EXPECT_EQ(depthMillimetres(65.535f), 65535);
   EXPECT_EQ(depthMillimetres(1000.0f), 65535);  // saturates
 }
@@ -96,7 +96,7 @@ TEST(PassOutput, DepthPngDecodesToMillimetres) {
       EXPECT_EQ(g.values[i], want[i]) << i;
     }
   EXPECT_NEAR(g.values[5], 1000.5, 0.5);
-  EXPECT_EQ(encodeDepthPng16(depth, 4, 2), "");  // wrong size
+  EXPECT_EQ(encodeDepthPng16(depth, 4, 2), "");   // wrong size
   EXPECT_EQ(png, encodeDepthPng16(depth, 3, 2));  // deterministic
 }
 
@@ -141,10 +141,10 @@ TEST(PassOutput, LegendListsSegmentsWithEscapedText) {
   Segment b;
   b.rgb[0] = 32, b.rgb[1] = 33, b.rgb[2] = 34;
   b.kind = "articulated";
-  b.path = "/World/Caf\xc3\xa9";     // UTF-8: kept as is
+  b.path = "/World/Caf\xc3\xa9";  // UTF-8: kept as is
   b.semanticClass = "";
   Segment c = b;
-  c.path = "/World/bad\xff%";        // not UTF-8: percent-encoded
+  c.path = "/World/bad\xff%";  // not UTF-8: percent-encoded
   scene.segments = {a, b, c};
   std::string json = segmentationLegendJson(scene);
   EXPECT_EQ(json,

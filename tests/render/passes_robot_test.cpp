@@ -4,14 +4,13 @@
 // with updatePoses() moves it in the images.  Prints the time per frame
 // (bench/ measures; nothing here asserts a speed).
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-
-#include <sys/resource.h>
 
 #include "asset/cache.hpp"
 #include "core/loader.hpp"
@@ -71,7 +70,9 @@ TEST(PassesRobot, AnymalRgbDepthSegmentationAgreeAndMove) {
       "light /World/Sun -0.4 0.3 -1 3 type=directional shadows=true\n"
       "object /World/Ground ground 0 0 0 1 0 0 0 50 50 1 1 0 0 default ground false true true - static true 1 "
       "18446744073709551615 semanticClass=floor\n"
-      "articulated_resource anymal ANYmal " + urdf.string() + "\n"
+      "articulated_resource anymal ANYmal " +
+      urdf.string() +
+      "\n"
       "articulated /World/Anymal anymal 0 0 0.54 1 0 0 0 true true semanticClass=robot generalizedCoordinate=0,0,0.54,"
       "1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8\n");
   ASSERT_TRUE(loaded.ok());
@@ -164,7 +165,8 @@ TEST(PassesRobot, AnymalRgbDepthSegmentationAgreeAndMove) {
   for (int y = 0; y < 480; ++y)
     for (int x = 0; x < 640; ++x) {
       const std::uint8_t* s = first.segmentation.pixel(x, y);
-      bool isRobot = std::equal(s, s + 3, scene.segments[1].rgb), isGround = std::equal(s, s + 3, scene.segments[0].rgb);
+      bool isRobot = std::equal(s, s + 3, scene.segments[1].rgb),
+           isGround = std::equal(s, s + 3, scene.segments[0].rgb);
       ASSERT_TRUE(isRobot || isGround || black(first.segmentation, x, y)) << x << "," << y;
       robotPixels += isRobot;
       groundPixels += isGround;

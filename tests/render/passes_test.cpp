@@ -9,8 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/loader.hpp"
 #include "asset/image.hpp"
+#include "core/loader.hpp"
 #include "render/gl_context.hpp"
 #include "render/view.hpp"
 
@@ -242,7 +242,8 @@ TEST(Passes, IntrinsicsCentredEqualTheFieldOfView) {
   ViewImages a = draw(b->scene, fov), c = draw(b->scene, pin);
   ASSERT_EQ(a.segmentation.rgba.size(), c.segmentation.rgba.size());
   int differ = 0;
-  for (std::size_t i = 0; i < a.segmentation.rgba.size(); i += 4) differ += a.segmentation.rgba[i] != c.segmentation.rgba[i];
+  for (std::size_t i = 0; i < a.segmentation.rgba.size(); i += 4)
+    differ += a.segmentation.rgba[i] != c.segmentation.rgba[i];
   EXPECT_LE(differ, 2);  // rounding on an edge at most
 }
 
@@ -397,7 +398,8 @@ TEST(Passes, PointCloudsAreInCameraViewsNotSensorViews) {
   std::string points, colors;
   for (int i = -1; i <= 1; ++i)
     for (int j = -1; j <= 1; ++j) {
-      points += (points.empty() ? "" : ";") + std::string("5,") + std::to_string(0.05 * i) + "," + std::to_string(0.05 * j);
+      points +=
+          (points.empty() ? "" : ";") + std::string("5,") + std::to_string(0.05 * i) + "," + std::to_string(0.05 * j);
       colors += (colors.empty() ? "" : ";") + std::string("1,1,1,1");
     }
   auto b = build("point_cloud /World/Cloud points=" + points + " colors=" + colors + " pointSize=8 id=cloud\n");
