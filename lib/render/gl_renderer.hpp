@@ -173,6 +173,9 @@ class GlRenderer final : public Renderer {
   Eigen::Matrix4d lightViewProj_ = Eigen::Matrix4d::Identity();
   std::uint64_t poseVersion_ = 1, shadowVersion_ = 0;
   bool shadowForSensor_ = false;
+  // Whether anything a sensor does not see casts a shadow: when nothing
+  // does, camera and sensor views share one shadow map.
+  bool visualCasters_ = false;
   ColorTargets color_;
   DataTargets data_;
   RenderTimings timings_;

@@ -102,6 +102,7 @@ void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool 
 // what the current view may draw (selectInstances ran for it).
 bool GlRenderer::renderShadowMap(bool sensorView) {
   if (shadowLight_ < 0) return true;
+  sensorView = sensorView && visualCasters_;
   if (shadowTex_ && shadowVersion_ == poseVersion_ && shadowForSensor_ == sensorView) return true;
   if (!shadowTex_) {
     shadowSize_ = software_ ? kSoftwareShadowSize : kShadowSize;

@@ -310,6 +310,7 @@ InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bo
   in.data[27] = packedSegment(scene_, segment);
   in.bounds = bounds;
   in.worldObject = worldObject;
+  visualCasters_ = visualCasters_ || (castShadow && !worldObject);
   InstanceRef ref;
   ref.batch = it->second;
   ref.slot = batch.instances.size() - 1;

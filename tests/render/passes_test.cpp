@@ -33,7 +33,7 @@ const char* kHeader =
     "raisim_engine_scene 1\n"
     "environment 0 0 0 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color colorMode=linear\n"
     "material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red\n"
-    "light /World/Sun 1 0.4 -0.4 3 type=directional\n";
+    "light /World/Sun 1 0.4 -0.4 3 type=directional shadows=false\n";
 
 // A box of size (sx, sy, sz) centred at (x, y, z); `mode`: static,
 // dynamic, visual_only.
@@ -414,4 +414,46 @@ TEST(Passes, PointCloudsAreInCameraViewsNotSensorViews) {
   ViewImages sensor = draw(b->scene, v);
   EXPECT_TRUE(black(sensor.segmentation, 80, 60));
   EXPECT_TRUE(std::isnan(sensor.depth[60 * 160 + 80]));
+}
+
+TEST(Passes, SensorColorViewsHaveNoShadowsOfVisuals) {
+  // Looking straight down from 10 m (image up = +x); the sun travels
+  // towards -x and down, so a box's shadow lies on the -x side (image
+  // bottom).  The box is visual-only: a camera sees it and its shadow, a
+  // sensor neither.  Camera, sensor, camera on one renderer: the shadow map
+  // follows the kind of view.
+  auto b = build(
+      "light /World/Key -1 0 -1 3 type=directional shadows=true\n"
+      "object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default red false true true - static true 1 "
+      "18446744073709551615\n" +
+      box("/World/Marker", 0, 0, 0.5, 1, 1, 1, "visual_only"));
+  ASSERT_TRUE(context());
+  Diagnostics d;
+  auto r = Renderer::create(b->scene, RenderOptions{}, d);
+  ASSERT_TRUE(r);
+  View v = view(200, 200, {Pass::Color});
+  v.camera.world.position = Eigen::Vector3d(0, 0, 10);
+  v.camera.world.orientation = Eigen::Quaterniond(0.70710678, 0, 0.70710678, 0);
+  int dy = int(std::lround(1.0 / (10 * std::tan(30 * M_PI / 180)) * 100));  // 1 m from the centre, in pixels
+  auto mean = [&](const Image& im, int cx, int cy) {
+    int s = 0;
+    for (int y = -2; y <= 2; ++y)
+      for (int x = -2; x <= 2; ++x) {
+        const std::uint8_t* p = im.pixel(cx + x, cy + y);
+        s += p[0] + p[1] + p[2];
+      }
+    return s / 25;
+  };
+  for (bool sensor : {false, true, false}) {
+    v.sensor = sensor;
+    ViewImages im;
+    ASSERT_TRUE(r->render(v, im, d));
+    writeDebug(im.color, sensor ? "passes_shadow_sensor" : "passes_shadow_camera");
+    int shadowSide = mean(im.color, 100, 100 + dy), litSide = mean(im.color, 100, 100 - dy);
+    if (sensor) {
+      EXPECT_NEAR(shadowSide, litSide, 20);
+    } else {
+      EXPECT_LT(shadowSide, litSide - 40);
+    }
+  }
 }
