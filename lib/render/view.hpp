@@ -74,7 +74,8 @@ Eigen::Matrix4d viewProjection(const View& view);
 // `depth`; NaN stays NaN.  The value added at index i is a function of
 // (seed, i) alone (splitmix64 and Box-Muller, no std:: distribution whose
 // output is implementation-defined), so an image is the same on every
-// platform and run, whatever the other pixels hit.  A caller wanting
+// run and, up to the last bit of libm's log and cos (which rounding to
+// float hides in practice), every platform, whatever the other pixels hit.  A caller wanting
 // different noise per frame of a trajectory passes a different seed (for
 // instance seed + frame).
 void addDepthNoise(std::vector<float>& depth, double mean, double stddev, std::uint64_t seed);
@@ -102,7 +103,7 @@ class Renderer {
 // Renderer::create() with spheres, cylinders and capsules tessellated for
 // the views that will be drawn (each within half a pixel of round in the
 // view that sees it largest, fewer triangles where all see it small);
-// create() tessellates finely enough for any view.
+// create() gives every one the finest tessellation (48 segments).
 std::unique_ptr<Renderer> createRenderer(const RenderScene& scene, const RenderOptions& options,
                                          Diagnostics& diagnostics, std::vector<Camera> lodCameras);
 
