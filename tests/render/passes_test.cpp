@@ -129,6 +129,21 @@ TEST(Passes, DepthOfAPlaneAt5mIsExactOrthographic) {
   double worst = 0;
   for (float d : im.depth) worst = std::max(worst, std::isfinite(d) ? std::abs(d - 5.0) : 1e9);
   EXPECT_LT(worst, 1e-3);
+  // A 2 m wall in a 4 m high (5.33 m wide) orthographic view: the middle
+  // 60 of 120 rows and 60 of 160 columns are hit, the rest is NaN.
+  auto small = build(box("/World/Wall", 5.5, 0, 0, 1, 2, 2));
+  ViewImages part = draw(small->scene, v);
+  ASSERT_EQ(part.depth.size(), 160u * 120u);
+  int hit = 0;
+  for (float d : part.depth)
+    if (std::isfinite(d)) {
+      ++hit;
+      EXPECT_NEAR(d, 5.0, 1e-3);
+    }
+  EXPECT_NEAR(hit, 60 * 60, 2 * 60 + 2 * 60);  // within a pixel row or column on each side
+  EXPECT_TRUE(std::isnan(part.depth[0]));
+  EXPECT_TRUE(std::isnan(part.depth[60 * 160 + 40]));
+  EXPECT_FALSE(std::isnan(part.depth[60 * 160 + 80]));
 }
 
 TEST(Passes, DepthIsNanWhereNothingIsHitOrBeyondFar) {
