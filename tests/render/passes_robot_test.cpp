@@ -103,7 +103,7 @@ TEST(PassesRobot, AnymalRgbDepthSegmentationAgreeAndMove) {
   ASSERT_EQ(rest.robotLinks.size(), 1u);
   // The whole robot slides 0.3 m along -y over the frames: a new pose per
   // frame (updatePoses, the shadow map redrawn), as a trajectory gives.
-  const int frames = 9;  // the first compiles llvmpipe's shader variants: not timed
+  const int frames = 5;  // the first compiles llvmpipe's shader variants: not timed
   auto run = [&](View view, ViewImages* first, ViewImages* last) {
     double wall = 0, cpu = 0;
     for (int f = 0; f < frames; ++f) {
