@@ -159,6 +159,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS9014", E, Render, "render", "more instances to draw than --max-instances"},
     // RS903x robots in rendering
     {"RS9030", W, Render, "render", "articulated system whose model has no visual elements: nothing is drawn"},
+    // RS904x render passes and views (rgb, depth, segmentation)
+    {"RS9040", E, Render, "render", "view that cannot be drawn: image size, intrinsics or near/far planes out of range"},
 };
 
 }  // namespace

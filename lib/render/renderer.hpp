@@ -1,6 +1,8 @@
 // Draws a RenderScene from one camera into an RGBA8 image with the current
 // EGL context (gl_context.hpp): shadow map of the main light, an MSAA HDR
-// pass, then background, exposure, tone mapping and gamma.
+// pass, then background, exposure, tone mapping and gamma.  renderScene()
+// is the one-view form of the Renderer in view.hpp (many views, depth and
+// segmentation, one upload).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -43,6 +45,7 @@ struct RenderTimings {
 
 // Renders; false (with an error diagnostic naming the record's line) when
 // an asset is missing or unreadable and !allowMissingAssets, or GL fails.
+// `timings`: the upload and the drawing of this one view.
 bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
                  Diagnostics& diags, RenderTimings* timings = nullptr);
 
