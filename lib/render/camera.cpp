@@ -127,6 +127,23 @@ Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect) {
   return p;
 }
 
+Eigen::Matrix4d intrinsicProjection(double fx, double fy, double cx, double cy, int width, int height, double n,
+                                    double f) {
+  // GL eye space: x right (= -y of the camera frame), y up (= z), -z
+  // forward, so u = cx + fx * xe / -ze and NDC x = 2u/width - 1; v grows
+  // downwards while NDC y grows upwards.
+  double w = width, h = height;
+  Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
+  p(0, 0) = 2 * fx / w;
+  p(0, 2) = 1 - 2 * cx / w;
+  p(1, 1) = 2 * fy / h;
+  p(1, 2) = 2 * cy / h - 1;
+  p(2, 2) = -(f + n) / (f - n);
+  p(2, 3) = -2 * f * n / (f - n);
+  p(3, 2) = -1;
+  return p;
+}
+
 bool boxInFrustum(const Eigen::Matrix4d& m, const Eigen::AlignedBox3d& b) {
   if (b.isEmpty()) return false;
   Eigen::Vector4d c[8];

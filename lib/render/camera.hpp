@@ -19,6 +19,16 @@ Camera autoCamera(const RenderScene& scene, double aspect);
 
 Eigen::Matrix4d viewMatrix(const Camera& camera);
 Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect);
+// The perspective projection of pinhole intrinsics in pixels for a
+// width x height image.  Image coordinates (u right, v down) start at the
+// top-left corner of the top-left pixel, so pixel (col, row) covers
+// [col, col+1) x [row, row+1) and its centre is (col + 0.5, row + 0.5):
+// cx = width/2, cy = height/2 is the image's centre.  A point (x forward,
+// y left, z up) in the camera frame projects to u = cx - fx*y/x,
+// v = cy - fy*z/x.  (OpenCV/ROS calibrations put pixel centres on integers:
+// add 0.5 to their cx and cy.)
+Eigen::Matrix4d intrinsicProjection(double fx, double fy, double cx, double cy, int width, int height,
+                                    double nearPlane, double farPlane);
 // Vertical field of view actually used, degrees (horizontalFov>0 wins).
 double effectiveVerticalFov(const Camera& camera, double aspect);
 

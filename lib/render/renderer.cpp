@@ -1,32 +1,27 @@
+// The upload side of the Renderer (gl_renderer.hpp): meshes, textures,
+// instance batches, point clouds, programs and lights, once per scene;
+// updatePoses() and renderScene(), the one-view wrapper rscene-render's
+// single camera uses.
 #include "render/renderer.hpp"
 
-#include "core/assets.hpp"
-
-#include <GL/glcorearb.h>
-
+#include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <tuple>
+#include <cstring>
 
-#include "asset/cache.hpp"
+#include "core/assets.hpp"
 #include "render/camera.hpp"
+#include "render/gl_renderer.hpp"
 #include "render/mesh.hpp"
 #include "render/mipmap.hpp"
 #include "render/shaders.hpp"
 
 namespace rscene::render {
+namespace detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kInstanceFloats = 28;  // model (16), color (4), pbr (4), emissive (4)
 constexpr int kMaxLights = 8;
-constexpr int kShadowSize = 2048;
-// llvmpipe pays for every shadow texel it rasterises; 1024 keeps the same
-// shadows at CPU-backend thumbnail sizes.
-constexpr int kSoftwareShadowSize = 1024;
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -58,128 +53,43 @@ GLuint program(const char* vs, const char* fs, std::string& log) {
     char buf[2048];
     glGetProgramInfoLog(p, sizeof buf, nullptr, buf);
     log += buf;
+    glDeleteProgram(p);
     return 0;
   }
   return p;
 }
 
-GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
-void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
-  Eigen::Matrix4f f = m.cast<float>();
-  glUniformMatrix4fv(loc(p, name), 1, GL_FALSE, f.data());
+// Mesa's CPU rasterisers (llvmpipe, softpipe): some work is cheaper done here.
+bool softwareGl() {
+  const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe"));
 }
-void setVec3(GLuint p, const char* name, const Eigen::Vector3f& v) { glUniform3f(loc(p, name), v.x(), v.y(), v.z()); }
 
-struct GpuMesh {
-  GLuint vbo = 0, ebo = 0, colorVbo = 0;
-  GLsizei indexCount = 0;
-};
+// The segment's legend color as one float the shaders unpack (exact: a
+// 24-bit integer); 0 (black, the background's) for none.
+float packedSegment(const RenderScene& scene, int segment) {
+  if (segment < 0 || std::size_t(segment) >= scene.segments.size()) return 0;
+  const std::uint8_t* c = scene.segments[std::size_t(segment)].rgb;
+  return float((std::uint32_t(c[0]) << 16) | (std::uint32_t(c[1]) << 8) | c[2]);
+}
 
-struct TexturedPart {
-  std::shared_ptr<GpuMesh> mesh;
-  Eigen::Vector4f color;
-  float metallic, roughness;
-  GLuint texture;
-};
+void writeMatrix(float* data, const Eigen::Affine3d& world) {
+  Eigen::Matrix4f m = world.matrix().cast<float>();
+  std::copy_n(m.data(), 16, data);
+}
 
-struct Batch {
-  std::shared_ptr<GpuMesh> mesh;
-  GLuint texture = 0;
-  bool blend = false, doubleSided = false, castShadow = true;
-  std::vector<float> instances, outOfView;  // outOfView: cast shadows only
-  GLuint vao = 0, instanceVbo = 0;
-  GLsizei count = 0, inView = 0;  // the first inView instances are inside the camera's frustum
-};
+}  // namespace
 
-// Owns every GL object of one render; released in the destructor.
-class Frame {
- public:
-  Frame(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Diagnostics& diags)
-      : scene_(scene),
-        opt_(options),
-        diags_(diags),
-        ownAssets_(diskFileSystem(), assetLimits(options)),
-        assets_(options.assets ? *options.assets : ownAssets_) {
-    aspect_ = double(options.width) / double(options.height);
-    viewProj_ = projectionMatrix(camera, aspect_) * viewMatrix(camera);
-    camera_ = camera;
-  }
-  ~Frame();
-  bool prepare();
-  bool draw(const Camera& camera, Image& out);
+GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
+                       std::vector<Camera> lodCameras)
+    : scene_(scene),
+      opt_(options),
+      diags_(&diagnostics),
+      lodCameras_(std::move(lodCameras)),
+      ownAssets_(diskFileSystem(), assetLimits(options)),
+      assets_(options.assets ? *options.assets : ownAssets_) {}
 
- private:
-  // `file`: the robot file `line` is in; empty: the scene.
-  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0,
-            const std::string& file = {}) {
-    Diagnostic d;
-    d.severity = s;
-    d.code = code;
-    d.line = line;
-    d.column = column ? column : line && file.empty() ? 1 : 0;
-    d.message = std::move(message);
-    d.file = file;
-    diags_.push_back(std::move(d));
-  }
-  // Missing (RS5001, the code validate --check-files and rscene-sim give the
-  // same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
-  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
-                    const char* code = "RS9001") {
-    diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column, file);
-    return opt_.allowMissingAssets;
-  }
-  std::shared_ptr<GpuMesh> upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
-  std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0, int segments = 48);
-  // Segments around a round shape whose bounds are `box`: the polygon stays
-  // within half a pixel of the circle at the size it is seen.
-  int segmentsFor(const Eigen::AlignedBox3d& box) const;
-  GLuint texture(const Image& image);
-  // Mesa's CPU rasterisers (llvmpipe, softpipe): some work is cheaper done here.
-  static bool softwareGl() {
-    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    return r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe"));
-  }
-  GLuint texture(const std::shared_ptr<const Image>& image);  // one GL texture per loaded image
-  bool materialTexture(const RenderMaterial& m, GLuint& out);
-  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
-                                            const std::string& file, bool& failed);
-  // A regular file (as validate --check-files and rscene-sim ask: a FIFO or
-  // /dev/zero is no asset), through the asset cache's file system.
-  bool regularFile(const std::string& path) const { return assets_.fileSystem().stat(path).kind == FileKind::Regular; }
-  void add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
-           const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
-           const Eigen::Vector3f& emissive, bool inView = true);
-  void buildLights();
-  void finishBatches();
-  void drawBatches(GLuint prog, bool blendPass, bool shadowPass);
-
-  const RenderScene& scene_;
-  const RenderOptions& opt_;
-  Diagnostics& diags_;
-  Camera camera_;
-  double aspect_ = 1;
-  Eigen::Matrix4d viewProj_;
-  std::map<std::string, std::shared_ptr<GpuMesh>> primitives_;
-  std::map<std::string, std::vector<TexturedPart>> meshFiles_;
-  std::map<std::string, GLuint> textures_;
-  std::map<const Image*, GLuint> imageTextures_;
-  asset::AssetCache ownAssets_;
-  asset::AssetCache& assets_;  // a mesh or texture named many times is read once
-  std::vector<GLuint> ownedTextures_;
-  std::vector<std::shared_ptr<GpuMesh>> meshes_;
-  std::vector<Batch> batches_;
-  std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
-  std::vector<RenderLight> lights_;
-  int shadowLight_ = -1;
-  GLuint hdrTexture_ = 0;
-  GLuint pointVao_ = 0, pointVbo_ = 0;
-  std::vector<std::pair<GLint, GLsizei>> pointRanges_;
-  std::vector<float> pointSizes_;
-  std::vector<GLuint> programs_, fbos_, renderbuffers_;
-  GLuint emptyVao_ = 0;
-};
-
-Frame::~Frame() {
+GlRenderer::~GlRenderer() {
   for (Batch& b : batches_) {
     glDeleteVertexArrays(1, &b.vao);
     glDeleteBuffers(1, &b.instanceVbo);
@@ -193,12 +103,46 @@ Frame::~Frame() {
   if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
   if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
-  for (GLuint p : programs_) glDeleteProgram(p);
-  if (!fbos_.empty()) glDeleteFramebuffers(GLsizei(fbos_.size()), fbos_.data());
-  if (!renderbuffers_.empty()) glDeleteRenderbuffers(GLsizei(renderbuffers_.size()), renderbuffers_.data());
+  for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_})
+    if (p) glDeleteProgram(p);
+  if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
+  glDeleteFramebuffers(3, color_.fbo);
+  GLuint colorRbs[2] = {color_.msaaColor, color_.msaaDepth};
+  glDeleteRenderbuffers(2, colorRbs);
+  GLuint colorTex[2] = {color_.resolved, color_.final};
+  glDeleteTextures(2, colorTex);
+  glDeleteFramebuffers(1, &data_.fbo);
+  GLuint dataRbs[3] = {data_.segmentation, data_.depth, data_.z};
+  glDeleteRenderbuffers(3, dataRbs);
 }
 
-std::shared_ptr<GpuMesh> Frame::upload(const MeshData& m, const std::vector<Eigen::Vector4f>* colors) {
+void GlRenderer::diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column,
+                      const std::string& file) {
+  Diagnostic d;
+  d.severity = s;
+  d.code = code;
+  d.line = line;
+  d.column = column ? column : line && file.empty() ? 1 : 0;
+  d.message = std::move(message);
+  d.file = file;
+  diags_->push_back(std::move(d));
+}
+
+// Missing (RS5001, the code validate --check-files and rscene-sim give the
+// same file) or unreadable (RS9001) asset: an error, or a warning when allowed.
+bool GlRenderer::assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file,
+                              const std::string& message, const char* code) {
+  diag(opt_.allowMissingAssets ? Severity::Warning : Severity::Error, code, line, message, column, file);
+  return opt_.allowMissingAssets;
+}
+
+// A regular file (as validate --check-files and rscene-sim ask: a FIFO or
+// /dev/zero is no asset), through the asset cache's file system.
+bool GlRenderer::regularFile(const std::string& path) const {
+  return assets_.fileSystem().stat(path).kind == FileKind::Regular;
+}
+
+std::shared_ptr<GpuMesh> GlRenderer::uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors) {
   auto g = std::make_shared<GpuMesh>();
   glGenBuffers(1, &g->vbo);
   glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
@@ -218,7 +162,7 @@ std::shared_ptr<GpuMesh> Frame::upload(const MeshData& m, const std::vector<Eige
   return g;
 }
 
-std::shared_ptr<GpuMesh> Frame::primitive(Shape s, double capsuleR, double capsuleH, int segments) {
+std::shared_ptr<GpuMesh> GlRenderer::primitive(Shape s, double capsuleR, double capsuleH, int segments) {
   bool round = s == Shape::Sphere || s == Shape::Cylinder || s == Shape::Capsule;
   std::string key = std::to_string(int(s));
   if (round) key += "/" + std::to_string(segments);
@@ -230,18 +174,22 @@ std::shared_ptr<GpuMesh> Frame::primitive(Shape s, double capsuleR, double capsu
                : s == Shape::Capsule  ? capsule(capsuleR, capsuleH, segments)
                : s == Shape::Ground   ? unitPlane()
                                       : unitBox();
-  return primitives_[key] = upload(m);
+  return primitives_[key] = uploadMesh(m);
 }
 
-int Frame::segmentsFor(const Eigen::AlignedBox3d& box) const {
+int GlRenderer::segmentsFor(const Eigen::AlignedBox3d& box) const {
+  if (lodCameras_.empty()) return 48;  // views not known in advance: the finest
   double radius = 0.5 * box.sizes().maxCoeff();
-  double pixels;  // radius on screen
-  if (camera_.projection == "orthographic") {
-    pixels = radius / std::max(camera_.orthoScale / 2, 1e-9) * opt_.height / 2;
-  } else {
-    double distance = (box.center() - camera_.world.position).norm() - radius;
-    double t = std::tan(effectiveVerticalFov(camera_, aspect_) * 3.14159265358979 / 360);
-    pixels = distance <= camera_.nearPlane ? 1e9 : radius / (distance * t) * opt_.height / 2;
+  double pixels = 0;  // radius on screen, in the view that sees it largest
+  for (const Camera& c : lodCameras_) {
+    double height = c.height > 0 ? c.height : 720, aspect = c.width > 0 && c.height > 0 ? double(c.width) / c.height : 16.0 / 9.0;
+    if (c.projection == "orthographic") {
+      pixels = std::max(pixels, radius / std::max(c.orthoScale / 2, 1e-9) * height / 2);
+    } else {
+      double distance = (box.center() - c.world.position).norm() - radius;
+      double t = std::tan(effectiveVerticalFov(c, aspect) * 3.14159265358979 / 360);
+      pixels = std::max(pixels, distance <= c.nearPlane ? 1e9 : radius / (distance * t) * height / 2);
+    }
   }
   // Sagitta r (1 - cos(pi / n)) ~ r pi^2 / (2 n^2) <= 0.5 px.
   double wanted = 3.14159265358979 * std::sqrt(std::max(pixels, 0.0));
@@ -250,7 +198,7 @@ int Frame::segmentsFor(const Eigen::AlignedBox3d& box) const {
   return 48;
 }
 
-GLuint Frame::texture(const Image& image) {
+GLuint GlRenderer::texture(const Image& image) {
   GLuint t = 0;
   glGenTextures(1, &t);
   ownedTextures_.push_back(t);
@@ -258,7 +206,7 @@ GLuint Frame::texture(const Image& image) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                image.rgba.data());
-  if (softwareGl()) {  // mipmap.hpp: llvmpipe's glGenerateMipmap costs more than this loop
+  if (software_) {  // mipmap.hpp: llvmpipe's glGenerateMipmap costs more than this loop
     std::vector<std::uint8_t> level, next;
     const std::uint8_t* from = image.rgba.data();
     int w = image.width, h = image.height;
@@ -280,14 +228,14 @@ GLuint Frame::texture(const Image& image) {
   return t;
 }
 
-GLuint Frame::texture(const std::shared_ptr<const Image>& image) {
+GLuint GlRenderer::texture(const std::shared_ptr<const Image>& image) {
   if (!image) return 0;
   auto [it, fresh] = imageTextures_.try_emplace(image.get(), 0);
   if (fresh) it->second = texture(*image);
   return it->second;
 }
 
-bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
+bool GlRenderer::materialTexture(const RenderMaterial& m, GLuint& out) {
   out = 0;
   if (m.albedoTexture.empty()) return true;
   auto it = textures_.find(m.albedoTexture);
@@ -312,7 +260,7 @@ bool Frame::materialTexture(const RenderMaterial& m, GLuint& out) {
   return true;
 }
 
-const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
                                                  const std::string& file, bool& failed) {
   failed = false;
   auto it = meshFiles_.find(path);
@@ -332,14 +280,15 @@ const std::vector<TexturedPart>* Frame::meshFile(const std::string& path, std::u
   }
   for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, column, file);
   for (const asset::MeshPart& p : loaded->parts)
-    parts.push_back({upload(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
+    parts.push_back({uploadMesh(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
                      p.material.roughness, texture(p.material.texture)});
   return &parts;
 }
 
-void Frame::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
-                const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
-                const Eigen::Vector3f& emissive, bool inView) {
+InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided,
+                            bool castShadow, const Eigen::Affine3d& world, const Eigen::Vector4f& color,
+                            const Eigen::Vector4f& pbr, const Eigen::Vector3f& emissive, int segment,
+                            const Eigen::AlignedBox3d& bounds, bool worldObject) {
   auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow);
   auto [it, inserted] = batchIndex_.emplace(key, batches_.size());
   if (inserted) {
@@ -352,20 +301,39 @@ void Frame::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bo
     batches_.push_back(std::move(b));
   }
   Batch& batch = batches_[it->second];
-  std::vector<float>& v = inView ? batch.instances : batch.outOfView;
-  Eigen::Matrix4f m = world.matrix().cast<float>();
-  v.insert(v.end(), m.data(), m.data() + 16);
-  v.insert(v.end(), color.data(), color.data() + 4);
-  v.insert(v.end(), pbr.data(), pbr.data() + 4);
-  v.insert(v.end(), {emissive.x(), emissive.y(), emissive.z(), 0.f});
+  Instance& in = batch.instances.emplace_back();
+  writeMatrix(in.data, world);
+  std::copy_n(color.data(), 4, in.data + 16);
+  std::copy_n(pbr.data(), 4, in.data + 20);
+  std::copy_n(emissive.data(), 3, in.data + 24);
+  in.data[27] = packedSegment(scene_, segment);
+  in.bounds = bounds;
+  in.worldObject = worldObject;
+  InstanceRef ref;
+  ref.batch = it->second;
+  ref.slot = batch.instances.size() - 1;
+  return ref;
 }
 
-bool Frame::prepare() {
+bool GlRenderer::uploadDrawables() {
   const Eigen::Vector4f placeholderColor(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: cannot be mistaken for content
   auto pbrOf = [](const RenderMaterial& m, float checker) { return Eigen::Vector4f(m.metallic, m.roughness, checker, 0); };
-  for (const Drawable& d : scene_.drawables) {
+  drawableRefs_.assign(scene_.drawables.size(), {});
+  for (std::size_t di = 0; di < scene_.drawables.size(); ++di) {
+    const Drawable& d = scene_.drawables[di];
+    std::vector<InstanceRef>& refs = drawableRefs_[di];
     const RenderMaterial& mat = scene_.materials[std::size_t(d.material)];
-    bool inView = boxInFrustum(viewProj_, d.bounds);
+    auto put = [&](const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided,
+                   const Eigen::Affine3d& post, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
+                   bool placeholder = false) {
+      Eigen::Affine3d world = (placeholder ? d.placeholderWorld.value_or(d.world) : d.world) * post;
+      InstanceRef r = add(mesh, tex, blend, doubleSided, d.castShadow, world, color, pbr,
+                          placeholder ? Eigen::Vector3f::Zero() : mat.emissive, d.segment, d.bounds, d.worldObject);
+      r.post = post;
+      r.placeholder = placeholder;
+      refs.push_back(r);
+    };
+    const Eigen::Affine3d id = Eigen::Affine3d::Identity();
     // A mirroring scale (a URDF's scale="1 -1 1" for the other side's leg)
     // reverses the triangles' winding: such a drawable culls no faces (its
     // normals, carried by the inverse transpose, still point outwards).
@@ -375,8 +343,7 @@ bool Frame::prepare() {
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, d.file, failed);
       if (failed) return false;
       if (!parts) {
-        add(primitive(Shape::Box), 0, false, false, true, d.placeholderWorld.value_or(d.world), placeholderColor,
-            {0, 0.6f, 0, 1}, Eigen::Vector3f::Zero(), inView);
+        put(primitive(Shape::Box), 0, false, false, id, placeholderColor, {0, 0.6f, 0, 1}, true);
         continue;
       }
       GLuint matTex = 0;
@@ -385,8 +352,7 @@ bool Frame::prepare() {
         bool own = mat.isDefault;
         Eigen::Vector4f color = own ? p.color : mat.color;
         Eigen::Vector4f pbr = own ? Eigen::Vector4f(p.metallic, p.roughness, 0, 0) : pbrOf(mat, 0);
-        add(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), twoSided,
-            d.castShadow, d.world, color, pbr, mat.emissive, inView);
+        put(p.mesh, own ? p.texture : matTex, color.w() < 0.999f || (!own && mat.blend), twoSided, id, color, pbr);
       }
       continue;
     }
@@ -399,17 +365,20 @@ bool Frame::prepare() {
       // (and one draw) per capsule size.
       double r = d.capsuleRadius, h = d.capsuleHeight;
       Eigen::Vector4f pbr = pbrOf(mat, 0);
-      add(primitive(Shape::Cylinder, 0, 0, segments), 0, false, mat.doubleSided, d.castShadow,
-          d.world * Eigen::Scaling(r, r, h), mat.color, pbr, mat.emissive, inView);
+      put(primitive(Shape::Cylinder, 0, 0, segments), 0, false, mat.doubleSided,
+          Eigen::Affine3d(Eigen::Scaling(r, r, h)), mat.color, pbr);
       for (double end : {-h / 2, h / 2})
-        add(primitive(Shape::Sphere, 0, 0, segments), 0, false, mat.doubleSided, d.castShadow,
-            d.world * Eigen::Translation3d(0, 0, end) * Eigen::Scaling(r), mat.color, pbr, mat.emissive, inView);
+        put(primitive(Shape::Sphere, 0, 0, segments), 0, false, mat.doubleSided,
+            Eigen::Translation3d(0, 0, end) * Eigen::Scaling(r), mat.color, pbr);
       continue;
     }
-    add(primitive(d.shape, d.capsuleRadius, d.capsuleHeight, segments), tex, mat.blend,
-        twoSided || d.shape == Shape::Ground, d.castShadow, d.world, mat.color,
-        pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f), mat.emissive, inView);
+    put(primitive(d.shape, d.capsuleRadius, d.capsuleHeight, segments), tex, mat.blend,
+        twoSided || d.shape == Shape::Ground, id, mat.color, pbrOf(mat, d.shape == Shape::Ground ? 1.f : 0.f));
   }
+  return true;
+}
+
+void GlRenderer::uploadTerrains() {
   for (const TerrainMesh& t : scene_.terrains) {
     MeshData m;
     int nx = t.xSamples, ny = t.ySamples;
@@ -433,9 +402,13 @@ bool Frame::prepare() {
                                            i + std::uint32_t(nx)});
       }
     const RenderMaterial& mat = scene_.materials[std::size_t(t.material)];
-    add(upload(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(), Eigen::Vector4f(1, 1, 1, 1),
-        pbrOf(mat, 0), Eigen::Vector3f::Zero());
+    add(uploadMesh(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(),
+        Eigen::Vector4f(1, 1, 1, 1), Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(),
+        t.segment, t.bounds, true);
   }
+}
+
+bool GlRenderer::uploadInstanced() {
   for (const Instanced& b : scene_.instanced) {
     std::shared_ptr<GpuMesh> mesh;
     if (b.shape == Shape::Mesh) {
@@ -447,62 +420,78 @@ bool Frame::prepare() {
       mesh = primitive(b.shape);
     }
     const RenderMaterial& mat = scene_.materials[std::size_t(b.material)];
+    // Visuals only: never drawn by sensor views.
     for (std::size_t i = 0; i < b.worlds.size(); ++i)
-      add(mesh, 0, b.colors[i].w() < 0.999f, false, b.castShadow, b.worlds[i], b.colors[i], pbrOf(mat, 0),
-          Eigen::Vector3f::Zero(), boxInFrustum(viewProj_, b.instanceBounds[i]));
+      add(mesh, 0, b.colors[i].w() < 0.999f, false, b.castShadow, b.worlds[i], b.colors[i],
+          Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(), b.segment,
+          b.instanceBounds[i], false);
   }
+  return true;
+}
+
+void GlRenderer::uploadBackground() {
   const Look& env = scene_.environment;
-  if (env.mode == Background::Hdr) {
-    std::string err;
-    std::shared_ptr<const FloatImage> hdr = env.hdrPath.empty() ? nullptr : assets_.floatImage(env.hdrPath, &err);
-    if (!hdr) {
-      diag(Severity::Warning, "RS9003", env.hdrLine,
-           "hdr background " + (env.hdrPath.empty() ? std::string("has no envMapPath") : env.hdrPath + ": " + err) +
-               "; drawing the procedural sky");
-    } else {
-      glGenTextures(1, &hdrTexture_);
-      ownedTextures_.push_back(hdrTexture_);
-      glBindTexture(GL_TEXTURE_2D, hdrTexture_);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, hdr->width, hdr->height, 0, GL_RGB, GL_FLOAT, hdr->rgb.data());
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+  if (env.mode != Background::Hdr) return;
+  std::string err;
+  std::shared_ptr<const FloatImage> hdr = env.hdrPath.empty() ? nullptr : assets_.floatImage(env.hdrPath, &err);
+  if (!hdr) {
+    diag(Severity::Warning, "RS9003", env.hdrLine,
+         "hdr background " + (env.hdrPath.empty() ? std::string("has no envMapPath") : env.hdrPath + ": " + err) +
+             "; drawing the procedural sky");
+    return;
   }
-  // Point clouds: one buffer, one range per cloud.
+  glGenTextures(1, &hdrTexture_);
+  ownedTextures_.push_back(hdrTexture_);
+  glBindTexture(GL_TEXTURE_2D, hdrTexture_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, hdr->width, hdr->height, 0, GL_RGB, GL_FLOAT, hdr->rgb.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+// Point clouds: one buffer, one range per cloud.
+void GlRenderer::uploadPoints() {
   std::vector<float> points;
   for (const PointBatch& pc : scene_.pointClouds) {
     pointRanges_.emplace_back(GLint(points.size() / 7), GLsizei(pc.points.size()));
     pointSizes_.push_back(pc.pointSize);
+    pointSegments_.push_back(pc.segment);
     for (std::size_t i = 0; i < pc.points.size(); ++i) {
       points.insert(points.end(), pc.points[i].data(), pc.points[i].data() + 3);
       points.insert(points.end(), pc.colors[i].data(), pc.colors[i].data() + 4);
     }
   }
-  if (!points.empty()) {
-    glGenVertexArrays(1, &pointVao_);
-    glBindVertexArray(pointVao_);
-    glGenBuffers(1, &pointVbo_);
-    glBindBuffer(GL_ARRAY_BUFFER, pointVbo_);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(points.size() * sizeof(float)), points.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 7 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-    glBindVertexArray(0);
-  }
-  finishBatches();
-  buildLights();
-  return true;
+  if (points.empty()) return;
+  glGenVertexArrays(1, &pointVao_);
+  glBindVertexArray(pointVao_);
+  glGenBuffers(1, &pointVbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, pointVbo_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(points.size() * sizeof(float)), points.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 7 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  glBindVertexArray(0);
 }
 
-void Frame::finishBatches() {
+bool GlRenderer::buildPrograms() {
+  std::string log;
+  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::kSurfaceFragment, log);
+  shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
+  pointProg_ = program(shaders::kPointVertex, shaders::kPointFragment, log);
+  postProg_ = program(shaders::kPostVertex, shaders::kPostFragment, log);
+  dataProg_ = program(shaders::kDataVertex, shaders::kDataFragment, log);
+  pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
+  if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_) return true;
+  diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
+  return false;
+}
+
+// One vertex array per batch; its instance buffer is filled by the first
+// view that draws it (passes.cpp, selectInstances).
+void GlRenderer::makeVertexArrays() {
   for (Batch& b : batches_) {
-    b.inView = GLsizei(b.instances.size() / kInstanceFloats);
-    b.instances.insert(b.instances.end(), b.outOfView.begin(), b.outOfView.end());
-    std::vector<float>().swap(b.outOfView);
-    b.count = GLsizei(b.instances.size() / kInstanceFloats);
     glGenVertexArrays(1, &b.vao);
     glBindVertexArray(b.vao);
     glBindBuffer(GL_ARRAY_BUFFER, b.mesh->vbo);
@@ -519,8 +508,8 @@ void Frame::finishBatches() {
     }
     glGenBuffers(1, &b.instanceVbo);
     glBindBuffer(GL_ARRAY_BUFFER, b.instanceVbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(b.instances.size() * sizeof(float)), b.instances.data(),
-                 GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(b.instances.size() * sizeof(float) * kInstanceFloats), nullptr,
+                 GL_DYNAMIC_DRAW);
     for (int a = 0; a < 7; ++a) {
       glEnableVertexAttribArray(GLuint(4 + a));
       glVertexAttribPointer(GLuint(4 + a), 4, GL_FLOAT, GL_FALSE, kInstanceFloats * sizeof(float),
@@ -529,11 +518,10 @@ void Frame::finishBatches() {
     }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.mesh->ebo);
     glBindVertexArray(0);
-    std::vector<float>().swap(b.instances);
   }
 }
 
-void Frame::buildLights() {
+void GlRenderer::buildLights() {
   lights_ = scene_.lights;
   if (lights_.empty()) {  // a scene without lights is lit by the sun of its sky
     RenderLight sun;
@@ -556,284 +544,51 @@ void Frame::buildLights() {
       }
 }
 
-void Frame::drawBatches(GLuint prog, bool blendPass, bool shadowPass) {
-  for (const Batch& b : batches_) {
-    if (shadowPass ? !b.castShadow : b.blend != blendPass) continue;
-    if (!shadowPass) {
-      glUniform1i(loc(prog, "uHasAlbedo"), b.texture != 0);
-      glUniform1i(loc(prog, "uDoubleSided"), b.doubleSided);
-      glActiveTexture(GL_TEXTURE1);
-      glBindTexture(GL_TEXTURE_2D, b.texture);
-      if (b.doubleSided) glDisable(GL_CULL_FACE);
-      else glEnable(GL_CULL_FACE);
-    }
-    GLsizei n = shadowPass ? b.count : b.inView;
-    if (n == 0) continue;
-    glBindVertexArray(b.vao);
-    glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, n);
-  }
-  glBindVertexArray(0);
-}
-
-bool Frame::draw(const Camera& camera, Image& out) {
-  const Look& env = scene_.environment;
-  int w = opt_.width, h = opt_.height;
-  double aspect = double(w) / double(h);
-  std::string log;
-  GLuint surface = program(shaders::kSurfaceVertex, shaders::kSurfaceFragment, log);
-  GLuint depth = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
-  GLuint pointProg = program(shaders::kPointVertex, shaders::kPointFragment, log);
-  GLuint post = program(shaders::kPostVertex, shaders::kPostFragment, log);
-  programs_ = {surface, depth, pointProg, post};
-  if (!surface || !depth || !pointProg || !post) {
-    diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
-    return false;
-  }
-  glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
-
-  bool software = softwareGl();
-  int shadowSize = software ? kSoftwareShadowSize : kShadowSize;
-  // Shadow map of the main light, fitted to the scene's bounds.
-  Eigen::Matrix4d lightViewProj = Eigen::Matrix4d::Identity();
-  GLuint shadowTex = 0;
-  if (shadowLight_ >= 0) {
-    Eigen::AlignedBox3d box = scene_.bounds;
-    if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
-    Eigen::Vector3d fwd = lights_[std::size_t(shadowLight_)].direction.normalized();
-    // Cover where the shadows land too: each corner carried along the light
-    // down to the lowest point (the ground), at most 50 m away.
-    if (fwd.z() < -0.05) {
-      double floor = std::min(box.min().z(), 0.0);
-      Eigen::AlignedBox3d withShadows = box;
-      for (int i = 0; i < 8; ++i) {
-        Eigen::Vector3d p = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
-        withShadows.extend(p + fwd * std::min((p.z() - floor) / -fwd.z(), 50.0));
-      }
-      box = withShadows;
-    }
-    Eigen::Vector3d c = box.center();
-    double r = std::max(0.5 * box.diagonal().norm(), 0.5) * 1.1;
-    Camera lc;
-    Eigen::Vector3d upHint = std::abs(fwd.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-    Eigen::Vector3d left = upHint.cross(fwd).normalized();
-    Eigen::Matrix3d rot;
-    rot.col(0) = fwd, rot.col(1) = left, rot.col(2) = fwd.cross(left);
-    lc.world.orientation = Eigen::Quaterniond(rot);
-    lc.world.position = c - fwd * 2 * r;
-    lc.projection = "orthographic";
-    lc.orthoScale = 2 * r;
-    lc.nearPlane = 0.01;
-    lc.farPlane = 4 * r;
-    lightViewProj = projectionMatrix(lc, 1.0) * viewMatrix(lc);
-    glGenTextures(1, &shadowTex);
-    ownedTextures_.push_back(shadowTex);
-    glBindTexture(GL_TEXTURE_2D, shadowTex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize, shadowSize, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                 nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    GLuint fbo = 0;
-    glGenFramebuffers(1, &fbo);
-    fbos_.push_back(fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex, 0);
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
-    glViewport(0, 0, shadowSize, shadowSize);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glUseProgram(depth);
-    setMat(depth, "uViewProj", lightViewProj);
-    drawBatches(depth, false, true);
-  }
-
-  // Main pass: linear HDR, coverage in alpha, multisampled.
-  GLint maxSamples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  int samples = std::clamp(opt_.samples, 1, std::max(1, int(maxSamples)));
-  GLuint rb[2];
-  glGenRenderbuffers(2, rb);
-  renderbuffers_.insert(renderbuffers_.end(), rb, rb + 2);
-  glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA16F, w, h);
-  glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH24_STENCIL8, w, h);
-  GLuint fbos[3];
-  glGenFramebuffers(3, fbos);
-  fbos_.insert(fbos_.end(), fbos, fbos + 3);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbos[0]);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    diag(Severity::Error, "RS9011", 0, "cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
-                                           " framebuffer with " + std::to_string(samples) + " samples");
-    return false;
-  }
-  glViewport(0, 0, w, h);
-  glClearColor(0, 0, 0, 0);
-  glClearStencil(0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glCullFace(GL_BACK);
-  Eigen::Matrix4d viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
-  // Depth pre-pass on GPUs: the lit shader then runs once per visible
-  // sample.  Not on llvmpipe, where it was measured slower (it shades every
-  // sample of a multisampled target and pays the rasterisation twice): 0.87
-  // against 0.70 s of drawing on the 5000-object bench scene.
-  bool prepass = !software;
-  if (prepass) {
-    glUseProgram(depth);
-    setMat(depth, "uViewProj", viewProj);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    for (const Batch& b : batches_) {
-      if (b.blend || b.inView == 0) continue;
-      glBindVertexArray(b.vao);
-      glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
-    }
-    glBindVertexArray(0);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-  }
-  glUseProgram(surface);
-  setMat(surface, "uViewProj", viewProj);
-  setMat(surface, "uLightViewProj", lightViewProj);
-  setVec3(surface, "uCameraPos", camera.world.position.cast<float>());
-  glUniform1i(loc(surface, "uLightCount"), int(lights_.size()));
-  for (std::size_t i = 0; i < lights_.size(); ++i) {
-    const RenderLight& l = lights_[i];
-    std::string idx = "[" + std::to_string(i) + "]";
-    Eigen::Vector3f p = l.position.cast<float>(), d = l.direction.normalized().cast<float>();
-    constexpr float kDeg = 3.14159265f / 180;
-    glUniform4f(loc(surface, ("uLightPos" + idx).c_str()), p.x(), p.y(), p.z(), float(int(l.type)));
-    glUniform4f(loc(surface, ("uLightDir" + idx).c_str()), d.x(), d.y(), d.z(), std::cos(l.coneDegrees * kDeg));
-    glUniform4f(loc(surface, ("uLightColor" + idx).c_str()), l.color.x(), l.color.y(), l.color.z(),
-                std::cos(std::min(l.innerConeDegrees, l.coneDegrees - 0.01f) * kDeg));
-    float areaGain = l.type == LightType::Area ? std::max(l.areaSize.x() * l.areaSize.y(), 0.f) : 1.f;
-    glUniform4f(loc(surface, ("uLightAtt" + idx).c_str()), l.attenuation.x() / std::max(areaGain, 1e-3f),
-                l.attenuation.y() / std::max(areaGain, 1e-3f), l.attenuation.z() / std::max(areaGain, 1e-3f),
-                l.range);
-  }
-  glUniform1i(loc(surface, "uShadowLight"), shadowLight_);
-  glUniform1f(loc(surface, "uShadowTexel"), 1.0f / float(shadowSize));
-  glUniform1i(loc(surface, "uShadowMap"), 0);
-  glUniform1i(loc(surface, "uAlbedo"), 1);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, shadowTex);
-  setVec3(surface, "uAmbient", env.ambient);
-  float day = env.night ? 0.02f : float(std::clamp((env.sunDirection.z() + 0.15) / 0.35, 0.0, 1.0));
-  Eigen::Vector3f skyAmbient = env.mode == Background::PlainColor ? Eigen::Vector3f(Eigen::Vector3f::Zero())
-                                                                   : Eigen::Vector3f(Eigen::Vector3f(0.16f, 0.20f, 0.28f) * day);
-  setVec3(surface, "uSkyAmbient", skyAmbient);
-  glUniform1f(loc(surface, "uFogDensity"), env.fogDensity);
-  setVec3(surface, "uFogColor", env.fogColor);
-  glDisable(GL_BLEND);
-  // Each sample is lit once: after a pre-pass, coplanar surfaces (stacked
-  // boxes with level tops, overlapping placeholders) all pass GL_LEQUAL, so
-  // the stencil lets the first one drawn through and rejects the rest
-  // before they are shaded.
-  if (prepass) {
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 0, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  }
-  drawBatches(surface, false, false);
-  glDisable(GL_STENCIL_TEST);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
-  if (pointVao_) {
-    glUseProgram(pointProg);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-    setMat(pointProg, "uViewProj", viewProj);
-    glBindVertexArray(pointVao_);
-    for (std::size_t i = 0; i < pointRanges_.size(); ++i) {
-      glUniform1f(loc(pointProg, "uPointSize"), pointSizes_[i]);
-      glDrawArrays(GL_POINTS, pointRanges_[i].first, pointRanges_[i].second);
-    }
-    glBindVertexArray(0);
-    glUseProgram(surface);
-  }
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  glDepthMask(GL_FALSE);
-  drawBatches(surface, true, false);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-
-  // Resolve, then background + tone map into RGBA8.
-  GLuint resolved = 0, finalTex = 0;
-  glGenTextures(1, &resolved);
-  glGenTextures(1, &finalTex);
-  ownedTextures_.push_back(resolved);
-  ownedTextures_.push_back(finalTex);
-  glBindTexture(GL_TEXTURE_2D, resolved);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbos[1]);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, resolved, 0);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbos[0]);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbos[1]);
-  glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_2D, finalTex);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbos[2]);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, finalTex, 0);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glUseProgram(post);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, resolved);
-  glUniform1i(loc(post, "uScene"), 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, hdrTexture_);
-  glUniform1i(loc(post, "uHdr"), 1);
-  setMat(post, "uInvViewProj", viewProj.inverse());
-  int mode = env.mode == Background::PlainColor ? 0 : (env.mode == Background::Hdr && hdrTexture_) ? 1 : 2;
-  glUniform1i(loc(post, "uMode"), mode);
-  glUniform1i(loc(post, "uTransparent"), opt_.transparent);
-  setVec3(post, "uBackground", env.background);
-  setVec3(post, "uSunDir", env.sunDirection.cast<float>());
-  glUniform1f(loc(post, "uCloud"), env.cloudCoverage);
-  glUniform1i(loc(post, "uNight"), env.night);
-  glUniform1f(loc(post, "uFogDensity"), env.fogDensity);
-  setVec3(post, "uFogColor", env.fogColor);
-  glUniform1f(loc(post, "uExposure"), env.exposure);
-  glUniform1f(loc(post, "uGamma"), env.gamma);
-  glUniform1i(loc(post, "uToneMap"), int(env.toneMap));
+bool GlRenderer::upload() {
+  software_ = softwareGl();
+  if (!buildPrograms()) return false;
+  if (!uploadDrawables()) return false;
+  uploadTerrains();
+  if (!uploadInstanced()) return false;
+  uploadBackground();
+  uploadPoints();
+  makeVertexArrays();
+  buildLights();
   glGenVertexArrays(1, &emptyVao_);
-  glBindVertexArray(emptyVao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-
-  out.width = w;
-  out.height = h;
-  out.rgba.assign(std::size_t(w) * h * 4, 0);
-  std::vector<std::uint8_t> rows(out.rgba.size());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  for (int y = 0; y < h; ++y)  // GL rows are bottom-up
-    std::copy_n(&rows[std::size_t(h - 1 - y) * w * 4], std::size_t(w) * 4, out.pixel(0, y));
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (GLenum e = glGetError(); e != GL_NO_ERROR) {
-    diag(Severity::Error, "RS9012", 0, "OpenGL error 0x" + [&] {
-      char b[16];
-      std::snprintf(b, sizeof b, "%04x", e);
-      return std::string(b);
-    }());
-    return false;
-  }
-  return true;
+  return glOk();
 }
 
-}  // namespace
+void GlRenderer::updatePoses() {
+  for (std::size_t di = 0; di < drawableRefs_.size() && di < scene_.drawables.size(); ++di) {
+    const Drawable& d = scene_.drawables[di];
+    if (d.attachment.kind == Mount::Kind::World) continue;
+    for (const InstanceRef& r : drawableRefs_[di]) {
+      Batch& b = batches_[r.batch];
+      Instance& in = b.instances[r.slot];
+      writeMatrix(in.data, (r.placeholder ? d.placeholderWorld.value_or(d.world) : d.world) * r.post);
+      in.bounds = d.bounds;
+      b.dirty = true;
+    }
+  }
+  ++poseVersion_;
+}
+
+}  // namespace detail
+
+std::unique_ptr<Renderer> Renderer::create(const RenderScene& scene, const RenderOptions& options,
+                                           Diagnostics& diagnostics) {
+  return createRenderer(scene, options, diagnostics, {});
+}
+
+std::unique_ptr<Renderer> createRenderer(const RenderScene& scene, const RenderOptions& options,
+                                         Diagnostics& diagnostics, std::vector<Camera> lodCameras) {
+  auto t0 = detail::Clock::now();
+  auto r = std::make_unique<detail::GlRenderer>(scene, options, diagnostics, std::move(lodCameras));
+  if (!r->upload()) return nullptr;
+  glFinish();
+  r->addUploadSeconds(detail::seconds(t0, detail::Clock::now()));
+  return r;
+}
 
 // lib/asset refuses a texture larger than --max-texture-pixels by its
 // declared size, before decoding anything.
@@ -845,17 +600,19 @@ asset::AssetLimits assetLimits(const RenderOptions& o) {
 
 bool renderScene(const RenderScene& scene, const Camera& camera, const RenderOptions& options, Image& out,
                  Diagnostics& diags, RenderTimings* timings) {
-  auto t0 = Clock::now();
-  Frame frame(scene, camera, options, diags);
-  if (!frame.prepare()) return false;
-  glFinish();
-  auto t1 = Clock::now();
-  bool ok = frame.draw(camera, out);
-  auto t2 = Clock::now();
-  if (timings) {
-    timings->uploadSeconds = seconds(t0, t1);
-    timings->drawSeconds = seconds(t1, t2);
-  }
+  View view;
+  view.name = camera.path;
+  view.camera = camera;
+  view.camera.width = options.width;
+  view.camera.height = options.height;
+  view.passes = {Pass::Color};
+  // Round shapes tessellated for this one camera at the image's size.
+  std::unique_ptr<Renderer> r = createRenderer(scene, options, diags, {view.camera});
+  if (!r) return false;
+  ViewImages images;
+  bool ok = r->render(view, images, diags);
+  if (ok) out = std::move(images.color);
+  if (timings) *timings = r->timings();
   return ok;
 }
 

@@ -175,6 +175,60 @@ out vec4 fragColor;
 void main() { fragColor = vec4(pow(max(vColor.rgb, vec3(0.0)), vec3(2.2)), vColor.a); }
 )";
 
+// The data pass: segmentation color and linear depth in one draw, 1
+// sample, no lighting, blending, fog or tone mapping.  Depth is the
+// distance along the view's forward axis, interpolated perspective-
+// correctly from the vertices: exact for planar triangles (no 24-bit
+// depth-buffer round trip).
+const char* const kDataVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPos;
+layout(location = 4) in vec4 iM0;
+layout(location = 5) in vec4 iM1;
+layout(location = 6) in vec4 iM2;
+layout(location = 7) in vec4 iM3;
+layout(location = 10) in vec4 iEmissive;  // w: segment color 0xRRGGBB
+uniform mat4 uViewProj;
+uniform vec3 uCameraPos;
+uniform vec3 uForward;
+out float vDepth;
+flat out vec3 vSegment;
+void main() {
+  vec4 w = mat4(iM0, iM1, iM2, iM3) * vec4(aPos, 1.0);
+  vDepth = dot(w.xyz - uCameraPos, uForward);
+  int s = int(iEmissive.w + 0.5);
+  vSegment = vec3((s >> 16) & 255, (s >> 8) & 255, s & 255) / 255.0;
+  gl_Position = uViewProj * w;
+}
+)";
+
+const char* const kPointDataVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPos;
+uniform mat4 uViewProj;
+uniform vec3 uCameraPos;
+uniform vec3 uForward;
+uniform float uPointSize;
+uniform vec3 uSegment;
+out float vDepth;
+flat out vec3 vSegment;
+void main() {
+  vDepth = dot(aPos - uCameraPos, uForward);
+  vSegment = uSegment;
+  gl_Position = uViewProj * vec4(aPos, 1.0);
+  gl_PointSize = uPointSize;
+}
+)";
+
+const char* const kDataFragment = R"(#version 330 core
+in float vDepth;
+flat in vec3 vSegment;
+layout(location = 0) out vec4 outSegment;
+layout(location = 1) out float outDepth;
+void main() {
+  outSegment = vec4(vSegment, 1.0);
+  outDepth = vDepth;
+}
+)";
+
 const char* const kPostVertex = R"(#version 330 core
 out vec2 vNdc;
 void main() {

@@ -21,6 +21,11 @@ namespace rscene::render {
 enum class Pass { Color, Depth, Segmentation };
 const char* passName(Pass p);  // "rgb", "depth", "segmentation" (the {kind} of output patterns)
 
+// Pinhole intrinsics (View::fx..cy) follow intrinsicProjection()'s
+// convention (camera.hpp): pixel (col, row) covers [col, col+1) x
+// [row, row+1), its centre at +0.5, row 0 at the top; cx = width/2 is the
+// image's centre.  They apply to perspective views (an orthographic view
+// has no pinhole: its orthoScale and aspect rule).
 struct View {
   std::string name;  // the camera's or sensor's path ("<robot>/<set>/<sensor>" for a URDF sensor)
   std::string id;    // record id, may be empty
@@ -51,6 +56,25 @@ struct ViewImages {
   Image segmentation;
 };
 
+// Why `view` cannot be drawn (a size outside 1..kMaxImageSide, no pass,
+// intrinsics partly given or not finite and positive, near/far not 0 <
+// near < far); empty when it can.
+std::string viewProblem(const View& view);
+
+// Clip-space matrix of the view: projection (its intrinsics when given and
+// perspective, else the camera's fields of view or orthoScale) times the
+// view matrix.
+Eigen::Matrix4d viewProjection(const View& view);
+
+// Adds Gaussian noise (mean, stddev in metres) to each finite value of
+// `depth`; NaN stays NaN.  The value added at index i is a function of
+// (seed, i) alone (splitmix64 and Box-Muller, no std:: distribution whose
+// output is implementation-defined), so an image is the same on every
+// platform and run, whatever the other pixels hit.  A caller wanting
+// different noise per frame of a trajectory passes a different seed (for
+// instance seed + frame).
+void addDepthNoise(std::vector<float>& depth, double mean, double stddev, std::uint64_t seed);
+
 // Draws views of one RenderScene with the current EGL context.  Meshes and
 // textures are uploaded once, by create(); updatePoses() carries new
 // drawable transforms (after poseScene()) to the GPU without uploading
@@ -70,5 +94,12 @@ class Renderer {
   virtual bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) = 0;
   virtual RenderTimings timings() const = 0;  // upload (create) and drawing so far
 };
+
+// Renderer::create() with spheres, cylinders and capsules tessellated for
+// the views that will be drawn (each within half a pixel of round in the
+// view that sees it largest, fewer triangles where all see it small);
+// create() tessellates finely enough for any view.
+std::unique_ptr<Renderer> createRenderer(const RenderScene& scene, const RenderOptions& options,
+                                         Diagnostics& diagnostics, std::vector<Camera> lodCameras);
 
 }  // namespace rscene::render

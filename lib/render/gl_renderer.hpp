@@ -1,0 +1,175 @@
+// The OpenGL Renderer (view.hpp) behind renderScene() and rscene-render's
+// views: internal to lib/render.  renderer.cpp uploads the scene once
+// (meshes, textures, instance data, programs); passes.cpp draws views:
+// the lit color pass and the flat data pass (segmentation + linear depth).
+//
+// Instances stay on the CPU after the upload as well as on the GPU: each
+// view draws a subset (a sensor view only world objects) with the
+// instances inside its frustum first, so a batch's instance buffer is
+// rewritten when the next view selects or orders differently, and
+// updatePoses() rewrites only the matrices of what moved.
+#pragma once
+#include <GL/glcorearb.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "asset/cache.hpp"
+#include "render/mesh.hpp"
+#include "render/view.hpp"
+
+namespace rscene::render::detail {
+
+struct GpuMesh {
+  GLuint vbo = 0, ebo = 0, colorVbo = 0;
+  GLsizei indexCount = 0;
+};
+
+struct TexturedPart {
+  std::shared_ptr<GpuMesh> mesh;
+  Eigen::Vector4f color;
+  float metallic, roughness;
+  GLuint texture;
+};
+
+// Per-instance floats: model (16), color (4), pbr (4), emissive rgb (3) and
+// the segment color packed as 0xRRGGBB in a float (exact: < 2^24).
+constexpr int kInstanceFloats = 28;
+
+struct Instance {
+  float data[kInstanceFloats];
+  Eigen::AlignedBox3d bounds;  // world, for each view's frustum test
+  bool worldObject = false;    // drawn by sensor views
+};
+
+struct Batch {
+  std::shared_ptr<GpuMesh> mesh;
+  GLuint texture = 0;
+  bool blend = false, doubleSided = false, castShadow = true;
+  std::vector<Instance> instances;  // in the order they were added
+  GLuint vao = 0, instanceVbo = 0;
+  // The GPU buffer holds instances[order[i]]: the first inView inside the
+  // last view's frustum, then the rest of what that view may draw (they
+  // still cast shadows).  dirty: a matrix changed since the upload.
+  std::vector<std::uint32_t> order;
+  GLsizei inView = 0, count = 0;
+  bool dirty = true;
+  bool everUploaded = false;
+};
+
+// Where a scene drawable's instances went, to move them (updatePoses).
+struct InstanceRef {
+  std::size_t batch = 0, slot = 0;
+  Eigen::Affine3d post = Eigen::Affine3d::Identity();  // after Drawable::world (a capsule's parts)
+  bool placeholder = false;                            // drawn at Drawable::placeholderWorld
+};
+
+// Framebuffers of one image size, made on first use and kept while views
+// of that size follow (a size change remakes them).
+struct ColorTargets {
+  int width = 0, height = 0, samples = 0;
+  GLuint msaaColor = 0, msaaDepth = 0, resolved = 0, final = 0;
+  GLuint fbo[3] = {0, 0, 0};  // multisampled, resolved, final
+};
+struct DataTargets {
+  int width = 0, height = 0;
+  GLuint segmentation = 0, depth = 0, z = 0, fbo = 0;
+};
+
+class GlRenderer final : public Renderer {
+ public:
+  GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
+             std::vector<Camera> lodCameras);
+  ~GlRenderer() override;
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+
+  bool upload();  // create(): false with an error diagnostic
+  void updatePoses() override;
+  bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) override;
+  RenderTimings timings() const override { return timings_; }
+  void addUploadSeconds(double s) { timings_.uploadSeconds += s; }
+
+ private:
+  // ---- upload (renderer.cpp)
+  // `file`: the robot file `line` is in; empty: the scene.
+  void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0,
+            const std::string& file = {});
+  bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
+                    const char* code = "RS9001");
+  std::shared_ptr<GpuMesh> uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
+  std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0, int segments = 48);
+  int segmentsFor(const Eigen::AlignedBox3d& box) const;
+  GLuint texture(const Image& image);
+  GLuint texture(const std::shared_ptr<const Image>& image);
+  bool materialTexture(const RenderMaterial& m, GLuint& out);
+  const std::vector<TexturedPart>* meshFile(const std::string& path, std::uint32_t line, std::uint32_t column,
+                                            const std::string& file, bool& failed);
+  bool regularFile(const std::string& path) const;
+  // Adds one instance; returns where it went.
+  InstanceRef add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
+                  const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
+                  const Eigen::Vector3f& emissive, int segment, const Eigen::AlignedBox3d& bounds, bool worldObject);
+  bool uploadDrawables();
+  void uploadTerrains();
+  bool uploadInstanced();
+  void uploadBackground();
+  void uploadPoints();
+  bool buildPrograms();
+  void makeVertexArrays();
+  void buildLights();
+
+  // ---- drawing (passes.cpp)
+  // Chooses and orders each batch's instances for `view` (re-uploading a
+  // batch only when that changed).
+  void selectInstances(const View& view, const Eigen::Matrix4d& viewProj);
+  void drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat = false);
+  bool renderShadowMap(bool sensorView);
+  bool colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out);
+  bool dataPass(const View& view, const Eigen::Matrix4d& viewProj, ViewImages& out, bool wantDepth,
+                bool wantSegmentation);
+  bool colorTargets(int w, int h, int samples);
+  bool dataTargets(int w, int h);
+  bool glOk();
+
+  const RenderScene& scene_;
+  RenderOptions opt_;
+  Diagnostics* diags_;
+  std::vector<Camera> lodCameras_;  // round shapes are tessellated for these views
+  std::map<std::string, std::shared_ptr<GpuMesh>> primitives_;
+  std::map<std::string, std::vector<TexturedPart>> meshFiles_;
+  std::map<std::string, GLuint> textures_;
+  std::map<const Image*, GLuint> imageTextures_;
+  asset::AssetCache ownAssets_;
+  asset::AssetCache& assets_;  // a mesh or texture named many times is read once
+  std::vector<GLuint> ownedTextures_;
+  std::vector<std::shared_ptr<GpuMesh>> meshes_;
+  std::vector<Batch> batches_;
+  std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
+  std::vector<std::vector<InstanceRef>> drawableRefs_;  // per RenderScene::drawables
+  std::vector<RenderLight> lights_;
+  int shadowLight_ = -1;
+  GLuint hdrTexture_ = 0;
+  GLuint pointVao_ = 0, pointVbo_ = 0;
+  std::vector<std::pair<GLint, GLsizei>> pointRanges_;
+  std::vector<float> pointSizes_;
+  std::vector<int> pointSegments_;
+  GLuint surfaceProg_ = 0, shadowProg_ = 0, pointProg_ = 0, postProg_ = 0, dataProg_ = 0, pointDataProg_ = 0;
+  GLuint emptyVao_ = 0;
+  bool software_ = false;
+  // Shadow map of the main light: remade when the poses or the kind of
+  // view (sensor: world objects only) changed since it was drawn.
+  GLuint shadowTex_ = 0, shadowFbo_ = 0;
+  int shadowSize_ = 0;
+  Eigen::Matrix4d lightViewProj_ = Eigen::Matrix4d::Identity();
+  std::uint64_t poseVersion_ = 1, shadowVersion_ = 0;
+  bool shadowForSensor_ = false;
+  ColorTargets color_;
+  DataTargets data_;
+  RenderTimings timings_;
+};
+
+}  // namespace rscene::render::detail
