@@ -51,5 +51,9 @@ bool decodeFloatImage(const std::string& bytes, FloatImage& out, std::string* er
 // Same image => same bytes (fixed zlib level and filter, no time or text
 // chunks).  Empty on failure.
 std::string encodePng(const Image& image);
+// A 16-bit grayscale PNG (depth images): `values` width*height, rows top
+// to bottom; deterministic like encodePng.  Empty on failure or when
+// values.size() != width*height.
+std::string encodePngGray16(int width, int height, const std::vector<std::uint16_t>& values);
 
 }  // namespace rscene::asset

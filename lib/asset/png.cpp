@@ -69,6 +69,37 @@ std::string encodePng(const Image& image) {
   return out;
 }
 
+std::string encodePngGray16(int width, int height, const std::vector<std::uint16_t>& values) {
+  if (width < 1 || height < 1 || values.size() != std::size_t(width) * std::size_t(height)) return {};
+  // PNG samples are big-endian: the bytes are laid out here, whatever the
+  // host's byte order, instead of asking libpng to swap.
+  std::vector<png_byte> bytes(values.size() * 2);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    bytes[2 * i] = png_byte(values[i] >> 8);
+    bytes[2 * i + 1] = png_byte(values[i] & 0xff);
+  }
+  std::string out;
+  std::string err;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, onError, onWarning);
+  if (!png) return {};
+  png_infop info = png_create_info_struct(png);
+  std::vector<png_bytep> rows(static_cast<std::size_t>(height));
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return {};
+  }
+  png_set_write_fn(png, &out, appendBytes, noFlush);
+  png_set_compression_level(png, 6);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 16, PNG_COLOR_TYPE_GRAY,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+  for (int y = 0; y < height; ++y) rows[std::size_t(y)] = &bytes[std::size_t(y) * std::size_t(width) * 2];
+  png_set_rows(png, info, rows.data());
+  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
 bool decodePng(const std::string& bytes, Image& out, std::string* error, const ImageLimits& limits) {
   out = Image{};
   if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0) {

@@ -195,7 +195,7 @@ flat out vec3 vSegment;
 void main() {
   vec4 w = mat4(iM0, iM1, iM2, iM3) * vec4(aPos, 1.0);
   vDepth = dot(w.xyz - uCameraPos, uForward);
-  int s = int(iEmissive.w + 0.5);
+  int s = int(iEmissive.w);  // an exact integer (< 2^24); adding 0.5 would round to even up there
   vSegment = vec3((s >> 16) & 255, (s >> 8) & 255, s & 255) / 255.0;
   gl_Position = uViewProj * w;
 }
