@@ -127,7 +127,7 @@ is_png() {
 @test "skipped record kinds are listed in one warning" {
   run "$RENDER" "$DATA/render_skipped.rscene" -o out.png
   [ "$status" -eq 0 ]
-  [ "$output" = "rscene-render: warning: skipped records it does not draw yet: local_fog (2), sensor (1)" ]
+  [ "$output" = "rscene-render: warning: skipped records it does not draw yet: local_fog (2)" ]
 }
 
 @test "a camera that sees nothing warns" {

@@ -259,3 +259,49 @@ TEST_F(RobotScene, MjcfGeomsInTheirRgba) {
   // A box's MJCF half sizes become full sides.
   EXPECT_NEAR(b.scene.drawables[1].bounds.sizes().z(), 0.6, 1e-6);
 }
+
+// Trajectories move drawables through their attachments (poseScene): a
+// robot's visuals follow their links, a dynamic object its body, a static
+// one stays; each record is one segmentation legend entry.
+TEST_F(RobotScene, DrawablesFollowTheirBodiesAndLinks) {
+  Built b = build(arm("5 0 0") +
+                  "object /World/Crate box 0 0 1 1 0 0 0 1 1 1 0 0 1 default default false true false - dynamic true "
+                  "1 18446744073709551615 id=crate semanticClass=crate\n"
+                  "object /World/Wall box 0 3 1 1 0 0 0 1 1 1 0 0 1 default default false true true - static true "
+                  "1 18446744073709551615 id=wall segmentationColor=1,0,0\n");
+  ASSERT_TRUE(b.ok) << (b.diags.empty() ? "" : b.diags[0].message);
+  ASSERT_EQ(b.scene.drawables.size(), 4u);  // crate, wall, the arm's two links
+  const Drawable& crate = b.scene.drawables[0];
+  const Drawable& wall = b.scene.drawables[1];
+  EXPECT_EQ(crate.attachment.kind, Mount::Kind::Object);
+  EXPECT_EQ(wall.attachment.kind, Mount::Kind::World);  // static: never moves
+  EXPECT_EQ(b.scene.drawables[3].attachment.kind, Mount::Kind::Articulated);
+  EXPECT_EQ(b.scene.drawables[3].attachment.link, 2);  // world, base, arm
+  // Legend: the wall's written red; the crate's from its class; one entry
+  // for both links of the arm.
+  ASSERT_EQ(b.scene.segments.size(), 3u);
+  const Segment& wallSeg = b.scene.segments[std::size_t(wall.segment)];
+  EXPECT_EQ(wallSeg.rgb[0], 255);
+  EXPECT_EQ(wallSeg.rgb[1], 0);
+  EXPECT_EQ(b.scene.drawables[2].segment, b.scene.drawables[3].segment);
+  EXPECT_EQ(b.scene.segments[std::size_t(b.scene.drawables[3].segment)].path, "/World/Arm");
+  std::uint8_t again[3];
+  segmentColor(std::nullopt, -1, "crate", "/elsewhere", again);  // the class decides, not the path
+  const Segment& crateSeg = b.scene.segments[std::size_t(crate.segment)];
+  EXPECT_EQ(std::vector<int>(again, again + 3), std::vector<int>(crateSeg.rgb, crateSeg.rgb + 3));
+  EXPECT_TRUE(crateSeg.rgb[0] >= 32 && crateSeg.rgb[1] >= 32 && crateSeg.rgb[2] >= 32);
+  // Move the crate up 2 m and turn the arm's link half a turn about x.
+  std::vector<Pose> objects = {Pose{Eigen::Vector3d(0, 0, 3), Eigen::Quaterniond::Identity()}, Pose{}};
+  std::vector<std::vector<Pose>> links(1);
+  links[0] = {Pose{}, Pose{Eigen::Vector3d(5, 0, 0), Eigen::Quaterniond::Identity()},
+              Pose{Eigen::Vector3d(5, 0, 0), Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()))}};
+  BodyPoseView view{&objects, nullptr, &links};
+  poseScene(b.scene, view);
+  EXPECT_TRUE(crate.world.translation().isApprox(Eigen::Vector3d(0, 0, 3))) << crate.world.translation().transpose();
+  EXPECT_NEAR(crate.bounds.min().z(), 2.5, 1e-9);
+  EXPECT_TRUE(wall.world.translation().isApprox(Eigen::Vector3d(0, 3, 1)));
+  // The green box, 1 m up the arm, is now 1 m below the joint.
+  EXPECT_TRUE(b.scene.drawables[3].world.translation().isApprox(Eigen::Vector3d(5, 0, -1), 1e-9))
+      << b.scene.drawables[3].world.translation().transpose();
+  EXPECT_TRUE(b.scene.bounds.contains(Eigen::Vector3d(5, 0, -1)));
+}
