@@ -40,7 +40,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS2004", E, Core, VSR, "collision group or mask is not an unsigned 64-bit integer"},
     {"RS2005", E, Core, VSR, "value is not a flag (true/false, 1/0, yes/no, on/off)"},
     {"RS2006", E, Core, V, "unknown name for an enumeration"},
-    {"RS2007", W, Core, V, "name not known for an open enumeration (newer writers may add names)"},
+    {"RS2007", W, Core, VSR, "name not known for an open enumeration (newer writers may add names; sim and render say so of a sensor kind, which they neither render nor simulate)"},
     {"RS2008", E, Core, VSR, "vector, quaternion or color with the wrong number of components"},
     {"RS2009", E, Core, VSR, "number list with an empty entry or a trailing separator"},
     // RS3xxx names and references
@@ -73,7 +73,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS4009", E, Core, VSR, "zero quaternion (length below 1e-12)"},
     {"RS4010", W, Core, V, "quaternion not of unit length (off by more than 1e-3)"},
     {"RS4011", E, Core, V, "negative size, radius or length"},
-    {"RS4012", E, Core, V, "camera near plane not positive or not below the far plane"},
+    {"RS4012", E, Core, VSR, "camera or sensor near plane not positive or not below the far plane (sim and render: sensors)"},
     {"RS4013", W, Core, V, "field of view outside the range it is clamped to"},
     {"RS4014", E, Core, VSR, "terrain size not positive"},
     // RS5xxx files (--check-files)
@@ -130,6 +130,17 @@ constexpr CheckInfo kChecks[] = {
     // RS705x simulating robots (lib/sim)
     {"RS7051", W, Sim, "sim", "convexifyCollisionMeshes=false: robot mesh collisions are simulated as convex hulls all the same"},
     {"RS7052", E, Sim, "sim", "robot with more than 1000 bodies (movable joints + 1): Bullet's cost grows with their square"},
+    // RS706x sensors: sensor sets of robot files (lib/robot/sensor_set.hpp),
+    // sensor records and output paths (lib/scene/sensor_check.hpp).
+    {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},
+    {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number (or a whole number where one is needed), an origin beyond 1e12 m"},
+    {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, unexpanded template)"},
+    {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384 or field of view outside (0, 180) degrees; sensor far plane beyond 1e12 m"},
+    {"RS7065", E, Scene, VSR, "sensor calibration given in part (fx, fy, cx, cy: all four or none), or fx or fy not positive"},
+    {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},
+    {"RS7067", E, Scene, VSR, "sensor updateRate outside 0..1e6 Hz, noise standard deviation negative, noise or IMU limit beyond 1e12"},
+    {"RS7068", W, Scene, VSR, "sensor parentLink whose parentObject is not an articulated system (the link is not used)"},
+    {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute or has a '..' part (tools write only inside their output folder)"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

@@ -8,6 +8,7 @@
 #include "core/suggest.hpp"
 #include "robot/ik.hpp"
 #include "robot/instance.hpp"
+#include "robot/sensors.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::robot {
@@ -120,23 +121,10 @@ class RobotChecker {
       if (!rec.kind || rec.kind->tag != "sensor") continue;
       RecordReader r(doc_, i, found);
       std::string link = r.str("parentLink");
-      if (link.empty()) continue;
+      if (link.empty() || link == "-") continue;
       const Checked* robot = robotNamed(r.str("parentObject"));
       if (!robot || robot->model->findLink(link) >= 0) continue;
-      const Model& model = *robot->model;
-      std::string hint;
-      if (int j = model.findJoint(link); j >= 0 && model.joints[static_cast<std::size_t>(j)].childLink >= 0) {
-        hint = "'" + link + "' is a joint; its child link is '" +
-               model.links[static_cast<std::size_t>(model.joints[static_cast<std::size_t>(j)].childLink)].name + "'";
-      } else {
-        std::vector<std::string_view> names;
-        for (const Link& l : model.links) names.push_back(l.name);
-        std::string best = closestName(link, names);
-        if (!best.empty()) hint = "did you mean '" + best + "'?";
-      }
-      r.error("parentLink", code::kSensorLink,
-              "parentLink '" + link + "' is no link of the model '" + model.name + "' of '" + robot->record->path + "'",
-              hint);
+      reportUnknownSensorLink(doc_, static_cast<int>(i), *robot->model, link, robot->record->path, found);
     }
     take(found, 0);
   }

@@ -63,6 +63,7 @@ void scaleModel(Model& model, const Eigen::Vector3d& s) {
       scaleGeometry(c.geometry, s, c.origin.orientation);
     }
   }
+  for (SensorDef& d : model.sensors) d.origin.position = d.origin.position.cwiseProduct(s);  // ride on the link frame
   for (Joint& j : model.joints) {
     j.origin.position = j.origin.position.cwiseProduct(s);
     if (j.type == JointType::Prismatic) {

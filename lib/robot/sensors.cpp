@@ -1,5 +1,6 @@
 #include "robot/sensors.hpp"
 
+#include "core/suggest.hpp"
 #include "robot/check.hpp"
 #include "robot/kinematics.hpp"
 #include "scene/reader.hpp"
@@ -87,12 +88,9 @@ std::vector<SensorSpec> collectSensors(const Document& doc, const Scene& scene,
         // A link by name, as validate's RS7045 check reads it.
         int link = model->findLink(v.mount.link);
         if (link >= 0) s.link = link;
-        else {
-          RecordReader r(doc, static_cast<std::size_t>(v.recordIndex), diagnostics);
-          r.error("parentLink", code::kSensorLink,
-                  "parentLink '" + v.mount.link + "' is no link of the model '" + model->name + "'",
-                  "the sensor is placed on the robot's root link");
-        }
+        else  // the sensor stays on the root link
+          reportUnknownSensorLink(doc, v.recordIndex, *model, v.mount.link,
+                                  scene.articulated[static_cast<std::size_t>(v.mount.index)].path, diagnostics);
       }
     }
     out.push_back(std::move(s));
@@ -117,6 +115,23 @@ std::vector<SensorSpec> collectSensors(const Document& doc, const Scene& scene,
     }
   }
   return out;
+}
+
+void reportUnknownSensorLink(const Document& doc, int record, const Model& model, const std::string& link,
+                             const std::string& robotPath, Diagnostics& diagnostics) {
+  std::string hint;
+  if (int j = model.findJoint(link); j >= 0 && model.joints[static_cast<std::size_t>(j)].childLink >= 0) {
+    hint = "'" + link + "' is a joint; its child link is '" +
+           model.links[static_cast<std::size_t>(model.joints[static_cast<std::size_t>(j)].childLink)].name + "'";
+  } else {
+    std::vector<std::string_view> names;
+    for (const Link& l : model.links) names.push_back(l.name);
+    std::string best = closestName(link, names);
+    if (!best.empty()) hint = "did you mean '" + best + "'?";
+  }
+  RecordReader r(doc, static_cast<std::size_t>(record), diagnostics);
+  r.error("parentLink", code::kSensorLink,
+          "parentLink '" + link + "' is no link of the model '" + model.name + "' of '" + robotPath + "'", hint);
 }
 
 Pose sensorPose(const SensorSpec& s, const Scene& scene, const BodyPoses& poses) {

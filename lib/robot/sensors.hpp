@@ -72,6 +72,13 @@ std::vector<SensorSpec> collectSensors(const Document& doc, const Scene& scene,
                                        const std::vector<std::shared_ptr<const Model>>& models,
                                        Diagnostics& diagnostics);
 
+// RS7045 at `record`'s parentLink field: `link` names no link of `model`,
+// the model of the robot `robotPath`, with a hint (the child link of a
+// joint of that name, or the closest link name).  The one wording of the
+// finding for validate's robot check and collectSensors (sim, render).
+void reportUnknownSensorLink(const Document& doc, int record, const Model& model, const std::string& link,
+                             const std::string& robotPath, Diagnostics& diagnostics);
+
 // The sensor's world pose (looking along its +x) at `poses`.  A sensor on
 // a body `poses` lacks (a robot not loaded) is placed on the body's pose in
 // the scene file.

@@ -27,9 +27,11 @@
 #include <list>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "robot/load.hpp"
 #include "robot/robot_paths.hpp"
+#include "robot/sensor_set.hpp"
 #include "robot/urdf_reader.hpp"
 #include "robot/xml_file.hpp"
 
@@ -55,44 +57,11 @@ struct Material {
 
 enum class Read { Ok, Absent, Skip, Fail };
 
-bool parseDouble(std::string_view token, double& out) {
-  const char* first = token.data();
-  const char* last = first + token.size();
-  if (first != last && *first == '+') ++first;  // from_chars refuses a leading '+', XML writers use it
-  auto [ptr, ec] = std::from_chars(first, last, out);
-  return ec == std::errc{} && ptr == last && std::isfinite(out);
-}
-
-// Whitespace-separated numbers.
-bool parseNumbers(const char* text, std::vector<double>& out) {
-  out.clear();
-  std::string_view s(text);
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i == s.size()) break;
-    std::size_t j = i;
-    while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-    double v = 0;
-    if (!parseDouble(s.substr(i, j - i), v)) return false;
-    out.push_back(v);
-    i = j;
-  }
-  return true;
-}
-
 // A value quoted in a message, cut short: an attribute can be megabytes.
 std::string shown(const char* text) {
   std::string_view v(text);
   constexpr std::size_t kMax = 60;
   return v.size() <= kMax ? std::string(v) : std::string(v.substr(0, kMax)) + "...";
-}
-
-Eigen::Quaterniond rpyToQuaternion(double roll, double pitch, double yaw) {
-  // URDF: fixed-axis roll, pitch, yaw, i.e. R = Rz(yaw) Ry(pitch) Rx(roll).
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-      .normalized();
 }
 
 class UrdfReader {
@@ -101,6 +70,10 @@ class UrdfReader {
       : options_(options), diagnostics_(diagnostics) {
     paths_.resourceDirectory = options.resourceDirectory;
     paths_.robotDirectory = parentDirectory(path);
+    // RaiSim loads a URDF with modules from the file it writes into the
+    // resource directory, so that is where its sensor sets are looked for.
+    sensorDirectory_ = !options.modules.empty() && !options.resourceDirectory.empty() ? options.resourceDirectory
+                                                                                       : paths_.robotDirectory;
   }
 
   // Reads the URDF `doc` (the file `path`) and its modules into `out`.
@@ -128,6 +101,8 @@ class UrdfReader {
   // Elements ---------------------------------------------------------------
   void readMaterial(const Source& src, const XMLElement* e);
   void readLink(const Source& src, const XMLElement* e);
+  void readLinkElements(const Source& src, const XMLElement* e, Link& link);
+  void readSensorSet(const Source& src, const XMLElement* e, Link& link);
   bool readInertial(const Source& src, const XMLElement* e, Inertial& out);
   bool readGeometry(const Source& src, const XMLElement* owner, const char* what, Geometry& g);
   void readVisualMaterial(const Source& src, const XMLElement* e, Visual& v);
@@ -146,6 +121,10 @@ class UrdfReader {
   std::map<std::string, Material> materials_;
   std::vector<Link> links_;
   std::vector<RawJoint> joints_;
+  std::string sensorDirectory_;
+  std::list<Source> sensorSources_;  // a list: elements read from a set point at their Source
+  std::vector<SensorDef> sensors_;   // of every set, in link order; `link` set after the tree is built
+  std::set<std::string> setFindings_;  // file:line:message said about a sensor set file
 };
 
 Read UrdfReader::numbers(const Source& src, const XMLElement* e, const char* attr, std::size_t minCount,
@@ -157,7 +136,7 @@ Read UrdfReader::numbers(const Source& src, const XMLElement* e, const char* att
     warn(src, e, tag + " holds an unexpanded xacro or template expression '" + shown(text) + "'; " + skipping);
     return Read::Skip;
   }
-  if (!parseNumbers(text, out) || out.size() < minCount || out.size() > maxCount) {
+  if (!parseXmlNumbers(text, out) || out.size() < minCount || out.size() > maxCount) {
     std::string want = std::to_string(minCount);
     if (maxCount != minCount) want += " to " + std::to_string(maxCount);
     want += maxCount == 1 ? " finite number" : " finite numbers";
@@ -358,7 +337,17 @@ void UrdfReader::readLink(const Source& src, const XMLElement* e) {
     return;
   }
   link.name = name;
-  if (const char* sensor = e->Attribute("sensor")) link.sensorSet = sensor;
+  readLinkElements(src, e, link);
+  if (const char* sensor = e->Attribute("sensor")) {
+    link.sensorSet = sensor;
+    readSensorSet(src, e, link);
+  }
+  links_.push_back(std::move(link));
+}
+
+// The <inertial>, <visual> and <collision> elements of a URDF <link> or
+// of a sensor set's <link> (its first <inertial> only, as every URDF reader).
+void UrdfReader::readLinkElements(const Source& src, const XMLElement* e, Link& link) {
   bool haveInertial = false;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     std::string tag = c->Name();
@@ -383,7 +372,56 @@ void UrdfReader::readLink(const Source& src, const XMLElement* e) {
       warn(src, c, "unexpanded xacro element <" + tag + "> skipped");
     }
   }
-  links_.push_back(std::move(link));
+}
+
+// RaiSim's <link sensor="FILE">: the set's body joins the link at the set's
+// origin, its sensors go to Model::sensors (robot/sensor_set.hpp).
+void UrdfReader::readSensorSet(const Source& src, const XMLElement* e, Link& link) {
+  // Two links naming one file (ANYmal's two cameras) read it twice; what
+  // the file itself gets wrong is said once.
+  std::size_t before = diagnostics_.size();
+  struct Dedupe {
+    UrdfReader& r;
+    std::size_t before;
+    ~Dedupe() {
+      Diagnostics& d = r.diagnostics_;
+      std::size_t kept = before;
+      for (std::size_t i = before; i < d.size(); ++i) {
+        bool inSet = d[i].code != code::kNoSensorSet;  // the others are in the set file
+        if (inSet && !r.setFindings_.insert(d[i].file + ":" + std::to_string(d[i].line) + ":" + d[i].message).second)
+          continue;
+        if (kept != i) d[kept] = std::move(d[i]);
+        ++kept;
+      }
+      d.resize(kept);
+    }
+  } dedupe{*this, before};
+  SensorSetFile set;
+  if (!openSensorSet(sensorDirectory_, link.sensorSet, src.file, e->GetLineNum(), options_.maxFileBytes, set,
+                     diagnostics_)) {
+    ok_ = false;
+    return;
+  }
+  const Source& setSource = sensorSources_.emplace_back(Source{set.path, parentDirectory(set.path), true});
+  if (set.body) {
+    Link body;
+    readLinkElements(setSource, set.body, body);
+    // In the set's frame; the model's lines refer to the URDF (and the
+    // link's module), not to the set's file.
+    for (Visual& v : body.visuals) {
+      v.origin = set.origin * v.origin;
+      v.line = 0;
+      link.visuals.push_back(std::move(v));
+    }
+    for (Collision& c : body.collisions) {
+      c.origin = set.origin * c.origin;
+      c.line = 0;
+      link.collisions.push_back(std::move(c));
+    }
+    body.inertial.origin = set.origin * body.inertial.origin;
+    combineInertial(link.inertial, body.inertial);
+  }
+  if (!readSensors(set, link.name, sensors_, diagnostics_)) ok_ = false;
 }
 
 void UrdfReader::readJointParts(const Source& src, const XMLElement* e, Joint& j) {
@@ -582,7 +620,10 @@ bool UrdfReader::read(const std::string& path, const tinyxml2::XMLDocument& doc,
   out = Model{};
   out.sourceFile = path;
   if (const char* name = robot->Attribute("name")) out.name = name;
-  return urdf::buildTree(path, std::move(links_), std::move(joints_), out, diagnostics_);
+  if (!urdf::buildTree(path, std::move(links_), std::move(joints_), out, diagnostics_)) return false;
+  for (SensorDef& d : sensors_) d.link = out.findLink(d.set);
+  out.sensors = std::move(sensors_);
+  return true;
 }
 
 }  // namespace

@@ -5,8 +5,11 @@
 #pragma once
 #include <tinyxml2.h>
 
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/diagnostic.hpp"
 
@@ -18,12 +21,21 @@ Diagnostic robotDiagnostic(Severity severity, const char* code, const std::strin
 
 // Reads `path` (at most `maxBytes`) and parses it.  Returns false after an
 // RS5001 (missing, not a regular file) or RS7030 (too large, unreadable,
-// not well-formed XML) error.
+// not well-formed XML) error.  A file that is not the robot file itself (a
+// sensor set) names itself `what` and takes its own code for the second.
 bool readXmlFile(const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
-                 Diagnostics& diagnostics);
+                 Diagnostics& diagnostics, const char* what = "robot file", const char* badFileCode = nullptr);
 
 // True when `text` holds something a preprocessor should have replaced:
 // xacro's ${...} and $(...), RaiSim template variables @@NAME.
 bool looksLikeTemplate(const char* text);
+
+// One finite number as XML attributes write it (a leading '+' allowed).
+bool parseXmlNumber(std::string_view token, double& out);
+// Whitespace-separated finite numbers; false when one is not.
+bool parseXmlNumbers(const char* text, std::vector<double>& out);
+
+// URDF's <origin rpy>: fixed-axis roll, pitch, yaw, R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Quaterniond rpyToQuaternion(double roll, double pitch, double yaw);
 
 }  // namespace rscene::robot

@@ -5,6 +5,7 @@
 
 #include "scene/limits.hpp"
 #include "scene/reader.hpp"
+#include "scene/sensor_check.hpp"
 
 namespace rscene {
 namespace {
@@ -140,6 +141,7 @@ bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions
   std::size_t before = diagnostics.size();
   Checker(doc, scene, options, diagnostics).run();
   checkNumericLimits(doc, scene, diagnostics);
+  checkSensors(doc, scene, diagnostics);
   for (std::size_t i = before; i < diagnostics.size(); ++i)
     if (diagnostics[i].severity == Severity::Error) return false;
   return true;

@@ -32,6 +32,8 @@ struct SceneCheckOptions {
 //   RS3012  enabled wire whose body names no node
 //   RS7011  warning: wire to a node the simulator does not model, skipped
 //   RS7020-RS7022  numbers no simulator can stand behind (scene/limits.hpp)
+//   RS7064-RS7069, RS2007  sensor records and camera outputPath
+//           (scene/sensor_check.hpp)
 // Returns false when it added an error.
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
 

@@ -202,6 +202,8 @@ TEST(Urdf, SkipsWhatCannotBeUsedWithWarningsAndKeepsTheRobot) {
   EXPECT_TRUE(j.origin.position.isZero());  // the xacro origin ignored
   EXPECT_TRUE(j.axis.isApprox(Eigen::Vector3d::UnitZ()));
   EXPECT_EQ(m.links[static_cast<std::size_t>(m.findLink("leg"))].sensorSet, "imu_set.xml");
+  ASSERT_EQ(m.sensors.size(), 1u);  // from sensors/imu_set.xml
+  EXPECT_EQ(m.sensors[0].link, m.findLink("leg"));
   EXPECT_FALSE(m.joints[static_cast<std::size_t>(m.findJoint("k"))].hasLimits);  // lower above upper: dropped
   EXPECT_TRUE(m.floatingBase);
 }
@@ -783,7 +785,9 @@ TEST(UrdfCorpus, AnymalC) {
 
 TEST(UrdfCorpus, AnymalCSensoredKeepsItsSensorSets) {
   if (!haveCorpus()) GTEST_SKIP() << "../shared/corpus is absent";
-  expectAnymal("anymal_sensored.urdf", 52.13485, 79);
+  // The sensor sets' bodies join their links: the ouster's 0.33 kg and two
+  // realsenses of 0.061575 kg (tests/robot/sensor_set_test.cpp).
+  expectAnymal("anymal_sensored.urdf", 52.13485 + 0.33 + 2 * 0.061575, 79);
   Model m;
   Diagnostics d;
   ASSERT_TRUE(load(kRobots + "anymal_c/urdf/anymal_sensored.urdf", m, d));

@@ -1,0 +1,92 @@
+// What a sensor must satisfy before a tool renders or simulates it: the
+// bounds of its numbers, shared by the scene's sensor records (checked by
+// checkScene(), so validate, sim and render refuse the same record with
+// the same code at the same field) and by the sensor sets of robot files
+// (lib/robot/sensor_set.cpp reads them with the same bounds and codes).
+//
+//   RS2007  warning: sensor kind the schema does not know (lib/core's code:
+//           validate reports it from its own check, sim and render from
+//           this one; the sensor is neither rendered nor simulated)
+//   RS4012  nearPlane <= 0 or farPlane <= nearPlane (lib/core's code and
+//           words: validate's core check says it of every sensor record)
+//   RS7064  camera-like image size outside 1..16384, a field of view
+//           outside (0, 180) degrees; farPlane beyond 1e12 m
+//   RS7065  calibration given in part, or fx, fy not positive
+//   RS7066  LiDAR channels or samples below 1 or more than kMaxLidarRays
+//           rays per scan, ranges not 0 <= min < max <= 1e12, vertical
+//           field of view outside 0..180 degrees
+//   RS7067  updateRate outside 0..1e6 Hz, noise stddev negative, noise
+//           or IMU limit beyond 1e12 or negative
+//   RS7068  warning: parentLink on a sensor whose parentObject is not an
+//           articulated system (the link is not used)
+//   RS7069  outputPath (sensor or camera) absolute or with a '..' part
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "scene/scene.hpp"
+
+namespace rscene {
+
+namespace sensor_code {
+inline constexpr const char* kUnknownKind = "RS2007";  // lib/core's open-enumeration warning
+inline constexpr const char* kClip = "RS4012";  // lib/core's near/far check
+inline constexpr const char* kImage = "RS7064";
+inline constexpr const char* kCalibration = "RS7065";
+inline constexpr const char* kLidar = "RS7066";
+inline constexpr const char* kRate = "RS7067";
+inline constexpr const char* kLinkWithoutRobot = "RS7068";
+inline constexpr const char* kOutputPath = "RS7069";
+}  // namespace sensor_code
+
+// Most rays one LiDAR scan casts (2^22).  The largest spinning LiDARs sold
+// scan 128 x 2048 = 262,144 rays; sixteen times that still keeps one
+// scan's point cloud near 64 MiB (16 bytes a point) and its ray casts
+// around a second, where a slip of the keyboard (lidarSamples=1000000000)
+// would ask for 16 GB a scan.
+inline constexpr std::int64_t kMaxLidarRays = std::int64_t{1} << 22;
+// Highest updateRate: a microsecond between readings is far past any
+// sensor sold, and a step of the simulation cannot be shorter than 1e-9 s.
+inline constexpr double kMaxUpdateRate = 1e6;
+
+// The numbers of a sensor as written, before the scene model clamps them
+// (an image side of 99999 arrives in SensorParams as 0).
+struct SensorValues {
+  std::string kind;  // canonical sensor_kind
+  std::int64_t width = 0, height = 0, lidarChannels = 0, lidarSamples = 0;
+  double lidarVerticalFov = 0;  // degrees: the pitch span
+  std::array<bool, 4> calibrationGiven{};  // fx, fy, cx, cy written
+  SensorParams params;  // the other numbers
+};
+
+// One bound a sensor's numbers break: `field` is the sensor record's field
+// (a sensor-set reader maps it to its element), `message` lower-case, no
+// final period.
+struct SensorProblem {
+  const char* code;
+  const char* field;
+  std::string message;
+};
+
+// The bounds above that the kind uses (images for camera-like kinds, LiDAR
+// numbers for lidar, IMU limits for imu; rates and noise for all).
+std::vector<SensorProblem> sensorProblems(const SensorValues& values);
+
+bool isCameraLikeSensor(const std::string& canonicalKind);  // rgb, depth, segmentation, rgb_depth
+// True when the schema's sensor_kind enumeration names `canonicalKind`.
+bool isKnownSensorKind(const std::string& canonicalKind);
+
+// Why tools refuse to write to `outputPath` (absolute, or a '..' part that
+// climbs out of the output directory), or empty when they may.  "" and "-"
+// are no output.
+std::string outputPathProblem(const std::string& outputPath);
+
+// Appends the findings above about every sensor record of `scene` and the
+// outputPath of every camera record, each at the record's field.
+void checkSensors(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
+
+}  // namespace rscene

@@ -1,0 +1,155 @@
+#!/usr/bin/env bats
+# Sensors through the real tools: rscene-validate, rscene-sim and
+# rscene-render refuse a sensor record with the same code at the same
+# line:col (scene/sensor_check.hpp); URDF sensor sets (<link sensor=>)
+# are read with --check-files, their findings in their own file.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+CORPUS="$BATS_TEST_DIRNAME/../../shared/corpus"
+V="$BIN/rscene-validate"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$V" ] || skip "rscene-validate not built in $BIN"
+  export NO_COLOR=1
+  cd "$BATS_TEST_TMPDIR"
+  cat >bad.rscene <<'EOF'
+raisim_engine_scene 2
+time_step 0.01
+sensor /World/Cam rgb - 0 0 1 1 0 0 0 width=0 outputPath=../x.png
+sensor /World/L lidar - 0 0 1 1 0 0 0 lidarChannels=4096 lidarSamples=4096
+sensor /World/S sonar - 0 0 1 1 0 0 0 parentLink=base
+sensor /World/D depth - 0 0 1 1 0 0 0 verticalFov=180 nearPlane=1 farPlane=0.5 calibrationFx=500
+sensor /World/I imu - 0 0 1 1 0 0 0 updateRate=2e6 noiseStddev=-1
+camera /World/C 0 0 1 1 0 0 0 50 0.05 50 64 48 rgb true outputPath=/tmp/c.png
+EOF
+}
+
+# The "file:line:col: severity: message [CODE]" lines of a run.
+findings() { grep -E '^[^ ].*\[RS[0-9]{4}\]$' <<<"$1"; }
+
+EXPECTED='bad.rscene:3:45: error: image width is 0, outside 1..16384 [RS7064]
+bad.rscene:3:58: error: sensor outputPath '"'"'../x.png'"'"' has a '"'"'..'"'"' part [RS7069]
+bad.rscene:4:71: error: lidar scan of 4096 x 4096 rays is more than 4194304 rays [RS7066]
+bad.rscene:5:17: warning: unknown sensor_kind '"'"'sonar'"'"' [RS2007]
+bad.rscene:5:50: warning: parentLink '"'"'base'"'"' is not used: the sensor has no parentObject [RS7068]
+bad.rscene:6:51: error: vertical field of view is 180 degrees, outside (0, 180) [RS7064]
+bad.rscene:6:76: error: far plane 0.5 is not beyond the near plane 1 [RS4012]
+bad.rscene:6:94: error: calibration given in part: calibrationFy, calibrationCx, calibrationCy missing [RS7065]
+bad.rscene:7:48: error: update rate is 2e+06 Hz, outside 0..1e6 [RS7067]
+bad.rscene:7:64: error: noise standard deviation is -1, outside 0..1e12 [RS7067]
+bad.rscene:8:68: error: camera outputPath '"'"'/tmp/c.png'"'"' is absolute [RS7069]'
+
+@test "validate: every sensor-record check at its field, exit 1" {
+  run --separate-stderr "$V" bad.rscene
+  [ "$status" -eq 1 ]
+  diff <(findings "$output") <(echo "$EXPECTED")
+  [ "$stderr" = "9 errors, 2 warnings in 1 file" ]
+}
+
+@test "sim refuses the same records with the same codes at the same places, exit 2" {
+  [ -x "$BIN/rscene-sim" ] || skip "rscene-sim not built"
+  run --separate-stderr "$BIN/rscene-sim" --steps 1 bad.rscene
+  [ "$status" -eq 2 ]
+  [ -z "$output" ]
+  diff <(findings "$stderr") <(echo "$EXPECTED")
+  # The unknown kind's consequence, said by the tool that skips it.
+  [[ "$stderr" == *"hint: the sensor is neither rendered nor simulated"* ]]
+}
+
+@test "render refuses the same records with the same codes at the same places, exit 2" {
+  [ -x "$BIN/rscene-render" ] || skip "rscene-render not built"
+  run --separate-stderr "$BIN/rscene-render" bad.rscene -o out.png
+  [ "$status" -eq 2 ]
+  [ ! -e out.png ]
+  diff <(findings "$stderr") <(echo "$EXPECTED")
+}
+
+@test "sensors within every bound: no finding" {
+  cat >good.rscene <<'EOF'
+raisim_engine_scene 2
+sensor /World/Cam rgb - 0 0 1 1 0 0 0 width=16384 height=1 outputPath=out/cam.png calibrationFx=500 calibrationFy=500 calibrationCx=0 calibrationCy=0
+sensor /World/L spinning_lidar - 0 0 1 1 0 0 0 lidarChannels=64 lidarSamples=65536 lidarVerticalFov=0 lidarMinRange=0
+sensor /World/I imu - 0 0 1 1 0 0 0 updateRate=1e6 noiseStddev=0
+EOF
+  run --separate-stderr "$V" good.rscene
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "no issues in 1 file" ]
+}
+
+# A one-link robot whose link names the sensor set FILE (line 3).
+robot() {
+  mkdir -p robot/urdf
+  cat >robot/urdf/r.urdf <<EOF
+<robot name="r">
+  <link name="base"/>
+  <link name="cam" sensor="$1"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="cam"/></joint>
+</robot>
+EOF
+  cat >robot.rscene <<'EOF'
+raisim_engine_scene 2
+articulated_resource r R robot/urdf/r.urdf
+articulated /World/R r 0 0 0 1 0 0 0 true true
+EOF
+}
+
+@test "validate --check-files: a sensor set not found lists the places searched, at the URDF link" {
+  robot gone.xml
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == "robot/urdf/r.urdf:3: error: sensor set 'gone.xml' not found (tried robot/urdf/gone.xml, robot/urdf/sensor/gone.xml, robot/urdf/sensors/gone.xml, robot/gone.xml, robot/sensors/gone.xml) [RS7060]" ]]
+}
+
+@test "validate --check-files: a sensor set's bound is the record's code, at the set file's line" {
+  robot cam.xml
+  mkdir -p robot/sensors
+  cat >robot/sensors/cam.xml <<'EOF'
+<sensor_set name="cam">
+  <link>
+    <sensor name="color" type="rgb" update_rate="30">
+      <camera horizontal_fov="1.0">
+        <image width="640" height="100000"/>
+      </camera>
+    </sensor>
+  </link>
+</sensor_set>
+EOF
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 1 ]
+  [ "${lines[0]}" = "robot/sensors/cam.xml:5: error: sensor 'color' of sensor set 'cam': image height is 100000, outside 1..16384 [RS7064]" ]
+  # Within bounds, the same robot is clean.
+  sed -i 's/100000/480/' robot/sensors/cam.xml
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "no issues in 1 file" ]
+}
+
+@test "validate --check-files: a sensor set that is not XML is RS7061" {
+  robot cam.xml
+  echo '<sensor_set name="cam"><link>' >robot/urdf/cam.xml
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 1 ]
+  [[ "${lines[0]}" == "robot/urdf/cam.xml:1: error: sensor set file is not well-formed XML"*"[RS7061]" ]]
+}
+
+@test "ANYmal C with its sensor sets validates (only the ouster's missing visual mesh is said)" {
+  [ -f "$CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf" ] || skip "../shared/corpus is absent"
+  cat >anymal.rscene <<EOF
+raisim_engine_scene 2
+articulated_resource anymal ANYmal $CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf
+articulated /World/Anymal anymal 0 0 0.54 1 0 0 0 true true id=anymal generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8
+sensor /World/Anymal/Front rgb anymal 0 0 0 1 0 0 0 parentLink=depth_camera_front_camera_parent
+sensor /World/Anymal/Typo rgb anymal 0 0 0 1 0 0 0 parentLink=depth_camera_front_camera_parnt
+EOF
+  run --separate-stderr "$V" --check-files anymal.rscene
+  [ "$status" -eq 1 ]
+  [ "${#lines[@]}" -gt 0 ]
+  [ "$(findings "$output" | grep -c RS7031)" -eq 1 ]
+  [[ "$(findings "$output" | grep RS7031)" == *"sensors/ouster1-64.xml:35: warning: visual mesh"* ]]
+  # The typo is one RS7045 with its suggestion; nothing else.
+  [ "$(findings "$output" | grep -c RS7045)" -eq 1 ]
+  [[ "$output" == *"hint: did you mean 'depth_camera_front_camera_parent'?"* ]]
+  [ "$stderr" = "1 error, 1 warning in 1 file" ]
+}
