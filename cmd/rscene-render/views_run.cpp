@@ -1,5 +1,7 @@
 #include "rscene-render/views_run.hpp"
 
+#include <thread>
+
 #include <unistd.h>
 
 #include <chrono>
@@ -20,6 +22,7 @@
 #include "render/view_output.hpp"
 #include "render/views.hpp"
 #include "robot/trajectory_read.hpp"
+#include "rscene-render/image_writer.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::render_cli {
@@ -39,23 +42,6 @@ struct Output {
   Pass pass = Pass::Color;
   std::string pattern;
 };
-
-// The path beside an image for its float depth or legend: the extension
-// replaced ("cam.depth.png" -> "cam.depth.npy"), else appended.
-std::string sibling(const std::string& path, const char* extension) {
-  std::size_t slash = path.find_last_of('/');
-  std::size_t dot = path.find_last_of('.');
-  bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
-  return (hasExtension ? path.substr(0, dot) : path) + extension;
-}
-
-// Every file one image becomes: the image, then its .npy (depth) or
-// legend .json (segmentation).
-std::vector<std::string> filesOf(const std::string& image, Pass pass) {
-  if (pass == Pass::Depth) return {image, sibling(image, ".npy")};
-  if (pass == Pass::Segmentation) return {image, sibling(image, ".json")};
-  return {image};
-}
 
 render::OutputFields fieldsOf(const View& v, Pass pass, std::uint64_t frame, double time) {
   render::OutputFields f;
@@ -94,6 +80,10 @@ class ViewsRun {
     auto renderer = render::Renderer::create(p_.renderScene, p_.renderOptions, diags);
     if (!print(diags) || !renderer) return cli::kTrouble;
     cli::stopOnInterrupt(&interrupted);
+    // Encoding and writing overlap drawing; llvmpipe draws on the other cores.
+    unsigned cores = std::max(2u, std::thread::hardware_concurrency());
+    ImageWriter writer(std::min(cores - 1, 8u), render::segmentationLegendJson(p_.renderScene));
+    auto tRun = Clock::now();
 
     robot::TrajectoryPoser poser(p_.scene, p_.renderScene.robotModels);
     robot::BodyPoses poses = rest_;
@@ -101,7 +91,10 @@ class ViewsRun {
     std::uint64_t written = 0;
     bool progress = !opt_.verbose && isatty(2);
     for (;;) {
-      if (interrupted) return cli::kInterrupted;
+      if (interrupted) {
+        writer.finish();
+        return cli::kInterrupted;
+      }
       double time = 0;
       if (reader) {
         if (!reader->next(frame, diags)) {
@@ -118,14 +111,18 @@ class ViewsRun {
         renderer->updatePoses();
         render::poseViews(views_, p_.scene, p_.renderScene, sensors_, rest_, poses);
       }
-      if (!drawFrame(*renderer, written, time)) return cli::kTrouble;
+      if (!drawFrame(*renderer, writer, written, time)) {
+        writer.finish();
+        return cli::kTrouble;
+      }
       ++written;
       if (progress) std::fprintf(stderr, "\r%s: frame %llu", cli::toolName().c_str(), (unsigned long long)written);
       if (!reader) break;
     }
+    bool ok = writer.finish();
     if (progress) std::fputc('\n', stderr);
-    if (opt_.verbose) report(*renderer, written);
-    return cli::kSuccess;
+    if (opt_.verbose) report(*renderer, writer, written, since(tRun));
+    return ok ? cli::kSuccess : cli::kTrouble;
   }
 
  private:
@@ -264,7 +261,7 @@ class ViewsRun {
         return false;
       }
       std::string who = "'" + views_[o.view].name + "' (" + render::passName(o.pass) + ")";
-      for (const std::string& file : render_cli::filesOf(path, o.pass)) {
+      for (const std::string& file : filesOf(path, o.pass)) {
         auto [it, added] = owners.emplace(file, who);
         if (!added) {
           cli::error("two views would write '" + file + "': " + it->second + " and " + who +
@@ -284,14 +281,14 @@ class ViewsRun {
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);  // writeOutput reports what fails
   }
 
-  bool drawFrame(render::Renderer& renderer, std::uint64_t frame, double time) {
+  bool drawFrame(render::Renderer& renderer, ImageWriter& writer, std::uint64_t frame, double time) {
     Diagnostics diags;
-    render::ViewImages images;
     std::size_t next = 0;
     for (std::size_t i = 0; i < views_.size(); ++i) {
       const View& v = views_[i];
+      ImageJob job;
       auto t = Clock::now();
-      if (!renderer.render(v, images, diags)) {
+      if (!renderer.render(v, job.images, diags)) {
         print(diags);
         return false;
       }
@@ -301,50 +298,24 @@ class ViewsRun {
         const Output& o = outputs_[next];
         std::string path, err;
         render::expandPattern(o.pattern, fieldsOf(v, o.pass, frame, time), path, &err);  // checked by planOutputs
-        if (!writeImage(path, o.pass, images)) return false;
+        job.outputs.emplace_back(std::move(path), o.pass);
       }
+      if (!writer.submit(std::move(job))) return false;
     }
     return true;
   }
 
-  bool writeImage(const std::string& path, Pass pass, const render::ViewImages& images) {
-    auto t = Clock::now();
-    std::vector<std::string> files = filesOf(path, pass);
-    std::vector<std::string> bytes;
-    if (pass == Pass::Color) bytes = {render::encodePng(images.color)};
-    else if (pass == Pass::Segmentation)
-      bytes = {render::encodePng(images.segmentation), render::segmentationLegendJson(p_.renderScene)};
-    else
-      bytes = {render::encodeDepthPng16(images.depth, images.width, images.height),
-               render::encodeDepthNpy(images.depth, images.width, images.height)};
-    encodeSeconds_ += since(t);
-    t = Clock::now();
-    for (std::size_t k = 0; k < files.size(); ++k) {
-      if (bytes[k].empty()) {
-        cli::error(files[k] + ": the renderer gave no " + render::passName(pass) + " image");
-        return false;
-      }
-      makeParentFolder(files[k]);
-      if (!cli::writeOutput(files[k], [&](Sink& s) {
-            s.write(bytes[k]);
-            return true;
-          }))
-        return false;
-      ++filesWritten_;
-    }
-    writeSeconds_ += since(t);
-    return true;
-  }
-
-  void report(const render::Renderer& renderer, std::uint64_t frames) const {
+  void report(const render::Renderer& renderer, const ImageWriter& writer, std::uint64_t frames,
+              double seconds) const {
     render::RenderTimings t = renderer.timings();
     double perView = frames && !views_.empty() ? drawSeconds_ / double(frames * views_.size()) : 0;
-    char line[320];
+    char line[400];
     std::snprintf(line, sizeof line,
-                  "%s: %zu view(s) x %llu frame(s), %zu files; upload %.3f s, drawing %.3f s (%.4f s per view per "
-                  "frame), encoding %.3f s, writing %.3f s\n",
-                  cli::toolName().c_str(), views_.size(), (unsigned long long)frames, filesWritten_,
-                  t.uploadSeconds, drawSeconds_, perView, encodeSeconds_, writeSeconds_);
+                  "%s: %zu view(s) x %llu frame(s), %zu files in %.3f s; upload %.3f s, drawing %.3f s (%.4f s "
+                  "per view per frame); on %u thread(s) beside it: encoding %.3f s, writing %.3f s\n",
+                  cli::toolName().c_str(), views_.size(), (unsigned long long)frames, writer.filesWritten(), seconds,
+                  t.uploadSeconds, drawSeconds_, perView, writer.threads(), writer.encodeSeconds(),
+                  writer.writeSeconds());
     std::cerr << line;
   }
 
@@ -354,8 +325,7 @@ class ViewsRun {
   robot::BodyPoses rest_;
   std::vector<View> views_;
   std::vector<Output> outputs_;  // grouped by view, in view order
-  double drawSeconds_ = 0, encodeSeconds_ = 0, writeSeconds_ = 0;
-  std::size_t filesWritten_ = 0;
+  double drawSeconds_ = 0;
 };
 
 }  // namespace
