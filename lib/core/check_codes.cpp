@@ -156,7 +156,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS9014", E, Render, "render", "more instances to draw than --max-instances"},
     // RS903x robots in rendering
     {"RS9030", W, Render, "render", "articulated system whose model has no visual elements: nothing is drawn"},
-    // RS9040-RS9044 render passes (views: rgb, depth, segmentation)
+    // RS904x render passes and views (rgb, depth, segmentation)
     {"RS9040", E, Render, "render", "view that cannot be drawn: image size, intrinsics or near/far planes out of range"},
     // RS904x views, output names and trajectories (rscene-render --all-cameras, --trajectory)
     {"RS9045", W, Render, "render", "camera renderMode rscene-render does not draw as written: the color image is drawn"},

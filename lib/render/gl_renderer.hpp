@@ -49,6 +49,10 @@ struct Batch {
   std::shared_ptr<GpuMesh> mesh;
   GLuint texture = 0;
   bool blend = false, doubleSided = false, castShadow = true;
+  // The ground plane or a terrain: drawn after everything else, so that
+  // the depth test rejects what objects hide before it is shaded
+  // (llvmpipe shades every fragment that passes; it has no pre-pass).
+  bool background = false;
   std::vector<Instance> instances;  // in the order they were added
   GLuint vao = 0, instanceVbo = 0;
   // The GPU buffer holds instances[order[i]]: the first inView inside the
@@ -112,7 +116,8 @@ class GlRenderer final : public Renderer {
   // Adds one instance; returns where it went.
   InstanceRef add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
                   const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
-                  const Eigen::Vector3f& emissive, int segment, const Eigen::AlignedBox3d& bounds, bool worldObject);
+                  const Eigen::Vector3f& emissive, int segment, const Eigen::AlignedBox3d& bounds, bool worldObject,
+                  bool background = false);
   bool uploadDrawables();
   void uploadTerrains();
   bool uploadInstanced();
@@ -148,6 +153,7 @@ class GlRenderer final : public Renderer {
   std::vector<GLuint> ownedTextures_;
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
+  std::vector<std::size_t> drawOrder_;  // into batches_: background batches last
   std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
   std::vector<std::vector<InstanceRef>> drawableRefs_;  // per RenderScene::drawables
   std::vector<RenderLight> lights_;

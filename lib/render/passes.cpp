@@ -75,7 +75,8 @@ void GlRenderer::selectInstances(const View& view, const Eigen::Matrix4d& viewPr
 }
 
 void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat) {
-  for (const Batch& b : batches_) {
+  for (std::size_t i : drawOrder_) {
+    const Batch& b = batches_[i];
     if (shadowPass ? !b.castShadow : !flat && b.blend != blendPass) continue;
     if (!shadowPass) {
       if (!flat) {
@@ -238,7 +239,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-  int samples = std::clamp(opt_.samples, 1, std::max(1, int(maxSamples)));
+  int samples = std::clamp(view.samples > 0 ? view.samples : opt_.samples, 1, std::max(1, int(maxSamples)));
   if (!colorTargets(w, h, samples)) return false;
   glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[0]);
   glViewport(0, 0, w, h);

@@ -288,7 +288,7 @@ const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, s
 InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided,
                             bool castShadow, const Eigen::Affine3d& world, const Eigen::Vector4f& color,
                             const Eigen::Vector4f& pbr, const Eigen::Vector3f& emissive, int segment,
-                            const Eigen::AlignedBox3d& bounds, bool worldObject) {
+                            const Eigen::AlignedBox3d& bounds, bool worldObject, bool background) {
   auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow);
   auto [it, inserted] = batchIndex_.emplace(key, batches_.size());
   if (inserted) {
@@ -298,6 +298,7 @@ InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bo
     b.blend = blend;
     b.doubleSided = doubleSided;
     b.castShadow = castShadow;
+    b.background = background;
     batches_.push_back(std::move(b));
   }
   Batch& batch = batches_[it->second];
@@ -328,7 +329,8 @@ bool GlRenderer::uploadDrawables() {
                    bool placeholder = false) {
       Eigen::Affine3d world = (placeholder ? d.placeholderWorld.value_or(d.world) : d.world) * post;
       InstanceRef r = add(mesh, tex, blend, doubleSided, d.castShadow, world, color, pbr,
-                          placeholder ? Eigen::Vector3f::Zero() : mat.emissive, d.segment, d.bounds, d.worldObject);
+                          placeholder ? Eigen::Vector3f::Zero() : mat.emissive, d.segment, d.bounds, d.worldObject,
+                          d.shape == Shape::Ground);
       r.post = post;
       r.placeholder = placeholder;
       refs.push_back(r);
@@ -404,7 +406,7 @@ void GlRenderer::uploadTerrains() {
     const RenderMaterial& mat = scene_.materials[std::size_t(t.material)];
     add(uploadMesh(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(),
         Eigen::Vector4f(1, 1, 1, 1), Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(),
-        t.segment, t.bounds, true);
+        t.segment, t.bounds, true, true);
   }
 }
 
@@ -553,6 +555,9 @@ bool GlRenderer::upload() {
   uploadBackground();
   uploadPoints();
   makeVertexArrays();
+  for (int background = 0; background < 2; ++background)
+    for (std::size_t i = 0; i < batches_.size(); ++i)
+      if (batches_[i].background == bool(background)) drawOrder_.push_back(i);
   buildLights();
   glGenVertexArrays(1, &emptyVao_);
   return glOk();

@@ -38,6 +38,10 @@ struct View {
   // column cx - fx*y/x and row cy - fy*z/x (row 0 at the top).
   double fx = 0, fy = 0, cx = 0, cy = 0;
   std::vector<Pass> passes;  // at least one
+  // Samples per pixel of the color pass; 0: RenderOptions::samples.  Depth
+  // and segmentation always take one, at the pixel's centre.  (llvmpipe
+  // shades every sample: 4 cost about twice 1 for the ANYmal's color pass.)
+  int samples = 0;
   // Additive Gaussian noise on depth (metres), from noiseSeed: the same
   // seed gives the same image.
   double noiseMean = 0, noiseStddev = 0;

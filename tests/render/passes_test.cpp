@@ -384,3 +384,25 @@ TEST(Passes, ABadViewIsAnErrorNotACrash) {
   for (const Diagnostic& x : d) EXPECT_EQ(x.code, "RS9040");
   EXPECT_EQ(d[1].message, "view 'test': intrinsics fx, fy, cx, cy must all be positive (or all 0: none)");
 }
+
+TEST(Passes, PointCloudsAreInCameraViewsNotSensorViews) {
+  // A square of 9 fat points 5 m ahead, in the cloud's legend color.
+  std::string points, colors;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) {
+      points += (points.empty() ? "" : ";") + std::string("5,") + std::to_string(0.05 * i) + "," + std::to_string(0.05 * j);
+      colors += (colors.empty() ? "" : ";") + std::string("1,1,1,1");
+    }
+  auto b = build("point_cloud /World/Cloud points=" + points + " colors=" + colors + " pointSize=8 id=cloud\n");
+  ASSERT_EQ(b->scene.segments.size(), 1u);
+  View v = view(160, 120, {Pass::Segmentation, Pass::Depth});
+  ViewImages camera = draw(b->scene, v);
+  ASSERT_EQ(camera.segmentation.width, 160);
+  const std::uint8_t* c = camera.segmentation.pixel(80, 60);
+  EXPECT_TRUE(std::equal(c, c + 3, b->scene.segments[0].rgb));
+  EXPECT_NEAR(camera.depth[60 * 160 + 80], 5.0, 1e-3);
+  v.sensor = true;
+  ViewImages sensor = draw(b->scene, v);
+  EXPECT_TRUE(black(sensor.segmentation, 80, 60));
+  EXPECT_TRUE(std::isnan(sensor.depth[60 * 160 + 80]));
+}
