@@ -218,3 +218,22 @@ EOF
   run -2 --separate-stderr "$RENDER" r.rscene --camera eye --trajectory j.jsonl -o 'g/{frame}.png'
   [[ "$stderr" == "j.jsonl:1:"*": error: joint 'elbow' is no movable joint of robot '/World/Arm' (model 'arm') [RS9047]" ]]
 }
+
+@test "ANYmal C's URDF sensor sets are views: --all-cameras and --camera ROBOT/SET/SENSOR" {
+  urdf="$BATS_TEST_DIRNAME/../../shared/corpus/robots/anymal_c/urdf/anymal_sensored.urdf"
+  [ -f "$urdf" ] || skip "no ../shared corpus"
+  urdf=$(cd "$(dirname "$urdf")" && pwd)/anymal_sensored.urdf
+  { printf 'raisim_engine_scene 2\n'
+    printf 'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground\n'
+    printf 'object /World/Crate box 1.5 0 0.3 1 0 0 0 0.6 0.6 0.6 5 1 1.0 default - false true false - dynamic true 1 18446744073709551615 id=crate\n'
+    printf 'articulated_resource anymal_res ANYmal %s\n' "$urdf"
+    printf 'articulated /World/Anymal anymal_res 0 0 0.54 1 0 0 0 true true id=anymal generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8\n'; } > a.rscene
+  run "$RENDER" a.rscene --all-cameras -o 'a/{name}.{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$(ls a/*.png | wc -l)" -eq 4 ]  # two RealSense sets: color and depth each (the IMUs and the LiDAR are no views)
+  [ "$(png_size a/World_Anymal_depth_camera_front_camera_parent_color.rgb.png)" = "640x480" ]
+  [ "$(png_format a/World_Anymal_depth_camera_rear_camera_parent_depth.depth.png)" = "16 0" ]
+  run "$RENDER" a.rscene --camera World/Anymal/depth_camera_front_camera_parent/color -o front.png
+  [ "$status" -eq 0 ]
+  cmp front.png a/World_Anymal_depth_camera_front_camera_parent_color.rgb.png
+}

@@ -67,9 +67,9 @@ TEST(Views, OneViewPerCameraAndCameraLikeSensor) {
       "sensor /World/Depth depth_camera box 0 0 1 1 0 0 0 id=depth width=64 height=48 calibrationFx=50 "
       "calibrationFy=51 calibrationCx=32 calibrationCy=24 nearPlane=0.2 farPlane=9 noiseStddev=0.01 noiseSeed=7 "
       "segmentation=true\n"
-      "sensor /World/Color camera box 0 0 1 1 0 0 0 id=color calibrationFx=50\n"
+      "sensor /World/Color camera box 0 0 1 1 0 0 0 id=color\n"
       "sensor /World/Imu imu box 0 0 0 1 0 0 0 id=imu\n");
-  ASSERT_TRUE(b.ok);
+  ASSERT_TRUE(b.ok) << (b.diags.empty() ? "" : b.diags[0].message);
   ASSERT_EQ(b.views.size(), 5u);  // not the IMU
   EXPECT_EQ(b.views[0].name, "/World/Front");
   EXPECT_EQ(b.views[0].passes, (std::vector<Pass>{Pass::Color, Pass::Depth}));  // rgbd is rgb_depth
@@ -101,7 +101,7 @@ TEST(Views, OneViewPerCameraAndCameraLikeSensor) {
 
   const View& color = b.views[4];
   EXPECT_EQ(color.passes, std::vector<Pass>{Pass::Color});
-  EXPECT_EQ(color.fx, 0);  // one calibration number is not a calibration: the fields of view
+  EXPECT_EQ(color.fx, 0);  // no calibration: the fields of view
   EXPECT_EQ(color.camera.width, 640);  // the sensor record's defaults
   EXPECT_EQ(color.camera.verticalFov, 60);
 }
