@@ -237,3 +237,13 @@ EOF
   [ "$status" -eq 0 ]
   cmp front.png a/World_Anymal_depth_camera_front_camera_parent_color.rgb.png
 }
+
+@test "a write that fails in the middle of a trajectory stops the run with exit 2" {
+  { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":1,"path":"/World/Box","position":[1,0,0.7],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":2,"path":"/World/Box","position":[1,0,0.9],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  mkdir f && : > f/000001  # frame 1's folder cannot be made
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'f/{frame}/{kind}.png'
+  [[ "$stderr" == "rscene-render: error: f/000001/"* ]]
+  [ -f f/000000/rgb.png ]  # taken by a writer before frame 1 failed
+}

@@ -1,20 +1,18 @@
 #include "rscene-render/views_run.hpp"
 
-#include <thread>
-
 #include <unistd.h>
 
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <thread>
 
-#include "core/output_file.hpp"
 #include "core/text.hpp"
 #include "render/camera.hpp"
 #include "render/limits.hpp"
