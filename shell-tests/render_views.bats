@@ -247,3 +247,15 @@ EOF
   [[ "$stderr" == "rscene-render: error: f/000001/"* ]]
   [ -f f/000000/rgb.png ]  # taken by a writer before frame 1 failed
 }
+
+@test "a camera record whose parentGroupId is a body rides on it along a trajectory" {
+  printf 'camera /World/Box/Cam 0 0 1 1 0 0 0 60 0.05 100 48 32 rgb true id=boxcam parentGroupId=box\n' >> s.rscene
+  { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":1,"path":"/World/Box","position":[1,0,0.5],"quaternion":[0.7071068,0,0,0.7071068]}\n'
+    printf '{"time":2,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  run "$RENDER" s.rscene --camera boxcam --trajectory t.jsonl -o 'b/{frame}.png'
+  [ "$status" -eq 0 ]
+  # A cube turned a quarter looks the same from a fixed camera: only a camera turning with it sees frame 1 differ.
+  ! cmp -s b/000000.png b/000001.png
+  cmp b/000000.png b/000002.png
+}
