@@ -91,8 +91,10 @@ bool ImageWriter::run(const ImageJob& job) {
     auto t = Clock::now();
     std::vector<std::string> files = filesOf(path, pass);
     std::vector<std::string> bytes;
-    if (pass == render::Pass::Color) bytes = {render::encodePng(im.color)};
-    else if (pass == render::Pass::Segmentation) bytes = {render::encodePng(im.segmentation), legend_};
+    if (pass == render::Pass::Color)
+      bytes = {render::encodePng(im.color)};
+    else if (pass == render::Pass::Segmentation)
+      bytes = {render::encodePng(im.segmentation), legend_};
     else
       bytes = {render::encodeDepthPng16(im.depth, im.width, im.height),
                render::encodeDepthNpy(im.depth, im.width, im.height)};

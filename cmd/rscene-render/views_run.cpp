@@ -303,8 +303,7 @@ class ViewsRun {
     return true;
   }
 
-  void report(const render::Renderer& renderer, const ImageWriter& writer, std::uint64_t frames,
-              double seconds) const {
+  void report(const render::Renderer& renderer, const ImageWriter& writer, std::uint64_t frames, double seconds) const {
     render::RenderTimings t = renderer.timings();
     double perView = frames && !views_.empty() ? drawSeconds_ / double(frames * views_.size()) : 0;
     char line[400];

@@ -60,11 +60,21 @@ View sensorView(const robot::SensorSpec& s, int index) {
   v.noiseSeed = p.noiseSeed;
   v.outputPath = s.outputPath;
   switch (s.kind) {
-    case robot::SensorKind::Rgb: v.passes = {Pass::Color}; break;
-    case robot::SensorKind::Depth: v.passes = {Pass::Depth}; break;
-    case robot::SensorKind::Segmentation: v.passes = {Pass::Segmentation}; break;
-    case robot::SensorKind::RgbDepth: v.passes = {Pass::Color, Pass::Depth}; break;
-    default: v.passes = {Pass::Color}; break;
+    case robot::SensorKind::Rgb:
+      v.passes = {Pass::Color};
+      break;
+    case robot::SensorKind::Depth:
+      v.passes = {Pass::Depth};
+      break;
+    case robot::SensorKind::Segmentation:
+      v.passes = {Pass::Segmentation};
+      break;
+    case robot::SensorKind::RgbDepth:
+      v.passes = {Pass::Color, Pass::Depth};
+      break;
+    default:
+      v.passes = {Pass::Color};
+      break;
   }
   if (p.segmentation) addPass(v.passes, Pass::Segmentation);
   return v;
@@ -90,7 +100,8 @@ std::optional<Pose> bodyPose(const Mount& m, const RenderScene& rs, const robot:
         if (auto p = at(*links, (*model)->root)) return *p;
       break;
     }
-    case Mount::Kind::World: break;
+    case Mount::Kind::World:
+      break;
   }
   return std::nullopt;
 }
@@ -99,10 +110,14 @@ std::optional<Pose> bodyPose(const Mount& m, const RenderScene& rs, const robot:
 
 bool passesOfRenderMode(const std::string& mode, std::vector<Pass>& out) {
   out.clear();
-  if (mode == "rgb") out = {Pass::Color};
-  else if (mode == "depth") out = {Pass::Depth};
-  else if (mode == "segmentation") out = {Pass::Segmentation};
-  else if (mode == "rgb_depth") out = {Pass::Color, Pass::Depth};
+  if (mode == "rgb")
+    out = {Pass::Color};
+  else if (mode == "depth")
+    out = {Pass::Depth};
+  else if (mode == "segmentation")
+    out = {Pass::Segmentation};
+  else if (mode == "rgb_depth")
+    out = {Pass::Color, Pass::Depth};
   else {
     out = {Pass::Color};
     return false;
@@ -169,8 +184,8 @@ std::string fileNameOf(const std::string& viewName) {
   if (start == std::string::npos) return "_";
   for (std::size_t i = start; i < viewName.size(); ++i) {
     unsigned char c = static_cast<unsigned char>(viewName[i]);
-    bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-                c == '_' || c == '-';
+    bool keep =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
     out += keep ? static_cast<char>(c) : '_';
   }
   if (out.find_first_not_of('.') == std::string::npos) out.assign(out.size(), '_');  // never "." or ".."
@@ -209,10 +224,14 @@ bool expandPattern(const std::string& pattern, const OutputFields& f, std::strin
       return false;
     }
     std::string field = pattern.substr(i + 1, end - i - 1);
-    if (field == "name") out += f.name;
-    else if (field == "id") out += f.id.empty() ? f.name : f.id;
-    else if (field == "kind") out += f.kind;
-    else if (field == "time") out += f.time;
+    if (field == "name")
+      out += f.name;
+    else if (field == "id")
+      out += f.id.empty() ? f.name : f.id;
+    else if (field == "kind")
+      out += f.kind;
+    else if (field == "time")
+      out += f.time;
     else if (field == "frame") {
       std::string n = std::to_string(f.frame);
       if (n.size() < 6) out += std::string(6 - n.size(), '0');
@@ -247,8 +266,7 @@ std::string outputPathPattern(const std::string& path, bool severalKinds, bool s
   if (suffix.empty()) return path;
   std::size_t slash = path.find_last_of('/');
   std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1)
-    return path + suffix;
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1) return path + suffix;
   return path.substr(0, dot) + suffix + path.substr(dot);
 }
 

@@ -22,8 +22,8 @@
 namespace rscene::render {
 
 namespace code {
-inline constexpr const char* kRenderMode = "RS9045";   // camera renderMode not drawn as written (colour instead)
-inline constexpr const char* kOutputPath = "RS9048";   // outputPath a scene may not write (absolute, '..')
+inline constexpr const char* kRenderMode = "RS9045";  // camera renderMode not drawn as written (colour instead)
+inline constexpr const char* kOutputPath = "RS9048";  // outputPath a scene may not write (absolute, '..')
 }  // namespace code
 
 // The passes of a camera record's renderMode (canonical, as the schema
@@ -59,11 +59,11 @@ int findView(const std::vector<View>& views, const std::string& selector);
 
 // The fields of an output pattern (-o, outputPath).
 struct OutputFields {
-  std::string name;  // View::name without its leading '/', '/' -> '_', unsafe bytes -> '_'
-  std::string id;    // the record id; the {name} when it has none
-  std::string kind;  // rgb, depth, segmentation
+  std::string name;         // View::name without its leading '/', '/' -> '_', unsafe bytes -> '_'
+  std::string id;           // the record id; the {name} when it has none
+  std::string kind;         // rgb, depth, segmentation
   std::uint64_t frame = 0;  // rendered frame number, from 0, printed with 6 digits
-  std::string time;  // simulated time, shortest round-trip ("0", "0.25")
+  std::string time;         // simulated time, shortest round-trip ("0", "0.25")
 };
 
 // The {name} of a view name: no leading '/', every byte other than

@@ -12,8 +12,8 @@ namespace {
 // coordinates alike); they would only overflow the renderer's matrices.
 constexpr double kMaxCoordinate = 1e12;
 
-const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "qx", "qy", "qz",
-                                       "vx",   "vy",   "vz", "wx", "wy", "wz"};
+const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "qx", "qy",
+                                       "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
 constexpr std::size_t kCsvBodyCount = sizeof kCsvBodyColumns / sizeof *kCsvBodyColumns;
 
 bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxCoordinate; }
@@ -180,9 +180,12 @@ bool TrajectoryReader::parseCsvHeader(const std::string& text, Diagnostics& d) {
                       "' (rscene-sim --trajectory-format csv writes time,path,px,...,wz)");
   for (std::size_t i = kCsvBodyCount; i < fields.size(); ++i) {
     const std::string& name = fields[i].text;
-    if (name.rfind("q.", 0) == 0 && name.size() > 2) csvJoints_.push_back(name.substr(2));
-    else if (name.rfind("u.", 0) == 0 && name.size() > 2) csvJoints_.emplace_back();
-    else return fail(d, fields[i].column, "CSV header column '" + name + "' is neither q.JOINT nor u.JOINT");
+    if (name.rfind("q.", 0) == 0 && name.size() > 2)
+      csvJoints_.push_back(name.substr(2));
+    else if (name.rfind("u.", 0) == 0 && name.size() > 2)
+      csvJoints_.emplace_back();
+    else
+      return fail(d, fields[i].column, "CSV header column '" + name + "' is neither q.JOINT nor u.JOINT");
   }
   return true;
 }
@@ -239,7 +242,8 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
         return fail(d, 0, "empty trajectory: no line to render");
       }
     } while (line.find_first_not_of(" \t") == std::string::npos);
-    if (line.front() == '{') format_ = TrajectoryFileFormat::Jsonl;
+    if (line.front() == '{')
+      format_ = TrajectoryFileFormat::Jsonl;
     else if (line.rfind("time,", 0) == 0) {
       format_ = TrajectoryFileFormat::Csv;
       if (!parseCsvHeader(line, d) || !readLine(line, d)) {
@@ -267,8 +271,9 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
     TrajectoryEntry e;
     if (!parseLine(line, time, e, d)) return false;
     if (time < lastTime_)
-      return fail(d, 1, "time " + std::to_string(time) + " is before the previous frame's " +
-                            std::to_string(lastTime_) + " (times must not decrease)");
+      return fail(d, 1,
+                  "time " + std::to_string(time) + " is before the previous frame's " + std::to_string(lastTime_) +
+                      " (times must not decrease)");
     if (time != frame.time) {
       pendingTime_ = time;
       pending_ = std::move(e);
@@ -277,8 +282,9 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
     }
     for (const TrajectoryEntry& other : frame.entries)
       if (other.path == e.path)
-        return fail(d, e.pathColumn, "'" + e.path + "' twice at time " + std::to_string(time) +
-                                         " (first on line " + std::to_string(other.line) + ")");
+        return fail(d, e.pathColumn,
+                    "'" + e.path + "' twice at time " + std::to_string(time) + " (first on line " +
+                        std::to_string(other.line) + ")");
     if (frame.entries.size() >= limits_.maxEntriesPerFrame)
       return fail(d, 1, "more than " + std::to_string(limits_.maxEntriesPerFrame) + " lines at one time");
     frame.entries.push_back(std::move(e));
@@ -326,8 +332,10 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
     auto set = [&](std::vector<Pose>& list) {
       if (static_cast<std::size_t>(t.index) < list.size()) list[static_cast<std::size_t>(t.index)] = e.pose;
     };
-    if (t.kind == Mount::Kind::Object) set(poses.objects);
-    else if (t.kind == Mount::Kind::Compound) set(poses.compounds);
+    if (t.kind == Mount::Kind::Object)
+      set(poses.objects);
+    else if (t.kind == Mount::Kind::Compound)
+      set(poses.compounds);
     if (t.kind != Mount::Kind::Articulated) {
       if (!e.joints.empty())
         return error(e, e.joints.front().column, "'" + e.path + "' is a body, not a robot: it has no joints");
@@ -339,9 +347,9 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
     for (const TrajectoryEntry::Joint& j : e.joints) {
       auto at = r.coordinate.find(j.name);
       if (at == r.coordinate.end())
-        return error(e, j.column,
-                     "joint '" + j.name + "' is no movable joint of robot '" + e.path + "' (model '" +
-                         r.model->name + "')");
+        return error(
+            e, j.column,
+            "joint '" + j.name + "' is no movable joint of robot '" + e.path + "' (model '" + r.model->name + "')");
       q[at->second] = j.value;
     }
     // Spherical joints' quaternions as the simulator reads them: unit.

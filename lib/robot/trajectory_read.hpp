@@ -24,8 +24,8 @@
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kTrajectorySyntax = "RS9046";   // malformed trajectory line
-inline constexpr const char* kTrajectoryTarget = "RS9047";   // body or joint the scene does not have
+inline constexpr const char* kTrajectorySyntax = "RS9046";  // malformed trajectory line
+inline constexpr const char* kTrajectoryTarget = "RS9047";  // body or joint the scene does not have
 }  // namespace code
 
 // One line: a body's pose, or a robot's base pose and joint positions.
@@ -104,8 +104,7 @@ class TrajectoryPoser {
   // or robot of the scene, or a joint its robot does not have, is an error
   // naming it (RS9047 at the line in `file`), and false.  A robot's joints
   // the line leaves out are at their neutral value (rscene-sim writes all).
-  bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses,
-             Diagnostics& diagnostics) const;
+  bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics) const;
 
  private:
   struct Target {

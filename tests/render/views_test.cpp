@@ -101,7 +101,7 @@ TEST(Views, OneViewPerCameraAndCameraLikeSensor) {
 
   const View& color = b.views[4];
   EXPECT_EQ(color.passes, std::vector<Pass>{Pass::Color});
-  EXPECT_EQ(color.fx, 0);  // no calibration: the fields of view
+  EXPECT_EQ(color.fx, 0);              // no calibration: the fields of view
   EXPECT_EQ(color.camera.width, 640);  // the sensor record's defaults
   EXPECT_EQ(color.camera.verticalFov, 60);
 }
@@ -147,7 +147,8 @@ TEST(Views, ASensorOnARobotLinkMovesWithTheLink) {
   Eigen::VectorXd q = Eigen::VectorXd::Constant(c.coordinateDim, M_PI / 2);
   turned.robotLinks[0] = robot::linkPoses(*b.render.robotModels[0], c, b.scene.articulated[0].world, q);
   poseViews(b.views, b.scene, b.render, b.sensors, b.rest, turned);
-  EXPECT_TRUE(b.views[0].camera.world.position.isApprox(Eigen::Vector3d(0, -0.5, 1))) << b.views[0].camera.world.position;
+  EXPECT_TRUE(b.views[0].camera.world.position.isApprox(Eigen::Vector3d(0, -0.5, 1)))
+      << b.views[0].camera.world.position;
   std::filesystem::remove_all(dir);
 }
 

@@ -104,7 +104,8 @@ TEST(TrajectoryRead, MalformedLinesAreErrorsAtTheirLineAndColumn) {
   std::string huge = "{\"time\":0,\"path\":\"/a\",\"position\":[1e300,2,3],\"quaternion\":[1,0,0,0]}\n";
   expectError(readAll(huge), code::kTrajectorySyntax, 1, 23);
   std::string textJoint = jsonLine(0, "/r", 0, ",\"jointPositions\":{\"j\":\"x\"}");
-  expectError(readAll(textJoint), code::kTrajectorySyntax, 1, static_cast<std::uint32_t>(textJoint.find("\"joint") + 1));
+  expectError(readAll(textJoint), code::kTrajectorySyntax, 1,
+              static_cast<std::uint32_t>(textJoint.find("\"joint") + 1));
   expectError(readAll("[1,2,3]\n"), code::kTrajectorySyntax, 1, 1);
   expectError(readAll("hello\n"), code::kTrajectorySyntax, 1, 1);
 }
