@@ -134,7 +134,7 @@ constexpr CheckInfo kChecks[] = {
     // sensor records and output paths (lib/scene/sensor_check.hpp).
     {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},
     {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number (or a whole number where one is needed), an origin beyond 1e12 m"},
-    {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, unexpanded template)"},
+    {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, noise other than gaussian read as gaussian, an empty sensor attribute)"},
     {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384 or field of view outside (0, 180) degrees; sensor far plane beyond 1e12 m"},
     {"RS7065", E, Scene, VSR, "sensor calibration given in part (fx, fy, cx, cy: all four or none), or fx or fy not positive"},
     {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},

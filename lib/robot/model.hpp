@@ -85,7 +85,7 @@ struct Link {
 struct SensorDef {
   std::string set;    // the link's name (RaiSim names the set by it)
   std::string name;   // the sensor's name in the set ("color", "depth", "imu", "lidar")
-  std::string kind;   // canonical sensor_kind: rgb, depth, imu, lidar (spinning_lidar), or as written
+  std::string kind;   // canonical sensor_kind: rgb, depth, imu, lidar (spinning_lidar); others skipped (RS7062)
   int link = -1;      // index into Model::links
   Pose origin;        // in the link frame: the set's <origin> then the sensor's
   SensorParams params;  // degrees, metres, Hz (scene/scene.hpp)

@@ -290,9 +290,9 @@ bool openSensorSet(const std::string& urdfDirectory, const std::string& file, co
   if (!readXmlFile(out.path, maxBytes, out.doc, diagnostics, "sensor set file", code::kBadSensorSet)) return false;
   const XMLElement* root = out.doc.RootElement();
   if (!root || std::string(root->Name()) != "sensor_set") {
-    diagnostics.push_back(robotDiagnostic(Severity::Error, code::kBadSensorSet, out.path, root ? root->GetLineNum() : 0,
-                                          "sensor set file's root element is <" +
-                                              std::string(root ? root->Name() : "") + ">, not <sensor_set>"));
+    diagnostics.push_back(robotDiagnostic(
+        Severity::Error, code::kBadSensorSet, out.path, root ? root->GetLineNum() : 0,
+        "sensor set file's root element is <" + std::string(root ? root->Name() : "") + ">, not <sensor_set>"));
     return false;
   }
   if (const char* name = root->Attribute("name")) out.name = name;
@@ -338,9 +338,9 @@ bool readSensors(const SensorSetFile& set, const std::string& linkName, std::vec
       if (!names.insert(def.name).second) {
         // RaiSim finds a set's sensors by name: a second one of a name
         // could never be asked for.
-        diagnostics.push_back(robotDiagnostic(Severity::Warning, code::kSensorSkipped, set.path, e->GetLineNum(),
-                                              "sensor set '" + set.name + "' has a second sensor named '" +
-                                                  def.name + "'; skipped"));
+        diagnostics.push_back(
+            robotDiagnostic(Severity::Warning, code::kSensorSkipped, set.path, e->GetLineNum(),
+                            "sensor set '" + set.name + "' has a second sensor named '" + def.name + "'; skipped"));
         continue;
       }
       def.set = linkName;

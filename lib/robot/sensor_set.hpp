@@ -40,9 +40,9 @@
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kNoSensorSet = "RS7060";       // sensor set file not found in RaiSim's search order
-inline constexpr const char* kBadSensorSet = "RS7061";      // sensor set file that does not parse
-inline constexpr const char* kSensorSkipped = "RS7062";     // sensor set element skipped (warning)
+inline constexpr const char* kNoSensorSet = "RS7060";    // sensor set file not found in RaiSim's search order
+inline constexpr const char* kBadSensorSet = "RS7061";   // sensor set file that does not parse
+inline constexpr const char* kSensorSkipped = "RS7062";  // sensor set element skipped (warning)
 }  // namespace code
 
 // Where `file` (a <link sensor=> value) may be, in RaiSim's order: as is
@@ -54,8 +54,8 @@ std::vector<std::string> sensorSetCandidates(const std::string& urdfDirectory, c
 struct SensorSetFile {
   std::string path;  // the file found
   tinyxml2::XMLDocument doc;
-  std::string name;  // <sensor_set name>
-  Pose origin;       // the set's frame in the link frame
+  std::string name;                            // <sensor_set name>
+  Pose origin;                                 // the set's frame in the link frame
   const tinyxml2::XMLElement* body = nullptr;  // its <link>, nullptr when none
 };
 

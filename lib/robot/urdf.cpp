@@ -338,9 +338,12 @@ void UrdfReader::readLink(const Source& src, const XMLElement* e) {
   }
   link.name = name;
   readLinkElements(src, e, link);
-  if (const char* sensor = e->Attribute("sensor")) {
+  if (const char* sensor = e->Attribute("sensor"); sensor && *sensor) {
     link.sensorSet = sensor;
     readSensorSet(src, e, link);
+  } else if (sensor) {
+    report(Severity::Warning, code::kSensorSkipped, src, e,
+           "link '" + link.name + "' has an empty sensor attribute; no sensor set");
   }
   links_.push_back(std::move(link));
 }

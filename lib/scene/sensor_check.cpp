@@ -22,7 +22,9 @@ class Bounds {
  public:
   explicit Bounds(std::vector<SensorProblem>& out) : out_(out) {}
 
-  void add(const char* code, const char* field, std::string message) { out_.push_back({code, field, std::move(message)}); }
+  void add(const char* code, const char* field, std::string message) {
+    out_.push_back({code, field, std::move(message)});
+  }
 
   // A field of view in (0, 180) degrees; 0 allowed when `zeroIsUnset`.
   void fov(const char* field, const char* what, double v, bool zeroIsUnset) {
@@ -39,8 +41,7 @@ class Bounds {
 
   // A non-negative number no larger than kMaxLength.
   void magnitude(const char* code, const char* field, const char* what, double v) {
-    if (!(v >= 0 && v <= kMaxLength))
-      add(code, field, std::string(what) + " is " + num(v) + ", outside 0..1e12");
+    if (!(v >= 0 && v <= kMaxLength)) add(code, field, std::string(what) + " is " + num(v) + ", outside 0..1e12");
   }
 
  private:
@@ -171,8 +172,11 @@ class SensorChecker {
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind) continue;
-      if (rec.kind->tag == "sensor") sensor(i);
-      else if (rec.kind->tag == "camera") outputPath(RecordReader(doc_, i, out_), "camera");
+      // Kinds by pointer: validate runs this over scenes of millions of records.
+      if (rec.kind == sensorKind_)
+        sensor(i);
+      else if (rec.kind == cameraKind_)
+        outputPath(RecordReader(doc_, i, out_), "camera");
     }
   }
 
@@ -228,7 +232,8 @@ class SensorChecker {
       if (!namesNode(object)) return;
       what = "parentObject '" + object + "', which is not an articulated system";
     }
-    r.error("parentLink", sensor_code::kLinkWithoutRobot, "parentLink '" + link + "' is not used: the sensor has " + what,
+    r.error("parentLink", sensor_code::kLinkWithoutRobot,
+            "parentLink '" + link + "' is not used: the sensor has " + what,
             "name a robot (an articulated record) in parentObject, or remove parentLink", Severity::Warning);
   }
 
@@ -254,6 +259,8 @@ class SensorChecker {
   const Document& doc_;
   const Scene& scene_;
   Diagnostics& out_;
+  const KindDef* sensorKind_ = Schema::get().kind("sensor");
+  const KindDef* cameraKind_ = Schema::get().kind("camera");
   std::unordered_set<std::string> nodes_;
 };
 

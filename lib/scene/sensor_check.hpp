@@ -34,7 +34,7 @@ namespace rscene {
 
 namespace sensor_code {
 inline constexpr const char* kUnknownKind = "RS2007";  // lib/core's open-enumeration warning
-inline constexpr const char* kClip = "RS4012";  // lib/core's near/far check
+inline constexpr const char* kClip = "RS4012";         // lib/core's near/far check
 inline constexpr const char* kImage = "RS7064";
 inline constexpr const char* kCalibration = "RS7065";
 inline constexpr const char* kLidar = "RS7066";
@@ -58,9 +58,9 @@ inline constexpr double kMaxUpdateRate = 1e6;
 struct SensorValues {
   std::string kind;  // canonical sensor_kind
   std::int64_t width = 0, height = 0, lidarChannels = 0, lidarSamples = 0;
-  double lidarVerticalFov = 0;  // degrees: the pitch span
+  double lidarVerticalFov = 0;             // degrees: the pitch span
   std::array<bool, 4> calibrationGiven{};  // fx, fy, cx, cy written
-  SensorParams params;  // the other numbers
+  SensorParams params;                     // the other numbers
 };
 
 // One bound a sensor's numbers break: `field` is the sensor record's field

@@ -22,7 +22,8 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 std::string messages(const Diagnostics& ds) {
   std::string out;
-  for (const Diagnostic& d : ds) out += d.file + ":" + std::to_string(d.line) + ": " + d.message + " [" + d.code + "]\n";
+  for (const Diagnostic& d : ds)
+    out += d.file + ":" + std::to_string(d.line) + ": " + d.message + " [" + d.code + "]\n";
   return out;
 }
 
@@ -217,7 +218,8 @@ TEST(SensorSet, EachProblemIsReportedInTheSetFileAtItsLine) {
     bool loads;  // a warning leaves the robot loadable
   };
   const std::vector<Case> cases = {
-      {"<sensor_set name=\"s\">\n<sensor name=\"a\"\n</sensor_set>\n", "RS7061", 2, false},  // not well-formed: the element left open
+      {"<sensor_set name=\"s\">\n<sensor name=\"a\"\n</sensor_set>\n", "RS7061", 2,
+       false},  // not well-formed: the element left open
       {"<robot name=\"s\"/>\n", "RS7061", 1, false},
       {setWith("<sensor type=\"imu\"/>"), "RS7061", 4, false},
       {setWith("<sensor name=\"a\" type=\"imu\" update_rate=\"fast\"/>"), "RS7061", 4, false},
@@ -236,15 +238,16 @@ TEST(SensorSet, EachProblemIsReportedInTheSetFileAtItsLine) {
       {setWith("<sensor name=\"a\" type=\"rgb\">\n<camera>\n<image width=\"1e30\" height=\"48\"/></camera></sensor>"),
        "RS7064", 6, false},
       {setWith("<sensor name=\"a\" type=\"depth\">\n<camera horizontal_fov=\"3.2\"/></sensor>"), "RS7064", 5, false},
-      {setWith("<sensor name=\"a\" type=\"depth\">\n<camera>\n<clip near=\"2\" far=\"1\"/></camera></sensor>"), "RS4012",
-       6, false},
+      {setWith("<sensor name=\"a\" type=\"depth\">\n<camera>\n<clip near=\"2\" far=\"1\"/></camera></sensor>"),
+       "RS4012", 6, false},
       {setWith("<sensor name=\"a\" type=\"spinning_lidar\">\n<yaw samples=\"1000000\"/>\n<pitch samples=\"1000000\" "
                "min_angle=\"-0.1\" max_angle=\"0.1\"/></sensor>"),
        "RS7066", 5, false},
       {setWith("<sensor name=\"a\" type=\"spinning_lidar\">\n<pitch samples=\"16\" min_angle=\"0.1\" "
                "max_angle=\"-0.1\"/></sensor>"),
        "RS7066", 5, false},
-      {setWith("<sensor name=\"a\" type=\"spinning_lidar\">\n<range min=\"5\" max=\"1\"/></sensor>"), "RS7066", 5, false},
+      {setWith("<sensor name=\"a\" type=\"spinning_lidar\">\n<range min=\"5\" max=\"1\"/></sensor>"), "RS7066", 5,
+       false},
       {setWith("<sensor name=\"a\" type=\"imu\" update_rate=\"-1\"/>"), "RS7067", 4, false},
       {setWith("<sensor name=\"a\" type=\"imu\">\n<limit acc_limit=\"-5\"/></sensor>"), "RS7067", 5, false},
   };
@@ -275,15 +278,27 @@ TEST(SensorSet, TwoLinksNamingOneBrokenFileHearOfItOnce) {
   EXPECT_EQ(l.diagnostics.size(), 1u) << messages(l.diagnostics);
 }
 
+TEST(SensorSet, AnEmptySensorAttributeIsAWarning) {
+  Scratch dir;
+  std::string urdf = dir.write("r.urdf", robotNaming(""));
+  Loaded l = loadRobot(urdf);
+  ASSERT_TRUE(l.ok);
+  ASSERT_EQ(l.diagnostics.size(), 1u) << messages(l.diagnostics);
+  EXPECT_EQ(l.diagnostics[0].code, "RS7062");
+  EXPECT_EQ(l.diagnostics[0].line, 3u);
+  EXPECT_TRUE(l.model.sensors.empty());
+}
+
 // ---------------------------------------------------------------------------
 // Values
 
 TEST(SensorSet, DefaultsAreTheSensorRecordsAndOriginsCompose) {
   Scratch dir;
   std::string urdf = dir.write("r.urdf", robotNaming("s.xml"));
-  dir.write("s.xml", setWith("<sensor name=\"c\" type=\"camera\">\n<origin xyz=\"1 0 0\" rpy=\"0 0 1.5707963267948966\"/>"
-                             "\n</sensor>\n<sensor name=\"l\" type=\"lidar\"><update_rate>15</update_rate></sensor>",
-                             "<origin xyz=\"0 0 0.5\" rpy=\"0 0 1.5707963267948966\"/>"));
+  dir.write("s.xml",
+            setWith("<sensor name=\"c\" type=\"camera\">\n<origin xyz=\"1 0 0\" rpy=\"0 0 1.5707963267948966\"/>"
+                    "\n</sensor>\n<sensor name=\"l\" type=\"lidar\"><update_rate>15</update_rate></sensor>",
+                    "<origin xyz=\"0 0 0.5\" rpy=\"0 0 1.5707963267948966\"/>"));
   Loaded l = loadRobot(urdf);
   ASSERT_TRUE(l.ok) << messages(l.diagnostics);
   EXPECT_TRUE(l.diagnostics.empty()) << messages(l.diagnostics);

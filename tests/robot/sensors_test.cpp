@@ -68,12 +68,17 @@ class SensorsTest : public ::testing::Test {
   // The scene: the arm at (2, 0, 0) with its shoulder at `angle`, a box,
   // and `sensors` (records).
   void build(double angle, const std::string& sensors) {
-    text_ = "raisim_engine_scene 2\n"
-            "articulated_resource arm Arm " + dir_ + "/arm.urdf\n"
-            "articulated /World/Arm arm 2 0 0 1 0 0 0 true true id=robot generalizedCoordinate=" +
-            exact(angle) + "\n"
-            "object /World/Box box 0 0 5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic "
-            "true 1 18446744073709551615 id=box\n" + sensors;
+    text_ =
+        "raisim_engine_scene 2\n"
+        "articulated_resource arm Arm " +
+        dir_ +
+        "/arm.urdf\n"
+        "articulated /World/Arm arm 2 0 0 1 0 0 0 true true id=robot generalizedCoordinate=" +
+        exact(angle) +
+        "\n"
+        "object /World/Box box 0 0 5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic "
+        "true 1 18446744073709551615 id=box\n" +
+        sensors;
     LoadResult loaded = parse(text_);
     ASSERT_TRUE(loaded.ok());
     doc_ = std::move(loaded.document);
@@ -193,9 +198,10 @@ TEST_F(SensorsTest, AnUnknownParentLinkIsOneFindingWhoeverAsks) {
   ModelCache cache;
   Document doc;
   CollectDiagnostics found;
-  validateScene(text_, CheckOptions{}, doc, found, [&](const Document& dd, const Scene& s, std::vector<SceneFinding>& out) {
-    checkRobots(dd, s, RobotCheckOptions{}, cache, out);
-  });
+  validateScene(text_, CheckOptions{}, doc, found,
+                [&](const Document& dd, const Scene& s, std::vector<SceneFinding>& out) {
+                  checkRobots(dd, s, RobotCheckOptions{}, cache, out);
+                });
   int count = 0;
   for (const Diagnostic& x : found.all)
     if (x.code == "RS7045") {

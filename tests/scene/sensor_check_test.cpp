@@ -68,8 +68,8 @@ std::string at(const std::string& text, const char* field) {
   // Column of `field=` (or of the kind for "kind") on the last line.
   std::size_t lineStart = text.rfind('\n', text.size() - 2) + 1;
   std::string line = text.substr(lineStart);
-  std::size_t col = std::string(field) == "kind" ? line.find(' ', 7) + 1 : line.find(std::string(field) + "=") +
-                                                                                std::string(field).size() + 1;
+  std::size_t col = std::string(field) == "kind" ? line.find(' ', 7) + 1
+                                                 : line.find(std::string(field) + "=") + std::string(field).size() + 1;
   return std::to_string(col + 1);
 }
 
@@ -80,7 +80,8 @@ TEST(SensorCheck, EachBoundFiresAtItsFieldAndNotWithinIt) {
       {"RS7064", "height", sensor("depth", "height=16385"), sensor("depth", "height=16384")},
       {"RS7064", "verticalFov", sensor("rgb", "verticalFov=180"), sensor("rgb", "verticalFov=179.9")},
       {"RS7064", "verticalFov", sensor("rgb", "verticalFov=0"), sensor("rgb", "verticalFov=0.1")},
-      {"RS7064", "horizontalFov", sensor("segmentation", "horizontalFov=-1"), sensor("segmentation", "horizontalFov=0")},
+      {"RS7064", "horizontalFov", sensor("segmentation", "horizontalFov=-1"),
+       sensor("segmentation", "horizontalFov=0")},
       // lib/core's near/far code, for every kind (validate's core check says it of any sensor).
       {"RS4012", "nearPlane", sensor("rgb_depth", "nearPlane=0"), sensor("rgb_depth", "nearPlane=0.001")},
       {"RS4012", "farPlane", sensor("imu", "nearPlane=2 farPlane=2"), sensor("imu", "nearPlane=2 farPlane=2.5")},
@@ -91,7 +92,8 @@ TEST(SensorCheck, EachBoundFiresAtItsFieldAndNotWithinIt) {
        sensor("depth", "calibrationFx=500 calibrationFy=1 calibrationCx=0 calibrationCy=0")},
       {"RS7066", "lidarSamples", sensor("lidar", "lidarChannels=64 lidarSamples=65537"),
        sensor("lidar", "lidarChannels=64 lidarSamples=65536")},
-      {"RS7066", "lidarChannels", sensor("spinning_lidar", "lidarChannels=0"), sensor("spinning_lidar", "lidarChannels=1")},
+      {"RS7066", "lidarChannels", sensor("spinning_lidar", "lidarChannels=0"),
+       sensor("spinning_lidar", "lidarChannels=1")},
       {"RS7066", "lidarMinRange", sensor("lidar", "lidarMinRange=-0.1"), sensor("lidar", "lidarMinRange=0")},
       {"RS7066", "lidarMaxRange", sensor("lidar", "lidarMinRange=5 lidarMaxRange=5"),
        sensor("lidar", "lidarMinRange=5 lidarMaxRange=5.01")},
@@ -156,7 +158,7 @@ TEST(SensorCheck, MessagesNameTheValueAndTheBound) {
   d = checked(H + sensor("rgb", "calibrationCx=1 calibrationFx=2"));
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].message, "calibration given in part: calibrationFy, calibrationCy missing");
-  EXPECT_EQ(d[0].field, "calibrationFx");  // the first of the four that is written
+  EXPECT_EQ(d[0].field, "calibrationFx");         // the first of the four that is written
   d = checked(H + sensor("rgb", "width=99999"));  // the scene model keeps 0; the message the value written
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].message, "image width is 99999, outside 1..16384");
