@@ -286,6 +286,13 @@ TEST(Passes, NoiseValuesAreFixedAcrossPlatforms) {
   addDepthNoise(e, 0, 0.1, 7);
   EXPECT_EQ(d[0], e[0]);  // a pixel's noise does not depend on its neighbours
   EXPECT_EQ(d[2], e[2]);
+  // Pinned: a change of generator changes every noisy image users compared.
+  std::vector<float> f = {1.0f, 2.0f, 3.0f, 4.0f};
+  addDepthNoise(f, 0, 0.1, 7);
+  EXPECT_NEAR(f[0], 1.00543582, 1e-6);
+  EXPECT_NEAR(f[1], 1.85910928, 1e-6);
+  EXPECT_NEAR(f[2], 2.89418769, 1e-6);
+  EXPECT_NEAR(f[3], 4.00341606, 1e-6);
   std::vector<float> zero = {1.0f};
   addDepthNoise(zero, 0, 0, 7);
   EXPECT_EQ(zero[0], 1.0f);
