@@ -89,6 +89,11 @@ npy_shape() {
   [ "$(png_size one.png)" = "64x48" ]
   [ "$(png_format one.png)" = "8 6" ]
   [ ! -e caps ]
+  # The same pixels by the many-view path, round shapes included.
+  printf 'object /World/Ball sphere -1 0.5 0.6 1 0 0 0 1 1 1 0.3 1 1 default - false true false - dynamic true 1 18446744073709551615\n' >> s.rscene
+  "$RENDER" s.rscene --camera cam -o one.png
+  "$RENDER" s.rscene --camera cam -o 'p/{kind}.png'
+  cmp one.png p/rgb.png
 }
 
 @test "an outputPath outside the current folder is refused; nothing is written" {

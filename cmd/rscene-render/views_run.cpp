@@ -75,7 +75,13 @@ class ViewsRun {
     auto context = openContext(opt_.backend, opt_.verbose);
     if (!context) return cli::kTrouble;
     Diagnostics diags;
-    auto renderer = render::Renderer::create(p_.renderScene, p_.renderOptions, diags);
+    // One frame: round shapes tessellated for these views, as a single
+    // camera's render is (same pixels).  Along a trajectory the views move:
+    // create() tessellates for any view.
+    std::vector<Camera> lod;
+    for (const View& v : views_) lod.push_back(v.camera);
+    auto renderer = reader ? render::Renderer::create(p_.renderScene, p_.renderOptions, diags)
+                           : render::createRenderer(p_.renderScene, p_.renderOptions, diags, std::move(lod));
     if (!print(diags) || !renderer) return cli::kTrouble;
     cli::stopOnInterrupt(&interrupted);
     // Encoding and writing overlap drawing; llvmpipe draws on the other cores.
