@@ -28,7 +28,7 @@ is_png() {
   run "$RENDER" --help
   [ "$status" -eq 0 ]
   for f in --output --width --height --samples --max-pixels --max-instances --max-texture-pixels \
-           --transparent --backend --camera --stdin-filename \
+           --transparent --backend --camera --all-cameras --trajectory --every --stdin-filename \
            --base-dir --allow-missing-assets --reference --threshold --diff-output --verbose --version; do
     [[ "$output" == *"$f"* ]] || { echo "missing $f"; return 1; }
   done
@@ -184,7 +184,7 @@ is_png() {
 @test "nothing to write is a usage error" {
   run "$RENDER" "$DATA/render_mesh.rscene"
   [ "$status" -eq 2 ]
-  [ "$output" = "rscene-render: error: nothing to write: give -o FILE (-o - for standard output) or --reference FILE" ]
+  [ "$output" = "rscene-render: error: nothing to write: give -o FILE (-o - for standard output), -o PATTERN or --reference FILE ('/World/Cam' has no outputPath)" ]
   run "$RENDER" "$DATA/render_mesh.rscene" -o x.png --diff-output d.png
   [ "$status" -eq 2 ]
   [ "$output" = "rscene-render: error: --diff-output needs --reference" ]

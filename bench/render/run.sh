@@ -4,7 +4,8 @@
 # (its meshes are not in the corpus: --allow-missing-assets draws
 # placeholders; skipped when ../shared is absent), (b) the 5000-object
 # scene of bench/render/gen.sh and (c) one and sixteen ANYmal C robots of
-# bench/render/robots.sh (../shared's URDF, meshes and textures).  Prints rscene-render -v's split (start-up =
+# bench/render/robots.sh (../shared's URDF, meshes and textures); then
+# bench/render/views.sh (many views and trajectory frames).  Prints rscene-render -v's split (start-up =
 # EGL context, scene build, upload, drawing, PNG encoding), the process's
 # wall and CPU time, best of RUNS, and the targets' verdicts.
 #   bash bench/render/run.sh BIN_DIR [BASELINE_RSCENE_RENDER]
@@ -88,4 +89,7 @@ echo "targets (issue 6):"
 s="$DIR/objects5000.rscene"
 [[ -n ${TOTAL[now,$s]:-} ]] && verdict "5000-object scene, total seconds" "${TOTAL[now,$s]}" "<" 2
 [[ -n ${START[now,$s]:-} ]] && verdict "start-up (EGL context) seconds" "${START[now,$s]}" "<" 0.2
+# Many views (issue 12): ANYmal C's sensor cameras along 100 frames, 8 views in one run against 8 runs.
+echo
+bash "$HERE/views.sh" "$BIN" || status=1
 exit $status

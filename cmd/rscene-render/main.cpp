@@ -1,5 +1,7 @@
 // rscene-render: headless EGL render of a scene's camera to PNG, with an
-// optional comparison against a baseline image.
+// optional comparison against a baseline image; or of many views (every
+// camera and camera-like sensor, RGB, depth, segmentation) along a
+// trajectory (views_run.cpp).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +18,7 @@
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
 #include "rscene-render/baseline.hpp"
+#include "rscene-render/views_run.hpp"
 
 namespace {
 
@@ -30,6 +33,7 @@ struct Options {
   std::uint64_t maxTexturePixels = render::RenderOptions{}.maxTexturePixels;
   bool transparent = false, allowMissing = false, verbose = false;
   render_cli::BaselineOptions baseline;
+  render_cli::ViewsOptions views;
 };
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -60,8 +64,9 @@ int run(const Options& opt) {
   asset::AssetCache assets(diskFileSystem(), render::assetLimits(ro));
   ro.assets = &assets;
   render::RenderScene scene;
+  Scene model;
   Diagnostics diags;
-  bool built = render::buildRenderScene(loaded.document, so, scene, diags, opt.limits, &assets);
+  bool built = render::buildRenderScene(loaded.document, so, model, scene, diags, opt.limits, &assets);
   cli::hintStdinPaths(in, opt.baseDir, diags);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;
@@ -69,7 +74,15 @@ int run(const Options& opt) {
 
   Camera camera;
   std::string err;
-  if (!render::chooseCamera(scene, opt.camera, camera, &err)) {
+  bool cameraRecord = render::chooseCamera(scene, opt.camera, camera, &err);
+  if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord)) {
+    ro.samples = opt.samples;
+    ro.transparent = opt.transparent;
+    ro.allowMissingAssets = opt.allowMissing;
+    render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
+    return render_cli::renderViews(opt.views, prepared);
+  }
+  if (!cameraRecord) {
     cli::error(err);
     return cli::kTrouble;
   }
@@ -97,21 +110,9 @@ int run(const Options& opt) {
   double buildSeconds = since(tBuild);
 
   auto tStart = Clock::now();
-  render::Backend backend = opt.backend == "gpu" ? render::Backend::Gpu
-                            : opt.backend == "cpu" ? render::Backend::Cpu
-                                                   : render::Backend::Auto;
-  auto context = render::GlContext::create(backend, &err);
-  if (!context) {
-    cli::error("cannot create an OpenGL context (--backend " + opt.backend + "): " + err);
-    return cli::kTrouble;
-  }
+  auto context = render_cli::openContext(opt.backend, opt.verbose);
+  if (!context) return cli::kTrouble;
   double startSeconds = since(tStart);
-  if (opt.verbose) {
-    const render::ContextInfo& i = context->info();
-    std::cerr << cli::toolName() << ": backend " << i.backend << " via EGL " << i.platform
-              << (i.device.empty() ? "" : " " + i.device) << ", EGL vendor " << i.eglVendor << ", GL vendor "
-              << i.vendor << ", renderer " << i.renderer << ", " << i.version << '\n';
-  }
 
   render::Image image;
   render::RenderTimings timings;
@@ -142,6 +143,29 @@ int run(const Options& opt) {
   return render_cli::checkBaseline(image, png, opt.baseline);
 }
 
+// The many-view flags that do not go together; -1 when they do.
+int checkViewFlags(const CLI::App& app, Options& opt) {
+  render_cli::ViewsOptions& v = opt.views;
+  auto refuse = [](const std::string& message) {
+    cli::error(message);
+    return static_cast<int>(cli::kTrouble);
+  };
+  if (v.allCameras && !opt.camera.empty()) return refuse("--all-cameras and --camera: give one of them");
+  if (app.count("--every") && v.trajectory.empty()) return refuse("--every needs --trajectory");
+  if (v.trajectory == "-" && (opt.file == "-" || opt.file.empty()))
+    return refuse("--trajectory - reads standard input, which the scene is read from: name the scene file");
+  if (!opt.baseline.reference.empty() && (v.allCameras || !v.trajectory.empty()))
+    return refuse("--reference compares one image: not with --all-cameras or --trajectory");
+  v.camera = opt.camera;
+  v.output = opt.output;
+  v.width = opt.width;
+  v.height = opt.height;
+  v.maxPixels = opt.maxPixels;
+  v.backend = opt.backend;
+  v.verbose = opt.verbose;
+  return -1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -149,7 +173,9 @@ int main(int argc, char** argv) {
   cli::setup(app, "rscene-render");
   Options opt;
   cli::addInputOperand(app, opt.file);
-  cli::addOutputOption(app, opt.output, "Write the PNG to FILE (atomically); - writes standard output");
+  cli::addOutputOption(app, opt.output,
+                       "Write the PNG to FILE (atomically; - writes standard output), or to a PATTERN with "
+                       "{name} {id} {kind} {frame} {time} for many views and frames (default: each record's outputPath)");
   app.add_option("--width", opt.width, "Image width in pixels (default: the camera's, else 1280)")
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", opt.height, "Image height in pixels (default: the camera's, else 720)")
@@ -168,8 +194,18 @@ int main(int argc, char** argv) {
   app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
   app.add_option("--backend", opt.backend, "auto (GPU if one answers, else CPU), gpu (EGL device) or cpu (llvmpipe)")
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
-  app.add_option("--camera", opt.camera, "Camera path or id, or auto for a three-quarter view of everything")
+  app.add_option("--camera", opt.camera,
+                 "Camera or camera-like sensor by path or id (ROBOT/SET/SENSOR for a URDF sensor), or auto for a "
+                 "three-quarter view of everything")
       ->type_name("PATH|ID|auto");
+  app.add_flag("--all-cameras", opt.views.allCameras,
+               "Render every enabled camera record and camera-like sensor (URDF sensor sets too), each pass of each");
+  app.add_option("--trajectory", opt.views.trajectory,
+                 "Render every frame of what rscene-sim --trajectory wrote (JSON Lines or CSV); - reads standard input")
+      ->type_name("FILE");
+  app.add_option("--every", opt.views.every, "With --trajectory, render every K-th frame (default 1: all)")
+      ->type_name("K")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   app.add_flag("--allow-missing-assets", opt.allowMissing,
@@ -185,10 +221,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
-  if (opt.output.empty() && opt.baseline.reference.empty()) {
-    cli::error("nothing to write: give -o FILE (-o - for standard output) or --reference FILE");
-    return cli::kTrouble;
-  }
+  if (int rc = checkViewFlags(app, opt); rc >= 0) return rc;
   if (!opt.baseline.diffOutput.empty() && opt.baseline.reference.empty()) {
     cli::error("--diff-output needs --reference");
     return cli::kTrouble;
@@ -196,7 +229,9 @@ int main(int argc, char** argv) {
   // A reference that exists is an input no output may replace; one that
   // does not is where this render goes.
   bool referenceWritten = !opt.baseline.reference.empty() && !fileExistsOnDisk(opt.baseline.reference);
-  if (!cli::checkOutputs({{"-o", opt.output},
+  // An -o pattern is checked file by file once the views are known.
+  bool pattern = opt.output.find('{') != std::string::npos;
+  if (!cli::checkOutputs({{"-o", pattern ? std::string() : opt.output},
                           {"--diff-output", opt.baseline.diffOutput},
                           {"--reference", opt.baseline.reference, referenceWritten}}))
     return cli::kTrouble;

@@ -161,6 +161,11 @@ constexpr CheckInfo kChecks[] = {
     {"RS9030", W, Render, "render", "articulated system whose model has no visual elements: nothing is drawn"},
     // RS904x render passes and views (rgb, depth, segmentation)
     {"RS9040", E, Render, "render", "view that cannot be drawn: image size, intrinsics or near/far planes out of range"},
+    // RS904x views, output names and trajectories (rscene-render --all-cameras, --trajectory)
+    {"RS9045", W, Render, "render", "camera renderMode rscene-render does not draw as written: the color image is drawn"},
+    {"RS9046", E, Render, "render", "malformed --trajectory line (not what rscene-sim --trajectory writes)"},
+    {"RS9047", E, Render, "render", "--trajectory names a body, robot or joint the scene does not have"},
+    {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
 };
 
 }  // namespace

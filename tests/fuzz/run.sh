@@ -8,6 +8,7 @@
 #   fuzz_sim        rscene-sim's world build and 20 steps (meshes missing)
 #   fuzz_render_scene  rscene-render's scene preparation, without GL
 #   fuzz_urdf       the URDF reader (seeds: tests/data/robots/urdf, examples/robots)
+#   fuzz_trajectory rscene-render --trajectory's reader (seeds: a JSON Lines and a CSV trajectory)
 # Exit status: 0 when nothing was found, non-zero on a crash, a leak, a
 # timeout or a broken invariant (the inputs are in build-fuzz/fuzz-artifacts/).
 #
@@ -26,7 +27,7 @@ fi
 CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRSCENE_FUZZ=ON -DRSCENE_BUILD_TOOLS=OFF -DRSCENE_BUILD_TESTS=OFF > "$BUILD.configure.log" 2>&1 ||
   { cat "$BUILD.configure.log" >&2; exit 2; }
-TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene fuzz_urdf})
+TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene fuzz_urdf fuzz_trajectory})
 cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_seeds
 
 # The working corpora live in the build directory: libFuzzer adds the
@@ -44,6 +45,12 @@ for f in "$ROOT"/tests/data/robots/urdf/*.urdf "$ROOT"/examples/robots/*/*.urdf 
   "$ROOT"/../shared/corpus/robots/*/urdf/*.urdf; do
   cp -f "$f" "$BUILD/fuzz-corpus-urdf/seed_$(basename "$(dirname "$f")")_$(basename "$f")"
 done
+mkdir -p "$BUILD/fuzz-corpus-trajectory"
+printf '%s\n' '{"time":0,"path":"/box","position":[0,0,1],"quaternion":[1,0,0,0],"linearVelocity":[0,0,0],"angularVelocity":[0,0,0]}' \
+  '{"time":0,"path":"/arm","position":[0,0,1],"quaternion":[1,0,0,0],"jointPositions":{"j1_qw":1,"j1_qx":0,"j1_qy":0,"j1_qz":0}}' \
+  '{"time":0.5,"path":"/box","position":[0,0,0.9],"quaternion":[1,0,0,0]}' > "$BUILD/fuzz-corpus-trajectory/seed.jsonl"
+printf '%s\n' 'time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.j1_qw,u.j1_wx' '0,/box,0,0,1,1,0,0,0,0,0,0,0,0,0,,' \
+  '0,"/arm",0,0,1,1,0,0,0,0,0,0,0,0,0,1,0' '0.5,/box,0,0,0.9,1,0,0,0,0,0,0,0,0,0,,' > "$BUILD/fuzz-corpus-trajectory/seed.csv"
 URDF_DICT=$BUILD/fuzz-urdf.dict
 printf '%s\n' '"<link name=\"a\">"' '"</link>"' '"<joint name=\"j\" type=\"spherical\">"' '"type=\"floating\""' \
   '"<parent link=\"world\"/>"' '"<child link=\"a\"/>"' '"<origin xyz=\"0 0 1\" rpy=\"0 1 0\"/>"' \
@@ -92,6 +99,7 @@ for target in "${TARGETS[@]}"; do
     fuzz_sim) corpus=$BUILD/fuzz-corpus-sim dict=$DICT ;;
     fuzz_render_scene) corpus=$BUILD/fuzz-corpus-render dict=$DICT ;;
     fuzz_urdf) corpus=$BUILD/fuzz-corpus-urdf dict=$URDF_DICT ;;
+    fuzz_trajectory) corpus=$BUILD/fuzz-corpus-trajectory dict=$JSON_DICT ;;
     *) echo "tests/fuzz/run.sh: error: unknown target '$target'" >&2; exit 2 ;;
   esac
   echo "$target: fuzzing for ${SECONDS_TO_RUN}s from $(find "$corpus" -type f | wc -l) inputs, $(wc -l < "$dict") dictionary entries"

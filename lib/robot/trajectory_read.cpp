@@ -1,0 +1,369 @@
+#include "robot/trajectory_read.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/text.hpp"
+
+namespace rscene::robot {
+namespace {
+
+// Positions past this are not a simulation's (scene/limits.hpp caps scene
+// coordinates alike); they would only overflow the renderer's matrices.
+constexpr double kMaxCoordinate = 1e12;
+
+const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "qx", "qy",
+                                       "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
+constexpr std::size_t kCsvBodyCount = sizeof kCsvBodyColumns / sizeof *kCsvBodyColumns;
+
+bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxCoordinate; }
+
+// One CSV field: its decoded text and its 1-based column.
+struct CsvField {
+  std::string text;
+  std::uint32_t column = 0;
+};
+
+// Splits a CSV line as trajectory.cpp's csvField() quotes it (RFC 4180: a
+// field in double quotes, "" inside for a quote).  False on an unclosed
+// quote or text after a closing quote; `bad` is the column.
+bool splitCsv(const std::string& line, std::vector<CsvField>& out, std::uint32_t& bad) {
+  out.clear();
+  std::size_t i = 0;
+  for (;;) {
+    CsvField f;
+    f.column = static_cast<std::uint32_t>(i + 1);
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      for (;;) {
+        if (i >= line.size()) {
+          bad = f.column;
+          return false;
+        }
+        if (line[i] == '"') {
+          if (i + 1 < line.size() && line[i + 1] == '"') {
+            f.text += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        f.text += line[i++];
+      }
+      if (i < line.size() && line[i] != ',') {
+        bad = static_cast<std::uint32_t>(i + 1);
+        return false;
+      }
+    } else {
+      std::size_t end = line.find(',', i);
+      if (end == std::string::npos) end = line.size();
+      f.text = line.substr(i, end - i);
+      i = end;
+    }
+    out.push_back(std::move(f));
+    if (i >= line.size()) return true;
+    ++i;  // the comma
+  }
+}
+
+// The column of `"key"` in a JSON line, for messages (1 when absent).
+std::uint32_t keyColumn(const std::string& line, const char* key) {
+  std::size_t at = line.find('"' + std::string(key) + '"');
+  return at == std::string::npos ? 1 : static_cast<std::uint32_t>(at + 1);
+}
+
+}  // namespace
+
+TrajectoryReader::TrajectoryReader(std::istream& in, std::string file, TrajectoryLimits limits)
+    : in_(in), file_(std::move(file)), limits_(limits) {}
+
+TrajectoryReader::~TrajectoryReader() = default;
+
+bool TrajectoryReader::fail(Diagnostics& d, std::uint32_t column, std::string message) {
+  Diagnostic x;
+  x.code = code::kTrajectorySyntax;
+  x.file = file_;
+  x.line = lineNumber_;
+  x.column = column;
+  x.message = std::move(message);
+  d.push_back(std::move(x));
+  failed_ = true;
+  return false;
+}
+
+// Reads one line without its end (LF or CRLF) into `out`, never holding
+// more than maxLineBytes of it.  False at the end of the input (or on an
+// over-long line: failed_ then set).
+bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
+  out.clear();
+  std::streambuf* sb = in_.rdbuf();
+  if (!sb) return false;
+  bool any = false;
+  for (;;) {
+    int c = sb->sbumpc();
+    if (c == std::char_traits<char>::eof()) break;
+    any = true;
+    if (c == '\n') break;
+    if (out.size() >= limits_.maxLineBytes) {
+      ++lineNumber_;
+      return fail(d, 1,
+                  "trajectory line longer than " + std::to_string(limits_.maxLineBytes) +
+                      " bytes (is this a trajectory file?)");
+    }
+    out += static_cast<char>(c);
+  }
+  if (!any) return false;
+  ++lineNumber_;
+  if (!out.empty() && out.back() == '\r') out.pop_back();
+  return true;
+}
+
+bool TrajectoryReader::parseJson(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
+  nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded()) return fail(d, 1, "not a JSON object (rscene-sim --trajectory writes one per line)");
+  if (!j.is_object()) return fail(d, 1, "a trajectory line is a JSON object");
+  auto number = [&](const nlohmann::json& v, const char* key, double& out) {
+    if (!v.is_number()) return fail(d, keyColumn(text, key), std::string(key) + " is not a number");
+    out = v.get<double>();
+    if (!finiteBounded(out))
+      return fail(d, keyColumn(text, key), std::string(key) + " out of range (|value| at most 1e12)");
+    return true;
+  };
+  auto vec = [&](const char* key, double* out, std::size_t n) {
+    auto it = j.find(key);
+    if (it == j.end()) return fail(d, 1, std::string("no \"") + key + "\" in the line");
+    if (!it->is_array() || it->size() != n)
+      return fail(d, keyColumn(text, key), std::string(key) + " is not an array of " + std::to_string(n) + " numbers");
+    for (std::size_t i = 0; i < n; ++i)
+      if (!number((*it)[i], key, out[i])) return false;
+    return true;
+  };
+  auto t = j.find("time");
+  if (t == j.end()) return fail(d, 1, "no \"time\" in the line");
+  if (!number(*t, "time", time)) return false;
+  auto p = j.find("path");
+  if (p == j.end() || !p->is_string()) return fail(d, keyColumn(text, "path"), "no \"path\" string in the line");
+  e.path = p->get<std::string>();
+  // At the path's value: the opening quote after "path":.
+  std::size_t value = text.find('"', text.find(':', keyColumn(text, "path") + 5));
+  e.pathColumn = value == std::string::npos ? 1 : static_cast<std::uint32_t>(value + 1);
+  double pos[3], quat[4];
+  if (!vec("position", pos, 3) || !vec("quaternion", quat, 4)) return false;
+  Eigen::Quaterniond q(quat[0], quat[1], quat[2], quat[3]);
+  if (q.norm() < 1e-12) return fail(d, keyColumn(text, "quaternion"), "quaternion of zero length");
+  e.pose = {{pos[0], pos[1], pos[2]}, q.normalized()};
+  if (auto jp = j.find("jointPositions"); jp != j.end()) {
+    std::uint32_t column = keyColumn(text, "jointPositions");
+    if (!jp->is_object()) return fail(d, column, "jointPositions is not an object of joint names and numbers");
+    for (auto it = jp->begin(); it != jp->end(); ++it) {
+      TrajectoryEntry::Joint joint;
+      joint.name = it.key();
+      joint.column = column;
+      if (!it->is_number()) return fail(d, column, "joint '" + joint.name + "' is not a number");
+      joint.value = it->get<double>();
+      if (!finiteBounded(joint.value)) return fail(d, column, "joint '" + joint.name + "' out of range");
+      e.joints.push_back(std::move(joint));
+    }
+  }
+  return true;
+}
+
+bool TrajectoryReader::parseCsvHeader(const std::string& text, Diagnostics& d) {
+  std::vector<CsvField> fields;
+  std::uint32_t bad = 0;
+  if (!splitCsv(text, fields, bad)) return fail(d, bad, "malformed CSV header (unclosed quote)");
+  for (std::size_t i = 0; i < kCsvBodyCount; ++i)
+    if (i >= fields.size() || fields[i].text != kCsvBodyColumns[i])
+      return fail(d, i < fields.size() ? fields[i].column : static_cast<std::uint32_t>(text.size() + 1),
+                  std::string("CSV header column ") + std::to_string(i + 1) + " is not '" + kCsvBodyColumns[i] +
+                      "' (rscene-sim --trajectory-format csv writes time,path,px,...,wz)");
+  for (std::size_t i = kCsvBodyCount; i < fields.size(); ++i) {
+    const std::string& name = fields[i].text;
+    if (name.rfind("q.", 0) == 0 && name.size() > 2)
+      csvJoints_.push_back(name.substr(2));
+    else if (name.rfind("u.", 0) == 0 && name.size() > 2)
+      csvJoints_.emplace_back();
+    else
+      return fail(d, fields[i].column, "CSV header column '" + name + "' is neither q.JOINT nor u.JOINT");
+  }
+  return true;
+}
+
+bool TrajectoryReader::parseCsv(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
+  std::vector<CsvField> f;
+  std::uint32_t bad = 0;
+  if (!splitCsv(text, f, bad)) return fail(d, bad, "malformed CSV field (unclosed quote)");
+  std::size_t want = kCsvBodyCount + csvJoints_.size();
+  if (f.size() != want)
+    return fail(d, f.size() > want ? f[want].column : static_cast<std::uint32_t>(text.size() + 1),
+                std::to_string(f.size()) + " fields where the header has " + std::to_string(want));
+  double v[kCsvBodyCount];
+  for (std::size_t i = 0; i < kCsvBodyCount; ++i) {
+    if (i == 1) continue;
+    std::optional<double> n = parseNumber(f[i].text);
+    if (!n || !finiteBounded(*n))
+      return fail(d, f[i].column, std::string(kCsvBodyColumns[i]) + " '" + f[i].text + "' is not a number in range");
+    v[i] = *n;
+  }
+  time = v[0];
+  e.path = f[1].text;
+  e.pathColumn = f[1].column;
+  Eigen::Quaterniond q(v[5], v[6], v[7], v[8]);
+  if (q.norm() < 1e-12) return fail(d, f[5].column, "quaternion of zero length");
+  e.pose = {{v[2], v[3], v[4]}, q.normalized()};
+  for (std::size_t k = 0; k < csvJoints_.size(); ++k) {
+    const CsvField& cell = f[kCsvBodyCount + k];
+    if (csvJoints_[k].empty() || cell.text.empty()) continue;  // a velocity, or another robot's joint
+    std::optional<double> n = parseNumber(cell.text);
+    if (!n || !finiteBounded(*n))
+      return fail(d, cell.column, "q." + csvJoints_[k] + " '" + cell.text + "' is not a number in range");
+    e.joints.push_back({csvJoints_[k], *n, cell.column});
+  }
+  return true;
+}
+
+bool TrajectoryReader::parseLine(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
+  e = {};
+  e.line = lineNumber_;
+  return format_ == TrajectoryFileFormat::Csv ? parseCsv(text, time, e, d) : parseJson(text, time, e, d);
+}
+
+bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
+  frame.entries.clear();
+  if (failed_ || ended_) return false;
+  std::string line;
+  if (format_ == TrajectoryFileFormat::Unknown) {
+    // The first line that is not blank tells the format.
+    do {
+      if (!readLine(line, d)) {
+        if (failed_) return false;
+        ended_ = true;
+        return fail(d, 0, "empty trajectory: no line to render");
+      }
+    } while (line.find_first_not_of(" \t") == std::string::npos);
+    if (line.front() == '{')
+      format_ = TrajectoryFileFormat::Jsonl;
+    else if (line.rfind("time,", 0) == 0) {
+      format_ = TrajectoryFileFormat::Csv;
+      if (!parseCsvHeader(line, d) || !readLine(line, d)) {
+        if (!failed_) fail(d, 0, "CSV trajectory with a header and no line");
+        return false;
+      }
+    } else {
+      return fail(d, 1, "not a trajectory: neither JSON Lines nor CSV with a 'time,path,...' header");
+    }
+    if (!parseLine(line, pendingTime_, pending_, d)) return false;
+    havePending_ = true;
+  }
+  if (!havePending_) {
+    ended_ = true;
+    return false;
+  }
+  frame.time = pendingTime_;
+  frame.index = frames_++;
+  frame.entries.push_back(std::move(pending_));
+  havePending_ = false;
+  lastTime_ = frame.time;
+  while (readLine(line, d)) {
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    double time = 0;
+    TrajectoryEntry e;
+    if (!parseLine(line, time, e, d)) return false;
+    if (time < lastTime_)
+      return fail(d, 1,
+                  "time " + std::to_string(time) + " is before the previous frame's " + std::to_string(lastTime_) +
+                      " (times must not decrease)");
+    if (time != frame.time) {
+      pendingTime_ = time;
+      pending_ = std::move(e);
+      havePending_ = true;
+      return true;
+    }
+    for (const TrajectoryEntry& other : frame.entries)
+      if (other.path == e.path)
+        return fail(d, e.pathColumn,
+                    "'" + e.path + "' twice at time " + std::to_string(time) + " (first on line " +
+                        std::to_string(other.line) + ")");
+    if (frame.entries.size() >= limits_.maxEntriesPerFrame)
+      return fail(d, 1, "more than " + std::to_string(limits_.maxEntriesPerFrame) + " lines at one time");
+    frame.entries.push_back(std::move(e));
+  }
+  if (failed_) return false;
+  ended_ = true;
+  return true;
+}
+
+TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    targets_.emplace(scene.objects[i].path, Target{Mount::Kind::Object, static_cast<int>(i)});
+  for (std::size_t i = 0; i < scene.compounds.size(); ++i)
+    targets_.emplace(scene.compounds[i].path, Target{Mount::Kind::Compound, static_cast<int>(i)});
+  robots_.resize(scene.articulated.size());
+  for (std::size_t i = 0; i < scene.articulated.size(); ++i) {
+    targets_.emplace(scene.articulated[i].path, Target{Mount::Kind::Articulated, static_cast<int>(i)});
+    if (i >= models.size() || !models[i]) continue;
+    Robot& r = robots_[i];
+    r.model = models[i];
+    makeCoordinates(*r.model, scene.articulated[i].jointOrder, r.coordinates);
+    std::vector<std::string> names = coordinateNames(*r.model, r.coordinates, false);
+    for (std::size_t k = static_cast<std::size_t>(r.coordinates.baseCoordinates); k < names.size(); ++k)
+      r.coordinate.emplace(names[k], static_cast<int>(k));
+  }
+}
+
+bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses,
+                            Diagnostics& d) const {
+  auto error = [&](const TrajectoryEntry& e, std::uint32_t column, std::string message) {
+    Diagnostic x;
+    x.code = code::kTrajectoryTarget;
+    x.file = file;
+    x.line = e.line;
+    x.column = column;
+    x.message = std::move(message);
+    d.push_back(std::move(x));
+    return false;
+  };
+  for (const TrajectoryEntry& e : frame.entries) {
+    auto it = targets_.find(e.path);
+    if (it == targets_.end())
+      return error(e, e.pathColumn, "'" + e.path + "' is no object, compound or articulated system of the scene");
+    const Target& t = it->second;
+    auto set = [&](std::vector<Pose>& list) {
+      if (static_cast<std::size_t>(t.index) < list.size()) list[static_cast<std::size_t>(t.index)] = e.pose;
+    };
+    if (t.kind == Mount::Kind::Object)
+      set(poses.objects);
+    else if (t.kind == Mount::Kind::Compound)
+      set(poses.compounds);
+    if (t.kind != Mount::Kind::Articulated) {
+      if (!e.joints.empty())
+        return error(e, e.joints.front().column, "'" + e.path + "' is a body, not a robot: it has no joints");
+      continue;
+    }
+    const Robot& r = robots_[static_cast<std::size_t>(t.index)];
+    if (!r.model) continue;
+    Eigen::VectorXd q = neutralCoordinate(*r.model, r.coordinates, e.pose);
+    for (const TrajectoryEntry::Joint& j : e.joints) {
+      auto at = r.coordinate.find(j.name);
+      if (at == r.coordinate.end())
+        return error(
+            e, j.column,
+            "joint '" + j.name + "' is no movable joint of robot '" + e.path + "' (model '" + r.model->name + "')");
+      q[at->second] = j.value;
+    }
+    // Spherical joints' quaternions as the simulator reads them: unit.
+    for (int ji : r.coordinates.joints) {
+      if (r.model->joints[static_cast<std::size_t>(ji)].type != JointType::Spherical) continue;
+      int k = r.coordinates.coordinateIndex[static_cast<std::size_t>(ji)];
+      double n = q.segment<4>(k).norm();
+      q.segment<4>(k) = n > 1e-12 ? Eigen::Vector4d(q.segment<4>(k) / n) : Eigen::Vector4d(1, 0, 0, 0);
+    }
+    if (poses.robotLinks.size() <= static_cast<std::size_t>(t.index))
+      poses.robotLinks.resize(static_cast<std::size_t>(t.index) + 1);
+    poses.robotLinks[static_cast<std::size_t>(t.index)] = linkPoses(*r.model, r.coordinates, e.pose, q);
+  }
+  return true;
+}
+
+}  // namespace rscene::robot

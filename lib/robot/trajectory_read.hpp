@@ -1,0 +1,123 @@
+// Reading back what `rscene-sim --trajectory` writes (sim/trajectory.hpp:
+// JSON Lines or CSV, told apart by the first line), one frame at a time,
+// so that rscene-render --trajectory can pose a scene along a simulation.
+//
+// Lines with the same time form a frame.  The reader holds one frame and
+// one line at a time (memory bounded by TrajectoryLimits, whatever the
+// file's length), never throws for bad input and reports the first
+// malformed line as `file:line:col: error: ... [RS9046]`.  Times must not
+// decrease (a second trajectory appended to the first is refused).
+#pragma once
+#include <cstdint>
+#include <istream>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/diagnostic.hpp"
+#include "robot/kinematics.hpp"
+#include "robot/model.hpp"
+#include "robot/sensors.hpp"
+#include "scene/scene.hpp"
+
+namespace rscene::robot {
+
+namespace code {
+inline constexpr const char* kTrajectorySyntax = "RS9046";  // malformed trajectory line
+inline constexpr const char* kTrajectoryTarget = "RS9047";  // body or joint the scene does not have
+}  // namespace code
+
+// One line: a body's pose, or a robot's base pose and joint positions.
+struct TrajectoryEntry {
+  struct Joint {
+    std::string name;  // coordinate name (robot::coordinateNames): a joint, or NAME_qw.. of a spherical one
+    double value = 0;
+    std::uint32_t column = 0;
+  };
+  std::string path;
+  Pose pose;  // world; the quaternion normalised
+  std::vector<Joint> joints;
+  std::uint32_t line = 0, pathColumn = 0;
+};
+
+struct TrajectoryFrame {
+  double time = 0;
+  std::uint64_t index = 0;  // 0 for the file's first frame
+  std::vector<TrajectoryEntry> entries;
+};
+
+struct TrajectoryLimits {
+  // A longer line is an error: what rscene-sim writes for a robot of 1000
+  // joints is about 60 KB.
+  std::size_t maxLineBytes = std::size_t{1} << 20;
+  // Lines of one frame: rscene-sim writes one per body and robot.
+  std::size_t maxEntriesPerFrame = std::size_t{1} << 18;
+};
+
+enum class TrajectoryFileFormat { Unknown, Jsonl, Csv };
+
+class TrajectoryReader {
+ public:
+  // `file` names the input in messages.  `in` must outlive the reader.
+  TrajectoryReader(std::istream& in, std::string file, TrajectoryLimits limits = {});
+  ~TrajectoryReader();
+  // The next frame; false at the end of the input, or on the first error
+  // (added to `diagnostics`; failed() then says so).  A file with no line
+  // at all is an error too: nothing to render is never silent.
+  bool next(TrajectoryFrame& frame, Diagnostics& diagnostics);
+  bool failed() const { return failed_; }
+  TrajectoryFileFormat format() const { return format_; }
+
+ private:
+  bool readLine(std::string& out, Diagnostics& d);
+  bool parseLine(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
+  bool parseJson(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
+  bool parseCsvHeader(const std::string& text, Diagnostics& d);
+  bool parseCsv(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
+  bool fail(Diagnostics& d, std::uint32_t column, std::string message);
+
+  std::istream& in_;
+  std::string file_;
+  TrajectoryLimits limits_;
+  TrajectoryFileFormat format_ = TrajectoryFileFormat::Unknown;
+  std::vector<std::string> csvJoints_;  // per CSV column past the body ones: joint name, "" when not q.*
+  std::uint32_t lineNumber_ = 0;
+  std::uint64_t frames_ = 0;
+  bool failed_ = false, ended_ = false;
+  bool havePending_ = false;  // a line of the next frame, read ahead
+  double pendingTime_ = 0;
+  TrajectoryEntry pending_;
+  double lastTime_ = 0;
+};
+
+// Turns frames into the scene's body poses: bodies by path (objects and
+// compounds), robots by the path of their articulated record, their joints
+// by name through forward kinematics (robot::linkPoses).
+class TrajectoryPoser {
+ public:
+  // `models` indexed like Scene::articulated (null: not loaded; its lines
+  // then move nothing).
+  TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models);
+  // Moves the bodies the frame names in `poses` (start from restPoses();
+  // what a frame leaves out stays where it was).  A path that is no body
+  // or robot of the scene, or a joint its robot does not have, is an error
+  // naming it (RS9047 at the line in `file`), and false.  A robot's joints
+  // the line leaves out are at their neutral value (rscene-sim writes all).
+  bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics) const;
+
+ private:
+  struct Target {
+    Mount::Kind kind = Mount::Kind::World;
+    int index = -1;
+  };
+  struct Robot {
+    std::shared_ptr<const Model> model;
+    Coordinates coordinates;
+    std::unordered_map<std::string, int> coordinate;  // q entry by name (joints only)
+  };
+  std::unordered_map<std::string, Target> targets_;
+  std::vector<Robot> robots_;
+};
+
+}  // namespace rscene::robot

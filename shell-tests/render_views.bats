@@ -1,0 +1,266 @@
+#!/usr/bin/env bats
+# rscene-render's many views (CPU backend): --all-cameras, a sensor chosen
+# by --camera, -o patterns and the records' outputPath, the files each pass
+# writes, collisions found before drawing, and --trajectory frames (from
+# rscene-sim, and a camera on a robot link that moves between frames).
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+RENDER="$BIN/rscene-render"
+SIM="$BIN/rscene-sim"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$RENDER" ] || skip "rscene-render not built in $BIN"
+  mkdir "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w"
+  cat > s.rscene << 'EOF'
+raisim_engine_scene 2
+light /World/Sun -0.3 0.4 -1.0 3.5 id=sun type=directional position=0,0,5 color=1,1,1
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground
+object /World/Box box 1 0 0.5 1 0 0 0 1 1 1 0.5 1 1.0 default - false true false - dynamic true 1 18446744073709551615 id=box
+camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb_depth true id=cam outputPath=caps/cam.png
+camera /World/Off -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb false id=off
+sensor /World/Eye depth_camera ground -3 0 0.5 1 0 0 0 id=eye width=40 height=30 segmentation=true outputPath=caps/eye.png
+sensor /World/Imu imu box 0 0 0 1 0 0 0 id=imu
+EOF
+}
+
+png_size() {
+  od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%dx%d\n", $1*16777216+$2*65536+$3*256+$4, $5*16777216+$6*65536+$7*256+$8 }'
+}
+
+# Bit depth and color type of a PNG (IHDR bytes 24 and 25): "16 0" is 16-bit gray.
+png_format() {
+  od -An -tu1 -j24 -N2 "$1" | awk '{ print $1, $2 }'
+}
+
+is_png() {
+  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]
+}
+
+# The shape in a NumPy .npy header.
+npy_shape() {
+  head -c 128 "$1" | tr -d '\0' | grep -ao "'shape': ([0-9]*, [0-9]*)"
+}
+
+@test "--all-cameras: every enabled camera and camera-like sensor, every pass, named by -o" {
+  run "$RENDER" s.rscene --all-cameras -o 'out/{name}.{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$(cd out && ls | tr '\n' ' ')" = "World_Cam.depth.npy World_Cam.depth.png World_Cam.rgb.png World_Eye.depth.npy World_Eye.depth.png World_Eye.segmentation.json World_Eye.segmentation.png " ]
+  is_png out/World_Cam.rgb.png
+  [ "$(png_size out/World_Cam.rgb.png)" = "64x48" ]
+  [ "$(png_format out/World_Cam.depth.png)" = "16 0" ]
+  [ "$(png_size out/World_Eye.segmentation.png)" = "40x30" ]
+  [ "$(npy_shape out/World_Eye.depth.npy)" = "'shape': (30, 40)" ]
+  [ "$(head -c 6 out/World_Cam.depth.npy | tail -c 5)" = "NUMPY" ]
+  grep -q '"path": "/World/Box"' out/World_Eye.segmentation.json
+}
+
+@test "-o fields: {id} {kind} {frame} {time}; an unknown field is a usage error" {
+  run "$RENDER" s.rscene --camera eye -o 'o/{id}-{kind}-{frame}-{time}.png'
+  [ "$status" -eq 0 ]
+  [ -f o/eye-depth-000000-0.png ]
+  [ -f o/eye-segmentation-000000-0.json ]
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras -o 'o/{nme}.png'
+  [ "$stderr" = "rscene-render: error: unknown field {nme} in output pattern (fields: {name} {id} {kind} {frame} {time})" ]
+}
+
+@test "--camera selects a sensor by path or id; an unknown name is exit 2" {
+  run "$RENDER" s.rscene --camera /World/Eye -o 'a/{kind}.png'
+  [ "$status" -eq 0 ]
+  [ -f a/depth.png ] && [ -f a/segmentation.png ] && [ ! -e a/rgb.png ]
+  run "$RENDER" s.rscene --camera World/Eye -o 'b/{kind}.png'
+  [ "$status" -eq 0 ]
+  [ -f b/depth.png ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera /World/Ey -o x.png
+  [[ "$stderr" == "rscene-render: error: no camera with path or id '/World/Ey'"* ]]
+}
+
+@test "without -o each record's outputPath is written, .{kind} added for a view of several passes" {
+  run "$RENDER" s.rscene --all-cameras
+  [ "$status" -eq 0 ]
+  [ "$(cd caps && ls | tr '\n' ' ')" = "cam.depth.npy cam.depth.png cam.rgb.png eye.depth.npy eye.depth.png eye.segmentation.json eye.segmentation.png " ]
+}
+
+@test "a single camera record with -o FILE still writes its color image (--reference works as before)" {
+  run "$RENDER" s.rscene --camera cam -o one.png
+  [ "$status" -eq 0 ]
+  [ "$(png_size one.png)" = "64x48" ]
+  [ "$(png_format one.png)" = "8 6" ]
+  [ ! -e caps ]
+  # The same pixels by the many-view path, round shapes included.
+  printf 'object /World/Ball sphere -1 0.5 0.6 1 0 0 0 1 1 1 0.3 1 1 default - false true false - dynamic true 1 18446744073709551615\n' >> s.rscene
+  "$RENDER" s.rscene --camera cam -o one.png
+  "$RENDER" s.rscene --camera cam -o 'p/{kind}.png'
+  cmp one.png p/rgb.png
+}
+
+@test "an outputPath outside the current folder is refused; nothing is written" {
+  sed 's#outputPath=caps/cam.png#outputPath=../cam.png#' s.rscene > up.rscene
+  run -2 --separate-stderr "$RENDER" up.rscene --all-cameras
+  [[ "$stderr" == *"up.rscene:5:"*"error: "*"outputPath"*"'..'"* ]]
+  [ ! -e caps ] && [ ! -e ../cam.png ]
+  sed 's#outputPath=caps/cam.png#outputPath=/tmp/cam.png#' s.rscene > abs.rscene
+  run -2 --separate-stderr "$RENDER" abs.rscene --camera cam
+  [[ "$stderr" == *"abs.rscene:5:"*"error: "*"outputPath"* ]]
+  [ ! -e caps ]
+}
+
+@test "two views writing one file are refused before anything is drawn" {
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras -o 'same/{kind}.png'
+  [ "$stderr" = "rscene-render: error: two views would write 'same/depth.png': '/World/Cam' (depth) and '/World/Eye' (depth); use {name} and {kind} in -o, or give the records different outputPath [RS9048]" ]
+  [ ! -e same/rgb.png ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam -o 'one/{name}.png'
+  [[ "$stderr" == "rscene-render: error: two views would write 'one/World_Cam.png'"* ]]
+}
+
+@test "an output that cannot be written stops the run before any file is replaced" {
+  mkdir -p out/World_Eye.depth.png
+  run -2 "$RENDER" s.rscene --all-cameras -o 'out/{name}.{kind}.png'
+  [ ! -e out/World_Cam.rgb.png ]
+}
+
+@test "-o - writes one color image to standard output, and refuses more" {
+  printf 'raisim_engine_scene 2\nobject /World/Box box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1.0 default - false true false - dynamic true 1 18446744073709551615 id=box\nsensor /World/C rgb - -3 0 0.5 1 0 0 0 width=32 height=24\n' > c.rscene
+  "$RENDER" c.rscene --camera /World/C -o - > c.png
+  [ "$(png_size c.png)" = "32x24" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera eye -o -
+  [[ "$stderr" == "rscene-render: error: -o - writes one color image"* ]]
+}
+
+@test "a renderMode rscene-render does not know warns and draws color" {
+  sed 's/ rgb_depth true id=cam/ thermal true id=cam/' s.rscene > th.rscene
+  run --separate-stderr "$RENDER" th.rscene --camera cam -o 't/{kind}.png'
+  [ "$status" -eq 0 ]
+  [[ "$stderr" == "th.rscene:5:"*"warning: renderMode 'thermal' is not one rscene-render draws; the color image is drawn [RS9045]"* ]]
+  [ -f t/rgb.png ]
+}
+
+@test "flags that do not go together are usage errors" {
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras --camera cam -o 'x/{name}.png'
+  [ "$stderr" = "rscene-render: error: --all-cameras and --camera: give one of them" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --every 2 -o x.png
+  [ "$stderr" = "rscene-render: error: --every needs --trajectory" ]
+  run -2 --separate-stderr "$RENDER" --trajectory - -o 'x/{frame}.png' < s.rscene
+  [ "$stderr" = "rscene-render: error: --trajectory - reads standard input, which the scene is read from: name the scene file" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras --reference r.png
+  [ "$stderr" = "rscene-render: error: --reference compares one image: not with --all-cameras or --trajectory" ]
+  printf '{"time":0,"path":"/World/Box","position":[0,0,1],"quaternion":[1,0,0,0]}\n' > t.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'x/{kind}.png'
+  [ "$stderr" = "rscene-render: error: -o 'x/{kind}.png' has no {frame}: every frame of --trajectory would write the same file" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras --every 0 --trajectory t.jsonl -o 'x/{frame}.png'
+  [ "$status" -eq 2 ]
+  [ ! -e x ]
+}
+
+@test "--trajectory: rscene-sim writes, rscene-render reads, one image per frame; --every K" {
+  [ -x "$SIM" ] || skip "rscene-sim not built"
+  sed 's/box 1 0 0.5 1 0 0 0/box 1 0 3 1 0 0 0/' s.rscene > drop.rscene
+  "$SIM" drop.rscene --duration 1 --every 100 --trajectory t.jsonl -o /dev/null
+  [ "$(cut -d, -f1 t.jsonl | sort -u | wc -l)" -eq 5 ]
+  run "$RENDER" drop.rscene --camera cam --trajectory t.jsonl -o 'f/{name}.{kind}.{frame}.png'
+  [ "$status" -eq 0 ]
+  [ "$(ls f/*.rgb.*.png | wc -l)" -eq 5 ]
+  ! cmp -s f/World_Cam.rgb.000000.png f/World_Cam.rgb.000004.png  # the box fell
+  "$SIM" drop.rscene --duration 1 --every 100 --trajectory t.csv --trajectory-format csv -o /dev/null
+  run "$RENDER" drop.rscene --camera cam --trajectory t.csv --every 2 -o 'c/{frame}.{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$(ls c/*.rgb.png | tr '\n' ' ')" = "c/000000.rgb.png c/000001.rgb.png c/000002.rgb.png " ]
+  cmp c/000001.rgb.png f/World_Cam.rgb.000002.png  # CSV frame 2 is JSON Lines frame 2
+  # Standard input, when the scene is a file; outputPath gains .{frame}.
+  "$RENDER" drop.rscene --camera eye --trajectory - < t.jsonl
+  [ -f caps/eye.depth.000004.png ] && [ -f caps/eye.segmentation.000004.json ]
+}
+
+@test "--trajectory naming a body the scene does not have: exit 2 at its line and column" {
+  { printf '{"time":0,"path":"/World/Box","position":[0,0,1],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":0,"path":"/World/Ghost","position":[0,0,1],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'x/{frame}.{kind}.png'
+  [ "$stderr" = "t.jsonl:2:18: error: '/World/Ghost' is no object, compound or articulated system of the scene [RS9047]" ]
+  [ ! -e x/000000.rgb.png ]
+}
+
+@test "--trajectory: malformed lines and missing files are exit 2" {
+  printf '{"time":0,"path":"/World/Box","position":[0,0],"quaternion":[1,0,0,0]}\n' > bad.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory bad.jsonl -o 'x/{frame}.{kind}.png'
+  [ "$stderr" = "bad.jsonl:1:31: error: position is not an array of 3 numbers [RS9046]" ]
+  : > empty.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory empty.jsonl -o 'x/{frame}.{kind}.png'
+  [ "$stderr" = "empty.jsonl: error: empty trajectory: no line to render [RS9046]" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory nope.jsonl -o 'x/{frame}.{kind}.png'
+  [ "$stderr" = "rscene-render: error: cannot open trajectory 'nope.jsonl': No such file or directory" ]
+}
+
+@test "a camera on a robot link moves with the link between two trajectory frames" {
+  cat > arm.urdf << 'EOF'
+<robot name="arm">
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base"><visual><geometry><box size="0.3 0.3 0.3"/></geometry></visual></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 1"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <link name="arm"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual></link>
+</robot>
+EOF
+  cat > r.rscene << 'EOF'
+raisim_engine_scene 2
+light /World/Sun -0.3 0.4 -1.0 3.5 id=sun type=directional position=0,0,5 color=1,1,1
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground
+object /World/Box box 3 0 0.5 1 0 0 0 1 1 1 0.5 1 1.0 default - false true false - dynamic true 1 18446744073709551615 id=box
+articulated_resource arm_res Arm arm.urdf
+articulated /World/Arm arm_res 0 0 0 1 0 0 0 true true id=arm
+sensor /World/Arm/Eye rgb arm 0 0 0 1 0 0 0 id=eye parentLink=arm width=48 height=32
+EOF
+  { printf '{"time":0,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{"j1":0}}\n'
+    printf '{"time":1,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{"j1":1.2}}\n'
+    printf '{"time":2,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{"j1":0}}\n'; } > t.jsonl
+  run "$RENDER" r.rscene --camera eye --trajectory t.jsonl -o 'f/{frame}.png'
+  [ "$status" -eq 0 ]
+  ! cmp -s f/000000.png f/000001.png  # turned away from the box
+  cmp f/000000.png f/000002.png       # and back
+  printf '{"time":0,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{"elbow":1}}\n' > j.jsonl
+  run -2 --separate-stderr "$RENDER" r.rscene --camera eye --trajectory j.jsonl -o 'g/{frame}.png'
+  [[ "$stderr" == "j.jsonl:1:"*": error: joint 'elbow' is no movable joint of robot '/World/Arm' (model 'arm') [RS9047]" ]]
+}
+
+@test "ANYmal C's URDF sensor sets are views: --all-cameras and --camera ROBOT/SET/SENSOR" {
+  urdf="$BATS_TEST_DIRNAME/../../shared/corpus/robots/anymal_c/urdf/anymal_sensored.urdf"
+  [ -f "$urdf" ] || skip "no ../shared corpus"
+  urdf=$(cd "$(dirname "$urdf")" && pwd)/anymal_sensored.urdf
+  { printf 'raisim_engine_scene 2\n'
+    printf 'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground\n'
+    printf 'object /World/Crate box 1.5 0 0.3 1 0 0 0 0.6 0.6 0.6 5 1 1.0 default - false true false - dynamic true 1 18446744073709551615 id=crate\n'
+    printf 'articulated_resource anymal_res ANYmal %s\n' "$urdf"
+    printf 'articulated /World/Anymal anymal_res 0 0 0.54 1 0 0 0 true true id=anymal generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8\n'; } > a.rscene
+  run "$RENDER" a.rscene --all-cameras -o 'a/{name}.{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$(ls a/*.png | wc -l)" -eq 4 ]  # two RealSense sets: color and depth each (the IMUs and the LiDAR are no views)
+  [ "$(png_size a/World_Anymal_depth_camera_front_camera_parent_color.rgb.png)" = "640x480" ]
+  [ "$(png_format a/World_Anymal_depth_camera_rear_camera_parent_depth.depth.png)" = "16 0" ]
+  run "$RENDER" a.rscene --camera World/Anymal/depth_camera_front_camera_parent/color -o front.png
+  [ "$status" -eq 0 ]
+  cmp front.png a/World_Anymal_depth_camera_front_camera_parent_color.rgb.png
+}
+
+@test "a write that fails in the middle of a trajectory stops the run with exit 2" {
+  { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":1,"path":"/World/Box","position":[1,0,0.7],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":2,"path":"/World/Box","position":[1,0,0.9],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  mkdir f && : > f/000001  # frame 1's folder cannot be made
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'f/{frame}/{kind}.png'
+  [[ "$stderr" == "rscene-render: error: f/000001/"* ]]
+  [ -f f/000000/rgb.png ]  # taken by a writer before frame 1 failed
+}
+
+@test "a camera record whose parentGroupId is a body rides on it along a trajectory" {
+  printf 'camera /World/Box/Cam 0 0 1 1 0 0 0 60 0.05 100 48 32 rgb true id=boxcam parentGroupId=box\n' >> s.rscene
+  { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":1,"path":"/World/Box","position":[1,0,0.5],"quaternion":[0.7071068,0,0,0.7071068]}\n'
+    printf '{"time":2,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  run "$RENDER" s.rscene --camera boxcam --trajectory t.jsonl -o 'b/{frame}.png'
+  [ "$status" -eq 0 ]
+  # A cube turned a quarter looks the same from a fixed camera: only a camera turning with it sees frame 1 differ.
+  ! cmp -s b/000000.png b/000001.png
+  cmp b/000000.png b/000002.png
+}
