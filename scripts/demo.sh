@@ -46,6 +46,12 @@ step rscene-diff "what the simulation moved" 'rscene-diff --stat warehouse_crate
 step rscene-sim "a robot held standing by PD for 2 s (robot_cell: our quadruped, a cart on a wire)" \
   'rscene-sim --duration 2 --pd-gains 100,2 --report --trajectory robot_cell.csv --trajectory-format csv --every 100 -o robot_cell.settled.rscene robot_cell.rscene && head -c 300 robot_cell.csv | head -1 | cut -c1-160'
 step rscene-diff "what the robot's joints did, by joint name" 'rscene-diff robot_cell.rscene robot_cell.settled.rscene | head -20'
+step rscene-sim "the robot's LiDAR (PCD point clouds) and IMU (CSV) while it stands" \
+  'rscene-sim --duration 1 --pd-gains 100,2 --sensors sensors -o /dev/null robot_cell.rscene && ls sensors sensors/World+Robot+Lidar | head -8 && head -3 sensors/World+Robot+Imu.csv'
+step rscene-render "every camera of robot_cell: the overview, the head camera's rgb, depth (16-bit PNG + .npy) and segmentation (+ legend)" \
+  'rscene-render --all-cameras -o "views/{name}.{kind}.png" robot_cell.rscene && ls views'
+step rscene-render "the head camera along the simulated trajectory (one image per saved frame)" \
+  'rscene-render --camera /World/Robot/HeadCam --trajectory robot_cell.csv -o "frames/head.{kind}.{frame}.png" robot_cell.rscene && ls frames | wc -l'
 step rscene-render "thumbnails (CPU, headless EGL)" \
   'for f in *.rscene; do rscene-render --width 480 --height 300 --allow-missing-assets -o "${f%.rscene}.png" "$f" || exit $?; done; ls *.png'
 
