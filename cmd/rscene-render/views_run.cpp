@@ -22,6 +22,7 @@
 #include "robot/trajectory_read.hpp"
 #include "rscene-render/image_writer.hpp"
 #include "scene/reader.hpp"
+#include "scene/sensor_check.hpp"
 
 namespace rscene::render_cli {
 namespace {
@@ -239,10 +240,10 @@ class ViewsRun {
                      v.name + "' has no outputPath)");
           return false;
         }
-        if (std::string why = render::unsafeOutputPath(v.outputPath); !why.empty()) {
+        if (std::string why = outputPathProblem(v.outputPath); !why.empty()) {
           RecordReader r(p_.document, static_cast<std::size_t>(v.recordIndex), diags);
           r.error("outputPath", render::code::kOutputPath,
-                  "outputPath '" + v.outputPath + "' is " + why + ": a scene may only write below the current folder",
+                  "outputPath '" + v.outputPath + "' " + why + ": a scene may only write below the current folder",
                   "give -o PATTERN to write elsewhere");
           continue;
         }

@@ -1,5 +1,6 @@
 // PNG through libpng: decoding to RGBA8 with the size checked before any
 // pixel memory, and a deterministic encoder.
+#include <algorithm>
 #include <png.h>
 
 #include <cstring>
@@ -43,15 +44,13 @@ bool plausible(std::uint64_t fileBytes, std::uint64_t width, std::uint64_t heigh
   return rowBytes * height <= 1032 * fileBytes + 4096;
 }
 
-}  // namespace
-
-std::string encodePng(const Image& image) {
+// One PNG of `rows` (top to bottom, each already in PNG's sample layout).
+std::string encodeRows(int width, int height, int bitDepth, int colorType, std::vector<png_bytep>& rows) {
   std::string out;
   std::string err;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, onError, onWarning);
   if (!png) return {};
   png_infop info = png_create_info_struct(png);
-  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
   if (!info || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     return {};
@@ -59,14 +58,21 @@ std::string encodePng(const Image& image) {
   png_set_write_fn(png, &out, appendBytes, noFlush);
   png_set_compression_level(png, 6);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
-               PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
-  for (int y = 0; y < image.height; ++y)
-    rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(image.pixel(0, y));
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bitDepth, colorType,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
   png_set_rows(png, info, rows.data());
   png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
   png_destroy_write_struct(&png, &info);
   return out;
+}
+
+}  // namespace
+
+std::string encodePng(const Image& image) {
+  std::vector<png_bytep> rows(static_cast<std::size_t>(std::max(image.height, 0)));
+  for (int y = 0; y < image.height; ++y)
+    rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(image.pixel(0, y));
+  return encodeRows(image.width, image.height, 8, PNG_COLOR_TYPE_RGBA, rows);
 }
 
 std::string encodePngGray16(int width, int height, const std::vector<std::uint16_t>& values) {
@@ -78,26 +84,9 @@ std::string encodePngGray16(int width, int height, const std::vector<std::uint16
     bytes[2 * i] = png_byte(values[i] >> 8);
     bytes[2 * i + 1] = png_byte(values[i] & 0xff);
   }
-  std::string out;
-  std::string err;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, onError, onWarning);
-  if (!png) return {};
-  png_infop info = png_create_info_struct(png);
   std::vector<png_bytep> rows(static_cast<std::size_t>(height));
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return {};
-  }
-  png_set_write_fn(png, &out, appendBytes, noFlush);
-  png_set_compression_level(png, 6);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 16, PNG_COLOR_TYPE_GRAY,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
   for (int y = 0; y < height; ++y) rows[std::size_t(y)] = &bytes[std::size_t(y) * std::size_t(width) * 2];
-  png_set_rows(png, info, rows.data());
-  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return out;
+  return encodeRows(width, height, 16, PNG_COLOR_TYPE_GRAY, rows);
 }
 
 bool decodePng(const std::string& bytes, Image& out, std::string* error, const ImageLimits& limits) {

@@ -245,19 +245,6 @@ bool expandPattern(const std::string& pattern, const OutputFields& f, std::strin
   return true;
 }
 
-std::string unsafeOutputPath(const std::string& path) {
-  if (path.empty()) return "empty path";
-  if (path[0] == '/') return "an absolute path";
-  if (path.size() >= 2 && path[1] == ':') return "a drive path";
-  std::size_t start = 0;
-  while (start <= path.size()) {
-    std::size_t end = path.find_first_of("/\\", start);
-    if (end == std::string::npos) end = path.size();
-    if (path.compare(start, end - start, "..") == 0) return "a path with '..'";
-    start = end + 1;
-  }
-  return {};
-}
 
 std::string outputPathPattern(const std::string& path, bool severalKinds, bool severalFrames) {
   std::string suffix;

@@ -78,10 +78,6 @@ bool patternHas(const std::string& pattern, const char* field);
 // unmatched brace.
 bool expandPattern(const std::string& pattern, const OutputFields& fields, std::string& out, std::string* error);
 
-// An outputPath a scene wrote may only name a file below the current
-// folder: empty when `path` is relative with no ".." component, else why.
-std::string unsafeOutputPath(const std::string& path);
-
 // The pattern a record's outputPath stands for, for a view with several
 // passes or frames: ".{kind}" before the extension when `severalKinds` and
 // it has no {kind}, ".{frame}" likewise when `severalFrames` ("cam.png" ->

@@ -150,11 +150,12 @@ std::vector<SensorProblem> sensorProblems(const SensorValues& s) {
 
 std::string outputPathProblem(const std::string& path) {
   if (path.empty() || path == "-") return {};
-  if (path.front() == '/') return "is absolute";
-  // A '..' part climbs out of the folder outputs are written to.
+  if (path.front() == '/' || path.front() == '\\') return "is absolute";
+  if (path.size() >= 2 && path[1] == ':') return "is absolute";  // a Windows drive: C:x, C:/x
+  // A '..' part ('/' or '\\' separated) climbs out of the folder outputs are written to.
   std::size_t start = 0;
   while (start <= path.size()) {
-    std::size_t end = path.find('/', start);
+    std::size_t end = path.find_first_of("/\\", start);
     if (end == std::string::npos) end = path.size();
     if (path.compare(start, end - start, "..") == 0) return "has a '..' part";
     start = end + 1;

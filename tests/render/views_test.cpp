@@ -11,6 +11,7 @@
 
 #include "core/loader.hpp"
 #include "robot/kinematics.hpp"
+#include "scene/sensor_check.hpp"
 
 using namespace rscene;
 using namespace rscene::render;
@@ -192,14 +193,14 @@ TEST(OutputNames, PatternsExpandTheirFields) {
 }
 
 TEST(OutputNames, AScenesOutputPathStaysBelowTheCurrentFolder) {
-  EXPECT_EQ(unsafeOutputPath("captures/front.png"), "");
-  EXPECT_EQ(unsafeOutputPath("a..b/c.png"), "");
-  EXPECT_NE(unsafeOutputPath("/tmp/x.png"), "");
-  EXPECT_NE(unsafeOutputPath("../x.png"), "");
-  EXPECT_NE(unsafeOutputPath("a/../../x.png"), "");
-  EXPECT_NE(unsafeOutputPath("a\\..\\x.png"), "");
-  EXPECT_NE(unsafeOutputPath("a/.."), "");
-  EXPECT_NE(unsafeOutputPath("C:x.png"), "");
+  EXPECT_EQ(outputPathProblem("captures/front.png"), "");
+  EXPECT_EQ(outputPathProblem("a..b/c.png"), "");
+  EXPECT_NE(outputPathProblem("/tmp/x.png"), "");
+  EXPECT_NE(outputPathProblem("../x.png"), "");
+  EXPECT_NE(outputPathProblem("a/../../x.png"), "");
+  EXPECT_NE(outputPathProblem("a\\..\\x.png"), "");
+  EXPECT_NE(outputPathProblem("a/.."), "");
+  EXPECT_NE(outputPathProblem("C:x.png"), "");
 }
 
 TEST(OutputNames, OutputPathGainsKindAndFrameWhenNeeded) {

@@ -192,6 +192,8 @@ TEST(SensorCheck, OutputPathRule) {
   EXPECT_EQ(outputPathProblem(".."), "has a '..' part");
   EXPECT_EQ(outputPathProblem("a/.."), "has a '..' part");
   EXPECT_EQ(outputPathProblem("../a"), "has a '..' part");
+  EXPECT_EQ(outputPathProblem("a\\..\\x.png"), "has a '..' part");
+  EXPECT_EQ(outputPathProblem("C:x.png"), "is absolute");
 }
 
 TEST(SensorCheck, CameraOutputPathToo) {
