@@ -1,8 +1,8 @@
 // PNG through libpng: decoding to RGBA8 with the size checked before any
 // pixel memory, and a deterministic encoder.
-#include <algorithm>
 #include <png.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "asset/image.hpp"
