@@ -45,7 +45,9 @@ std::vector<Eigen::Vector3f> scanLidar(const RayGeometry& geometry, const Pose& 
         continue;
       }
       if (noisy) t += p.noiseMean + p.noiseStddev * gaussian(p.noiseSeed, options.scanIndex, k);
-      range[k] = t > 0 ? static_cast<float>(t) : NAN;
+      // The range window holds for what the sensor reports: a noisy reading
+      // outside it is no return, like a true range outside it.
+      range[k] = t > 0 && t >= p.lidarMinRange && t <= p.lidarMaxRange ? static_cast<float>(t) : NAN;
     }
   };
   int threads = std::clamp(options.threads, 1, 64);

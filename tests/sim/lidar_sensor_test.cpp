@@ -162,6 +162,22 @@ TEST(Lidar, TheSameSeedGivesTheSameNoisyScan) {
             scanLidar(g, at, a->sensors[0].spec.params, a->sensors[0].directions, four));
 }
 
+TEST(Lidar, NoisyReadingsOutsideTheRangeWindowAreNoReturns) {
+  // Noise of 20 m on walls 1.5 to 5 m away: without the gate after the
+  // noise, readings from 0 to 60 m came out.
+  auto r = makeSensorRun(room(4, 3, 1.5) +
+                         "sensor /World/Lidar lidar - 0 0 1.5 1 0 0 0 lidarChannels=4 lidarSamples=256 "
+                         "lidarMinRange=1 lidarMaxRange=6 noiseStddev=20 noiseSeed=3\n");
+  std::vector<Collected::Scan> scans = scansOf(*r);
+  ASSERT_EQ(scans.size(), 1u);
+  ASSERT_FALSE(scans[0].points.empty());
+  EXPECT_LT(scans[0].points.size(), 1024u);  // most readings fall outside [1, 6]
+  for (const Eigen::Vector3f& p : scans[0].points) {
+    EXPECT_GE(p.norm(), 1.0f - 1e-5f);
+    EXPECT_LE(p.norm(), 6.0f + 1e-5f);
+  }
+}
+
 TEST(Lidar, EachPrimitiveIsHitWhereItsSurfaceIs) {
   MemoryFileSystem fs;
   fs.addFile(
