@@ -571,7 +571,9 @@ void segmentColor(const std::optional<Eigen::Vector4d>& written, std::int64_t in
   }
   // FNV-1a of what names the segment, so that a color never depends on the
   // order of the records or on the tool's version.
-  std::string key = instanceId >= 0 ? "instance:" + std::to_string(instanceId)
+  // An instance id is counted within its class (instance 1 of "box" and of
+  // "person" are two things), so the class is part of the key.
+  std::string key = instanceId >= 0 ? "instance:" + semanticClass + ":" + std::to_string(instanceId)
                     : !semanticClass.empty() ? "class:" + semanticClass
                                              : "path:" + path;
   std::uint64_t h = 1469598103934665603ull;

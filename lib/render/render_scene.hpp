@@ -57,9 +57,9 @@ struct Attachment {
 
 // One entry of the segmentation legend: a record drawn in one flat color
 // in segmentation images.  The color is the record's segmentationColor
-// when it writes one, else derived from its instanceId (>= 0), else from
-// its semanticClass, else from its path (segmentColor()); never black, the
-// background's.
+// when it writes one, else derived from its instanceId (>= 0) within its
+// semanticClass, else from its semanticClass, else from its path
+// (segmentColor()); never black, the background's.
 struct Segment {
   std::uint8_t rgb[3] = {0, 0, 0};
   std::string kind;  // record kind: object, compound, articulated, terrain_region, ...

@@ -290,6 +290,14 @@ TEST_F(RobotScene, DrawablesFollowTheirBodiesAndLinks) {
   const Segment& crateSeg = b.scene.segments[std::size_t(crate.segment)];
   EXPECT_EQ(std::vector<int>(again, again + 3), std::vector<int>(crateSeg.rgb, crateSeg.rgb + 3));
   EXPECT_TRUE(crateSeg.rgb[0] >= 32 && crateSeg.rgb[1] >= 32 && crateSeg.rgb[2] >= 32);
+  // Instance ids count within a class: instance 1 of two classes differ,
+  // of one class agree wherever the record is.
+  std::uint8_t box1[3], person1[3], box1b[3];
+  segmentColor(std::nullopt, 1, "box", "/a", box1);
+  segmentColor(std::nullopt, 1, "person", "/a", person1);
+  segmentColor(std::nullopt, 1, "box", "/b", box1b);
+  EXPECT_NE(std::vector<int>(box1, box1 + 3), std::vector<int>(person1, person1 + 3));
+  EXPECT_EQ(std::vector<int>(box1, box1 + 3), std::vector<int>(box1b, box1b + 3));
   // Move the crate up 2 m and turn the arm's link half a turn about x.
   std::vector<Pose> objects = {Pose{Eigen::Vector3d(0, 0, 3), Eigen::Quaterniond::Identity()}, Pose{}};
   std::vector<std::vector<Pose>> links(1);
