@@ -273,6 +273,8 @@ EOF
   mkdir d
   run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory d -o 'q/{frame}.{kind}.png'
   [ "$stderr" = "rscene-render: error: d: is a directory" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory - -o 'q/{frame}.{kind}.png' < d
+  [ "$stderr" = "rscene-render: error: --trajectory -: standard input is a directory" ]
   [ -d /proc/self ] || skip "no /proc"
   run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory /proc/self -o 'q/{frame}.{kind}.png'
   [ "$stderr" = "rscene-render: error: /proc/self: is a directory" ]

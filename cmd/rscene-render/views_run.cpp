@@ -1,5 +1,6 @@
 #include "rscene-render/views_run.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -89,6 +90,11 @@ class ViewsRun {
           return cli::kTrouble;
         }
         trajectoryStream = std::move(file);
+      }
+      struct stat in {};
+      if (opt_.trajectory == "-" && ::fstat(0, &in) == 0 && S_ISDIR(in.st_mode)) {
+        cli::error("--trajectory -: standard input is a directory");  // reads would only say "empty"
+        return cli::kTrouble;
       }
       reader.emplace(trajectoryStream ? *trajectoryStream : std::cin, trajectoryName);
     }
