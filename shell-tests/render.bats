@@ -95,10 +95,10 @@ is_png() {
   cmp a.png b.png
   run "$RENDER" "$DATA/render_mesh.rscene" --camera /World/Nope -o c.png
   [ "$status" -eq 2 ]
-  [ "$output" = "rscene-render: error: no camera with path or id '/World/Nope'; its cameras: /World/Cam" ]
+  [ "$output" = "rscene-render: error: no camera or camera-like sensor with path or id '/World/Nope'; its views: /World/Cam" ]
   [ ! -e c.png ]
   run -2 "$RENDER" "$DATA/render_mesh.rscene" --camera cam_mian -o c.png
-  [ "$output" = "rscene-render: error: no camera with path or id 'cam_mian'; did you mean 'cam_main'?" ]
+  [ "$output" = "rscene-render: error: no camera or camera-like sensor with path or id 'cam_mian'; did you mean 'cam_main'?" ]
 }
 
 @test "missing mesh: exit 2 naming the resolved path; --allow-missing-assets draws a placeholder" {
@@ -184,7 +184,7 @@ is_png() {
 @test "nothing to write is a usage error" {
   run "$RENDER" "$DATA/render_mesh.rscene"
   [ "$status" -eq 2 ]
-  [ "$output" = "rscene-render: error: nothing to write: give -o FILE (-o - for standard output), -o PATTERN or --reference FILE ('/World/Cam' has no outputPath)" ]
+  [ "$output" = "rscene-render: error: nothing to write: '/World/Cam' has no outputPath; give -o FILE (-o - for standard output), --reference FILE or -o PATTERN such as '{name}.{kind}.png'" ]
   run "$RENDER" "$DATA/render_mesh.rscene" -o x.png --diff-output d.png
   [ "$status" -eq 2 ]
   [ "$output" = "rscene-render: error: --diff-output needs --reference" ]

@@ -74,7 +74,7 @@ npy_shape() {
   [ "$status" -eq 0 ]
   [ -f b/depth.png ]
   run -2 --separate-stderr "$RENDER" s.rscene --camera /World/Ey -o x.png
-  [[ "$stderr" == "rscene-render: error: no camera with path or id '/World/Ey'"* ]]
+  [[ "$stderr" == "rscene-render: error: no camera or camera-like sensor with path or id '/World/Ey'; did you mean '/World/Eye'?" ]]
 }
 
 @test "without -o each record's outputPath is written, .{kind} added for a view of several passes" {
@@ -109,10 +109,14 @@ npy_shape() {
 
 @test "two views writing one file are refused before anything is drawn" {
   run -2 --separate-stderr "$RENDER" s.rscene --all-cameras -o 'same/{kind}.png'
-  [ "$stderr" = "rscene-render: error: two views would write 'same/depth.png': '/World/Cam' (depth) and '/World/Eye' (depth); use {name} and {kind} in -o, or give the records different outputPath [RS9048]" ]
+  [ "$stderr" = "rscene-render: error: two images would go to 'same/depth.png': '/World/Cam' (depth) and '/World/Eye' (depth); use {name} and {kind} in -o, or give the records different outputPath [RS9048]" ]
   [ ! -e same/rgb.png ]
+  # One view of several passes is one view, not two: put {kind} in -o.
   run -2 --separate-stderr "$RENDER" s.rscene --camera cam -o 'one/{name}.png'
-  [[ "$stderr" == "rscene-render: error: two views would write 'one/World_Cam.png'"* ]]
+  [ "$stderr" = "rscene-render: error: two images would go to 'one/World_Cam.png': view '/World/Cam' makes several images (rgb, depth); put {kind} in -o, such as 'one/{name}.{kind}.png' [RS9048]" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera eye -o one.png
+  [ "$stderr" = "rscene-render: error: two images would go to 'one.png': view '/World/Eye' makes several images (depth, segmentation); put {kind} in -o, such as 'one.{kind}.png' [RS9048]" ]
+  [ ! -e one.png ]
 }
 
 @test "an output that cannot be written stops the run before any file is replaced" {
@@ -263,4 +267,99 @@ EOF
   # A cube turned a quarter looks the same from a fixed camera: only a camera turning with it sees frame 1 differ.
   ! cmp -s b/000000.png b/000001.png
   cmp b/000000.png b/000002.png
+}
+
+@test "--trajectory naming a directory is exit 2 with a message, not an abort" {
+  mkdir d
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory d -o 'q/{frame}.{kind}.png'
+  [ "$stderr" = "rscene-render: error: d: is a directory" ]
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory - -o 'q/{frame}.{kind}.png' < d
+  [ "$stderr" = "rscene-render: error: --trajectory -: standard input is a directory" ]
+  [ -d /proc/self ] || skip "no /proc"
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory /proc/self -o 'q/{frame}.{kind}.png'
+  [ "$stderr" = "rscene-render: error: /proc/self: is a directory" ]
+  [ ! -e q ]
+}
+
+@test "--trajectory: a duplicate key and a line cut off mid-JSON are errors at their column" {
+  printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0],"time":5}\n' > dup.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory dup.jsonl -o 'x/{frame}.{kind}.png'
+  [ "$stderr" = 'dup.jsonl:1:75: error: "time" twice in one object (which one is meant?) [RS9046]' ]
+  [ ! -e x/000000.rgb.png ]
+  printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n{"time":1,"path":"/World/Box","posi' > cut.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory cut.jsonl -o 'x/{frame}.{kind}.png'
+  [[ "$stderr" == "cut.jsonl:2:36: error: malformed JSON: "*"missing closing quote"*"[RS9046]" ]]
+}
+
+# A robot whose URDF sensor set has a camera, '/World/Arm/head/color', and a
+# sensor record of the same path.
+two_of_one_name() {
+  cat > arm.urdf << 'XML'
+<robot name="arm">
+  <link name="base"><visual><geometry><box size="0.3 0.3 0.3"/></geometry></visual></link>
+  <joint name="j" type="fixed"><parent link="base"/><child link="head"/><origin xyz="0 0 1"/></joint>
+  <link name="head" sensor="cam.xml"/>
+</robot>
+XML
+  cat > cam.xml << 'XML'
+<?xml version="1.0"?>
+<sensor_set name="cam">
+  <sensor name="color" type="rgb">
+    <origin rpy="0 0 0" xyz="0.3 0 0"/>
+    <camera horizontal_fov="1.0"><image width="32" height="24"/><clip near="0.1" far="50"/></camera>
+  </sensor>
+</sensor_set>
+XML
+  { printf 'raisim_engine_scene 2\n'
+    printf 'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground\n'
+    printf 'articulated_resource arm_res Arm arm.urdf\n'
+    printf 'articulated /World/Arm arm_res 0 0 0.15 1 0 0 0 true true id=arm\n'
+    printf '%s\n' "$1"; } > r.rscene
+}
+
+@test "two views of one name: --all-cameras says where each is declared, --camera is ambiguous" {
+  two_of_one_name 'sensor /World/Arm/head/color rgb - 3 0 0.5 1 0 0 0 id=dup width=16 height=12'
+  run -2 --separate-stderr "$RENDER" r.rscene --all-cameras -o '{name}.png'
+  [ "$stderr" = "rscene-render: error: two images would go to 'World_Arm_head_color.png': two views are named '/World/Arm/head/color': the sensor record at r.rscene:5 and a URDF sensor of robot '/World/Arm' (cam.xml:3); rename the record, or use {id} in -o [RS9048]" ]
+  run "$RENDER" r.rscene --all-cameras -o '{id}.png'
+  [ "$status" -eq 0 ]
+  [ "$(png_size dup.png)" = "16x12" ] && [ "$(png_size World_Arm_head_color.png)" = "32x24" ]
+  run -2 --separate-stderr "$RENDER" r.rscene --camera World/Arm/head/color -o x.png
+  [ "$stderr" = "rscene-render: error: --camera 'World/Arm/head/color' names 2 views: '/World/Arm/head/color' (id dup), the sensor record at r.rscene:5; '/World/Arm/head/color', a URDF sensor of robot '/World/Arm' (cam.xml:3); select one by its record's id, or rename the record" ]
+  # A camera record of that path: the single-image path does not pick it silently either.
+  two_of_one_name 'camera /World/Arm/head/color 3 0 0.5 1 0 0 0 60 0.05 100 16 12 rgb true id=dup'
+  run -2 --separate-stderr "$RENDER" r.rscene --camera /World/Arm/head/color -o x.png
+  [[ "$stderr" == "rscene-render: error: --camera '/World/Arm/head/color' names 2 views: "*"the camera record at r.rscene:5; "* ]]
+  [ ! -e x.png ]
+  "$RENDER" r.rscene --camera dup -o x.png
+  [ "$(png_size x.png)" = "16x12" ]
+}
+
+@test "--camera: a LiDAR or IMU is no view; unknown names list the sensor views too" {
+  run -2 --separate-stderr "$RENDER" s.rscene --camera /World/Imu -o x.png
+  [ "$stderr" = "rscene-render: error: '/World/Imu' is a sensor of kind imu, not a view (rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it); its views: /World/Cam, /World/Off, /World/Eye" ]
+  grep -v '^camera' s.rscene > nocam.rscene
+  run -2 --separate-stderr "$RENDER" nocam.rscene --camera nosuch -o x.png
+  [ "$stderr" = "rscene-render: error: no camera or camera-like sensor with path or id 'nosuch'; its views: /World/Eye" ]
+  grep -v '^sensor /World/Eye' nocam.rscene > none.rscene
+  run -2 --separate-stderr "$RENDER" none.rscene --camera nosuch -o x.png
+  [ "$stderr" = "rscene-render: error: no camera or camera-like sensor with path or id 'nosuch'; the scene has no view (leave out --camera, or use --camera auto)" ]
+}
+
+@test "a sensor view: --reference is refused with a reason, --width/--height warn and keep its size" {
+  run -2 --separate-stderr "$RENDER" s.rscene --camera /World/Eye --reference ref.png
+  [ "$stderr" = "rscene-render: error: --reference compares a camera record's color image; '/World/Eye' is a sensor: write its images with -o and compare those files" ]
+  [ ! -e ref.png ]
+  run --separate-stderr "$RENDER" s.rscene --camera eye --width 100 --height 80 -o 'w/{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "rscene-render: warning: --width/--height: sensor '/World/Eye' keeps its own size, 40x30 (its intrinsics are written for it)" ]
+  [ "$(png_size w/segmentation.png)" = "40x30" ]
+}
+
+@test "an outputPath without an extension gains .png when the view writes several images" {
+  sed 's#outputPath=caps/eye.png#outputPath=caps/noext#' s.rscene > n.rscene
+  run "$RENDER" n.rscene --camera eye
+  [ "$status" -eq 0 ]
+  [ "$(cd caps && ls | tr '\n' ' ')" = "noext.depth.npy noext.depth.png noext.segmentation.json noext.segmentation.png " ]
+  is_png caps/noext.depth.png
 }

@@ -75,13 +75,13 @@ int run(const Options& opt) {
   Camera camera;
   std::string err;
   bool cameraRecord = render::chooseCamera(scene, opt.camera, camera, &err);
-  if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord)) {
-    ro.samples = opt.samples;
-    ro.transparent = opt.transparent;
-    ro.allowMissingAssets = opt.allowMissing;
-    render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
+  ro.samples = opt.samples;
+  ro.transparent = opt.transparent;
+  ro.allowMissingAssets = opt.allowMissing;
+  render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
+  if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord))
     return render_cli::renderViews(opt.views, prepared);
-  }
+  if (cameraRecord && !render_cli::cameraUnique(opt.views, prepared)) return cli::kTrouble;
   if (!cameraRecord) {
     cli::error(err);
     return cli::kTrouble;
@@ -97,12 +97,9 @@ int run(const Options& opt) {
     }
   } else if (!render::checkCameraImageSize(loaded.document, camera, ro.width, ro.height, opt.maxPixels, diags)) {
     cli::hintStdinPaths(in, opt.baseDir, diags);
-  cli::printDiagnostics(diags, in.display, in.text, color);
+    cli::printDiagnostics(diags, in.display, in.text, color);
     return cli::kTrouble;
   }
-  ro.samples = opt.samples;
-  ro.transparent = opt.transparent;
-  ro.allowMissingAssets = opt.allowMissing;
   double aspect = double(ro.width) / ro.height;
   if (camera.path == "auto") camera = render::autoCamera(scene, aspect);
   if (!render::seesAnything(scene, camera, aspect))
@@ -163,6 +160,7 @@ int checkViewFlags(const CLI::App& app, Options& opt) {
   v.maxPixels = opt.maxPixels;
   v.backend = opt.backend;
   v.verbose = opt.verbose;
+  v.reference = !opt.baseline.reference.empty();
   return -1;
 }
 
@@ -175,7 +173,7 @@ int main(int argc, char** argv) {
   cli::addInputOperand(app, opt.file);
   cli::addOutputOption(app, opt.output,
                        "Write the PNG to FILE (atomically; - writes standard output), or to a PATTERN with "
-                       "{name} {id} {kind} {frame} {time} for many views and frames (default: each record's outputPath)");
+                       "{name} {id} {kind} {frame} {time} for many views and frames (default: each drawn record's outputPath)");
   app.add_option("--width", opt.width, "Image width in pixels (default: the camera's, else 1280)")
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", opt.height, "Image height in pixels (default: the camera's, else 720)")
@@ -199,7 +197,7 @@ int main(int argc, char** argv) {
                  "three-quarter view of everything")
       ->type_name("PATH|ID|auto");
   app.add_flag("--all-cameras", opt.views.allCameras,
-               "Render every enabled camera record and camera-like sensor (URDF sensor sets too), each pass of each");
+               "Render every enabled camera record and camera-like sensor (URDF sensor sets too), in all of its passes");
   app.add_option("--trajectory", opt.views.trajectory,
                  "Render every frame of what rscene-sim --trajectory wrote (JSON Lines or CSV); - reads standard input")
       ->type_name("FILE");

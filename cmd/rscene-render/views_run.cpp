@@ -1,7 +1,9 @@
 #include "rscene-render/views_run.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <optional>
 #include <thread>
 
+#include "core/suggest.hpp"
 #include "core/text.hpp"
 #include "render/camera.hpp"
 #include "render/limits.hpp"
@@ -56,13 +59,31 @@ class ViewsRun {
  public:
   ViewsRun(const ViewsOptions& o, Prepared& p) : opt_(o), p_(p) {}
 
+  // Whether --camera names one view only (the single-image path picks a
+  // camera record by itself; a sensor of the same name makes it ambiguous).
+  bool selectorUnique() {
+    Diagnostics diags;  // what collectViews warns of is printed by no run of this one
+    sensors_ = robot::collectSensors(p_.document, p_.scene, p_.renderScene.robotModels, diags);
+    rest_ = robot::restPoses(p_.scene, p_.renderScene.robotModels);
+    std::vector<View> all = render::collectViews(p_.document, p_.scene, p_.renderScene, sensors_, rest_, diags);
+    std::vector<int> found = render::findViews(all, opt_.camera);
+    if (found.size() <= 1) return true;
+    cli::error(ambiguous(all, found));
+    return false;
+  }
+
   int run() {
-    if (!selectViews() || !checkSizes() || !planOutputs()) return cli::kTrouble;
     std::unique_ptr<std::istream> trajectoryStream;
     std::optional<robot::TrajectoryReader> reader;
     std::string trajectoryName = opt_.trajectory == "-" ? "<stdin>" : opt_.trajectory;
     if (!opt_.trajectory.empty()) {
       if (opt_.trajectory != "-") {
+        // A directory opens as a stream and throws on the first read.
+        std::error_code ec;
+        if (std::filesystem::is_directory(opt_.trajectory, ec)) {
+          cli::error(opt_.trajectory + ": is a directory");
+          return cli::kTrouble;
+        }
         auto file = std::make_unique<std::ifstream>(opt_.trajectory, std::ios::binary);
         if (!*file) {
           cli::error("cannot open trajectory '" + opt_.trajectory + "': " + std::strerror(errno));
@@ -70,8 +91,16 @@ class ViewsRun {
         }
         trajectoryStream = std::move(file);
       }
+      struct stat in {};
+      if (opt_.trajectory == "-" && ::fstat(0, &in) == 0 && S_ISDIR(in.st_mode)) {
+        cli::error("--trajectory -: standard input is a directory");  // reads would only say "empty"
+        return cli::kTrouble;
+      }
       reader.emplace(trajectoryStream ? *trajectoryStream : std::cin, trajectoryName);
     }
+
+    // After the trajectory opened: a folder of -o is made only for a run that can start.
+    if (!selectViews() || !checkSizes() || !planOutputs()) return cli::kTrouble;
 
     auto context = openContext(opt_.backend, opt_.verbose);
     if (!context) return cli::kTrouble;
@@ -161,17 +190,24 @@ class ViewsRun {
       for (std::size_t i = 0; i < all.size() && chosen < 0; ++i)
         if (!all[i].sensor && all[i].camera.enabled) chosen = static_cast<int>(i);
     } else if (opt_.camera != "auto") {
-      chosen = render::findView(all, opt_.camera);
-      if (chosen < 0) {
-        std::string err;
-        Camera unused;
-        render::chooseCamera(p_.renderScene, opt_.camera, unused, &err);  // its "did you mean" for cameras
-        cli::error(err);
+      std::vector<int> found = render::findViews(all, opt_.camera);
+      if (found.size() > 1) {
+        cli::error(ambiguous(all, found));
         return false;
       }
+      if (found.empty()) {
+        cli::error(unknownView(all));
+        return false;
+      }
+      chosen = found[0];
     }
     if (chosen >= 0) {
       views_.push_back(std::move(all[static_cast<std::size_t>(chosen)]));
+      if (opt_.reference && views_[0].sensor) {
+        cli::error("--reference compares a camera record's color image; '" + views_[0].name +
+                   "' is a sensor: write its images with -o and compare those files");
+        return false;
+      }
       return true;
     }
     View v;  // the automatic three-quarter view of today's rscene-render
@@ -186,11 +222,71 @@ class ViewsRun {
     return true;
   }
 
+  // Where a view is declared, for messages: "the camera record at s.rscene:5",
+  // "a URDF sensor of robot '/World/A' (sensors/cam.xml:3)".
+  std::string declaredAt(const View& v) const {
+    const std::string what = v.sensor ? "sensor" : "camera";
+    if (v.recordIndex >= 0 && static_cast<std::size_t>(v.recordIndex) < p_.document.records.size())
+      return "the " + what + " record at " + p_.input.display + ":" +
+             std::to_string(p_.document.records[static_cast<std::size_t>(v.recordIndex)].line);
+    if (v.sensorIndex >= 0 && static_cast<std::size_t>(v.sensorIndex) < sensors_.size()) {
+      const robot::SensorSpec& s = sensors_[static_cast<std::size_t>(v.sensorIndex)];
+      std::string robot;
+      for (const Articulated& a : p_.scene.articulated)
+        if (a.recordIndex == s.robotRecord) robot = " of robot '" + a.path + "'";
+      return "a URDF sensor" + robot + " (" + s.file + ":" + std::to_string(s.line) + ")";
+    }
+    return "a " + what;
+  }
+
+  std::string ambiguous(const std::vector<View>& all, const std::vector<int>& found) const {
+    std::string list;
+    for (int i : found) {
+      const View& v = all[static_cast<std::size_t>(i)];
+      list += (list.empty() ? "" : "; ") + std::string("'") + v.name + "'" + (v.id.empty() ? "" : " (id " + v.id + ")") +
+              ", " + declaredAt(v);
+    }
+    return "--camera '" + opt_.camera + "' names " + std::to_string(found.size()) + " views: " + list +
+           "; select one by its record's id, or rename the record";
+  }
+
+  // No view by that name: a sensor that is no view (a LiDAR, an IMU) says
+  // so; else the closest view's name, or the views there are.
+  std::string unknownView(const std::vector<View>& all) const {
+    std::string message = "no camera or camera-like sensor with path or id '" + opt_.camera + "'";
+    for (const robot::SensorSpec& s : sensors_) {
+      bool named = s.name == opt_.camera || (!s.id.empty() && s.id == opt_.camera) ||
+                   (!s.name.empty() && s.name[0] == '/' && s.name.compare(1, std::string::npos, opt_.camera) == 0);
+      if (named && !robot::cameraLike(s.kind)) {
+        message = "'" + s.name + "' is a sensor of kind " + s.kindName +
+                  ", not a view (rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it)";
+        break;
+      }
+    }
+    if (all.empty()) return message + "; the scene has no view (leave out --camera, or use --camera auto)";
+    // Paths compare by their last part: a shared /World/ is no likeness.
+    auto last = [](std::string_view p) { return p.substr(p.rfind('/') + 1); };
+    const bool isPath = opt_.camera.find('/') != std::string::npos;
+    std::vector<std::string_view> names;
+    for (const View& v : all) names.push_back(isPath ? last(v.name) : std::string_view(v.id));
+    std::string near = closestName(isPath ? last(opt_.camera) : std::string_view(opt_.camera), names);
+    if (!near.empty() && message[0] != '\'') {
+      const View& v = all[static_cast<std::size_t>(std::find(names.begin(), names.end(), near) - names.begin())];
+      return message + "; did you mean '" + (isPath ? v.name : v.id) + "'?";
+    }
+    std::string list;
+    for (std::size_t i = 0; i < all.size() && i < 8; ++i) list += (i ? ", " : "") + all[i].name;
+    return message + "; its views: " + list + (all.size() > 8 ? ", ..." : "");
+  }
+
   // Camera records take --width/--height (else their own size, else
   // 1280x720); a sensor keeps its own, which its intrinsics are written for.
   bool checkSizes() {
     Diagnostics diags;
     for (View& v : views_) {
+      if (v.sensor && (opt_.width > 0 || opt_.height > 0))
+        cli::warning("--width/--height: sensor '" + v.name + "' keeps its own size, " + std::to_string(v.camera.width) +
+                     "x" + std::to_string(v.camera.height) + " (its intrinsics are written for it)");
       if (v.sensor) {
         std::string problem = render::imageSizeProblem(v.camera.width, v.camera.height, opt_.maxPixels);
         if (problem.empty()) continue;
@@ -236,8 +332,8 @@ class ViewsRun {
       std::string pattern = opt_.output;
       if (pattern.empty()) {
         if (v.outputPath.empty() || v.outputPath == "-") {
-          cli::error("nothing to write: give -o FILE (-o - for standard output), -o PATTERN or --reference FILE ('" +
-                     v.name + "' has no outputPath)");
+          cli::error("nothing to write: '" + v.name + "' has no outputPath; give -o FILE (-o - for standard output)" +
+                     (v.sensor ? std::string() : ", --reference FILE") + " or -o PATTERN such as '{name}.{kind}.png'");
           return false;
         }
         if (std::string why = outputPathProblem(v.outputPath); !why.empty()) {
@@ -258,19 +354,18 @@ class ViewsRun {
       return false;
     }
     std::vector<cli::NamedOutput> named;
-    std::map<std::string, std::string> owners;  // path -> the view and kind writing it
-    for (const Output& o : outputs_) {
+    std::map<std::string, std::size_t> owners;  // path -> the output (index) writing it
+    for (std::size_t k = 0; k < outputs_.size(); ++k) {
+      const Output& o = outputs_[k];
       std::string path, err;
       if (!render::expandPattern(o.pattern, fieldsOf(views_[o.view], o.pass, 0, 0), path, &err)) {
         cli::error(err);
         return false;
       }
-      std::string who = "'" + views_[o.view].name + "' (" + render::passName(o.pass) + ")";
       for (const std::string& file : filesOf(path, o.pass)) {
-        auto [it, added] = owners.emplace(file, who);
+        auto [it, added] = owners.emplace(file, k);
         if (!added) {
-          cli::error("two views would write '" + file + "': " + it->second + " and " + who +
-                     "; use {name} and {kind} in -o, or give the records different outputPath [RS9048]");
+          cli::error(collision(file, outputs_[it->second], o));
           return false;
         }
         named.push_back({"-o", file});
@@ -278,6 +373,30 @@ class ViewsRun {
     }
     for (const auto& [file, who] : owners) makeParentFolder(file);
     return cli::checkOutputs(named);
+  }
+
+  // Why two images would go to one file, and what to change: one view's
+  // several passes, two views of one name, or a pattern without {name}.
+  std::string collision(const std::string& file, const Output& first, const Output& second) const {
+    const View& a = views_[first.view];
+    const View& b = views_[second.view];
+    std::string head = "two images would go to '" + file + "': ";
+    if (first.view == second.view) {
+      std::string kinds;
+      for (Pass p : a.passes) kinds += (kinds.empty() ? "" : ", ") + std::string(render::passName(p));
+      return head + "view '" + a.name + "' makes several images (" + kinds + "); put {kind} in -o, such as '" +
+             render::outputPathPattern(first.pattern, true, false) + "' [RS9048]";
+    }
+    if (a.name == b.name) {
+      bool ids = !a.id.empty() || !b.id.empty();
+      return head + "two views are named '" + a.name + "': " + declaredAt(a) + " and " + declaredAt(b) +
+             "; rename the record" + (ids && !render::patternHas(opt_.output, "id") ? ", or use {id} in -o" : "") +
+             " [RS9048]";
+    }
+    std::string fix = opt_.output.empty() ? "give the records different outputPath, or -o PATTERN with {name}"
+                                          : "use {name} and {kind} in -o, or give the records different outputPath";
+    return head + "'" + a.name + "' (" + render::passName(first.pass) + ") and '" + b.name + "' (" +
+           render::passName(second.pass) + "); " + fix + " [RS9048]";
   }
 
   static void makeParentFolder(const std::string& file) {
@@ -341,6 +460,11 @@ bool wantsViews(const ViewsOptions& o, bool referenceGiven, bool cameraRecord) {
 }
 
 int renderViews(const ViewsOptions& options, Prepared& prepared) { return ViewsRun(options, prepared).run(); }
+
+bool cameraUnique(const ViewsOptions& options, Prepared& prepared) {
+  if (options.camera.empty() || options.camera == "auto") return true;
+  return ViewsRun(options, prepared).selectorUnique();
+}
 
 std::unique_ptr<render::GlContext> openContext(const std::string& backend, bool verbose) {
   render::Backend b = backend == "gpu"   ? render::Backend::Gpu

@@ -25,6 +25,7 @@ struct ViewsOptions {
   std::uint64_t maxPixels = 0;
   std::string backend = "auto";
   bool verbose = false;
+  bool reference = false;  // --reference given: a sensor view cannot take it (one camera record's color image)
 };
 
 // Whether the flags ask for the many-view run rather than the single
@@ -46,6 +47,11 @@ struct Prepared {
 };
 
 int renderViews(const ViewsOptions& options, Prepared& prepared);
+
+// False, with the error printed, when --camera names more than one view (a
+// camera record and a sensor of the same path, or a path that is another's
+// id): the single-image path must not pick one silently.
+bool cameraUnique(const ViewsOptions& options, Prepared& prepared);
 
 // The OpenGL context of --backend; prints the error (and with --verbose the
 // device) itself.  Null on failure.

@@ -169,13 +169,19 @@ void poseViews(std::vector<View>& views, const Scene& scene, const RenderScene& 
 }
 
 int findView(const std::vector<View>& views, const std::string& selector) {
-  if (selector.empty()) return -1;
+  std::vector<int> all = findViews(views, selector);
+  return all.empty() ? -1 : all.front();
+}
+
+std::vector<int> findViews(const std::vector<View>& views, const std::string& selector) {
+  std::vector<int> found;
+  if (selector.empty()) return found;
   for (std::size_t i = 0; i < views.size(); ++i) {
     const std::string& n = views[i].name;
     bool samePath = n == selector || (!n.empty() && n[0] == '/' && n.compare(1, std::string::npos, selector) == 0);
-    if (samePath || (!views[i].id.empty() && views[i].id == selector)) return static_cast<int>(i);
+    if (samePath || (!views[i].id.empty() && views[i].id == selector)) found.push_back(static_cast<int>(i));
   }
-  return -1;
+  return found;
 }
 
 std::string fileNameOf(const std::string& viewName) {
@@ -253,7 +259,9 @@ std::string outputPathPattern(const std::string& path, bool severalKinds, bool s
   if (suffix.empty()) return path;
   std::size_t slash = path.find_last_of('/');
   std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1) return path + suffix;
+  // No extension: ".png", else "noext.{kind}" would read as a file of kind "rgb".
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1)
+    return path + suffix + ".png";
   return path.substr(0, dot) + suffix + path.substr(dot);
 }
 

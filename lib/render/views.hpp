@@ -55,6 +55,11 @@ void poseViews(std::vector<View>& views, const Scene& scene, const RenderScene& 
 // record id.  -1 when none.
 int findView(const std::vector<View>& views, const std::string& selector);
 
+// Every view `selector` names, in order: more than one when a sensor
+// record's path is also a URDF sensor's "<robot>/<set>/<sensor>" name, or
+// one view's path is another's id (the caller says which are ambiguous).
+std::vector<int> findViews(const std::vector<View>& views, const std::string& selector);
+
 // --- Output names -------------------------------------------------------
 
 // The fields of an output pattern (-o, outputPath).
@@ -82,7 +87,8 @@ bool expandPattern(const std::string& pattern, const OutputFields& fields, std::
 // passes or frames: ".{kind}" before the extension when `severalKinds` and
 // it has no {kind}, ".{frame}" likewise when `severalFrames` ("cam.png" ->
 // "cam.{kind}.{frame}.png").  Non-colour passes of a one-pass view keep
-// the path as written.
+// the path as written.  A path with no extension gains ".png" with the
+// suffix ("noext" -> "noext.{kind}.png"): its images are PNG files.
 std::string outputPathPattern(const std::string& outputPath, bool severalKinds, bool severalFrames);
 
 }  // namespace rscene::render

@@ -1,6 +1,8 @@
 #include "robot/trajectory_read.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "core/text.hpp"
@@ -73,6 +75,77 @@ std::uint32_t keyColumn(const std::string& line, const char* key) {
   return at == std::string::npos ? 1 : static_cast<std::uint32_t>(at + 1);
 }
 
+// The column of the `nth` (from 0) `"key"` followed by ':' in a JSON line
+// (a key, not a string value); 1 when not found (a key written with escapes).
+std::uint32_t nthKeyColumn(const std::string& line, const std::string& key, int nth) {
+  std::string quoted = '"' + key + '"';
+  for (std::size_t at = line.find(quoted); at != std::string::npos; at = line.find(quoted, at + 1)) {
+    std::size_t after = line.find_first_not_of(" \t", at + quoted.size());
+    if (after == std::string::npos || line[after] != ':') continue;
+    if (nth-- == 0) return static_cast<std::uint32_t>(at + 1);
+  }
+  return 1;
+}
+
+// nlohmann's parse error without its "[json.exception...] parse error at
+// line 1, column N: " prefix (the diagnostic gives the column).
+std::string parseErrorReason(const std::string& what) {
+  std::size_t at = what.find("syntax error while parsing ");
+  return at == std::string::npos ? "malformed JSON" : "malformed JSON: " + what.substr(at + 27);
+}
+
+// A parse that records the first key an object repeats: nlohmann keeps
+// one of the values silently, which would hide a file's mistake.
+struct JsonLine {
+  nlohmann::json value;
+  std::string duplicateKey;  // empty: none
+  int duplicateOccurrence = 0;  // of that key name in the line, from 0
+  std::size_t errorByte = 0;    // parse error: 1-based byte, else 0
+  std::string error;
+};
+
+JsonLine parseJsonLine(const std::string& text) {
+  JsonLine out;
+  std::vector<std::vector<std::string>> open;  // keys of each object being read
+  std::map<std::string, int> seen;              // key name -> times read so far, any object
+  auto callback = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    if (event == E::object_start) open.emplace_back();
+    if (event == E::object_end && !open.empty()) open.pop_back();
+    if (event == E::key && parsed.is_string() && !open.empty()) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      int occurrence = seen[key]++;
+      std::vector<std::string>& keys = open.back();
+      if (out.duplicateKey.empty() && std::find(keys.begin(), keys.end(), key) != keys.end()) {
+        out.duplicateKey = key;
+        out.duplicateOccurrence = occurrence;
+      }
+      keys.push_back(key);
+    }
+    return true;
+  };
+  try {
+    out.value = nlohmann::json::parse(text, callback, true);
+  } catch (const nlohmann::json::parse_error& e) {
+    out.errorByte = e.byte == 0 ? 1 : e.byte;
+    out.error = parseErrorReason(e.what());
+    // nlohmann names the last byte read: for a string where none belongs,
+    // the caret goes to its opening quote instead of its closing one.
+    if (out.error.find("unexpected string literal") != std::string::npos && out.errorByte <= text.size() &&
+        text[out.errorByte - 1] == '"') {
+      for (std::size_t i = out.errorByte - 1; i-- > 0;)
+        if (text[i] == '"' && (i == 0 || text[i - 1] != '\\')) {
+          out.errorByte = i + 1;
+          break;
+        }
+    }
+  } catch (const std::exception& e) {
+    out.errorByte = 1;
+    out.error = std::string("malformed JSON: ") + e.what();
+  }
+  return out;
+}
+
 }  // namespace
 
 TrajectoryReader::TrajectoryReader(std::istream& in, std::string file, TrajectoryLimits limits)
@@ -101,7 +174,15 @@ bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
   if (!sb) return false;
   bool any = false;
   for (;;) {
-    int c = sb->sbumpc();
+    int c = 0;
+    // libstdc++'s filebuf throws on a read error (a directory, EIO): an
+    // error at this line, never an escaping exception.
+    try {
+      c = sb->sbumpc();
+    } catch (const std::exception& e) {
+      ++lineNumber_;
+      return fail(d, 0, std::string("cannot read the trajectory: ") + e.what());
+    }
     if (c == std::char_traits<char>::eof()) break;
     any = true;
     if (c == '\n') break;
@@ -120,9 +201,15 @@ bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
 }
 
 bool TrajectoryReader::parseJson(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
-  nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded()) return fail(d, 1, "not a JSON object (rscene-sim --trajectory writes one per line)");
+  JsonLine parsed = parseJsonLine(text);
+  if (parsed.errorByte)
+    return fail(d, static_cast<std::uint32_t>(std::min<std::size_t>(parsed.errorByte, text.size() + 1)),
+                parsed.error + " (rscene-sim --trajectory writes one JSON object per line)");
+  const nlohmann::json& j = parsed.value;
   if (!j.is_object()) return fail(d, 1, "a trajectory line is a JSON object");
+  if (!parsed.duplicateKey.empty())
+    return fail(d, nthKeyColumn(text, parsed.duplicateKey, parsed.duplicateOccurrence),
+                "\"" + parsed.duplicateKey + "\" twice in one object (which one is meant?)");
   auto number = [&](const nlohmann::json& v, const char* key, double& out) {
     if (!v.is_number()) return fail(d, keyColumn(text, key), std::string(key) + " is not a number");
     out = v.get<double>();

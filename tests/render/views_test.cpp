@@ -167,6 +167,19 @@ TEST(Views, FindViewByPathIdOrRobotSensorName) {
   EXPECT_EQ(findView(views, ""), -1);
 }
 
+TEST(Views, FindViewsListsEveryViewOfOneName) {
+  std::vector<View> views(3);
+  views[0].name = "/World/A/front/color";  // a sensor record named like a URDF sensor
+  views[0].id = "rec";
+  views[1].name = "/World/A/front/color";
+  views[2].name = "/World/B";
+  views[2].id = "World/A/front/color";  // an id equal to another's path
+  EXPECT_EQ(findViews(views, "World/A/front/color"), (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(findViews(views, "rec"), (std::vector<int>{0}));
+  EXPECT_TRUE(findViews(views, "nosuch").empty());
+  EXPECT_EQ(findView(views, "/World/A/front/color"), 0);
+}
+
 TEST(OutputNames, FileNamesAreSafe) {
   EXPECT_EQ(fileNameOf("/World/Robot/front_cam/depth"), "World_Robot_front_cam_depth");
   EXPECT_EQ(fileNameOf("/a b/c:d\xc3\xa9"), "a_b_c_d__");
@@ -208,8 +221,11 @@ TEST(OutputNames, OutputPathGainsKindAndFrameWhenNeeded) {
   EXPECT_EQ(outputPathPattern("cap/front.png", true, false), "cap/front.{kind}.png");
   EXPECT_EQ(outputPathPattern("cap/front.png", true, true), "cap/front.{kind}.{frame}.png");
   EXPECT_EQ(outputPathPattern("cap/{frame}-front.png", true, true), "cap/{frame}-front.{kind}.png");
-  EXPECT_EQ(outputPathPattern("cap.d/front", false, true), "cap.d/front.{frame}");
-  EXPECT_EQ(outputPathPattern(".hidden", true, false), ".hidden.{kind}");
+  // No extension: the images are PNG files all the same.
+  EXPECT_EQ(outputPathPattern("cap.d/front", false, true), "cap.d/front.{frame}.png");
+  EXPECT_EQ(outputPathPattern(".hidden", true, false), ".hidden.{kind}.png");
+  EXPECT_EQ(outputPathPattern("noext", true, false), "noext.{kind}.png");
+  EXPECT_EQ(outputPathPattern("noext", false, false), "noext");  // one image: the path as written
 }
 
 }  // namespace

@@ -94,7 +94,14 @@ TEST(TrajectoryRead, QuaternionsAreNormalised) {
 }
 
 TEST(TrajectoryRead, MalformedLinesAreErrorsAtTheirLineAndColumn) {
-  expectError(readAll(jsonLine(0, "/a", 1) + "{\"time\":0,\n"), code::kTrajectorySyntax, 2, 1);
+  // Cut off: at the end of the line, where parsing stopped.
+  expectError(readAll(jsonLine(0, "/a", 1) + "{\"time\":0,\n"), code::kTrajectorySyntax, 2, 11);
+  std::string cut = "{\"time\":0,\"path\":\"/a\",\"position\":[1,2";
+  expectError(readAll(cut + "\n"), code::kTrajectorySyntax, 1, static_cast<std::uint32_t>(cut.size() + 1));
+  Read missingComma = readAll("{\"time\":0 \"path\":\"/a\"}\n");
+  expectError(missingComma, code::kTrajectorySyntax, 1, 11);  // at the unexpected "path"
+  EXPECT_NE(missingComma.diags[0].message.find("malformed JSON: object"), std::string::npos)
+      << missingComma.diags[0].message;
   std::string noPosition = "{\"time\":0,\"path\":\"/a\",\"quaternion\":[1,0,0,0]}\n";
   expectError(readAll(noPosition), code::kTrajectorySyntax, 1, 1);
   std::string shortPosition = "{\"time\":0,\"path\":\"/a\",\"position\":[1,2],\"quaternion\":[1,0,0,0]}\n";
@@ -108,6 +115,38 @@ TEST(TrajectoryRead, MalformedLinesAreErrorsAtTheirLineAndColumn) {
               static_cast<std::uint32_t>(textJoint.find("\"joint") + 1));
   expectError(readAll("[1,2,3]\n"), code::kTrajectorySyntax, 1, 1);
   expectError(readAll("hello\n"), code::kTrajectorySyntax, 1, 1);
+}
+
+TEST(TrajectoryRead, ADuplicateKeyIsAnErrorAtItsSecondUse) {
+  std::string twice = jsonLine(0, "/a", 1, ",\"time\":5");
+  Read r = readAll(twice);
+  expectError(r, code::kTrajectorySyntax, 1, static_cast<std::uint32_t>(twice.rfind("\"time\"") + 1));
+  EXPECT_EQ(r.diags[0].message, "\"time\" twice in one object (which one is meant?)");
+  std::string joint = jsonLine(0, "/r", 0, ",\"jointPositions\":{\"j\":1,\"k\":0,\"j\":2}");
+  expectError(readAll(joint), code::kTrajectorySyntax, 1, static_cast<std::uint32_t>(joint.rfind("\"j\"") + 1));
+  // The same key in two different objects is no duplicate; nor a value equal to a key.
+  std::string fine = jsonLine(0, "/time", 0, ",\"jointPositions\":{\"time\":1}");
+  Read ok = readAll(fine);
+  EXPECT_FALSE(ok.failed) << (ok.diags.empty() ? "" : ok.diags[0].message);
+  EXPECT_EQ(ok.frames.size(), 1u);
+}
+
+// A stream whose reads throw, as libstdc++'s filebuf does for a directory.
+struct ThrowingBuf : std::streambuf {
+  int_type underflow() override { throw std::ios_base::failure("read error"); }
+};
+
+TEST(TrajectoryRead, AStreamThatThrowsIsAnErrorNotAnException) {
+  ThrowingBuf buf;
+  std::istream in(&buf);
+  TrajectoryReader r(in, "t.jsonl");
+  TrajectoryFrame f;
+  Diagnostics d;
+  EXPECT_FALSE(r.next(f, d));
+  EXPECT_TRUE(r.failed());
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].code, code::kTrajectorySyntax);
+  EXPECT_NE(d[0].message.find("cannot read the trajectory"), std::string::npos) << d[0].message;
 }
 
 TEST(TrajectoryRead, CsvErrorsPointAtTheField) {
