@@ -153,3 +153,78 @@ EOF
   [[ "$output" == *"hint: did you mean 'depth_camera_front_camera_parent'?"* ]]
   [ "$stderr" = "1 error, 1 warning in 1 file" ]
 }
+
+# The three tools' findings of one scene: validate exits 1, sim and render 2,
+# each with the same "file:line:col: ... [CODE]" lines.
+same_in_all_three() {
+  run --separate-stderr "$V" "$1"
+  [ "$status" -eq 1 ]
+  local want
+  want=$(findings "$output")
+  [ -n "$want" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 "$1"
+    [ "$status" -eq 2 ]
+    diff <(findings "$stderr") <(echo "$want")
+  fi
+  if [ -x "$BIN/rscene-render" ]; then
+    run --separate-stderr "$BIN/rscene-render" "$1" -o out.png
+    [ "$status" -eq 2 ]
+    [ ! -e out.png ]
+    diff <(findings "$stderr") <(echo "$want")
+  fi
+  echo "$want"
+}
+
+@test "a parentObject that is no body is refused by validate, sim and render alike" {
+  cat >mount.rscene <<'EOF2'
+raisim_engine_scene 2
+material steel 0.5 0.5 0.5 1 0 0.5 0 0 0 0 false - - - - - -
+articulated_resource arm Arm arm.urdf
+sensor /World/A imu nosuch 0 0 0 1 0 0 0
+camera /World/Cam 0 0 1 1 0 0 0 50 0.05 50 64 48 rgb true id=cam_over
+sensor /World/B imu cam_over 0 0 0 1 0 0 0
+sensor /World/C imu steel 0 0 0 1 0 0 0
+sensor /World/D imu arm 0 0 0 1 0 0 0
+group /World/G id=g
+sensor /World/E rgb g 0 0 0 1 0 0 0 parentLink=x
+EOF2
+  run same_in_all_three mount.rscene
+  [ "$status" -eq 0 ]
+  diff <(echo "$output") - <<'EOF2'
+mount.rscene:4:21: error: body 'nosuch' does not exist [RS3012]
+mount.rscene:6:21: error: 'cam_over' is a camera, not a body a sensor can ride on [RS7063]
+mount.rscene:7:21: error: body 'steel' does not exist [RS3012]
+mount.rscene:8:21: error: body 'arm' does not exist [RS3012]
+mount.rscene:10:21: error: 'g' is a group, not a body a sensor can ride on [RS7063]
+EOF2
+  # validate says RS3012 once (its core check and the scene model's agree).
+  run --separate-stderr "$V" mount.rscene
+  [ "$(grep -c '^mount.rscene:4:21:' <<<"$output")" -eq 1 ]
+}
+
+@test "a value that does not parse is one finding, not also a bound on its default" {
+  printf 'raisim_engine_scene 2\nsensor /World/S rgb - 0 0 1 1 0 0 0 calibrationFx=nan calibrationFy=500 calibrationCx=320 calibrationCy=240 width=abc\n' >nan.rscene
+  run --separate-stderr "$V" nan.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output" | sed 's/ error: .*\[/ [/')" = "nan.rscene:2:51: [RS2002]
+nan.rscene:2:115: [RS2003]" ]
+  [[ "$output" != *RS7065* && "$output" != *RS7064* ]]
+  if [ -x "$BIN/rscene-render" ]; then
+    run --separate-stderr "$BIN/rscene-render" nan.rscene -o out.png
+    [ "$status" -eq 2 ]
+    [[ "$stderr" != *RS7065* && "$stderr" != *RS7064* ]]
+  fi
+}
+
+@test "two enabled sensor records with one outputPath: RS7070 in validate, sim and render" {
+  cat >same.rscene <<'EOF2'
+raisim_engine_scene 2
+sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv
+sensor /World/Off imu - 0 0 1 1 0 0 0 outputPath=a.csv enabled=false
+sensor /World/B imu - 0 0 1 1 0 0 0 outputPath=a.csv
+EOF2
+  run same_in_all_three same.rscene
+  [ "$status" -eq 0 ]
+  [ "$output" = "same.rscene:4:48: error: sensors '/World/A' and '/World/B' would both write 'a.csv' [RS7070]" ]
+}
