@@ -228,3 +228,80 @@ EOF2
   [ "$status" -eq 0 ]
   [ "$output" = "same.rscene:4:48: error: sensors '/World/A' and '/World/B' would both write 'a.csv' [RS7070]" ]
 }
+
+# A sensor set for robot(): an IMU named imu (line 3) and the given extra
+# lines inside the set's <link>.
+imu_set() {
+  mkdir -p robot/sensors
+  cat >robot/sensors/cam.xml <<EOF2
+<sensor_set name="cam">
+  <link>
+    <sensor name="imu" type="imu" update_rate="100"/>
+$1
+  </link>
+</sensor_set>
+EOF2
+}
+
+@test "validate without --check-files: a sensor set's numbers, as sim and render refuse them" {
+  robot cam.xml
+  imu_set '    <sensor name="color" type="rgb"><camera horizontal_fov="nan"><image width="100000" height="480"/></camera></sensor>
+    <sensor name="scan" type="spinning_lidar"><yaw samples="1000000000"/><pitch samples="16"/></sensor>'
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output" | sed 's/: error: .*\[/ [/')" = "robot/sensors/cam.xml:4 [RS7061]
+robot/sensors/cam.xml:5 [RS7066]" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 robot.rscene
+    [ "$status" -eq 2 ]
+    [[ "$stderr" == *"robot/sensors/cam.xml:4: error: "*"[RS7061]"* ]]
+    [[ "$stderr" == *"robot/sensors/cam.xml:5: error: "*"[RS7066]"* ]]
+  fi
+  # A sensor set that is not found stays a --check-files finding.
+  robot gone.xml
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 0 ]
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 1 ]
+  [[ "$output" == *"[RS7060]"* ]]
+}
+
+@test "a sensor record named as a robot's sensor: RS7070 at the record in validate and sim --sensors" {
+  robot cam.xml
+  imu_set ''
+  echo 'sensor /World/R/cam/imu imu - 0 0 1 1 0 0 0' >>robot.rscene
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output")" = "robot.rscene:4:8: error: sensor '/World/R/cam/imu' has the name of sensor 'imu' of the sensor set 'cam' (robot/sensors/cam.xml:3) [RS7070]" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 --sensors rec robot.rscene
+    [ "$status" -eq 2 ]
+    [[ "$(findings "$stderr")" == "robot.rscene:4:8: error: "*"[RS7070]" ]]
+  fi
+  # Renamed, it is clean.
+  sed -i 's|/World/R/cam/imu|/World/R/Imu|' robot.rscene
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 0 ]
+}
+
+@test "ANYmal C's sensor sets with bad numbers: plain validate says what sim says, at the XML lines" {
+  [ -d "$CORPUS/robots/anymal_c" ] || skip "../shared/corpus is absent"
+  cp -r "$CORPUS/robots/anymal_c" anymal_c
+  sed -i 's/<image width="640" height="480"\/>/<image width="100000" height="480"\/>/' anymal_c/sensors/realsense435.xml
+  sed -i 's/samples="512"/samples="1000000000"/' anymal_c/sensors/ouster1-64.xml
+  cat >anymal.rscene <<EOF2
+raisim_engine_scene 2
+articulated_resource anymal ANYmal anymal_c/urdf/anymal_sensored.urdf
+articulated /World/Anymal anymal 0 0 0.54 1 0 0 0 true true id=anymal generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8
+EOF2
+  run --separate-stderr "$V" anymal.rscene
+  [ "$status" -eq 1 ]
+  local want
+  want=$(findings "$output" | grep -E 'RS706[0-9]')
+  [[ "$want" == *"ouster1-64.xml:42: error: "*"[RS7066]"* ]]
+  [[ "$want" == *"realsense435.xml:"*"[RS7064]"* ]]
+  [ -x "$BIN/rscene-sim" ] || return 0
+  run --separate-stderr "$BIN/rscene-sim" --steps 1 anymal.rscene
+  [ "$status" -eq 2 ]
+  diff <(findings "$stderr" | grep -E 'RS706[0-9]') <(echo "$want")
+}
