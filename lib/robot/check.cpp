@@ -9,8 +9,8 @@
 #include "robot/ik.hpp"
 #include "robot/instance.hpp"
 #include "robot/sensors.hpp"
-#include "scene/sensor_check.hpp"
 #include "scene/reader.hpp"
+#include "scene/sensor_check.hpp"
 
 namespace rscene::robot {
 namespace {
