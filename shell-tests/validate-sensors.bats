@@ -153,3 +153,155 @@ EOF
   [[ "$output" == *"hint: did you mean 'depth_camera_front_camera_parent'?"* ]]
   [ "$stderr" = "1 error, 1 warning in 1 file" ]
 }
+
+# The three tools' findings of one scene: validate exits 1, sim and render 2,
+# each with the same "file:line:col: ... [CODE]" lines.
+same_in_all_three() {
+  run --separate-stderr "$V" "$1"
+  [ "$status" -eq 1 ]
+  local want
+  want=$(findings "$output")
+  [ -n "$want" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 "$1"
+    [ "$status" -eq 2 ]
+    diff <(findings "$stderr") <(echo "$want")
+  fi
+  if [ -x "$BIN/rscene-render" ]; then
+    run --separate-stderr "$BIN/rscene-render" "$1" -o out.png
+    [ "$status" -eq 2 ]
+    [ ! -e out.png ]
+    diff <(findings "$stderr") <(echo "$want")
+  fi
+  echo "$want"
+}
+
+@test "a parentObject that is no body is refused by validate, sim and render alike" {
+  cat >mount.rscene <<'EOF2'
+raisim_engine_scene 2
+material steel 0.5 0.5 0.5 1 0 0.5 0 0 0 0 false - - - - - -
+articulated_resource arm Arm arm.urdf
+sensor /World/A imu nosuch 0 0 0 1 0 0 0
+camera /World/Cam 0 0 1 1 0 0 0 50 0.05 50 64 48 rgb true id=cam_over
+sensor /World/B imu cam_over 0 0 0 1 0 0 0
+sensor /World/C imu steel 0 0 0 1 0 0 0
+sensor /World/D imu arm 0 0 0 1 0 0 0
+group /World/G id=g
+sensor /World/E rgb g 0 0 0 1 0 0 0 parentLink=x
+EOF2
+  run same_in_all_three mount.rscene
+  [ "$status" -eq 0 ]
+  diff <(echo "$output") - <<'EOF2'
+mount.rscene:4:21: error: body 'nosuch' does not exist [RS3012]
+mount.rscene:6:21: error: 'cam_over' is a camera, not a body a sensor can ride on [RS7063]
+mount.rscene:7:21: error: body 'steel' does not exist [RS3012]
+mount.rscene:8:21: error: body 'arm' does not exist [RS3012]
+mount.rscene:10:21: error: 'g' is a group, not a body a sensor can ride on [RS7063]
+EOF2
+  # validate says RS3012 once (its core check and the scene model's agree).
+  run --separate-stderr "$V" mount.rscene
+  [ "$(grep -c '^mount.rscene:4:21:' <<<"$output")" -eq 1 ]
+}
+
+@test "a value that does not parse is one finding, not also a bound on its default" {
+  printf 'raisim_engine_scene 2\nsensor /World/S rgb - 0 0 1 1 0 0 0 calibrationFx=nan calibrationFy=500 calibrationCx=320 calibrationCy=240 width=abc\n' >nan.rscene
+  run --separate-stderr "$V" nan.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output" | sed 's/ error: .*\[/ [/')" = "nan.rscene:2:51: [RS2002]
+nan.rscene:2:115: [RS2003]" ]
+  [[ "$output" != *RS7065* && "$output" != *RS7064* ]]
+  if [ -x "$BIN/rscene-render" ]; then
+    run --separate-stderr "$BIN/rscene-render" nan.rscene -o out.png
+    [ "$status" -eq 2 ]
+    [[ "$stderr" != *RS7065* && "$stderr" != *RS7064* ]]
+  fi
+}
+
+@test "two enabled sensor records with one outputPath: RS7070 in validate, sim and render" {
+  cat >same.rscene <<'EOF2'
+raisim_engine_scene 2
+sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv
+sensor /World/Off imu - 0 0 1 1 0 0 0 outputPath=a.csv enabled=false
+sensor /World/B imu - 0 0 1 1 0 0 0 outputPath=a.csv
+EOF2
+  run same_in_all_three same.rscene
+  [ "$status" -eq 0 ]
+  [ "$output" = "same.rscene:4:48: error: sensors '/World/A' and '/World/B' would both write 'a.csv' [RS7070]" ]
+}
+
+# A sensor set for robot(): an IMU named imu (line 3) and the given extra
+# lines inside the set's <link>.
+imu_set() {
+  mkdir -p robot/sensors
+  cat >robot/sensors/cam.xml <<EOF2
+<sensor_set name="cam">
+  <link>
+    <sensor name="imu" type="imu" update_rate="100"/>
+$1
+  </link>
+</sensor_set>
+EOF2
+}
+
+@test "validate without --check-files: a sensor set's numbers, as sim and render refuse them" {
+  robot cam.xml
+  imu_set '    <sensor name="color" type="rgb"><camera horizontal_fov="nan"><image width="100000" height="480"/></camera></sensor>
+    <sensor name="scan" type="spinning_lidar"><yaw samples="1000000000"/><pitch samples="16"/></sensor>'
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output" | sed 's/: error: .*\[/ [/')" = "robot/sensors/cam.xml:4 [RS7061]
+robot/sensors/cam.xml:5 [RS7066]" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 robot.rscene
+    [ "$status" -eq 2 ]
+    [[ "$stderr" == *"robot/sensors/cam.xml:4: error: "*"[RS7061]"* ]]
+    [[ "$stderr" == *"robot/sensors/cam.xml:5: error: "*"[RS7066]"* ]]
+  fi
+  # A sensor set that is not found stays a --check-files finding.
+  robot gone.xml
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 0 ]
+  run --separate-stderr "$V" --check-files robot.rscene
+  [ "$status" -eq 1 ]
+  [[ "$output" == *"[RS7060]"* ]]
+}
+
+@test "a sensor record named as a robot's sensor: RS7070 at the record in validate and sim --sensors" {
+  robot cam.xml
+  imu_set ''
+  echo 'sensor /World/R/cam/imu imu - 0 0 1 1 0 0 0' >>robot.rscene
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 1 ]
+  [ "$(findings "$output")" = "robot.rscene:4:8: error: sensor '/World/R/cam/imu' has the name of sensor 'imu' of the sensor set 'cam' (robot/sensors/cam.xml:3) [RS7070]" ]
+  if [ -x "$BIN/rscene-sim" ]; then
+    run --separate-stderr "$BIN/rscene-sim" --steps 1 --sensors rec robot.rscene
+    [ "$status" -eq 2 ]
+    [[ "$(findings "$stderr")" == "robot.rscene:4:8: error: "*"[RS7070]" ]]
+  fi
+  # Renamed, it is clean.
+  sed -i 's|/World/R/cam/imu|/World/R/Imu|' robot.rscene
+  run --separate-stderr "$V" robot.rscene
+  [ "$status" -eq 0 ]
+}
+
+@test "ANYmal C's sensor sets with bad numbers: plain validate says what sim says, at the XML lines" {
+  [ -d "$CORPUS/robots/anymal_c" ] || skip "../shared/corpus is absent"
+  cp -r "$CORPUS/robots/anymal_c" anymal_c
+  sed -i 's/<image width="640" height="480"\/>/<image width="100000" height="480"\/>/' anymal_c/sensors/realsense435.xml
+  sed -i 's/samples="512"/samples="1000000000"/' anymal_c/sensors/ouster1-64.xml
+  cat >anymal.rscene <<EOF2
+raisim_engine_scene 2
+articulated_resource anymal ANYmal anymal_c/urdf/anymal_sensored.urdf
+articulated /World/Anymal anymal 0 0 0.54 1 0 0 0 true true id=anymal generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,-0.8,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8
+EOF2
+  run --separate-stderr "$V" anymal.rscene
+  [ "$status" -eq 1 ]
+  local want
+  want=$(findings "$output" | grep -E 'RS706[0-9]')
+  [[ "$want" == *"ouster1-64.xml:42: error: "*"[RS7066]"* ]]
+  [[ "$want" == *"realsense435.xml:"*"[RS7064]"* ]]
+  [ -x "$BIN/rscene-sim" ] || return 0
+  run --separate-stderr "$BIN/rscene-sim" --steps 1 anymal.rscene
+  [ "$status" -eq 2 ]
+  diff <(findings "$stderr" | grep -E 'RS706[0-9]') <(echo "$want")
+}

@@ -135,6 +135,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},
     {"RS7061", E, Robot, VSR, "sensor set file that does not parse: not well-formed XML, root not <sensor_set>, a sensor without a name or type, a value that is not a number (or a whole number where one is needed), an origin beyond 1e12 m"},
     {"RS7062", W, Robot, VSR, "sensor set element that cannot be used, skipped (unknown sensor type, repeated sensor name, noise other than gaussian read as gaussian, an empty sensor attribute)"},
+    {"RS7063", E, Scene, VSR, "sensor parentObject that names a node that is no body (a camera, group, light, sensor ...): only an object, a compound or an articulated system carries a sensor"},
     {"RS7064", E, Scene, VSR, "camera-like sensor image width or height outside 1..16384 or field of view outside (0, 180) degrees; sensor far plane beyond 1e12 m"},
     {"RS7065", E, Scene, VSR, "sensor calibration given in part (fx, fy, cx, cy: all four or none), or fx or fy not positive"},
     {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},
@@ -142,7 +143,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7068", W, Scene, VSR, "sensor parentLink whose parentObject is not an articulated system (the link is not used)"},
     {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute or has a '..' part (tools write only inside their output folder)"},
     // RS707x recording sensors (lib/sim/sensor_recorder.hpp, rscene-sim --sensors)
-    {"RS7070", E, Sim, "sim", "two sensors whose streams would be written to the same path under --sensors"},
+    {"RS7070", E, Scene, VSR, "two sensors that would write one output: two enabled sensor records with the same outputPath, a sensor record with the path of a sensor of a robot's sensor set (robot path/set/sensor), two streams of rscene-sim --sensors at one path"},
     {"RS7071", W, Sim, "sim", "physical sensor kind rscene-sim does not record (force_torque, unknown kinds), skipped"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},

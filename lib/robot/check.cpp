@@ -10,6 +10,7 @@
 #include "robot/instance.hpp"
 #include "robot/sensors.hpp"
 #include "scene/reader.hpp"
+#include "scene/sensor_check.hpp"
 
 namespace rscene::robot {
 namespace {
@@ -68,6 +69,7 @@ class RobotChecker {
     // --check-files lib/core's RS5001 names a robot file that does not.
     if (a.resource < 0 && a.sourcePath.empty()) return;
     if (options_.checkFiles && !a.sourcePath.empty() && !options_.exists(a.sourcePath)) return;
+    if (!options_.checkFiles) sensorSetFindings(a, found);
     RobotInstance instance;
     InstanceOptions io;
     io.reportModel = options_.checkFiles;
@@ -86,6 +88,20 @@ class RobotChecker {
     }
     take(found, 0);
     robots_[a.recordIndex] = {&a, instance.model, instance.coordinates};
+  }
+
+  // What is wrong inside a robot's sensor-set files is said without
+  // --check-files too: sim and render refuse those numbers (RS7061,
+  // RS7064-RS7067 ...) when they load the robot, so validate must not call
+  // the scene clean.  A robot or sensor-set file that is missing (RS7060)
+  // or a robot file that does not load stays --check-files' matter.  Runs
+  // before makeInstance: the cache gives a model's findings to its first
+  // request only.
+  void sensorSetFindings(const Articulated& a, Diagnostics& found) {
+    Diagnostics load;
+    cache_.get(a.sourcePath, loadOptionsOf(a), load);
+    for (Diagnostic& d : load)
+      if (!d.file.empty() && d.code.rfind("RS706", 0) == 0 && d.code != "RS7060") found.push_back(std::move(d));
   }
 
   // --check-files reads a resource no articulated record instantiates too,
@@ -115,11 +131,17 @@ class RobotChecker {
 
   void sensors() {
     if (robots_.empty()) return;
+    // The sensors of the robots' sensor sets by the name tools give them.
+    std::unordered_map<std::string, const SensorDef*> robotSensors;
+    for (const auto& [index, robot] : robots_)
+      for (const SensorDef& d : robot.model->sensors)
+        robotSensors.emplace(robot.record->path + "/" + d.set + "/" + d.name, &d);
     Diagnostics found;
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind || rec.kind->tag != "sensor") continue;
       RecordReader r(doc_, i, found);
+      sameName(r, robotSensors);
       std::string link = r.str("parentLink");
       if (link.empty() || link == "-") continue;
       const Checked* robot = robotNamed(r.str("parentObject"));
@@ -127,6 +149,20 @@ class RobotChecker {
       reportUnknownSensorLink(doc_, static_cast<int>(i), *robot->model, link, robot->record->path, found);
     }
     take(found, 0);
+  }
+
+  // A sensor record whose path is the name of a sensor of a robot's sensor
+  // set: rscene-sim --sensors would write both to one place (RS7070), and a
+  // name would mean two sensors.  Said at the record, the one to rename.
+  void sameName(const RecordReader& r, const std::unordered_map<std::string, const SensorDef*>& robotSensors) {
+    std::string path = nodePath(doc_, r.record());
+    auto it = robotSensors.find(path);
+    if (it == robotSensors.end()) return;
+    const SensorDef& d = *it->second;
+    r.error("path", sensor_code::kSameOutput,
+            "sensor '" + path + "' has the name of sensor '" + d.name + "' of the sensor set '" + d.set + "' (" +
+                d.file + ":" + std::to_string(d.line) + ")",
+            "rename the record: the two sensors would write the same outputs");
   }
 
   void wires() {

@@ -6,7 +6,10 @@
 // robot file and the line in it (Diagnostic::file).
 //
 // Without checkFiles, a model that cannot be read is not mentioned (that is
-// --check-files' job) and the checks that need it are skipped.  A robot
+// --check-files' job) and the checks that need it are skipped; what is
+// wrong inside a sensor-set file that was found (RS7061, RS7062,
+// RS7064-RS7067: sim and render refuse those) is said all the same.  A
+// sensor record named as a robot's sensor-set sensor is RS7070.  A robot
 // file that does not exist is lib/core's RS5001 at the scene's path field.
 #pragma once
 #include <vector>

@@ -1,7 +1,10 @@
 #include "scene/sensor_check.hpp"
 
 #include <cmath>
-#include <unordered_set>
+#include <algorithm>
+#include <set>
+#include <string_view>
+#include <unordered_map>
 
 #include "core/schema.hpp"
 #include "core/text.hpp"
@@ -182,71 +185,139 @@ class SensorChecker {
   }
 
  private:
+  // Fields judged together: a value that did not parse (already an RS2xxx
+  // error where it is written) silences every bound that reads it, so the
+  // default it was replaced by never shows up as a second finding.
+  static bool judgedWithBad(const char* field, const std::set<std::string_view>& bad) {
+    static const std::vector<std::vector<std::string_view>> kTogether = {
+        {"nearPlane", "farPlane"},
+        {"lidarMinRange", "lidarMaxRange"},
+        {"lidarChannels", "lidarSamples"},
+        {"calibrationFx", "calibrationFy", "calibrationCx", "calibrationCy"}};
+    if (bad.count(field)) return true;
+    for (const auto& group : kTogether) {
+      if (std::find(group.begin(), group.end(), field) == group.end()) continue;
+      for (std::string_view f : group)
+        if (bad.count(f)) return true;
+    }
+    return false;
+  }
+
   void sensor(std::size_t i) {
     // Values are read with their parse errors left out: the scene build
-    // (and lib/core's validator) already reported them.
+    // (and lib/core's validator) already reported them.  Which fields did
+    // not parse is remembered, to say nothing more about them.
     Diagnostics ignored;
     RecordReader values(doc_, i, ignored);
     RecordReader r(doc_, i, out_);
+    std::set<std::string_view> bad;
+    auto read = [&](const char* field, auto get) {
+      std::size_t before = ignored.size();
+      auto v = get(field);
+      if (ignored.size() != before) bad.insert(field);
+      return v;
+    };
+    auto number = [&](const char* f) { return read(f, [&](const char* g) { return values.number(g); }); };
+    auto integer = [&](const char* f) { return read(f, [&](const char* g) { return values.integer(g); }); };
     SensorValues s;
     s.kind = values.name("kind");
     if (!isKnownSensorKind(s.kind))
       r.error("kind", sensor_code::kUnknownKind, "unknown sensor_kind '" + s.kind + "'",
               "the sensor is neither rendered nor simulated", Severity::Warning);
-    s.width = values.integer("width");
-    s.height = values.integer("height");
-    s.lidarChannels = values.integer("lidarChannels");
-    s.lidarSamples = values.integer("lidarSamples");
-    s.lidarVerticalFov = values.number("lidarVerticalFov");
+    s.width = integer("width");
+    s.height = integer("height");
+    s.lidarChannels = integer("lidarChannels");
+    s.lidarSamples = integer("lidarSamples");
+    s.lidarVerticalFov = number("lidarVerticalFov");
     static const char* const kCalibration[4] = {"calibrationFx", "calibrationFy", "calibrationCx", "calibrationCy"};
     for (std::size_t k = 0; k < 4; ++k) s.calibrationGiven[k] = values.has(kCalibration[k]);
     SensorParams& p = s.params;
-    p.verticalFov = values.number("verticalFov");
-    p.horizontalFov = values.number("horizontalFov");
-    p.nearPlane = values.number("nearPlane");
-    p.farPlane = values.number("farPlane");
-    p.fx = values.number("calibrationFx");
-    p.fy = values.number("calibrationFy");
-    p.cx = values.number("calibrationCx");
-    p.cy = values.number("calibrationCy");
-    p.lidarMinRange = values.number("lidarMinRange");
-    p.lidarMaxRange = values.number("lidarMaxRange");
-    p.updateRate = values.number("updateRate");
-    p.noiseMean = values.number("noiseMean");
-    p.noiseStddev = values.number("noiseStddev");
-    for (const SensorProblem& problem : sensorProblems(s)) r.error(problem.field, problem.code, problem.message);
+    p.verticalFov = number("verticalFov");
+    p.horizontalFov = number("horizontalFov");
+    p.nearPlane = number("nearPlane");
+    p.farPlane = number("farPlane");
+    p.fx = number("calibrationFx");
+    p.fy = number("calibrationFy");
+    p.cx = number("calibrationCx");
+    p.cy = number("calibrationCy");
+    p.lidarMinRange = number("lidarMinRange");
+    p.lidarMaxRange = number("lidarMaxRange");
+    p.updateRate = number("updateRate");
+    p.noiseMean = number("noiseMean");
+    p.noiseStddev = number("noiseStddev");
+    for (const SensorProblem& problem : sensorProblems(s))
+      if (!judgedWithBad(problem.field, bad)) r.error(problem.field, problem.code, problem.message);
 
+    std::string object = values.str("parentObject");
+    if (object == "-") object.clear();
+    bool onBody = object.empty() || mount(r, object);
     std::string link = values.str("parentLink");
-    if (!link.empty() && link != "-") parentLink(r, values.str("parentObject"), link);
+    if (onBody && !link.empty() && link != "-") parentLink(r, object, link);
     outputPath(r, "sensor");
+    if (values.flag("enabled")) sameOutput(r, values.str("outputPath"));
   }
 
-  // parentLink only means something on a robot.  An unknown parentObject
-  // is lib/core's RS3012, not this warning.
-  void parentLink(const RecordReader& r, std::string object, const std::string& link) {
-    if (object == "-") object.clear();
+  // What parentObject names must be a body the sensor can ride on: an
+  // object, a compound or an articulated system.  Without this the scene
+  // model leaves the sensor at its folder's frame (the world origin) and
+  // sim and render would use it there without a word.  A name of no node
+  // is lib/core's RS3012, said here too for sim and render (validate
+  // drops this copy: core reports it at the same field).  False when the
+  // name is not a body.
+  bool mount(const RecordReader& r, const std::string& object) {
+    int target = nodeNamed(object);
+    if (target < 0) {
+      r.error("parentObject", "RS3012", "body '" + object + "' does not exist", "name a node by its id or path");
+      return false;
+    }
+    const std::string& tag = doc_.records[static_cast<std::size_t>(target)].kind->tag;
+    if (tag == "object" || tag == "compound" || tag == "articulated") return true;
+    std::string what = tag.find_first_of("aeiou") == 0 ? "an " + tag : "a " + tag;
+    r.error("parentObject", sensor_code::kNotABody, "'" + object + "' is " + what + ", not a body a sensor can ride on",
+            "name an object, a compound or an articulated system, or write - for a sensor fixed in the world");
+    return false;
+  }
+
+  // parentLink only means something on a robot.
+  void parentLink(const RecordReader& r, const std::string& object, const std::string& link) {
     if (!object.empty())
       for (const Articulated& a : scene_.articulated)
         if (a.id == object || a.path == object) return;
     std::string what = "no parentObject";
-    if (!object.empty()) {
-      if (!namesNode(object)) return;
-      what = "parentObject '" + object + "', which is not an articulated system";
-    }
+    if (!object.empty()) what = "parentObject '" + object + "', which is not an articulated system";
     r.error("parentLink", sensor_code::kLinkWithoutRobot,
             "parentLink '" + link + "' is not used: the sensor has " + what,
             "name a robot (an articulated record) in parentObject, or remove parentLink", Severity::Warning);
   }
 
-  bool namesNode(const std::string& ref) {
-    if (nodes_.empty())  // built on first use: few scenes need it
+  // Two enabled sensor records writing one outputPath (rscene-sim's
+  // RS7070, said of the scene so that validate and render say it too).
+  void sameOutput(const RecordReader& r, const std::string& path) {
+    if (path.empty() || path == "-") return;
+    std::string self = nodePath(doc_, r.record());
+    auto [it, fresh] = outputs_.emplace(path, self);
+    if (fresh) return;
+    r.error("outputPath", sensor_code::kSameOutput,
+            "sensors '" + it->second + "' and '" + self + "' would both write '" + path + "'",
+            "give each sensor its own outputPath");
+  }
+
+  // The record a node reference names (by id first, then by path, the
+  // first of a name, as the scene model resolves it), or -1.
+  int nodeNamed(const std::string& ref) {
+    if (!indexed_) {  // built on first use: few scenes need it
+      indexed_ = true;
       for (std::size_t i = 1; i < doc_.records.size(); ++i) {
         const Record& rec = doc_.records[i];
         if (!rec.kind || !rec.kind->isNode()) continue;
-        nodes_.insert(nodeId(doc_, rec));
-        nodes_.insert(nodePath(doc_, rec));
+        std::string id = nodeId(doc_, rec), path = nodePath(doc_, rec);
+        if (!id.empty()) byId_.emplace(id, static_cast<int>(i));
+        if (!path.empty()) byPath_.emplace(path, static_cast<int>(i));
       }
-    return nodes_.count(ref) > 0;
+    }
+    if (auto it = byId_.find(ref); it != byId_.end()) return it->second;
+    if (auto it = byPath_.find(ref); it != byPath_.end()) return it->second;
+    return -1;
   }
 
   void outputPath(const RecordReader& r, const char* what) {
@@ -262,7 +333,9 @@ class SensorChecker {
   Diagnostics& out_;
   const KindDef* sensorKind_ = Schema::get().kind("sensor");
   const KindDef* cameraKind_ = Schema::get().kind("camera");
-  std::unordered_set<std::string> nodes_;
+  bool indexed_ = false;
+  std::unordered_map<std::string, int> byId_, byPath_;
+  std::unordered_map<std::string, std::string> outputs_;  // outputPath -> the first sensor writing it
 };
 
 }  // namespace

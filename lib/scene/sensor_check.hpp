@@ -7,8 +7,13 @@
 //   RS2007  warning: sensor kind the schema does not know (lib/core's code:
 //           validate reports it from its own check, sim and render from
 //           this one; the sensor is neither rendered nor simulated)
+//   RS3012  parentObject names no node (lib/core's code and words:
+//           validate reports it from its own check, sim and render from
+//           this one)
 //   RS4012  nearPlane <= 0 or farPlane <= nearPlane (lib/core's code and
 //           words: validate's core check says it of every sensor record)
+//   RS7063  parentObject names a node that is no body (a camera, a group,
+//           a light ...): the sensor would sit at the world origin
 //   RS7064  camera-like image size outside 1..16384, a field of view
 //           outside (0, 180) degrees; farPlane beyond 1e12 m
 //   RS7065  calibration given in part, or fx, fy not positive
@@ -20,6 +25,11 @@
 //   RS7068  warning: parentLink on a sensor whose parentObject is not an
 //           articulated system (the link is not used)
 //   RS7069  outputPath (sensor or camera) absolute or with a '..' part
+//   RS7070  two enabled sensor records with one outputPath (rscene-sim's
+//           code for two streams at one path)
+//
+// A value that did not parse is an RS2xxx error of its own; no bound is
+// judged on the default that replaced it.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -35,12 +45,14 @@ namespace rscene {
 namespace sensor_code {
 inline constexpr const char* kUnknownKind = "RS2007";  // lib/core's open-enumeration warning
 inline constexpr const char* kClip = "RS4012";         // lib/core's near/far check
+inline constexpr const char* kNotABody = "RS7063";
 inline constexpr const char* kImage = "RS7064";
 inline constexpr const char* kCalibration = "RS7065";
 inline constexpr const char* kLidar = "RS7066";
 inline constexpr const char* kRate = "RS7067";
 inline constexpr const char* kLinkWithoutRobot = "RS7068";
 inline constexpr const char* kOutputPath = "RS7069";
+inline constexpr const char* kSameOutput = "RS7070";
 }  // namespace sensor_code
 
 // Most rays one LiDAR scan casts (2^22).  The largest spinning LiDARs sold
@@ -86,7 +98,9 @@ bool isKnownSensorKind(const std::string& canonicalKind);
 std::string outputPathProblem(const std::string& outputPath);
 
 // Appends the findings above about every sensor record of `scene` and the
-// outputPath of every camera record, each at the record's field.
+// outputPath of every camera record, each at the record's field.  Reads
+// the document, not the scene's resolved mounts: validate's scene is built
+// bodiesOnly.
 void checkSensors(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 }  // namespace rscene

@@ -110,7 +110,12 @@ std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<r
       r.directions = lidarDirections(s.params);
     }
     if (auto it = taken.find(r.output); it != taken.end()) {
-      report(doc, s, "outputPath", sim_code::kSensorSameOutput,
+      // At the scene record when one of the two is one: it is the one to
+      // rename (a robot's sensor-set file is not the user's to edit).
+      const robot::SensorSpec& first = out[it->second].spec;
+      bool atFirst = s.recordIndex < 0 && first.recordIndex >= 0;
+      const char* field = !atFirst || (!first.outputPath.empty() && first.outputPath != "-") ? "outputPath" : "path";
+      report(doc, atFirst ? first : s, field, sim_code::kSensorSameOutput,
              "sensors '" + out[it->second].spec.name + "' and '" + s.name + "' would both write '" + r.output + "'",
              Severity::Error, ds);
       continue;

@@ -212,5 +212,71 @@ TEST_F(SensorsTest, AnUnknownParentLinkIsOneFindingWhoeverAsks) {
   EXPECT_EQ(count, 1);
 }
 
+// rscene-validate's findings with its robot check (no --check-files
+// unless asked).
+Diagnostics validatedWithRobots(const std::string& text, bool checkFiles = false) {
+  ModelCache cache;
+  Document doc;
+  CollectDiagnostics found;
+  CheckOptions co;
+  co.checkFiles = checkFiles;
+  RobotCheckOptions ro;
+  ro.checkFiles = checkFiles;
+  validateScene(text, co, doc, found, [&](const Document& dd, const Scene& s, std::vector<SceneFinding>& out) {
+    checkRobots(dd, s, ro, cache, out);
+  });
+  return std::move(found.all);
+}
+
+std::vector<std::string> codes(const Diagnostics& ds) {
+  std::vector<std::string> out;
+  for (const Diagnostic& d : ds) out.push_back(d.code);
+  return out;
+}
+
+TEST_F(SensorsTest, SensorSetNumbersAreValidateFindingsWithoutCheckFiles) {
+  // What sim and render refuse when they load the robot, validate says
+  // without --check-files, in the set file at the sensor's line.
+  build(0, "");  // (a bad set fails the robot's load: the scene text first)
+  std::ofstream(dir_ + "/tip.xml") << R"(<sensor_set name="tip">
+  <link>
+    <sensor name="imu" type="imu" update_rate="2e6"><origin xyz="0.5 0 0"/></sensor>
+  </link>
+</sensor_set>
+)";
+  Diagnostics d = validatedWithRobots(text_);
+  ASSERT_EQ(codes(d), std::vector<std::string>{"RS7067"});
+  EXPECT_EQ(d[0].file, dir_ + "/tip.xml");
+  EXPECT_EQ(d[0].line, 3u);
+  EXPECT_EQ(d[0].severity, Severity::Error);
+  // A value that is no number: RS7061, likewise.
+  std::ofstream(dir_ + "/tip.xml") << R"(<sensor_set name="tip">
+  <link>
+    <sensor name="imu" type="imu" update_rate="nan"/>
+  </link>
+</sensor_set>
+)";
+  EXPECT_EQ(codes(validatedWithRobots(text_)), std::vector<std::string>{"RS7061"});
+}
+
+TEST_F(SensorsTest, AMissingSensorSetStaysACheckFilesFinding) {
+  build(0, "");
+  fs::remove(dir_ + "/tip.xml");
+  EXPECT_TRUE(validatedWithRobots(text_).empty());
+  EXPECT_EQ(codes(validatedWithRobots(text_, true)), std::vector<std::string>{"RS7060"});
+}
+
+TEST_F(SensorsTest, ARecordNamedAsARobotsSensorIsRS7070AtTheRecord) {
+  // The tip set is named by its link, "arm": its IMU is /World/Arm/arm/imu.
+  build(0, "sensor /World/Arm/arm/imu imu - 0 0 0 1 0 0 0\nsensor /World/Arm/arm/imu2 imu - 0 0 0 1 0 0 0\n");
+  Diagnostics d = validatedWithRobots(text_);
+  ASSERT_EQ(codes(d), std::vector<std::string>{"RS7070"});
+  EXPECT_EQ(d[0].file, "");
+  EXPECT_EQ(d[0].line, 5u);
+  EXPECT_EQ(d[0].column, 8u);  // the record's path: the one to rename
+  EXPECT_EQ(d[0].message, "sensor '/World/Arm/arm/imu' has the name of sensor 'imu' of the sensor set 'arm' (" + dir_ +
+                              "/tip.xml:3)");
+}
+
 }  // namespace
 }  // namespace rscene::robot

@@ -203,5 +203,94 @@ TEST(SensorCheck, CameraOutputPathToo) {
   EXPECT_EQ(sensorFindings(validated(H + cam)), want);
 }
 
+// "CODE line:col" of every finding.
+std::vector<std::string> all(const Diagnostics& ds) {
+  std::vector<std::string> out;
+  for (const Diagnostic& d : ds) out.push_back(d.code + " " + std::to_string(d.line) + ":" + std::to_string(d.column));
+  return out;
+}
+
+TEST(SensorCheck, ParentObjectMustNameABody) {
+  const std::string kCam = "camera /World/Cam 0 0 1 1 0 0 0 50 0.05 50 64 48 rgb true id=cam_over\n";
+  const std::string kGroup = "group /World/G id=g\n";
+  const std::string kMaterial = "material steel 0.5 0.5 0.5 1 0 0.5 0 0 0 0 false - - - - - -\n";
+  // parentObject's column on the last line: after "sensor /World/S imu ".
+  const std::string col = "21";
+  struct {
+    std::string scene, parent, code;
+  } cases[] = {
+      {"", "nosuch", "RS3012"},                  // no node at all
+      {kMaterial, "steel", "RS3012"},            // a material is no node
+      {"articulated_resource arm Arm arm.urdf\n", "arm", "RS3012"},  // nor a resource
+      {kCam, "cam_over", "RS7063"},              // a node, but no body
+      {kCam, "/World/Cam", "RS7063"},            // by path too
+      {kGroup, "g", "RS7063"},
+  };
+  for (const auto& c : cases) {
+    std::string text = H + c.scene + sensor("imu", "", c.parent);
+    std::string line = std::to_string(2 + (c.scene.empty() ? 0 : 1));
+    std::vector<std::string> want = {c.code + " " + line + ":" + col};
+    // sim and render (checkScene) and validate: one finding, same place.
+    EXPECT_EQ(all(checked(text)), want) << c.parent;
+    EXPECT_EQ(all(validated(text)), want) << c.parent;
+  }
+  Diagnostics d = checked(H + kCam + sensor("imu", "", "cam_over"));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].message, "'cam_over' is a camera, not a body a sensor can ride on");
+  EXPECT_EQ(d[0].severity, Severity::Error);
+  // Bodies: an object, a compound, a robot, or none (-).
+  EXPECT_TRUE(checked(H + kBox + sensor("imu", "", "box")).empty());
+  EXPECT_TRUE(checked(H + kRobot + sensor("imu", "", "robot")).empty());
+  EXPECT_TRUE(checked(H + sensor("imu", "", "-")).empty());
+  // A sensor on a group is not also told that its parentLink is unused.
+  EXPECT_EQ(all(checked(H + kGroup + sensor("imu", "parentLink=x", "g"))), std::vector<std::string>{"RS7063 3:21"});
+}
+
+TEST(SensorCheck, AValueThatDoesNotParseIsOneFinding) {
+  // Each field, written so that it does not parse: only its RS2xxx, never a
+  // bound judged on the default that replaced it (fx=nan was "fx is 0").
+  const std::string kCalibration = "calibrationFx=500 calibrationFy=500 calibrationCx=320 calibrationCy=240";
+  struct {
+    const char* kind;
+    std::string keys;
+  } cases[] = {
+      {"rgb", "width=abc"},         {"rgb", "height=1.5"},          {"rgb", "verticalFov=nan"},
+      {"rgb", "horizontalFov=x"},   {"rgb", "nearPlane=nan"},       {"rgb", "farPlane=nan"},
+      {"lidar", "lidarChannels=q"}, {"lidar", "lidarSamples=nan"},  {"lidar", "lidarVerticalFov=nan"},
+      {"lidar", "lidarMinRange=x"}, {"lidar", "lidarMaxRange=nan"}, {"imu", "updateRate=nan"},
+      {"imu", "noiseMean=nan"},     {"imu", "noiseStddev=nan"},
+  };
+  for (const auto& c : cases) {
+    std::string text = H + sensor(c.kind, c.keys);
+    EXPECT_TRUE(checked(text).empty()) << c.keys << "\n" << describe(checked(text));
+    Diagnostics v = validated(text);
+    ASSERT_EQ(v.size(), 1u) << c.keys << "\n" << describe(v);
+    EXPECT_EQ(v[0].code.substr(0, 3), "RS2") << c.keys;
+  }
+  for (const char* field : {"calibrationFx", "calibrationFy", "calibrationCx", "calibrationCy"}) {
+    std::string keys;
+    for (const char* f : {"calibrationFx", "calibrationFy", "calibrationCx", "calibrationCy"})
+      keys += std::string(keys.empty() ? "" : " ") + f + "=" + (f == std::string(field) ? "nan" : "500");
+    EXPECT_TRUE(checked(H + sensor("rgb", keys)).empty()) << keys;
+    EXPECT_EQ(all(validated(H + sensor("rgb", keys))).size(), 1u) << describe(validated(H + sensor("rgb", keys)));
+  }
+  // The others still judged: a bad width beside a nan fx.
+  EXPECT_EQ(all(checked(H + sensor("rgb", "width=0 calibrationFx=nan " + kCalibration.substr(18)))),
+            std::vector<std::string>{"RS7064 2:43"});
+}
+
+TEST(SensorCheck, TwoEnabledSensorsWithOneOutputPath) {
+  std::string text = H + "sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv\n" +
+                     "sensor /World/B imu - 0 0 1 1 0 0 0 enabled=false outputPath=a.csv\n" +
+                     "sensor /World/C lidar - 0 0 1 1 0 0 0 outputPath=a.csv\n";
+  std::vector<std::string> want = {"RS7070 4:50"};  // the second enabled one, at its outputPath
+  EXPECT_EQ(all(checked(text)), want) << describe(checked(text));
+  EXPECT_EQ(all(validated(text)), want);
+  EXPECT_EQ(checked(text)[0].message, "sensors '/World/A' and '/World/C' would both write 'a.csv'");
+  EXPECT_TRUE(checked(H + "sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv\n" +
+                      "sensor /World/C lidar - 0 0 1 1 0 0 0 outputPath=c\n")
+                  .empty());
+}
+
 }  // namespace
 }  // namespace rscene
