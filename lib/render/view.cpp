@@ -20,7 +20,9 @@ const char* passName(Pass p) {
 }
 
 namespace {
-bool hasIntrinsics(const View& v) { return v.fx != 0 || v.fy != 0 || v.cx != 0 || v.cy != 0; }
+// Focal lengths make a calibration; the principal point may be anywhere
+// (0 or negative for a crop), only finite.
+bool hasIntrinsics(const View& v) { return v.fx != 0 || v.fy != 0; }
 bool usesIntrinsics(const View& v) { return hasIntrinsics(v) && v.camera.projection != "orthographic"; }
 }  // namespace
 
@@ -33,8 +35,10 @@ std::string viewProblem(const View& v) {
   if (!(std::isfinite(c.nearPlane) && std::isfinite(c.farPlane) && c.nearPlane > 0 && c.nearPlane < c.farPlane))
     return "near and far planes must satisfy 0 < near < far";
   if (hasIntrinsics(v)) {
-    for (double x : {v.fx, v.fy, v.cx, v.cy})
-      if (!std::isfinite(x) || x <= 0) return "intrinsics fx, fy, cx, cy must all be positive (or all 0: none)";
+    for (double x : {v.fx, v.fy})
+      if (!std::isfinite(x) || x <= 0) return "intrinsics fx and fy must both be positive (or both 0: none)";
+    for (double x : {v.cx, v.cy})
+      if (!std::isfinite(x)) return "intrinsics cx and cy must be finite";
   }
   return {};
 }

@@ -49,7 +49,9 @@ View sensorView(const robot::SensorSpec& s, int index) {
   c.enabled = s.enabled;
   c.outputPath = s.outputPath;
   c.mount = s.mount;
-  if (p.fx > 0 && p.fy > 0 && p.cx > 0 && p.cy > 0) {
+  // The calibration when the record gives one (sensor_check.hpp: all four
+  // written, fx and fy positive); all four written as 0 means none.
+  if (p.fx > 0 && p.fy > 0) {
     v.fx = p.fx;
     v.fy = p.fy;
     v.cx = p.cx;

@@ -78,6 +78,9 @@ void imageProblems(const SensorValues& s, Bounds& b) {
     return;
   }
   const double values[4] = {p.fx, p.fy, p.cx, p.cy};
+  // All four written as 0 is Engine 2's way of writing "not calibrated"
+  // (its writer writes every key): the fields of view apply.
+  if (values[0] == 0 && values[1] == 0 && values[2] == 0 && values[3] == 0) return;
   for (int i = 0; i < 2; ++i)
     if (!(values[i] > 0 && values[i] <= kMaxLength))
       b.add(sensor_code::kCalibration, kFields[i],

@@ -405,7 +405,7 @@ TEST(Passes, ABadViewIsAnErrorNotACrash) {
   EXPECT_FALSE(r->render(none, out, d));
   ASSERT_EQ(d.size(), 3u);
   for (const Diagnostic& x : d) EXPECT_EQ(x.code, "RS9040");
-  EXPECT_EQ(d[1].message, "view 'test': intrinsics fx, fy, cx, cy must all be positive (or all 0: none)");
+  EXPECT_EQ(d[1].message, "view 'test': intrinsics fx and fy must both be positive (or both 0: none)");
 }
 
 TEST(Passes, PointCloudsAreInCameraViewsNotSensorViews) {

@@ -107,6 +107,21 @@ TEST(Views, OneViewPerCameraAndCameraLikeSensor) {
   EXPECT_EQ(color.camera.verticalFov, 60);
 }
 
+TEST(Views, ACalibrationWithThePrincipalPointAtZeroIsUsedAllZerosIsNone) {
+  // Validate accepts cx = cy = 0 (a crop's principal point): render must
+  // use that calibration, not fall back to the fields of view; four zeros,
+  // as Engine 2 writes an uncalibrated sensor, are no calibration.
+  Built b = build(
+      "sensor /World/Crop rgb box 0 0 1 1 0 0 0 calibrationFx=50 calibrationFy=50 calibrationCx=0 calibrationCy=0\n"
+      "sensor /World/Plain rgb box 0 0 1 1 0 0 0 calibrationFx=0 calibrationFy=0 calibrationCx=0 calibrationCy=0\n");
+  ASSERT_TRUE(b.ok) << (b.diags.empty() ? "" : b.diags[0].message);
+  ASSERT_EQ(b.views.size(), 2u);
+  EXPECT_EQ(b.views[0].fx, 50);
+  EXPECT_EQ(b.views[0].cx, 0);
+  EXPECT_EQ(viewProblem(b.views[0]), "");
+  EXPECT_EQ(b.views[1].fx, 0);
+}
+
 TEST(Views, ACameraOnABodyMovesWithIt) {
   Built b = build("camera /World/Box/Cam 0 0 1 1 0 0 0 60 0.1 50 320 240 rgb true id=cam parentGroupId=box\n");
   ASSERT_TRUE(b.ok);

@@ -159,6 +159,8 @@ TEST(SensorCheck, MessagesNameTheValueAndTheBound) {
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].message, "calibration given in part: calibrationFy, calibrationCy missing");
   EXPECT_EQ(d[0].field, "calibrationFx");         // the first of the four that is written
+  // Four zeros: Engine 2's "not calibrated", no finding.
+  EXPECT_TRUE(checked(H + sensor("rgb", "calibrationFx=0 calibrationFy=0 calibrationCx=0 calibrationCy=0")).empty());
   d = checked(H + sensor("rgb", "width=99999"));  // the scene model keeps 0; the message the value written
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].message, "image width is 99999, outside 1..16384");
