@@ -148,10 +148,13 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
         const std::string& k = target->kind->tag;
         std::string msg = "parent '" + std::string(name) + "' is " + (k.find_first_of("aeiou") == 0 ? "an " : "a ") + k +
                           ", not a group";
+        // A camera on a body rides on it (render and sim mount it there):
+        // meant, documented, no mistake to warn of.
+        bool cameraOnBody = r.kind->tag == "camera" && (k == "object" || k == "compound" || k == "articulated");
         if (ctx.raisim())
           ctx.report("RS6004", r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
                      "parent the node to a group, or set scene_graph inheritedTransforms=false");
-        else
+        else if (!cameraOnBody)
           ctx.report("RS3007", r, f.value, def.name, msg + "; the node inherits its transform",
                      "parent the node to a group if it should stay in the world frame");
       }

@@ -166,6 +166,18 @@ TEST(CheckCases, EveryCodeOfTheValidatorHasACase) {
   }
 }
 
+TEST(CheckCases, ACameraOnABodyIsNoRS3007) {
+  // A camera whose parentGroupId names a body rides on it (README): meant.
+  const std::string onBox = "camera /World/c 0 0 0 1 0 0 0 60 0.1 100 640 480 rgb true parentGroupId=/World/p\n";
+  EXPECT_FALSE(has(run(H + box("/World/p") + onBox, Profile::Engine2), "RS3007"));
+  const std::string robot = "articulated_resource res R r.urdf\narticulated /World/p res 0 0 0 1 0 0 0 true true\n";
+  EXPECT_FALSE(has(run(H + robot + onBox, Profile::Engine2), "RS3007"));
+  // Other parents and other kinds keep the warning.
+  const std::string onLight = "camera /World/c 0 0 0 1 0 0 0 60 0.1 100 640 480 rgb true parentGroupId=/World/l\n";
+  EXPECT_TRUE(has(run(H + "light /World/l 0 0 -1 1\n" + onLight, Profile::Engine2), "RS3007"));
+  EXPECT_TRUE(has(run(H + box("/World/p") + box("/World/a", "parentGroupId=/World/p"), Profile::Engine2), "RS3007"));
+}
+
 TEST(CheckCases, NoObjectRadiusOrMassCheckInCore) {
   // The scene model decides what a body's size and mass mean (RS7003,
   // RS4008 in lib/scene); core's validator alone stays quiet about them.
