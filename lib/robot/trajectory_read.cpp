@@ -18,6 +18,13 @@ const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "
                                        "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
 constexpr std::size_t kCsvBodyCount = sizeof kCsvBodyColumns / sizeof *kCsvBodyColumns;
 
+// A time as the file wrote it (shortest round trip): -1, not -1.000000.
+std::string numberText(double v) {
+  std::string s;
+  appendNumber(s, v);
+  return s;
+}
+
 bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxCoordinate; }
 
 // One CSV field: its decoded text and its 1-based column.
@@ -359,7 +366,7 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
     if (!parseLine(line, time, e, d)) return false;
     if (time < lastTime_)
       return fail(d, 1,
-                  "time " + std::to_string(time) + " is before the previous frame's " + std::to_string(lastTime_) +
+                  "time " + numberText(time) + " is before the previous frame's " + numberText(lastTime_) +
                       " (times must not decrease)");
     if (time != frame.time) {
       pendingTime_ = time;
@@ -370,7 +377,7 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
     for (const TrajectoryEntry& other : frame.entries)
       if (other.path == e.path)
         return fail(d, e.pathColumn,
-                    "'" + e.path + "' twice at time " + std::to_string(time) + " (first on line " +
+                    "'" + e.path + "' twice at time " + numberText(time) + " (first on line " +
                         std::to_string(other.line) + ")");
     if (frame.entries.size() >= limits_.maxEntriesPerFrame)
       return fail(d, 1, "more than " + std::to_string(limits_.maxEntriesPerFrame) + " lines at one time");
@@ -394,8 +401,10 @@ TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shar
     r.model = models[i];
     makeCoordinates(*r.model, scene.articulated[i].jointOrder, r.coordinates);
     std::vector<std::string> names = coordinateNames(*r.model, r.coordinates, false);
-    for (std::size_t k = static_cast<std::size_t>(r.coordinates.baseCoordinates); k < names.size(); ++k)
+    for (std::size_t k = static_cast<std::size_t>(r.coordinates.baseCoordinates); k < names.size(); ++k) {
       r.coordinate.emplace(names[k], static_cast<int>(k));
+      r.names.push_back(names[k]);
+    }
   }
 }
 
@@ -431,6 +440,8 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
     const Robot& r = robots_[static_cast<std::size_t>(t.index)];
     if (!r.model) continue;
     Eigen::VectorXd q = neutralCoordinate(*r.model, r.coordinates, e.pose);
+    std::vector<bool> given(r.names.size(), false);
+    const int base = r.coordinates.baseCoordinates;
     for (const TrajectoryEntry::Joint& j : e.joints) {
       auto at = r.coordinate.find(j.name);
       if (at == r.coordinate.end())
@@ -438,6 +449,16 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
             e, j.column,
             "joint '" + j.name + "' is no movable joint of robot '" + e.path + "' (model '" + r.model->name + "')");
       q[at->second] = j.value;
+      given[static_cast<std::size_t>(at->second - base)] = true;
+    }
+    // rscene-sim writes every joint: a line without one is cut or edited,
+    // and silently drawing that joint at zero would hide it.
+    for (std::size_t k = 0; k < given.size(); ++k) {
+      if (given[k]) continue;
+      std::uint32_t column = e.joints.empty() ? e.pathColumn : e.joints.front().column;
+      return error(e, column,
+                   "robot '" + e.path + "' (model '" + r.model->name + "'): the line leaves out joint '" + r.names[k] +
+                       "' (every movable joint needs a position)");
     }
     // Spherical joints' quaternions as the simulator reads them: unit.
     for (int ji : r.coordinates.joints) {

@@ -101,9 +101,9 @@ class TrajectoryPoser {
   TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models);
   // Moves the bodies the frame names in `poses` (start from restPoses();
   // what a frame leaves out stays where it was).  A path that is no body
-  // or robot of the scene, or a joint its robot does not have, is an error
-  // naming it (RS9047 at the line in `file`), and false.  A robot's joints
-  // the line leaves out are at their neutral value (rscene-sim writes all).
+  // or robot of the scene, a joint its robot does not have, or a movable
+  // joint of the robot that the line leaves out (rscene-sim writes every
+  // one) is an error naming it (RS9047 at the line in `file`), and false.
   bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics) const;
 
  private:
@@ -115,6 +115,7 @@ class TrajectoryPoser {
     std::shared_ptr<const Model> model;
     Coordinates coordinates;
     std::unordered_map<std::string, int> coordinate;  // q entry by name (joints only)
+    std::vector<std::string> names;                   // those names in q order, from baseCoordinates
   };
   std::unordered_map<std::string, Target> targets_;
   std::vector<Robot> robots_;

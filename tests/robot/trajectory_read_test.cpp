@@ -164,6 +164,11 @@ TEST(TrajectoryRead, CsvErrorsPointAtTheField) {
 TEST(TrajectoryRead, FrameLevelErrors) {
   // Time going back: a second trajectory appended to a first.
   expectError(readAll(jsonLine(1, "/a", 0) + jsonLine(0, "/a", 0)), code::kTrajectorySyntax, 2, 1);
+  // Times as the file wrote them: -1 and 0.25, not -1.000000 and 0.250000.
+  Read back = readAll(jsonLine(0.25, "/a", 0) + jsonLine(-1, "/a", 0));
+  expectError(back, code::kTrajectorySyntax, 2, 1);
+  EXPECT_NE(back.diags[0].message.find("time -1 is before the previous frame's 0.25 "), std::string::npos)
+      << back.diags[0].message;
   // The same body twice at one time.
   Read twice = readAll(jsonLine(0, "/a", 0) + jsonLine(0, "/a", 0));
   expectError(twice, code::kTrajectorySyntax, 2, 18);
@@ -259,6 +264,21 @@ TEST(TrajectoryPoser, UnknownBodyOrJointIsAnErrorNamingIt) {
   ASSERT_EQ(d.size(), 1u);
   EXPECT_NE(d[0].message.find("joint 'elbow'"), std::string::npos);
   EXPECT_EQ(d[0].column, static_cast<std::uint32_t>(bad.find("\"jointPositions") + 1));
+
+  // A robot's line without one of its movable joints: cut or edited, not
+  // what rscene-sim writes; the joint is named at jointPositions.
+  std::string cut = jsonLine(0, "/World/Arm", 0, ",\"jointPositions\":{}");
+  Read c = readAll(cut);
+  d.clear();
+  EXPECT_FALSE(poser.apply(c.frames[0], "t.jsonl", poses, d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].code, code::kTrajectoryTarget);
+  EXPECT_NE(d[0].message.find("leaves out joint 'j1'"), std::string::npos) << d[0].message;
+  // No jointPositions at all: the error points at the path.
+  d.clear();
+  EXPECT_FALSE(poser.apply(readAll(jsonLine(0, "/World/Arm", 0)).frames[0], "t.jsonl", poses, d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].column, 18u);
 
   Read body = readAll(jsonLine(0, "/World/Box", 0, ",\"jointPositions\":{\"j1\":1}"));
   d.clear();
