@@ -95,7 +95,7 @@ is_png() {
   cmp a.png b.png
   run "$RENDER" "$DATA/render_mesh.rscene" --camera /World/Nope -o c.png
   [ "$status" -eq 2 ]
-  [ "$output" = "rscene-render: error: no camera or camera-like sensor with path or id '/World/Nope'; its views: /World/Cam" ]
+  [ "$output" = "rscene-render: error: no camera or camera-like sensor with path or id '/World/Nope'; the views of the scene: /World/Cam" ]
   [ ! -e c.png ]
   run -2 "$RENDER" "$DATA/render_mesh.rscene" --camera cam_mian -o c.png
   [ "$output" = "rscene-render: error: no camera or camera-like sensor with path or id 'cam_mian'; did you mean 'cam_main'?" ]

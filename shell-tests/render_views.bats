@@ -152,7 +152,7 @@ npy_shape() {
   [ "$stderr" = "rscene-render: error: --reference compares one image: not with --all-cameras or --trajectory" ]
   printf '{"time":0,"path":"/World/Box","position":[0,0,1],"quaternion":[1,0,0,0]}\n' > t.jsonl
   run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'x/{kind}.png'
-  [ "$stderr" = "rscene-render: error: -o 'x/{kind}.png' has no {frame}: every frame of --trajectory would write the same file" ]
+  [ "$stderr" = "rscene-render: error: -o 'x/{kind}.png' has no {frame} or {time}: every frame of --trajectory would write the same file" ]
   run -2 --separate-stderr "$RENDER" s.rscene --all-cameras --every 0 --trajectory t.jsonl -o 'x/{frame}.png'
   [ "$status" -eq 2 ]
   [ ! -e x ]
@@ -226,6 +226,11 @@ EOF
   printf '{"time":0,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{"elbow":1}}\n' > j.jsonl
   run -2 --separate-stderr "$RENDER" r.rscene --camera eye --trajectory j.jsonl -o 'g/{frame}.png'
   [[ "$stderr" == "j.jsonl:1:"*": error: joint 'elbow' is no movable joint of robot '/World/Arm' (model 'arm') [RS9047]" ]]
+  # A line that leaves a joint out is an error naming it, not a joint at zero.
+  printf '{"time":0,"path":"/World/Arm","position":[0,0,0],"quaternion":[1,0,0,0],"jointPositions":{}}\n' > m.jsonl
+  run -2 --separate-stderr "$RENDER" r.rscene --camera eye --trajectory m.jsonl -o 'h/{frame}.png'
+  [ "$stderr" = "m.jsonl:1:18: error: robot '/World/Arm' (model 'arm'): the line leaves out joint 'j1' (every movable joint needs a position) [RS9047]" ]
+  [ ! -e h/000000.png ]
 }
 
 @test "ANYmal C's URDF sensor sets are views: --all-cameras and --camera ROBOT/SET/SENSOR" {
@@ -262,8 +267,11 @@ EOF
   { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
     printf '{"time":1,"path":"/World/Box","position":[1,0,0.5],"quaternion":[0.7071068,0,0,0.7071068]}\n'
     printf '{"time":2,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
-  run "$RENDER" s.rscene --camera boxcam --trajectory t.jsonl -o 'b/{frame}.png'
+  run --separate-stderr "$RENDER" s.rscene --camera boxcam --trajectory t.jsonl -o 'b/{frame}.png'
   [ "$status" -eq 0 ]
+  [ "$stderr" = "" ]  # riding on a body is meant: no RS3007 warning, here or in rscene-validate
+  run "$BIN/rscene-validate" s.rscene
+  [[ "$output" != *RS3007* ]]
   # A cube turned a quarter looks the same from a fixed camera: only a camera turning with it sees frame 1 differ.
   ! cmp -s b/000000.png b/000001.png
   cmp b/000000.png b/000002.png
@@ -337,10 +345,10 @@ XML
 
 @test "--camera: a LiDAR or IMU is no view; unknown names list the sensor views too" {
   run -2 --separate-stderr "$RENDER" s.rscene --camera /World/Imu -o x.png
-  [ "$stderr" = "rscene-render: error: '/World/Imu' is a sensor of kind imu, not a view (rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it); its views: /World/Cam, /World/Off, /World/Eye" ]
+  [ "$stderr" = "rscene-render: error: '/World/Imu' is a sensor of kind imu, not a view (rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it); the views of the scene: /World/Cam, /World/Off, /World/Eye" ]
   grep -v '^camera' s.rscene > nocam.rscene
   run -2 --separate-stderr "$RENDER" nocam.rscene --camera nosuch -o x.png
-  [ "$stderr" = "rscene-render: error: no camera or camera-like sensor with path or id 'nosuch'; its views: /World/Eye" ]
+  [ "$stderr" = "rscene-render: error: no camera or camera-like sensor with path or id 'nosuch'; the views of the scene: /World/Eye" ]
   grep -v '^sensor /World/Eye' nocam.rscene > none.rscene
   run -2 --separate-stderr "$RENDER" none.rscene --camera nosuch -o x.png
   [ "$stderr" = "rscene-render: error: no camera or camera-like sensor with path or id 'nosuch'; the scene has no view (leave out --camera, or use --camera auto)" ]
@@ -362,4 +370,43 @@ XML
   [ "$status" -eq 0 ]
   [ "$(cd caps && ls | tr '\n' ' ')" = "noext.depth.npy noext.depth.png noext.segmentation.json noext.segmentation.png " ]
   is_png caps/noext.depth.png
+}
+
+@test "images are PNG: an image name with another extension is refused, .PNG and none are fine" {
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras -o 'pc/{name}.{kind}.npy'
+  [ "$stderr" = "rscene-render: error: -o 'pc/{name}.{kind}.npy': 'pc/World_Cam.rgb.npy' ends in .npy, but rscene-render writes PNG images only (a depth image's float .npy and a segmentation's .json legend are written beside the image, under its name with .npy or .json); end -o with .png" ]
+  [ ! -e pc ]
+  run -2 --separate-stderr "$RENDER" s.rscene --all-cameras -o 'x/{name}.{kind}.jpg'
+  [[ "$stderr" == "rscene-render: error: -o 'x/{name}.{kind}.jpg': 'x/World_Cam.rgb.jpg' ends in .jpg, but "* ]]
+  [ ! -e x ]
+  run -2 --separate-stderr "$RENDER" s.rscene -o cam.JPG
+  [[ "$stderr" == "rscene-render: error: -o: 'cam.JPG' ends in .JPG, but rscene-render writes PNG images only "*"; end -o with .png" ]]
+  [ ! -e cam.JPG ]
+  run -2 --separate-stderr "$RENDER" s.rscene --reference ref.png --diff-output d.jpg
+  [[ "$stderr" == "rscene-render: error: --diff-output: 'd.jpg' ends in .jpg, "* ]]
+  [ ! -e ref.png ]
+  sed 's#outputPath=caps/eye.png#outputPath=caps/eye.jpg#' s.rscene > j.rscene
+  run -2 --separate-stderr "$RENDER" j.rscene --camera eye
+  [[ "$stderr" == "j.rscene:7:"*": error: outputPath: 'caps/eye.depth.jpg' ends in .jpg, but "*" [RS9048]"* ]]
+  [ ! -e caps ]
+  run "$RENDER" s.rscene --camera eye -o 'u/{kind}.PNG'
+  [ "$status" -eq 0 ]
+  is_png u/depth.PNG && [ -f u/depth.npy ] && [ -f u/segmentation.json ]
+  run "$RENDER" s.rscene --camera cam -o 'n/{kind}'
+  [ "$status" -eq 0 ]
+  is_png n/rgb && is_png n/depth && [ -f n/depth.npy ]
+}
+
+@test "--trajectory: {time} names each frame, as {frame} does; times in messages as the file wrote them" {
+  { printf '{"time":0,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n'
+    printf '{"time":0.25,"path":"/World/Box","position":[1,0,1.5],"quaternion":[1,0,0,0]}\n'; } > t.jsonl
+  run "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'tm/{time}.{kind}.png'
+  [ "$status" -eq 0 ]
+  [ "$(cd tm && ls *.png | tr '\n' ' ')" = "0.25.depth.png 0.25.rgb.png 0.depth.png 0.rgb.png " ]
+  ! cmp -s tm/0.rgb.png tm/0.25.rgb.png
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'tm/{kind}.png'
+  [ "$stderr" = "rscene-render: error: -o 'tm/{kind}.png' has no {frame} or {time}: every frame of --trajectory would write the same file" ]
+  printf '{"time":-1,"path":"/World/Box","position":[1,0,0.5],"quaternion":[1,0,0,0]}\n' >> t.jsonl
+  run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'tb/{frame}.{kind}.png'
+  [ "$stderr" = "t.jsonl:3:1: error: time -1 is before the previous frame's 0.25 (times must not decrease) [RS9046]" ]
 }

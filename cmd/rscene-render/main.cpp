@@ -16,6 +16,7 @@
 #include "render/image.hpp"
 #include "render/limits.hpp"
 #include "render/render_scene.hpp"
+#include "render/views.hpp"
 #include "render/renderer.hpp"
 #include "rscene-render/baseline.hpp"
 #include "rscene-render/views_run.hpp"
@@ -233,6 +234,16 @@ int main(int argc, char** argv) {
                           {"--diff-output", opt.baseline.diffOutput},
                           {"--reference", opt.baseline.reference, referenceWritten}}))
     return cli::kTrouble;
+  // Images are PNG whatever the name says: a .jpg name is refused, not
+  // filled with PNG bytes.  A pattern's files are checked once expanded.
+  for (const auto& [flag, file] : {std::pair<const char*, std::string>{"-o", pattern ? "" : opt.output},
+                                   {"--diff-output", opt.baseline.diffOutput}}) {
+    if (file.empty() || file == "-") continue;
+    if (std::string why = render::imageExtensionProblem(file); !why.empty()) {
+      cli::error(std::string(flag) + ": " + why + "; end " + flag + " with .png");
+      return cli::kTrouble;
+    }
+  }
   opt.baseline.reportToStderr = opt.output == "-";
   return run(opt);
 }

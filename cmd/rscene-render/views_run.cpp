@@ -276,7 +276,7 @@ class ViewsRun {
     }
     std::string list;
     for (std::size_t i = 0; i < all.size() && i < 8; ++i) list += (i ? ", " : "") + all[i].name;
-    return message + "; its views: " + list + (all.size() > 8 ? ", ..." : "");
+    return message + "; the views of the scene: " + list + (all.size() > 8 ? ", ..." : "");
   }
 
   // Camera records take --width/--height (else their own size, else
@@ -321,8 +321,10 @@ class ViewsRun {
   bool planOutputs() {
     const bool frames = !opt_.trajectory.empty();
     if (!opt_.output.empty()) {
-      if (frames && !render::patternHas(opt_.output, "frame")) {
-        cli::error("-o '" + opt_.output + "' has no {frame}: every frame of --trajectory would write the same file");
+      // Frames have increasing times: {time} names each one once too.
+      if (frames && !render::patternHas(opt_.output, "frame") && !render::patternHas(opt_.output, "time")) {
+        cli::error("-o '" + opt_.output +
+                   "' has no {frame} or {time}: every frame of --trajectory would write the same file");
         return false;
       }
     }
@@ -362,6 +364,19 @@ class ViewsRun {
         cli::error(err);
         return false;
       }
+      if (std::string why = render::imageExtensionProblem(path); !why.empty()) {
+        if (!opt_.output.empty()) {
+          cli::error("-o '" + opt_.output + "': " + why + "; end -o with .png");
+          return false;
+        }
+        if (views_[o.view].recordIndex < 0) {
+          cli::error("'" + views_[o.view].name + "': " + why);
+          return false;
+        }
+        RecordReader r(p_.document, static_cast<std::size_t>(views_[o.view].recordIndex), diags);
+        r.error("outputPath", render::code::kOutputPath, "outputPath: " + why, "end outputPath with .png");
+        return print(diags);
+      }
       for (const std::string& file : filesOf(path, o.pass)) {
         auto [it, added] = owners.emplace(file, k);
         if (!added) {
@@ -381,6 +396,9 @@ class ViewsRun {
     const View& a = views_[first.view];
     const View& b = views_[second.view];
     std::string head = "two images would go to '" + file + "': ";
+    if (&first == &second)  // the image and the .npy or .json written beside it
+      return head + "the " + std::string(render::passName(first.pass)) + " image of '" + a.name +
+             "' is PNG and its companion file goes beside it under the same name; end the pattern with .png [RS9048]";
     if (first.view == second.view) {
       std::string kinds;
       for (Pass p : a.passes) kinds += (kinds.empty() ? "" : ", ") + std::string(render::passName(p));

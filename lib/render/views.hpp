@@ -83,9 +83,18 @@ bool patternHas(const std::string& pattern, const char* field);
 // unmatched brace.
 bool expandPattern(const std::string& pattern, const OutputFields& fields, std::string& out, std::string* error);
 
+// Why an image file name does not suit: rscene-render writes PNG only, so
+// its extension must be .png (any case) or absent ("" when it suits).  A
+// .jpg holding PNG bytes would mislead every viewer; a .npy or .json one
+// would also clash with the depth and segmentation files written beside
+// the image.  A leading dot ("out/.hidden") is no extension.
+std::string imageExtensionProblem(const std::string& file);
+
 // The pattern a record's outputPath stands for, for a view with several
 // passes or frames: ".{kind}" before the extension when `severalKinds` and
-// it has no {kind}, ".{frame}" likewise when `severalFrames` ("cam.png" ->
+// it has no {kind}, ".{frame}" likewise when `severalFrames` and it has
+// neither {frame} nor {time} (a trajectory's frames have increasing times,
+// so {time} names each frame once) ("cam.png" ->
 // "cam.{kind}.{frame}.png").  Non-colour passes of a one-pass view keep
 // the path as written.  A path with no extension gains ".png" with the
 // suffix ("noext" -> "noext.{kind}.png"): its images are PNG files.

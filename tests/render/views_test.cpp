@@ -241,6 +241,23 @@ TEST(OutputNames, OutputPathGainsKindAndFrameWhenNeeded) {
   EXPECT_EQ(outputPathPattern(".hidden", true, false), ".hidden.{kind}.png");
   EXPECT_EQ(outputPathPattern("noext", true, false), "noext.{kind}.png");
   EXPECT_EQ(outputPathPattern("noext", false, false), "noext");  // one image: the path as written
+  // {time} names each frame of a trajectory once, as {frame} does.
+  EXPECT_EQ(outputPathPattern("cap/front-{time}.png", false, true), "cap/front-{time}.png");
+  EXPECT_EQ(outputPathPattern("cap/front-{time}.png", true, true), "cap/front-{time}.{kind}.png");
+}
+
+TEST(OutputNames, ImagesArePngOrHaveNoExtension) {
+  EXPECT_EQ(imageExtensionProblem("a/b.png"), "");
+  EXPECT_EQ(imageExtensionProblem("a/b.PNG"), "");
+  EXPECT_EQ(imageExtensionProblem("a/b.Png"), "");
+  EXPECT_EQ(imageExtensionProblem("a/b"), "");
+  EXPECT_EQ(imageExtensionProblem("a.d/b"), "");  // a dot in a folder is no extension
+  EXPECT_EQ(imageExtensionProblem("a/.hidden"), "");
+  EXPECT_NE(imageExtensionProblem("a/b.jpg"), "");
+  EXPECT_NE(imageExtensionProblem("a/b.depth.npy"), "");
+  EXPECT_NE(imageExtensionProblem("b.png.json"), "");
+  EXPECT_NE(imageExtensionProblem("a/b.rgb"), "");
+  EXPECT_NE(imageExtensionProblem("a/b.jpg").find("PNG images only"), std::string::npos);
 }
 
 }  // namespace
