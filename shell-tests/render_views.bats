@@ -410,3 +410,17 @@ XML
   run -2 --separate-stderr "$RENDER" s.rscene --camera cam --trajectory t.jsonl -o 'tb/{frame}.{kind}.png'
   [ "$stderr" = "t.jsonl:3:1: error: time -1 is before the previous frame's 0.25 (times must not decrease) [RS9046]" ]
 }
+
+@test "--trajectory: sensor depth noise is drawn anew each frame; frame 0 is the record's seed, runs repeat" {
+  [ -x "$SIM" ] || skip "rscene-sim not built"
+  # The eye sees only the static ground; the box falls out of its view.
+  sed 's/box 1 0 0.5 1 0 0 0/box 9 9 3 1 0 0 0/; s/segmentation=true/noiseStddev=0.01 noiseSeed=5 segmentation=false/' \
+    s.rscene > noisy.rscene
+  "$SIM" noisy.rscene --steps 4 --every 2 --trajectory t.jsonl -o /dev/null
+  "$RENDER" noisy.rscene --camera eye --trajectory t.jsonl -o 'n/{frame}.{kind}.png'
+  "$RENDER" noisy.rscene --camera eye --trajectory t.jsonl -o 'm/{frame}.{kind}.png'
+  "$RENDER" noisy.rscene --camera eye -o 'one.{kind}.png'
+  ! cmp -s n/000000.depth.npy n/000001.depth.npy  # a new draw of noise on the same view
+  cmp n/000001.depth.npy m/000001.depth.npy        # the same sequence on every run
+  cmp n/000000.depth.npy one.depth.npy             # frame 0: the record's seed, as a single render
+}

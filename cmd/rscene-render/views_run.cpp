@@ -427,7 +427,11 @@ class ViewsRun {
     Diagnostics diags;
     std::size_t next = 0;
     for (std::size_t i = 0; i < views_.size(); ++i) {
-      const View& v = views_[i];
+      View v = views_[i];
+      // Sensor noise is drawn anew at each frame, as a real sensor's is:
+      // frame k uses the seed plus k times an odd constant, so frame 0 is
+      // the record's seed and the same seed gives the same sequence.
+      v.noiseSeed += frame * 0x9E3779B97F4A7C15ull;
       ImageJob job;
       auto t = Clock::now();
       if (!renderer.render(v, job.images, diags)) {
