@@ -199,7 +199,7 @@ EOF2
   [[ ${lines[1]} == 0.1,* ]]
 }
 
-@test "a run that fails leaves no IMU file and no scan index" {
+@test "a run that fails leaves no sensor files: no IMU file, no index, no scans, no folder it made" {
   # The smallest normal mass passes the checks; stepping it does not stay finite (RS7024).
   { room; echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615 id=heavy"
     echo "sensor /World/HeavyImu imu heavy 0 0 0 1 0 0 0"; } > heavy.rscene
@@ -208,6 +208,22 @@ EOF2
   [ ! -e out/World+Imu.csv ]
   [ ! -e out/World+HeavyImu.csv ]
   [ ! -e out/World+Lidar/scans.csv ]
-  [ -f out/World+Lidar/scan_000000.pcd ]  # taken before the failure
-  [ -z "$(find out -name '.*')" ]         # no temporary file left
+  [ ! -e out ]  # the scans taken before the failure are removed, and the folders the run made
+}
+
+@test "an interrupted run (SIGINT) exits 130 and leaves no sensor files; a folder that was there stays" {
+  mkdir kept
+  run -130 timeout --preserve-status -s INT 1 "$SIM" --duration 100000 --sensors kept/out --trajectory t.jsonl \
+    -o scene.out room.rscene
+  [ -z "$output" ]  # no 'write cancelled' errors: 130 says it
+  [ -d kept ]
+  [ ! -e kept/out ]
+  [ ! -e t.jsonl ]
+  [ ! -e scene.out ]
+}
+
+@test "--sensors '' is a usage error" {
+  run -2 "$SIM" --sensors '' -o /dev/null room.rscene
+  [[ $output == *"--sensors"* ]]
+  [ ! -e out ]
 }
