@@ -119,7 +119,7 @@ setup() {
 @test "two sensors writing one path are refused; force_torque is skipped with a warning" {
   LIDAR_EXTRA="outputPath=World+Imu.csv" room > same.rscene
   run -2 --separate-stderr "$SIM" --sensors out -o /dev/null same.rscene
-  [[ ${stderr_lines[0]} == "same.rscene:11:"*": error: sensors '/World/Imu' and '/World/Lidar' would both write 'World+Imu.csv' [RS7070]" ]]
+  [[ ${stderr_lines[0]} == "same.rscene:11:"*": error: sensor '/World/Lidar' and sensor '/World/Imu' would both write 'World+Imu.csv' [RS7070]" ]]
   { room; echo "sensor /World/Ft force_torque crate 0 0 0 1 0 0 0"; } > ft.rscene
   run -0 --separate-stderr "$SIM" --steps 1 --sensors out -o /dev/null ft.rscene
   [ "${stderr_lines[0]}" = "ft.rscene:12:18: warning: sensor '/World/Ft' of kind 'force_torque' is not recorded (rscene-sim records lidar and imu) [RS7071]" ]
@@ -226,4 +226,24 @@ EOF2
   run -2 "$SIM" --sensors '' -o /dev/null room.rscene
   [[ $output == *"--sensors"* ]]
   [ ! -e out ]
+}
+
+@test "outputPath values sim cannot use are refused at the record, as validate refuses them, before any folder is made" {
+  IMU_EXTRA="outputPath=." room > dot.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null dot.rscene
+  [[ ${stderr_lines[0]} == "dot.rscene:10:71: error: sensor outputPath '.' names the --sensors folder itself [RS7069]" ]]
+  [ ! -e out ]
+  run -1 "$BIN/rscene-validate" dot.rscene
+  [[ $output == *"dot.rscene:10:71: error:"*"[RS7069]"* ]]
+  # An IMU inside a LiDAR's folder: the same code and place in both tools.
+  IMU_EXTRA="outputPath=x/scans.csv" LIDAR_EXTRA="outputPath=x" room > nest.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null nest.rscene
+  [ "${stderr_lines[0]}" = "nest.rscene:11:117: error: sensor '/World/Lidar' would write 'x', and sensor '/World/Imu' 'x/scans.csv' inside it [RS7070]" ]
+  [ ! -e out ]
+  run -1 "$BIN/rscene-validate" nest.rscene
+  [[ ${lines[0]} == "nest.rscene:11:117: error: "*"[RS7070]" ]]
+  # A LiDAR's outputPath with a final '/' is its folder.
+  LIDAR_EXTRA="outputPath=scans/" room > slash.rscene
+  run -0 "$SIM" --steps 1 --sensors out -o /dev/null slash.rscene
+  [ -f out/scans/scans.csv ]
 }

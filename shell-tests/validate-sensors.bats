@@ -226,7 +226,7 @@ sensor /World/B imu - 0 0 1 1 0 0 0 outputPath=a.csv
 EOF2
   run same_in_all_three same.rscene
   [ "$status" -eq 0 ]
-  [ "$output" = "same.rscene:4:48: error: sensors '/World/A' and '/World/B' would both write 'a.csv' [RS7070]" ]
+  [ "$output" = "same.rscene:4:48: error: sensor '/World/B' and sensor '/World/A' would both write 'a.csv' [RS7070]" ]
 }
 
 # A sensor set for robot(): an IMU named imu (line 3) and the given extra
@@ -272,7 +272,7 @@ robot/sensors/cam.xml:5 [RS7066]" ]
   echo 'sensor /World/R/cam/imu imu - 0 0 1 1 0 0 0' >>robot.rscene
   run --separate-stderr "$V" robot.rscene
   [ "$status" -eq 1 ]
-  [ "$(findings "$output")" = "robot.rscene:4:8: error: sensor '/World/R/cam/imu' has the name of sensor 'imu' of the sensor set 'cam' (robot/sensors/cam.xml:3) [RS7070]" ]
+  [ "$(findings "$output")" = "robot.rscene:4:8: error: the sensor record '/World/R/cam/imu' and the URDF sensor 'imu' of the sensor set on link 'cam' (robot/sensors/cam.xml:3) would both write 'World+R+cam+imu.csv' [RS7070]" ]
   if [ -x "$BIN/rscene-sim" ]; then
     run --separate-stderr "$BIN/rscene-sim" --steps 1 --sensors rec robot.rscene
     [ "$status" -eq 2 ]
