@@ -145,6 +145,9 @@ constexpr CheckInfo kChecks[] = {
     // RS707x recording sensors (lib/sim/sensor_recorder.hpp, rscene-sim --sensors)
     {"RS7070", E, Scene, VSR, "two sensors that would write one output: two enabled sensor records with the same outputPath; two LiDARs or IMUs (records or robots' sensor sets) whose rscene-sim --sensors outputs are one place or one inside the other (an IMU file in a LiDAR's folder)"},
     {"RS7071", W, Sim, "sim", "physical sensor kind rscene-sim does not record (force_torque, unknown kinds), skipped"},
+    {"RS7072", W, Scene, VSR, "lidar lidarVerticalFov of 0 with more than one channel (every ring scans the same plane)"},
+    {"RS7073", W, Scene, VSR, "sensor segmentation=true on a kind that draws no image (lidar, imu, force_torque): not used"},
+    {"RS7074", E, Scene, VSR, "camera orthoScale not finite and positive (at most 1e12) under an orthographic projection"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

@@ -258,7 +258,7 @@ class SensorChecker {
       if (rec.kind == sensorKind_)
         sensor(i);
       else if (rec.kind == cameraKind_)
-        outputPath(RecordReader(doc_, i, out_), "camera");
+        camera(i);
     }
   }
 
@@ -279,6 +279,20 @@ class SensorChecker {
         if (bad.count(f)) return true;
     }
     return false;
+  }
+
+  void camera(std::size_t i) {
+    RecordReader r(doc_, i, out_);
+    outputPath(r, "camera");
+    Diagnostics ignored;  // values that do not parse are RS2xxx errors already
+    RecordReader values(doc_, i, ignored);
+    std::size_t before = ignored.size();
+    double scale = values.number("orthoScale");
+    if (ignored.size() != before || values.name("projection") != "orthographic") return;
+    if (!(std::isfinite(scale) && scale > 0 && scale <= kMaxLength))
+      r.error("orthoScale", sensor_code::kOrthoScale,
+              "orthoScale is " + num(scale) + " under an orthographic projection; it must be within (0, 1e12]",
+              "the height of the view in metres");
   }
 
   void sensor(std::size_t i) {
@@ -325,6 +339,15 @@ class SensorChecker {
     p.noiseStddev = number("noiseStddev");
     for (const SensorProblem& problem : sensorProblems(s))
       if (!judgedWithBad(problem.field, bad)) r.error(problem.field, problem.code, problem.message);
+    if (s.kind == "lidar" && s.lidarVerticalFov == 0 && s.lidarChannels > 1 && !bad.count("lidarVerticalFov"))
+      r.error("lidarVerticalFov", sensor_code::kFlatLidar,
+              "lidarVerticalFov is 0 with " + std::to_string(s.lidarChannels) +
+                  " channels: every ring scans the same plane",
+              "give the vertical span in degrees, or lidarChannels=1 for a 2D LiDAR", Severity::Warning);
+    if (!isCameraLikeSensor(s.kind) && isKnownSensorKind(s.kind) && values.flag("segmentation"))
+      r.error("segmentation", sensor_code::kSegmentationUnused,
+              "segmentation=true on a " + s.kind + " sensor is not used: only camera-like kinds draw images",
+              "remove it, or use kind segmentation", Severity::Warning);
 
     std::string object = values.str("parentObject");
     if (object == "-") object.clear();

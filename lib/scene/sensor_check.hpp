@@ -27,6 +27,12 @@
 //   RS7069  outputPath (sensor or camera) absolute or with a '..' part
 //   RS7070  two enabled sensor records with one outputPath (rscene-sim's
 //           code for two streams at one path)
+//   RS7072  warning: lidarVerticalFov 0 with more than one channel (every
+//           ring scans the same plane)
+//   RS7073  warning: segmentation=true on a kind that draws no image (the
+//           flag is not used)
+//   RS7074  camera orthoScale not finite and > 0 under an orthographic
+//           projection (a degenerate image)
 //
 // A value that did not parse is an RS2xxx error of its own; no bound is
 // judged on the default that replaced it.
@@ -54,6 +60,9 @@ inline constexpr const char* kRate = "RS7067";
 inline constexpr const char* kLinkWithoutRobot = "RS7068";
 inline constexpr const char* kOutputPath = "RS7069";
 inline constexpr const char* kSameOutput = "RS7070";
+inline constexpr const char* kFlatLidar = "RS7072";
+inline constexpr const char* kSegmentationUnused = "RS7073";
+inline constexpr const char* kOrthoScale = "RS7074";
 }  // namespace sensor_code
 
 // Most rays one LiDAR scan casts (2^22).  The largest spinning LiDARs sold

@@ -325,6 +325,24 @@ TEST(SensorCheck, SensorOutputsSimWouldRefuseAreRefusedAtTheRecord) {
             std::vector<std::string>{"RS7070 3:8"});
 }
 
+TEST(SensorCheck, OrthoScaleFlatLidarAndUnusedSegmentation) {
+  const std::string cam = "camera /World/C 0 0 5 1 0 0 0 45 0.05 50 64 48 rgb true ";
+  auto codesOf = [](const std::string& lines) { return all(checked(H + lines)); };
+  EXPECT_EQ(codesOf(cam + "projection=orthographic orthoScale=0\n"), std::vector<std::string>{"RS7074 2:92"});
+  EXPECT_EQ(codesOf(cam + "projection=orthographic orthoScale=1e300\n"), std::vector<std::string>{"RS7074 2:92"});
+  EXPECT_TRUE(codesOf(cam + "projection=orthographic orthoScale=4\n").empty());
+  EXPECT_TRUE(codesOf(cam + "orthoScale=-6\n").empty());  // perspective: not used
+  EXPECT_EQ(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=2\n"),
+            std::vector<std::string>{"RS7072 2:56"});
+  EXPECT_TRUE(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=1\n").empty());
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 segmentation=true\n"),
+            std::vector<std::string>{"RS7073 2:50"});
+  EXPECT_TRUE(codesOf("sensor /World/S rgb - 0 0 1 1 0 0 0 segmentation=true\n").empty());
+  Diagnostics d = checked(H + "sensor /World/I imu - 0 0 1 1 0 0 0 segmentation=true\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].severity, Severity::Warning);
+}
+
 TEST(SensorCheck, TwoEnabledSensorsWithOneOutputPath) {
   std::string text = H + "sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv\n" +
                      "sensor /World/B imu - 0 0 1 1 0 0 0 enabled=false outputPath=a.csv\n" +
