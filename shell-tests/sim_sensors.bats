@@ -119,7 +119,7 @@ setup() {
 @test "two sensors writing one path are refused; force_torque is skipped with a warning" {
   LIDAR_EXTRA="outputPath=World+Imu.csv" room > same.rscene
   run -2 --separate-stderr "$SIM" --sensors out -o /dev/null same.rscene
-  [[ ${stderr_lines[0]} == "same.rscene:11:"*": error: sensors '/World/Imu' and '/World/Lidar' would both write 'World+Imu.csv' [RS7070]" ]]
+  [[ ${stderr_lines[0]} == "same.rscene:11:"*": error: sensor '/World/Lidar' and sensor '/World/Imu' would both write 'World+Imu.csv' [RS7070]" ]]
   { room; echo "sensor /World/Ft force_torque crate 0 0 0 1 0 0 0"; } > ft.rscene
   run -0 --separate-stderr "$SIM" --steps 1 --sensors out -o /dev/null ft.rscene
   [ "${stderr_lines[0]}" = "ft.rscene:12:18: warning: sensor '/World/Ft' of kind 'force_torque' is not recorded (rscene-sim records lidar and imu) [RS7071]" ]
@@ -199,7 +199,7 @@ EOF2
   [[ ${lines[1]} == 0.1,* ]]
 }
 
-@test "a run that fails leaves no IMU file and no scan index" {
+@test "a run that fails leaves no sensor files: no IMU file, no index, no scans, no folder it made" {
   # The smallest normal mass passes the checks; stepping it does not stay finite (RS7024).
   { room; echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615 id=heavy"
     echo "sensor /World/HeavyImu imu heavy 0 0 0 1 0 0 0"; } > heavy.rscene
@@ -208,6 +208,42 @@ EOF2
   [ ! -e out/World+Imu.csv ]
   [ ! -e out/World+HeavyImu.csv ]
   [ ! -e out/World+Lidar/scans.csv ]
-  [ -f out/World+Lidar/scan_000000.pcd ]  # taken before the failure
-  [ -z "$(find out -name '.*')" ]         # no temporary file left
+  [ ! -e out ]  # the scans taken before the failure are removed, and the folders the run made
+}
+
+@test "an interrupted run (SIGINT) exits 130 and leaves no sensor files; a folder that was there stays" {
+  mkdir kept
+  run -130 timeout --preserve-status -s INT 1 "$SIM" --duration 100000 --sensors kept/out --trajectory t.jsonl \
+    -o scene.out room.rscene
+  [ -z "$output" ]  # no 'write cancelled' errors: 130 says it
+  [ -d kept ]
+  [ ! -e kept/out ]
+  [ ! -e t.jsonl ]
+  [ ! -e scene.out ]
+}
+
+@test "--sensors '' is a usage error" {
+  run -2 "$SIM" --sensors '' -o /dev/null room.rscene
+  [[ $output == *"--sensors"* ]]
+  [ ! -e out ]
+}
+
+@test "outputPath values sim cannot use are refused at the record, as validate refuses them, before any folder is made" {
+  IMU_EXTRA="outputPath=." room > dot.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null dot.rscene
+  [[ ${stderr_lines[0]} == "dot.rscene:10:71: error: sensor outputPath '.' names the --sensors folder itself [RS7069]" ]]
+  [ ! -e out ]
+  run -1 "$BIN/rscene-validate" dot.rscene
+  [[ $output == *"dot.rscene:10:71: error:"*"[RS7069]"* ]]
+  # An IMU inside a LiDAR's folder: the same code and place in both tools.
+  IMU_EXTRA="outputPath=x/scans.csv" LIDAR_EXTRA="outputPath=x" room > nest.rscene
+  run -2 --separate-stderr "$SIM" --sensors out -o /dev/null nest.rscene
+  [ "${stderr_lines[0]}" = "nest.rscene:11:117: error: sensor '/World/Lidar' would write 'x', and sensor '/World/Imu' 'x/scans.csv' inside it [RS7070]" ]
+  [ ! -e out ]
+  run -1 "$BIN/rscene-validate" nest.rscene
+  [[ ${lines[0]} == "nest.rscene:11:117: error: "*"[RS7070]" ]]
+  # A LiDAR's outputPath with a final '/' is its folder.
+  LIDAR_EXTRA="outputPath=scans/" room > slash.rscene
+  run -0 "$SIM" --steps 1 --sensors out -o /dev/null slash.rscene
+  [ -f out/scans/scans.csv ]
 }

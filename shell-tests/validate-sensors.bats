@@ -70,7 +70,8 @@ bad.rscene:8:68: error: camera outputPath '"'"'/tmp/c.png'"'"' is absolute [RS70
   cat >good.rscene <<'EOF'
 raisim_engine_scene 2
 sensor /World/Cam rgb - 0 0 1 1 0 0 0 width=16384 height=1 outputPath=out/cam.png calibrationFx=500 calibrationFy=500 calibrationCx=0 calibrationCy=0
-sensor /World/L spinning_lidar - 0 0 1 1 0 0 0 lidarChannels=64 lidarSamples=65536 lidarVerticalFov=0 lidarMinRange=0
+sensor /World/L spinning_lidar - 0 0 1 1 0 0 0 lidarChannels=64 lidarSamples=65536 lidarVerticalFov=180 lidarMinRange=0
+sensor /World/Planar lidar - 0 0 1 1 0 0 0 lidarChannels=1 lidarVerticalFov=0
 sensor /World/I imu - 0 0 1 1 0 0 0 updateRate=1e6 noiseStddev=0
 EOF
   run --separate-stderr "$V" good.rscene
@@ -226,7 +227,7 @@ sensor /World/B imu - 0 0 1 1 0 0 0 outputPath=a.csv
 EOF2
   run same_in_all_three same.rscene
   [ "$status" -eq 0 ]
-  [ "$output" = "same.rscene:4:48: error: sensors '/World/A' and '/World/B' would both write 'a.csv' [RS7070]" ]
+  [ "$output" = "same.rscene:4:48: error: sensor '/World/B' and sensor '/World/A' would both write 'a.csv' [RS7070]" ]
 }
 
 # A sensor set for robot(): an IMU named imu (line 3) and the given extra
@@ -272,7 +273,7 @@ robot/sensors/cam.xml:5 [RS7066]" ]
   echo 'sensor /World/R/cam/imu imu - 0 0 1 1 0 0 0' >>robot.rscene
   run --separate-stderr "$V" robot.rscene
   [ "$status" -eq 1 ]
-  [ "$(findings "$output")" = "robot.rscene:4:8: error: sensor '/World/R/cam/imu' has the name of sensor 'imu' of the sensor set 'cam' (robot/sensors/cam.xml:3) [RS7070]" ]
+  [ "$(findings "$output")" = "robot.rscene:4:8: error: the sensor record '/World/R/cam/imu' and the URDF sensor 'imu' of the sensor set on link 'cam' (robot/sensors/cam.xml:3) would both write 'World+R+cam+imu.csv' [RS7070]" ]
   if [ -x "$BIN/rscene-sim" ]; then
     run --separate-stderr "$BIN/rscene-sim" --steps 1 --sensors rec robot.rscene
     [ "$status" -eq 2 ]
@@ -304,4 +305,25 @@ EOF2
   run --separate-stderr "$BIN/rscene-sim" --steps 1 anymal.rscene
   [ "$status" -eq 2 ]
   diff <(findings "$stderr" | grep -E 'RS706[0-9]') <(echo "$want")
+}
+
+@test "orthoScale under an orthographic projection, a flat multi-channel LiDAR, segmentation on a LiDAR: one verdict in all three" {
+  C="0 0 5 1 0 0 0 45 0.05 50 64 48 rgb true"
+  cat >ortho.rscene <<EOF2
+raisim_engine_scene 2
+camera /World/C $C projection=orthographic orthoScale=-6
+camera /World/D $C projection=orthographic orthoScale=1e300
+camera /World/E $C orthoScale=0
+sensor /World/L lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=4
+sensor /World/M lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=1 segmentation=true
+sensor /World/N segmentation - 0 0 1 1 0 0 0 segmentation=true
+EOF2
+  run same_in_all_three ortho.rscene
+  [ "$status" -eq 0 ]
+  [ "$(sed 's/ error: .*\[/ [/; s/ warning: .*\[/ [/' <<<"$output")" = "ortho.rscene:2:92: [RS7074]
+ortho.rscene:3:92: [RS7074]
+ortho.rscene:5:56: [RS7072]
+ortho.rscene:6:87: [RS7073]" ]
+  # A perspective camera's orthoScale (row 4) is not used and not judged; one channel may be flat.
+  [[ $output == *"orthoScale is -6 under an orthographic projection; it must be within (0, 1e12]"* ]]
 }

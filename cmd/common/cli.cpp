@@ -147,13 +147,18 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
   std::fflush(stdout);
   std::string err;
   if (!writeOutputFile(path, produce, &err)) {
-    error(path + ": " + err);
+    // A write an interrupted tool cancelled is no error of its own: the
+    // exit status (130) says it.
+    if (!(gStopFlag && *gStopFlag)) error(path + ": " + err);
     return false;
   }
   return true;
 }
 
 void stopOnInterrupt(volatile std::sig_atomic_t* flag) { gStopFlag = flag; }
+
+InterruptibleScope::InterruptibleScope() : saved_(gWriting) { gWriting = 0; }
+InterruptibleScope::~InterruptibleScope() { gWriting = saved_; }
 
 bool colorFor(int fd) {
   const char* noColor = std::getenv("NO_COLOR");

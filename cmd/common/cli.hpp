@@ -70,6 +70,21 @@ bool checkOutputs(const std::vector<NamedOutput>& outputs);
 // except while an output is being written.
 void stopOnInterrupt(volatile std::sig_atomic_t* flag);
 
+// While one lives, SIGINT only sets stopOnInterrupt()'s flag even inside a
+// writeOutput() (a tool whose long loop runs inside the callback of the
+// outputs it streams, as rscene-sim's does): the loop then stops and
+// cancels its outputs itself.  Restores the previous state when it ends.
+class InterruptibleScope {
+ public:
+  InterruptibleScope();
+  ~InterruptibleScope();
+  InterruptibleScope(const InterruptibleScope&) = delete;
+  InterruptibleScope& operator=(const InterruptibleScope&) = delete;
+
+ private:
+  std::sig_atomic_t saved_;
+};
+
 // Color on stderr/stdout: only on a terminal, never with NO_COLOR.
 bool colorFor(int fd);
 

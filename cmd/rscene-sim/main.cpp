@@ -115,7 +115,10 @@ int run(const Options& opt) {
   if (!world) return cli::kTrouble;
   simcmd::SensorFiles files(opt.sensors, sensors,
                             opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary);
-  if (!opt.sensors.empty() && !files.prepare({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) return cli::kTrouble;
+  if (!opt.sensors.empty() && !files.prepare({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) {
+    files.discard();  // the folders it made before refusing
+    return cli::kTrouble;
+  }
   std::unique_ptr<sim::SensorRecorder> recorder;
   if (!sensors.empty()) recorder = std::make_unique<sim::SensorRecorder>(scene, *world, sensors);
   bool sensorsFailed = false;  // a sensor file could not be written (the message is printed)
@@ -144,6 +147,9 @@ int run(const Options& opt) {
     constexpr std::size_t kChunk = 1 << 16;
     std::string buffer;
     if (traj) buffer = lines.header();
+    // SIGINT stops the loop below even though it runs inside the writes
+    // of the trajectory and sensor files: the run then cancels them.
+    cli::InterruptibleScope interruptible;
     if (!healthy() || !record()) return false;
     if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates());
     bool progress = isatty(2);
@@ -167,7 +173,7 @@ int run(const Options& opt) {
       }
     }
     if (progress) std::cerr << "\r\033[K" << std::flush;
-    if (failure || sensorsFailed) return false;
+    if (failure || sensorsFailed || gInterrupted) return false;
     if (traj) traj->write(buffer);
     return true;
   };
@@ -183,8 +189,10 @@ int run(const Options& opt) {
     return opt.trajectory.empty() ? run(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); });
   };
   bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
-  if (!simulated) return cli::kTrouble;
-  if (gInterrupted) return cli::kInterrupted;
+  if (!simulated || gInterrupted) {
+    files.discard();  // a failed or interrupted run leaves no sensor files
+    return gInterrupted ? cli::kInterrupted : cli::kTrouble;
+  }
   Diagnostics departures;
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
   print(departures);
@@ -253,7 +261,8 @@ int main(int argc, char** argv) {
   app.add_option("--sensors", opt.sensors,
                  "Record every enabled lidar and imu sensor into DIR (created if missing): IMU readings as CSV or JSON "
                  "Lines, LiDAR scans as PCD files with an index")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check([](const std::string& dir) { return dir.empty() ? std::string("DIR is empty: name a folder") : std::string(); });
   app.add_option("--imu-format", opt.imuFormat,
                  "IMU files: csv (default) or jsonl; an outputPath ending in .csv or .jsonl picks its own")
       ->type_name("FORMAT")->check(CLI::IsMember({"csv", "jsonl"}));

@@ -1,6 +1,9 @@
 #include "sensor_files.hpp"
 
+#include <pthread.h>
+
 #include <cctype>
+#include <csignal>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -15,10 +18,19 @@ namespace {
 
 constexpr std::size_t kChunk = 1 << 16;
 
-bool makeFolder(const fs::path& p) {
+// Creates `p` and its missing parents, appending each one it creates to
+// `created` (outermost first), so that a failed run can remove them.
+bool makeFolder(const fs::path& p, std::vector<std::string>& created) {
   std::error_code ec;
   if (fs::is_directory(p, ec)) return true;
+  std::vector<std::string> missing;
+  for (fs::path q = p; !q.empty() && !fs::exists(fs::symlink_status(q, ec)); q = q.parent_path()) {
+    missing.push_back(q.string());
+    if (q == q.parent_path()) break;
+  }
   fs::create_directories(p, ec);
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it)
+    if (fs::is_directory(*it)) created.push_back(*it);
   if (ec || !fs::is_directory(p)) {
     std::string why = ec ? ec.message() : "something else is there";
     if (!why.empty()) why[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(why[0])));
@@ -52,11 +64,11 @@ SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>
 }
 
 bool SensorFiles::prepare(std::vector<cli::NamedOutput> outputs) {
-  if (!makeFolder(dir_)) return false;
+  if (!makeFolder(dir_, created_)) return false;
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     bool lidar = sensors_[i].spec.kind == robot::SensorKind::Lidar;
     fs::path folder = lidar ? fs::path(dir_) / sensors_[i].output : fs::path(paths_[i]).parent_path();
-    if (!makeFolder(folder)) return false;
+    if (!makeFolder(folder, created_)) return false;
     outputs.push_back({"--sensors", paths_[i]});
   }
   return cli::checkOutputs(outputs);
@@ -91,17 +103,34 @@ bool SensorFiles::lidarScan(std::size_t sensor, std::uint64_t index, double time
   char name[40];
   std::snprintf(name, sizeof name, "scan_%06llu.pcd", static_cast<unsigned long long>(index));
   fs::path file = fs::path(dir_) / sensors_[sensor].output / name;
-  if (!cli::writeOutput(file.string(), [&](Sink& s) {
-        sim::writePcd(s, points, pose, time, encoding_);
-        return true;
-      }))
-    return false;
+  // SIGINT waits while a scan is written (it would end the tool there,
+  // leaving the scans before it): the stepping loop then sees the flag,
+  // stops, and discard() removes them.
+  sigset_t interrupt, previous;
+  sigemptyset(&interrupt);
+  sigaddset(&interrupt, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &interrupt, &previous);
+  bool written = cli::writeOutput(file.string(), [&](Sink& s) {
+    sim::writePcd(s, points, pose, time, encoding_);
+    return true;
+  });
+  if (written) scans_.push_back(file.string());
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (!written) return false;
   std::string& b = buffers_[sensor];
   char t[32];
   auto end = std::to_chars(t, t + sizeof t, time).ptr;
   b += std::to_string(index) + ',' + std::string(t, end) + ',' + std::to_string(points.size()) + ',' + name + '\n';
   flush(sensor, false);
   return true;
+}
+
+void SensorFiles::discard() {
+  std::error_code ec;
+  for (const std::string& scan : scans_) fs::remove(scan, ec);
+  scans_.clear();
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ec);  // only when empty
+  created_.clear();
 }
 
 bool SensorFiles::imuReading(std::size_t sensor, const sim::ImuReading& reading) {

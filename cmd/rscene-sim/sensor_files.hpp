@@ -6,8 +6,9 @@
 //   LiDAR  DIR/<name>/scan_NNNNNN.pcd, one file per scan (written as it is
 //          taken), and DIR/<name>/scans.csv (index,time,points,file),
 //          streamed like an IMU file.
-// <name>: sim::sensorFileName() or the record's outputPath.  A failed run
-// leaves no IMU file and no index (the scans taken before the failure stay).
+// <name>: sim::sensorFileName() or the record's outputPath.  A failed or
+// interrupted run leaves nothing of its own: no IMU file, no index, and
+// discard() removes the scans it wrote and the folders it created.
 #pragma once
 #include <functional>
 #include <string>
@@ -38,6 +39,11 @@ class SensorFiles : public sim::SensorOutput {
   // when it returns true.
   bool run(const std::function<bool()>& simulate);
 
+  // Removes the scans this run wrote and then the folders prepare()
+  // created (those left empty), deepest first: a failed or interrupted run
+  // leaves no sensor files.  Files that were there before stay.
+  void discard();
+
   bool lidarScan(std::size_t sensor, std::uint64_t index, double time, const Pose& pose,
                  const std::vector<Eigen::Vector3f>& points) override;
   bool imuReading(std::size_t sensor, const sim::ImuReading& reading) override;
@@ -52,6 +58,8 @@ class SensorFiles : public sim::SensorOutput {
   // One streamed file per sensor (the IMU's file, the LiDAR's index).
   std::vector<std::string> paths_, buffers_;
   std::vector<Sink*> sinks_;
+  std::vector<std::string> scans_;    // written by this run
+  std::vector<std::string> created_;  // folders prepare() made, outermost first
 };
 
 }  // namespace rscene::simcmd

@@ -141,10 +141,13 @@ constexpr CheckInfo kChecks[] = {
     {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},
     {"RS7067", E, Scene, VSR, "sensor updateRate outside 0..1e6 Hz, noise standard deviation negative, noise or IMU limit beyond 1e12"},
     {"RS7068", W, Scene, VSR, "sensor parentLink whose parentObject is not an articulated system (the link is not used)"},
-    {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute or has a '..' part (tools write only inside their output folder)"},
+    {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute or has a '..' part (tools write only inside their output folder); a LiDAR or IMU outputPath that names the --sensors folder itself ('.'), an IMU outputPath ending in '/'"},
     // RS707x recording sensors (lib/sim/sensor_recorder.hpp, rscene-sim --sensors)
-    {"RS7070", E, Scene, VSR, "two sensors that would write one output: two enabled sensor records with the same outputPath, a sensor record with the path of a sensor of a robot's sensor set (robot path/set/sensor), two streams of rscene-sim --sensors at one path"},
+    {"RS7070", E, Scene, VSR, "two sensors that would write one output: two enabled sensor records with the same outputPath; two LiDARs or IMUs (records or robots' sensor sets) whose rscene-sim --sensors outputs are one place or one inside the other (an IMU file in a LiDAR's folder)"},
     {"RS7071", W, Sim, "sim", "physical sensor kind rscene-sim does not record (force_torque, unknown kinds), skipped"},
+    {"RS7072", W, Scene, VSR, "lidar lidarVerticalFov of 0 with more than one channel (every ring scans the same plane)"},
+    {"RS7073", W, Scene, VSR, "sensor segmentation=true on a kind that draws no image (lidar, imu, force_torque): not used"},
+    {"RS7074", E, Scene, VSR, "camera orthoScale not finite and positive (at most 1e12) under an orthographic projection"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

@@ -131,17 +131,24 @@ class RobotChecker {
 
   void sensors() {
     if (robots_.empty()) return;
-    // The sensors of the robots' sensor sets by the name tools give them.
-    std::unordered_map<std::string, const SensorDef*> robotSensors;
+    // Where rscene-sim --sensors would write the LiDARs and IMUs of the
+    // robots' sensor sets (scene/sensor_check.hpp's rule, an IMU's default
+    // .csv), to compare with what the sensor records write.
+    SensorOutputs urdf;
+    std::unordered_map<std::string, const SensorDef*> byName;
     for (const auto& [index, robot] : robots_)
-      for (const SensorDef& d : robot.model->sensors)
-        robotSensors.emplace(robot.record->path + "/" + d.set + "/" + d.name, &d);
+      for (const SensorDef& d : robot.model->sensors) {
+        if (d.kind != "lidar" && d.kind != "imu") continue;
+        std::string name = robot.record->path + "/" + d.set + "/" + d.name;
+        if (!byName.emplace(name, &d).second) continue;
+        urdf.add(sensorOutput(name, "", d.kind == "lidar", ".csv"), name);
+      }
     Diagnostics found;
     for (std::size_t i = 1; i < doc_.records.size(); ++i) {
       const Record& rec = doc_.records[i];
       if (!rec.kind || rec.kind->tag != "sensor") continue;
       RecordReader r(doc_, i, found);
-      sameName(r, robotSensors);
+      if (!byName.empty()) sameOutput(r, i, urdf, byName);
       std::string link = r.str("parentLink");
       if (link.empty() || link == "-") continue;
       const Checked* robot = robotNamed(r.str("parentObject"));
@@ -151,18 +158,32 @@ class RobotChecker {
     take(found, 0);
   }
 
-  // A sensor record whose path is the name of a sensor of a robot's sensor
-  // set: rscene-sim --sensors would write both to one place (RS7070), and a
-  // name would mean two sensors.  Said at the record, the one to rename.
-  void sameName(const RecordReader& r, const std::unordered_map<std::string, const SensorDef*>& robotSensors) {
+  // An enabled LiDAR or IMU record that would write where a sensor of a
+  // robot's sensor set writes (the same file, or one inside the other's
+  // folder): rscene-sim --sensors refuses it (RS7070).  Said at the
+  // record, the one to rename.  Paths it refuses otherwise are
+  // scene/sensor_check's findings.
+  void sameOutput(const RecordReader& r, std::size_t index, const SensorOutputs& urdf,
+                  const std::unordered_map<std::string, const SensorDef*>& byName) {
+    Diagnostics ignored;
+    RecordReader values(doc_, index, ignored);
+    std::string kind = values.name("kind");
+    if ((kind != "lidar" && kind != "imu") || !values.flag("enabled")) return;
+    bool folder = kind == "lidar";
+    std::string outputPath = values.str("outputPath");
+    if (!outputPathProblem(outputPath).empty() || !sensorOutputProblem(outputPath, folder).empty()) return;
     std::string path = nodePath(doc_, r.record());
-    auto it = robotSensors.find(path);
-    if (it == robotSensors.end()) return;
-    const SensorDef& d = *it->second;
-    r.error("path", sensor_code::kSameOutput,
-            "sensor '" + path + "' has the name of sensor '" + d.name + "' of the sensor set '" + d.set + "' (" +
-                d.file + ":" + std::to_string(d.line) + ")",
-            "rename the record: the two sensors would write the same outputs");
+    std::string place = sensorOutput(path, outputPath, folder, ".csv");
+    auto* other = urdf.clash(place);
+    if (!other) return;
+    const SensorDef& d = *byName.at(other->second);
+    bool named = !outputPath.empty() && outputPath != "-";
+    r.error(named ? "outputPath" : "path", sensor_code::kSameOutput,
+            sensorClashMessage("the sensor record '" + path + "'", place,
+                               "the URDF sensor '" + d.name + "' of the sensor set on link '" + d.set + "' (" + d.file +
+                                   ":" + std::to_string(d.line) + ")",
+                               other->first),
+            "rename the record or give it an outputPath: rscene-sim --sensors would write both there");
   }
 
   void wires() {

@@ -169,6 +169,81 @@ std::string outputPathProblem(const std::string& path) {
   return {};
 }
 
+std::string sensorFileName(const std::string& path) {
+  std::string out;
+  bool componentStart = true;
+  for (std::size_t i = !path.empty() && path[0] == '/' ? 1 : 0; i < path.size(); ++i) {
+    unsigned char c = static_cast<unsigned char>(path[i]);
+    bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+                 (c == '.' && !componentStart);
+    componentStart = c == '/';
+    if (c == '/') {
+      out += '+';
+    } else if (plain) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* const kHex = "0123456789ABCDEF";
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out.empty() ? "%2F" : out;  // the path "/" alone (never a sensor's, but total)
+}
+
+std::string normalizedSensorOutput(const std::string& path) {
+  std::string out;
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    std::size_t end = path.find('/', start);
+    if (end == std::string::npos) end = path.size();
+    std::string_view part(path.data() + start, end - start);
+    if (!part.empty() && part != ".") {
+      if (!out.empty()) out += '/';
+      out += part;
+    }
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string sensorOutputProblem(const std::string& path, bool folder) {
+  if (path.empty() || path == "-") return {};
+  if (normalizedSensorOutput(path).empty()) return "names the --sensors folder itself";
+  if (!folder) {
+    std::string_view last(path);
+    while (!last.empty() && last.back() == '.' && (last.size() == 1 || last[last.size() - 2] == '/'))
+      last.remove_suffix(1);
+    if (!last.empty() && last.back() == '/') return "ends in '/', but an IMU writes a file";
+  }
+  return {};
+}
+
+std::string sensorOutput(const std::string& name, const std::string& outputPath, bool folder,
+                         const std::string& imuExtension) {
+  if (!outputPath.empty() && outputPath != "-") return normalizedSensorOutput(outputPath);
+  return sensorFileName(name) + (folder ? "" : imuExtension);
+}
+
+const std::pair<const std::string, std::string>* SensorOutputs::clash(const std::string& place) const {
+  if (auto it = places_.find(place); it != places_.end()) return &*it;
+  // An earlier place that is a folder above this one.
+  for (std::size_t slash = place.find('/'); slash != std::string::npos; slash = place.find('/', slash + 1))
+    if (auto it = places_.find(place.substr(0, slash)); it != places_.end()) return &*it;
+  // An earlier place inside this one.
+  auto it = places_.lower_bound(place + '/');
+  if (it != places_.end() && it->first.compare(0, place.size() + 1, place + '/') == 0) return &*it;
+  return nullptr;
+}
+
+std::string sensorClashMessage(const std::string& self, const std::string& place, const std::string& other,
+                               const std::string& otherPlace) {
+  if (place == otherPlace) return self + " and " + other + " would both write '" + place + "'";
+  if (place.size() > otherPlace.size())
+    return self + " would write '" + place + "', inside '" + otherPlace + "' of " + other;
+  return self + " would write '" + place + "', and " + other + " '" + otherPlace + "' inside it";
+}
+
 namespace {
 
 class SensorChecker {
@@ -183,7 +258,7 @@ class SensorChecker {
       if (rec.kind == sensorKind_)
         sensor(i);
       else if (rec.kind == cameraKind_)
-        outputPath(RecordReader(doc_, i, out_), "camera");
+        camera(i);
     }
   }
 
@@ -204,6 +279,20 @@ class SensorChecker {
         if (bad.count(f)) return true;
     }
     return false;
+  }
+
+  void camera(std::size_t i) {
+    RecordReader r(doc_, i, out_);
+    outputPath(r, "camera");
+    Diagnostics ignored;  // values that do not parse are RS2xxx errors already
+    RecordReader values(doc_, i, ignored);
+    std::size_t before = ignored.size();
+    double scale = values.number("orthoScale");
+    if (ignored.size() != before || values.name("projection") != "orthographic") return;
+    if (!(std::isfinite(scale) && scale > 0 && scale <= kMaxLength))
+      r.error("orthoScale", sensor_code::kOrthoScale,
+              "orthoScale is " + num(scale) + " under an orthographic projection; it must be within (0, 1e12]",
+              "the height of the view in metres");
   }
 
   void sensor(std::size_t i) {
@@ -250,14 +339,49 @@ class SensorChecker {
     p.noiseStddev = number("noiseStddev");
     for (const SensorProblem& problem : sensorProblems(s))
       if (!judgedWithBad(problem.field, bad)) r.error(problem.field, problem.code, problem.message);
+    if (s.kind == "lidar" && s.lidarVerticalFov == 0 && s.lidarChannels > 1 && !bad.count("lidarVerticalFov"))
+      r.error("lidarVerticalFov", sensor_code::kFlatLidar,
+              "lidarVerticalFov is 0 with " + std::to_string(s.lidarChannels) +
+                  " channels: every ring scans the same plane",
+              "give the vertical span in degrees, or lidarChannels=1 for a 2D LiDAR", Severity::Warning);
+    if (!isCameraLikeSensor(s.kind) && isKnownSensorKind(s.kind) && values.flag("segmentation"))
+      r.error("segmentation", sensor_code::kSegmentationUnused,
+              "segmentation=true on a " + s.kind + " sensor is not used: only camera-like kinds draw images",
+              "remove it, or use kind segmentation", Severity::Warning);
 
     std::string object = values.str("parentObject");
     if (object == "-") object.clear();
     bool onBody = object.empty() || mount(r, object);
     std::string link = values.str("parentLink");
     if (onBody && !link.empty() && link != "-") parentLink(r, object, link);
-    outputPath(r, "sensor");
-    if (values.flag("enabled")) sameOutput(r, values.str("outputPath"));
+    bool problem = outputPath(r, "sensor");
+    if (!values.flag("enabled")) return;
+    if (s.kind == "lidar" || s.kind == "imu") {
+      if (!problem) recorded(r, s.kind == "lidar", values.str("outputPath"));
+    } else {
+      sameOutput(r, values.str("outputPath"));
+    }
+  }
+
+  // Where rscene-sim --sensors would write this LiDAR or IMU (an unnamed
+  // IMU's default .csv), refused as sim refuses it: RS7069 for a place it
+  // cannot use, RS7070 for one that collides with an earlier sensor's.
+  void recorded(const RecordReader& r, bool folder, const std::string& outputPath) {
+    if (std::string why = sensorOutputProblem(outputPath, folder); !why.empty()) {
+      r.error("outputPath", sensor_code::kOutputPath, "sensor outputPath '" + outputPath + "' " + why,
+              folder ? "a LiDAR's outputPath is a folder under --sensors DIR" : "name a file under --sensors DIR");
+      return;
+    }
+    std::string self = nodePath(doc_, r.record());
+    std::string place = sensorOutput(self, outputPath, folder, ".csv");
+    bool named = !outputPath.empty() && outputPath != "-";
+    if (auto* other = recorded_.clash(place)) {
+      r.error(named ? "outputPath" : "path", sensor_code::kSameOutput,
+              sensorClashMessage("sensor '" + self + "'", place, "sensor '" + other->second + "'", other->first),
+              "give each sensor its own outputPath (a LiDAR's is a folder)");
+      return;
+    }
+    recorded_.add(place, self);
   }
 
   // What parentObject names must be a body the sensor can ride on: an
@@ -323,12 +447,14 @@ class SensorChecker {
     return -1;
   }
 
-  void outputPath(const RecordReader& r, const char* what) {
+  // False when the outputPath is refused (said here).
+  bool outputPath(const RecordReader& r, const char* what) {
     std::string path = r.str("outputPath");
     std::string problem = outputPathProblem(path);
-    if (!problem.empty())
-      r.error("outputPath", sensor_code::kOutputPath, std::string(what) + " outputPath '" + path + "' " + problem,
-              "tools write outputs only inside their output folder: give a relative path without '..'");
+    if (problem.empty()) return false;
+    r.error("outputPath", sensor_code::kOutputPath, std::string(what) + " outputPath '" + path + "' " + problem,
+            "tools write outputs only inside their output folder: give a relative path without '..'");
+    return true;
   }
 
   const Document& doc_;
@@ -339,6 +465,7 @@ class SensorChecker {
   bool indexed_ = false;
   std::unordered_map<std::string, int> byId_, byPath_;
   std::unordered_map<std::string, std::string> outputs_;  // outputPath -> the first sensor writing it
+  SensorOutputs recorded_;  // what the enabled LiDARs and IMUs would write under rscene-sim --sensors
 };
 
 }  // namespace

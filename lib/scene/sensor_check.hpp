@@ -27,12 +27,19 @@
 //   RS7069  outputPath (sensor or camera) absolute or with a '..' part
 //   RS7070  two enabled sensor records with one outputPath (rscene-sim's
 //           code for two streams at one path)
+//   RS7072  warning: lidarVerticalFov 0 with more than one channel (every
+//           ring scans the same plane)
+//   RS7073  warning: segmentation=true on a kind that draws no image (the
+//           flag is not used)
+//   RS7074  camera orthoScale not finite and > 0 under an orthographic
+//           projection (a degenerate image)
 //
 // A value that did not parse is an RS2xxx error of its own; no bound is
 // judged on the default that replaced it.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,6 +60,9 @@ inline constexpr const char* kRate = "RS7067";
 inline constexpr const char* kLinkWithoutRobot = "RS7068";
 inline constexpr const char* kOutputPath = "RS7069";
 inline constexpr const char* kSameOutput = "RS7070";
+inline constexpr const char* kFlatLidar = "RS7072";
+inline constexpr const char* kSegmentationUnused = "RS7073";
+inline constexpr const char* kOrthoScale = "RS7074";
 }  // namespace sensor_code
 
 // Most rays one LiDAR scan casts (2^22).  The largest spinning LiDARs sold
@@ -96,6 +106,54 @@ bool isKnownSensorKind(const std::string& canonicalKind);
 // climbs out of the output directory), or empty when they may.  "" and "-"
 // are no output.
 std::string outputPathProblem(const std::string& outputPath);
+
+// ---- What rscene-sim --sensors writes, one rule for sim and validate ----
+//
+// A recorded sensor (lidar, imu) writes under the --sensors folder: an IMU
+// one file, a LiDAR one folder (scans.csv and scan_NNNNNN.pcd inside).
+// Its place is its outputPath, normalised (empty and '.' parts dropped), or
+// sensorFileName(its path), plus .csv or .jsonl for an IMU.
+
+// A sensor path made one safe file name: the leading '/' dropped, every
+// other '/' written '+', bytes other than ASCII letters, digits, '.', '_'
+// and '-' written %XX (upper-case hex), a '.' that starts a component
+// written %2E.  One-to-one:  /World/Robot/Imu -> World+Robot+Imu.
+std::string sensorFileName(const std::string& sensorPath);
+
+// `outputPath` with empty and '.' parts dropped ("./a//b/" -> "a/b").
+std::string normalizedSensorOutput(const std::string& outputPath);
+
+// Why a recorded sensor cannot write to `outputPath` beyond
+// outputPathProblem() (lower-case, no final period), or empty: it names
+// the --sensors folder itself ('.', './'), or, for an IMU (`folder`
+// false), it ends in '/' although an IMU writes a file.
+std::string sensorOutputProblem(const std::string& outputPath, bool folder);
+
+// Where a recorded sensor writes, relative to the --sensors folder:
+// the normalised outputPath when one is set, else sensorFileName(name)
+// plus `imuExtension` (".csv", ".jsonl") for an IMU (`folder` false).
+std::string sensorOutput(const std::string& name, const std::string& outputPath, bool folder,
+                         const std::string& imuExtension);
+
+// The places recorded sensors write, to find two that collide: the same
+// place, or one inside the other (an IMU at x/scans.csv in the LiDAR
+// folder x, a LiDAR x/y below the IMU file x).
+class SensorOutputs {
+ public:
+  // The owner (as given to add()) and place of an earlier output that
+  // `place` collides with, or nullptr.
+  const std::pair<const std::string, std::string>* clash(const std::string& place) const;
+  void add(const std::string& place, const std::string& owner) { places_.emplace(place, owner); }
+
+ private:
+  std::map<std::string, std::string> places_;  // place -> owner
+};
+
+// "sensors 'A' and 'B' would both write 'P'" or "... 'B' would write 'P',
+// inside 'Q' of 'A'" (and the other way round): the one wording of RS7070
+// for a clash() found.  `self` and `other` are already quoted names.
+std::string sensorClashMessage(const std::string& self, const std::string& place, const std::string& other,
+                               const std::string& otherPlace);
 
 // Appends the findings above about every sensor record of `scene` and the
 // outputPath of every camera record, each at the record's field.  Reads

@@ -1,4 +1,5 @@
-// Where rscene-sim --sensors DIR writes a sensor's stream, relative to DIR.
+// Where rscene-sim --sensors DIR writes a sensor's stream, relative to DIR
+// (the rule itself is scene/sensor_check.hpp's, which validate uses too).
 //
 // A sensor's default name is its path made one safe file name: the leading
 // '/' dropped, every other '/' written '+', bytes other than ASCII letters,

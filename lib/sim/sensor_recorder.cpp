@@ -73,7 +73,8 @@ Bad badSetting(const robot::SensorSpec& s) {
 std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<robot::SensorSpec>& all,
                                         const SensorPlanOptions& options, Diagnostics& ds) {
   std::vector<RecordedSensor> out;
-  std::map<std::string, std::size_t> taken;  // output -> index into out
+  SensorOutputs taken;  // place -> the name of the sensor writing it
+  std::map<std::string, std::size_t> owner;  // that name -> index into out
   for (const robot::SensorSpec& s : all) {
     if (!s.enabled || robot::cameraLike(s.kind)) continue;
     if (s.kind != robot::SensorKind::Lidar && s.kind != robot::SensorKind::Imu) {
@@ -88,6 +89,7 @@ std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<r
     }
     RecordedSensor r;
     r.spec = s;
+    bool folder = s.kind == robot::SensorKind::Lidar;
     bool named = !s.outputPath.empty() && s.outputPath != "-";
     if (named) {
       std::string why;
@@ -97,30 +99,39 @@ std::vector<RecordedSensor> planSensors(const Document& doc, const std::vector<r
                ds);
         continue;
       }
-      r.output = s.outputPath;
-    } else {
-      r.output = sensorFileName(s.name);
+      // The rule validate applies too (scene/sensor_check.hpp).
+      if (std::string problem = sensorOutputProblem(s.outputPath, folder); !problem.empty()) {
+        report(doc, s, "outputPath", sensor_code::kOutputPath, "sensor outputPath '" + s.outputPath + "' " + problem,
+               Severity::Error, ds);
+        continue;
+      }
     }
-    if (s.kind == robot::SensorKind::Imu) {
-      r.imuFormat = endsWith(r.output, ".jsonl") ? ImuFormat::Jsonl
-                    : endsWith(r.output, ".csv") ? ImuFormat::Csv
-                                                 : options.imuFormat;
-      if (!named) r.output += r.imuFormat == ImuFormat::Csv ? ".csv" : ".jsonl";
+    if (!folder) {
+      r.imuFormat = named && endsWith(s.outputPath, ".jsonl") ? ImuFormat::Jsonl
+                    : named && endsWith(s.outputPath, ".csv") ? ImuFormat::Csv
+                                                              : options.imuFormat;
     } else {
       r.directions = lidarDirections(s.params);
     }
-    if (auto it = taken.find(r.output); it != taken.end()) {
+    r.output = sensorOutput(s.name, s.outputPath, folder, r.imuFormat == ImuFormat::Csv ? ".csv" : ".jsonl");
+    if (auto* other = taken.clash(r.output)) {
       // At the scene record when one of the two is one: it is the one to
       // rename (a robot's sensor-set file is not the user's to edit).
-      const robot::SensorSpec& first = out[it->second].spec;
+      const robot::SensorSpec& first = out[owner.at(other->second)].spec;
       bool atFirst = s.recordIndex < 0 && first.recordIndex >= 0;
-      const char* field = !atFirst || (!first.outputPath.empty() && first.outputPath != "-") ? "outputPath" : "path";
-      report(doc, atFirst ? first : s, field, sim_code::kSensorSameOutput,
-             "sensors '" + out[it->second].spec.name + "' and '" + s.name + "' would both write '" + r.output + "'",
+      const robot::SensorSpec& at = atFirst ? first : s;
+      const char* field = !at.outputPath.empty() && at.outputPath != "-" ? "outputPath" : "path";
+      auto who = [](const robot::SensorSpec& x) {
+        return (x.recordIndex >= 0 ? "the sensor record '" : "the URDF sensor '") + x.name + "'";
+      };
+      const robot::SensorSpec& rest = atFirst ? s : first;
+      std::string atPlace = atFirst ? other->first : r.output, restPlace = atFirst ? r.output : other->first;
+      report(doc, at, field, sim_code::kSensorSameOutput, sensorClashMessage(who(at), atPlace, who(rest), restPlace),
              Severity::Error, ds);
       continue;
     }
-    taken.emplace(r.output, out.size());
+    taken.add(r.output, s.name);
+    owner.emplace(s.name, out.size());
     out.push_back(std::move(r));
   }
   return out;

@@ -274,8 +274,22 @@ TEST_F(SensorsTest, ARecordNamedAsARobotsSensorIsRS7070AtTheRecord) {
   EXPECT_EQ(d[0].file, "");
   EXPECT_EQ(d[0].line, 5u);
   EXPECT_EQ(d[0].column, 8u);  // the record's path: the one to rename
-  EXPECT_EQ(d[0].message, "sensor '/World/Arm/arm/imu' has the name of sensor 'imu' of the sensor set 'arm' (" + dir_ +
-                              "/tip.xml:3)");
+  EXPECT_EQ(d[0].message, "the sensor record '/World/Arm/arm/imu' and the URDF sensor 'imu' of the sensor set on link "
+                          "'arm' (" + dir_ + "/tip.xml:3) would both write 'World+Arm+arm+imu.csv'");
+}
+
+// Compared by what rscene-sim --sensors writes, not by name: a LiDAR record
+// with the IMU's name writes a folder beside the IMU's file; an outputPath
+// equal to the IMU's default file collides.
+TEST_F(SensorsTest, ARecordClashesWithARobotsSensorByWhatItWrites) {
+  build(0, "sensor /World/Arm/arm/imu lidar - 0 0 0 1 0 0 0\n");
+  EXPECT_TRUE(validatedWithRobots(text_).empty()) << codes(validatedWithRobots(text_)).size();
+  build(0, "sensor /World/Other imu - 0 0 0 1 0 0 0 outputPath=./World+Arm+arm+imu.csv\n");
+  Diagnostics d = validatedWithRobots(text_);
+  ASSERT_EQ(codes(d), std::vector<std::string>{"RS7070"});
+  EXPECT_EQ(d[0].column, 52u);  // at the outputPath
+  build(0, "sensor /World/Other imu - 0 0 0 1 0 0 0 outputPath=World+Arm+arm+imu.csv enabled=false\n");
+  EXPECT_TRUE(validatedWithRobots(text_).empty());
 }
 
 }  // namespace

@@ -281,6 +281,68 @@ TEST(SensorCheck, AValueThatDoesNotParseIsOneFinding) {
             std::vector<std::string>{"RS7064 2:43"});
 }
 
+TEST(SensorOutputRule, WhatASensorWritesAndWhatCollides) {
+  EXPECT_EQ(normalizedSensorOutput("./a//b/."), "a/b");
+  EXPECT_EQ(normalizedSensorOutput("."), "");
+  EXPECT_EQ(sensorOutputProblem(".", true), "names the --sensors folder itself");
+  EXPECT_EQ(sensorOutputProblem("./", false), "names the --sensors folder itself");
+  EXPECT_EQ(sensorOutputProblem("sub/", false), "ends in '/', but an IMU writes a file");
+  EXPECT_EQ(sensorOutputProblem("sub/.", false), "ends in '/', but an IMU writes a file");
+  EXPECT_EQ(sensorOutputProblem("sub/", true), "");  // a LiDAR's folder
+  EXPECT_EQ(sensorOutputProblem("a.b", false), "");
+  EXPECT_EQ(sensorOutput("/World/Imu", "", false, ".csv"), "World+Imu.csv");
+  EXPECT_EQ(sensorOutput("/World/L", "", true, ".csv"), "World+L");
+  EXPECT_EQ(sensorOutput("/World/L", "scans/", true, ".csv"), "scans");
+  SensorOutputs o;
+  o.add("x", "L");
+  o.add("World+Robot+lidar", "R");
+  EXPECT_NE(o.clash("x"), nullptr);
+  EXPECT_NE(o.clash("x/scans.csv"), nullptr);             // inside the folder x
+  EXPECT_EQ(o.clash("x.csv"), nullptr);                   // beside it
+  EXPECT_EQ(o.clash("World+Robot+lidar.csv"), nullptr);   // an IMU named like the LiDAR
+  EXPECT_EQ(o.clash("xy"), nullptr);
+  o.add("deep/a/b", "D");
+  ASSERT_NE(o.clash("deep"), nullptr);  // a file where a folder of another sensor is
+  EXPECT_EQ(o.clash("deep")->second, "D");
+}
+
+TEST(SensorCheck, SensorOutputsSimWouldRefuseAreRefusedAtTheRecord) {
+  auto codesOf = [](const std::string& lines) { return all(checked(H + lines)); };
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 outputPath=.\n"), std::vector<std::string>{"RS7069 2:48"});
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 outputPath=sub/\n"), std::vector<std::string>{"RS7069 2:48"});
+  EXPECT_TRUE(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0 outputPath=sub/\n").empty());
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 outputPath=x/scans.csv\n"
+                    "sensor /World/L lidar - 0 0 1 1 0 0 0 outputPath=x\n"),
+            std::vector<std::string>{"RS7070 3:50"});
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 outputPath=x\n"
+                    "sensor /World/L lidar - 0 0 1 1 0 0 0 outputPath=x/y\n"),
+            std::vector<std::string>{"RS7070 3:50"});
+  // An IMU named like a LiDAR writes a file beside the LiDAR's folder.
+  EXPECT_TRUE(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0\nsensor /World/I imu - 0 0 1 1 0 0 0 outputPath=World+L.csv\n")
+                  .empty());
+  // Without an outputPath the clash is said at the record's path.
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 outputPath=World+J.csv\nsensor /World/J imu - 0 0 1 1 0 0 0\n"),
+            std::vector<std::string>{"RS7070 3:8"});
+}
+
+TEST(SensorCheck, OrthoScaleFlatLidarAndUnusedSegmentation) {
+  const std::string cam = "camera /World/C 0 0 5 1 0 0 0 45 0.05 50 64 48 rgb true ";
+  auto codesOf = [](const std::string& lines) { return all(checked(H + lines)); };
+  EXPECT_EQ(codesOf(cam + "projection=orthographic orthoScale=0\n"), std::vector<std::string>{"RS7074 2:92"});
+  EXPECT_EQ(codesOf(cam + "projection=orthographic orthoScale=1e300\n"), std::vector<std::string>{"RS7074 2:92"});
+  EXPECT_TRUE(codesOf(cam + "projection=orthographic orthoScale=4\n").empty());
+  EXPECT_TRUE(codesOf(cam + "orthoScale=-6\n").empty());  // perspective: not used
+  EXPECT_EQ(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=2\n"),
+            std::vector<std::string>{"RS7072 2:56"});
+  EXPECT_TRUE(codesOf("sensor /World/L lidar - 0 0 1 1 0 0 0 lidarVerticalFov=0 lidarChannels=1\n").empty());
+  EXPECT_EQ(codesOf("sensor /World/I imu - 0 0 1 1 0 0 0 segmentation=true\n"),
+            std::vector<std::string>{"RS7073 2:50"});
+  EXPECT_TRUE(codesOf("sensor /World/S rgb - 0 0 1 1 0 0 0 segmentation=true\n").empty());
+  Diagnostics d = checked(H + "sensor /World/I imu - 0 0 1 1 0 0 0 segmentation=true\n");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].severity, Severity::Warning);
+}
+
 TEST(SensorCheck, TwoEnabledSensorsWithOneOutputPath) {
   std::string text = H + "sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv\n" +
                      "sensor /World/B imu - 0 0 1 1 0 0 0 enabled=false outputPath=a.csv\n" +
@@ -288,7 +350,7 @@ TEST(SensorCheck, TwoEnabledSensorsWithOneOutputPath) {
   std::vector<std::string> want = {"RS7070 4:50"};  // the second enabled one, at its outputPath
   EXPECT_EQ(all(checked(text)), want) << describe(checked(text));
   EXPECT_EQ(all(validated(text)), want);
-  EXPECT_EQ(checked(text)[0].message, "sensors '/World/A' and '/World/C' would both write 'a.csv'");
+  EXPECT_EQ(checked(text)[0].message, "sensor '/World/C' and sensor '/World/A' would both write 'a.csv'");
   EXPECT_TRUE(checked(H + "sensor /World/A imu - 0 0 1 1 0 0 0 outputPath=a.csv\n" +
                       "sensor /World/C lidar - 0 0 1 1 0 0 0 outputPath=c\n")
                   .empty());
