@@ -258,6 +258,9 @@ TEST(OutputNames, ImagesArePngOrHaveNoExtension) {
   EXPECT_NE(imageExtensionProblem("b.png.json"), "");
   EXPECT_NE(imageExtensionProblem("a/b.rgb"), "");
   EXPECT_NE(imageExtensionProblem("a/b.jpg").find("PNG images only"), std::string::npos);
+  // A name that promises no other format is the user's to choose (a FIFO, a temporary).
+  EXPECT_EQ(imageExtensionProblem("pipe.render-o"), "");
+  EXPECT_EQ(imageExtensionProblem("frame.tmp"), "");
 }
 
 }  // namespace
