@@ -23,12 +23,6 @@ std::size_t itemCount(std::string_view s, bool semicolonsOnly = false) {
   return n;
 }
 
-std::string str(double v) {
-  std::string s;
-  appendNumber(s, v);
-  return s;
-}
-
 // Every per-sample list of a terrain or terrain layer has `samples` entries
 // (or none).  Which keys are per-sample comes from their types.
 void perSampleLists(Context& ctx, const Record& r, std::int64_t samples) {
@@ -62,7 +56,7 @@ void terrain(Context& ctx, const Record& r) {
   }
   for (const char* name : {"xSize", "ySize"}) {
     if (auto v = ctx.number(r, name); v && !(*v > 0))
-      ctx.report("RS4014", r, ctx.spanOf(r, ctx.get(r, name)), name, std::string(name) + " is " + str(*v) + ", not positive");
+      ctx.report("RS4014", r, ctx.spanOf(r, ctx.get(r, name)), name, std::string(name) + " is " + numberText(*v) + ", not positive");
   }
   if (!countsOk) return;
   std::int64_t total = *xs * *ys;
@@ -133,7 +127,7 @@ void negativeSizes(Context& ctx, const Record& r) {
     if (!ctx.vector(r, f, v, n)) continue;
     for (int c = 0; c < n; ++c) {
       if (v[c] >= 0) continue;
-      ctx.report("RS4011", r, f.first->value, name, std::string(name) + " is negative (" + str(v[c]) + ")");
+      ctx.report("RS4011", r, f.first->value, name, std::string(name) + " is negative (" + numberText(v[c]) + ")");
       break;
     }
   }
@@ -143,17 +137,17 @@ void camera(Context& ctx, const Record& r) {
   auto nearPlane = ctx.number(r, "nearPlane"), farPlane = ctx.number(r, "farPlane");
   if (nearPlane && !(*nearPlane > 0))
     ctx.report("RS4012", r, ctx.spanOf(r, ctx.get(r, "nearPlane")), "nearPlane",
-               "near plane " + str(*nearPlane) + " is not positive");
+               "near plane " + numberText(*nearPlane) + " is not positive");
   else if (nearPlane && farPlane && *nearPlane >= *farPlane)
     ctx.report("RS4012", r, ctx.spanOf(r, ctx.get(r, "farPlane")), "farPlane",
-               "far plane " + str(*farPlane) + " is not beyond the near plane " + str(*nearPlane));
+               "far plane " + numberText(*farPlane) + " is not beyond the near plane " + numberText(*nearPlane));
   if (r.kind->tag != "camera") return;
   if (auto fov = ctx.number(r, "verticalFov"); fov && (*fov < kMinFov || *fov > kMaxFov))
     ctx.report("RS4013", r, ctx.spanOf(r, ctx.get(r, "verticalFov")), "verticalFov",
-               "vertical field of view " + str(*fov) + " is outside 1..175 degrees", "it is clamped to that range");
+               "vertical field of view " + numberText(*fov) + " is outside 1..175 degrees", "it is clamped to that range");
   if (auto fov = ctx.number(r, "horizontalFov"); fov && (*fov < 0 || *fov >= 180))
     ctx.report("RS4013", r, ctx.spanOf(r, ctx.get(r, "horizontalFov")), "horizontalFov",
-               "horizontal field of view " + str(*fov) + " is outside 0..180 degrees",
+               "horizontal field of view " + numberText(*fov) + " is outside 0..180 degrees",
                "0 means the vertical field of view decides");
 }
 
@@ -167,7 +161,7 @@ void checkQuaternion(Context& ctx, const Record& r, Span at, std::string_view fi
     ctx.report("RS4009", r, at, field, std::string(field) + " is the zero quaternion",
                "the identity rotation is 1,0,0,0 (w,x,y,z)");
   else if (std::fabs(norm - 1) > kUnitTolerance)
-    ctx.report("RS4010", r, at, field, std::string(field) + " has length " + str(norm) + ", not 1",
+    ctx.report("RS4010", r, at, field, std::string(field) + " has length " + numberText(norm) + ", not 1",
                "readers normalise it; write a unit quaternion (w,x,y,z)");
 }
 

@@ -342,6 +342,12 @@ std::vector<std::string> parseStringList(std::string_view raw) {
   return out;
 }
 
+std::string numberText(double v) {
+  std::string s;
+  appendNumber(s, v);
+  return s;
+}
+
 void appendNumber(std::string& out, double v) {
   char buf[32];
   auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);

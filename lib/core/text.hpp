@@ -43,6 +43,7 @@ std::vector<std::string> parseStringList(std::string_view raw);
 
 // Shortest text that reads back as `v` (std::to_chars).
 void appendNumber(std::string& out, double v);
+std::string numberText(double v);  // the same, as a string (for messages)
 void appendInteger(std::string& out, std::int64_t v);
 
 // n times `step` as a person would write it: the exact product of n and

@@ -18,13 +18,6 @@ const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "
                                        "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
 constexpr std::size_t kCsvBodyCount = sizeof kCsvBodyColumns / sizeof *kCsvBodyColumns;
 
-// A time as the file wrote it (shortest round trip): -1, not -1.000000.
-std::string numberText(double v) {
-  std::string s;
-  appendNumber(s, v);
-  return s;
-}
-
 bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxCoordinate; }
 
 // One CSV field: its decoded text and its 1-based column.

@@ -15,13 +15,6 @@
 namespace rscene {
 namespace {
 
-// The shortest text that reads back as `v`, as lib/core writes numbers.
-std::string shortest(double v) {
-  std::string s;
-  appendNumber(s, v);
-  return s;
-}
-
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -189,7 +182,7 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
   for (const Wire& w : scene.wires) {
     RecordReader r(doc, static_cast<std::size_t>(w.recordIndex), diagnostics);
     if (w.length < 0)  // lib/core's finding, in its words
-      r.error("length", "RS4011", "length is negative (" + shortest(w.length) + ")");
+      r.error("length", "RS4011", "length is negative (" + numberText(w.length) + ")");
     else
       checkLength(r, "length", w.length, "length of wire '" + w.path + "'");
     checkCoefficient(r, "stiffness", w.stiffness, "stiffness of wire '" + w.path + "'");

@@ -14,12 +14,6 @@
 namespace rscene {
 namespace {
 
-std::string num(double v) {
-  std::string s;
-  appendNumber(s, v);
-  return s;
-}
-
 // Checks of one sensor's numbers, each adding at most one problem.
 class Bounds {
  public:
@@ -33,7 +27,7 @@ class Bounds {
   void fov(const char* field, const char* what, double v, bool zeroIsUnset) {
     if (zeroIsUnset && v == 0) return;
     if (!(v > 0 && v < 180))
-      add(sensor_code::kImage, field, std::string(what) + " is " + num(v) + " degrees, outside (0, 180)");
+      add(sensor_code::kImage, field, std::string(what) + " is " + numberText(v) + " degrees, outside (0, 180)");
   }
 
   void side(const char* field, const char* what, std::int64_t v) {
@@ -44,7 +38,7 @@ class Bounds {
 
   // A non-negative number no larger than kMaxLength.
   void magnitude(const char* code, const char* field, const char* what, double v) {
-    if (!(v >= 0 && v <= kMaxLength)) add(code, field, std::string(what) + " is " + num(v) + ", outside 0..1e12");
+    if (!(v >= 0 && v <= kMaxLength)) add(code, field, std::string(what) + " is " + numberText(v) + ", outside 0..1e12");
   }
 
  private:
@@ -84,11 +78,11 @@ void imageProblems(const SensorValues& s, Bounds& b) {
   for (int i = 0; i < 2; ++i)
     if (!(values[i] > 0 && values[i] <= kMaxLength))
       b.add(sensor_code::kCalibration, kFields[i],
-            std::string(i == 0 ? "fx" : "fy") + " is " + num(values[i]) + ", outside (0, 1e12] pixels");
+            std::string(i == 0 ? "fx" : "fy") + " is " + numberText(values[i]) + ", outside (0, 1e12] pixels");
   for (int i = 2; i < 4; ++i)
     if (!(std::abs(values[i]) <= kMaxLength))
       b.add(sensor_code::kCalibration, kFields[i],
-            std::string(i == 2 ? "cx" : "cy") + " is " + num(values[i]) + ", beyond 1e12 pixels");
+            std::string(i == 2 ? "cx" : "cy") + " is " + numberText(values[i]) + ", beyond 1e12 pixels");
 }
 
 void lidarProblems(const SensorValues& s, Bounds& b) {
@@ -104,13 +98,13 @@ void lidarProblems(const SensorValues& s, Bounds& b) {
   // A single channel scans a plane: a vertical span of 0 is a 2D LiDAR.
   if (!(s.lidarVerticalFov >= 0 && s.lidarVerticalFov <= 180))
     b.add(sensor_code::kLidar, "lidarVerticalFov",
-          "lidar vertical field of view is " + num(s.lidarVerticalFov) + " degrees, outside 0..180");
+          "lidar vertical field of view is " + numberText(s.lidarVerticalFov) + " degrees, outside 0..180");
   if (!(p.lidarMinRange >= 0 && p.lidarMinRange <= kMaxLength))
-    b.add(sensor_code::kLidar, "lidarMinRange", "lidar minimum range is " + num(p.lidarMinRange) + ", outside 0..1e12");
+    b.add(sensor_code::kLidar, "lidarMinRange", "lidar minimum range is " + numberText(p.lidarMinRange) + ", outside 0..1e12");
   else if (!(p.lidarMaxRange > p.lidarMinRange && p.lidarMaxRange <= kMaxLength))
     b.add(sensor_code::kLidar, "lidarMaxRange",
-          "lidar maximum range is " + num(p.lidarMaxRange) + "; it must be beyond the minimum range (" +
-              num(p.lidarMinRange) + ") and at most 1e12");
+          "lidar maximum range is " + numberText(p.lidarMaxRange) + "; it must be beyond the minimum range (" +
+              numberText(p.lidarMinRange) + ") and at most 1e12");
 }
 
 }  // namespace
@@ -134,18 +128,18 @@ std::vector<SensorProblem> sensorProblems(const SensorValues& s) {
   // Near and far for every kind, in lib/core's words and code: validate's
   // core check says so of any sensor record (and drops this copy).
   if (!(p.nearPlane > 0))
-    b.add(sensor_code::kClip, "nearPlane", "near plane " + num(p.nearPlane) + " is not positive");
+    b.add(sensor_code::kClip, "nearPlane", "near plane " + numberText(p.nearPlane) + " is not positive");
   else if (!(p.farPlane > p.nearPlane))
     b.add(sensor_code::kClip, "farPlane",
-          "far plane " + num(p.farPlane) + " is not beyond the near plane " + num(p.nearPlane));
+          "far plane " + numberText(p.farPlane) + " is not beyond the near plane " + numberText(p.nearPlane));
   else if (!(p.farPlane <= kMaxLength))
-    b.add(sensor_code::kImage, "farPlane", "far plane " + num(p.farPlane) + " is beyond 1e12 m");
+    b.add(sensor_code::kImage, "farPlane", "far plane " + numberText(p.farPlane) + " is beyond 1e12 m");
   if (isCameraLikeSensor(s.kind)) imageProblems(s, b);
   if (s.kind == "lidar") lidarProblems(s, b);
   if (!(p.updateRate >= 0 && p.updateRate <= kMaxUpdateRate))
-    b.add(sensor_code::kRate, "updateRate", "update rate is " + num(p.updateRate) + " Hz, outside 0..1e6");
+    b.add(sensor_code::kRate, "updateRate", "update rate is " + numberText(p.updateRate) + " Hz, outside 0..1e6");
   if (!(std::abs(p.noiseMean) <= kMaxLength))
-    b.add(sensor_code::kRate, "noiseMean", "noise mean is " + num(p.noiseMean) + ", beyond 1e12");
+    b.add(sensor_code::kRate, "noiseMean", "noise mean is " + numberText(p.noiseMean) + ", beyond 1e12");
   b.magnitude(sensor_code::kRate, "noiseStddev", "noise standard deviation", p.noiseStddev);
   if (s.kind == "imu") {
     b.magnitude(sensor_code::kRate, "accelerationLimit", "IMU acceleration limit", p.accelerationLimit);
@@ -291,7 +285,7 @@ class SensorChecker {
     if (ignored.size() != before || values.name("projection") != "orthographic") return;
     if (!(std::isfinite(scale) && scale > 0 && scale <= kMaxLength))
       r.error("orthoScale", sensor_code::kOrthoScale,
-              "orthoScale is " + num(scale) + " under an orthographic projection; it must be within (0, 1e12]",
+              "orthoScale is " + numberText(scale) + " under an orthographic projection; it must be within (0, 1e12]",
               "the height of the view in metres");
   }
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "gl_test_context.hpp"
 #include "asset/cache.hpp"
 #include "core/loader.hpp"
 #include "render/gl_context.hpp"
@@ -23,16 +24,6 @@ using namespace rscene;
 using namespace rscene::render;
 
 namespace {
-
-GlContext* context() {
-  static std::unique_ptr<GlContext> ctx = [] {
-    std::string err;
-    auto c = GlContext::create(Backend::Cpu, &err);
-    if (!c) ADD_FAILURE() << "no CPU EGL context: " << err;
-    return c;
-  }();
-  return ctx.get();
-}
 
 void save(const std::string& name, const std::string& bytes) {
   // Set RSCENE_TEST_IMAGES=DIR to look at what the test renders.

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "gl_test_context.hpp"
 #include "asset/image.hpp"
 #include "core/loader.hpp"
 #include "render/gl_context.hpp"
@@ -18,16 +19,6 @@ using namespace rscene;
 using namespace rscene::render;
 
 namespace {
-
-GlContext* context() {
-  static std::unique_ptr<GlContext> ctx = [] {
-    std::string err;
-    auto c = GlContext::create(Backend::Cpu, &err);
-    if (!c) ADD_FAILURE() << "no CPU EGL context: " << err;
-    return c;
-  }();
-  return ctx.get();
-}
 
 const char* kHeader =
     "raisim_engine_scene 1\n"

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "gl_test_context.hpp"
 #include "core/io.hpp"
 #include "core/loader.hpp"
 #include "render/camera.hpp"
@@ -20,16 +21,6 @@ using namespace rscene;
 using namespace rscene::render;
 
 namespace {
-
-GlContext* context() {
-  static std::unique_ptr<GlContext> ctx = [] {
-    std::string err;
-    auto c = GlContext::create(Backend::Cpu, &err);
-    if (!c) ADD_FAILURE() << "no CPU EGL context: " << err;
-    return c;
-  }();
-  return ctx.get();
-}
 
 const char* kPlainBlack = "environment 0 0 0 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color colorMode=linear\n";
 const char* kPlainWhite = "environment 1 1 1 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color colorMode=linear\n";

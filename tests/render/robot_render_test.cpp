@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "gl_test_context.hpp"
 #include "asset/cache.hpp"
 #include "core/loader.hpp"
 #include "render/camera.hpp"
@@ -24,16 +25,6 @@ using namespace rscene::render;
 namespace {
 
 constexpr double kPxPerMetre = 100 / (5 * 0.57735026918962576);
-
-GlContext* context() {
-  static std::unique_ptr<GlContext> ctx = [] {
-    std::string err;
-    auto c = GlContext::create(Backend::Cpu, &err);
-    if (!c) ADD_FAILURE() << "no CPU EGL context: " << err;
-    return c;
-  }();
-  return ctx.get();
-}
 
 const char* kScene =
     "raisim_engine_scene 1\n"
