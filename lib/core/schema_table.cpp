@@ -57,9 +57,9 @@ const KindRow kKinds[] = {
 {"environment", 10, Role::Singleton, "", "",
  "background:rgb=0.38,0.38,0.38 ambient:rgb=0.15,0.16,0.2 fogDensity:num=0 shadows:flag=true reserved1:flag=true "
  "reserved2:num=10 envMapPath:path",
- "fogColor:color exposure:num=1 gamma:num=2.2 bloomIntensity:num bloomThreshold:num bloomRadius:num "
- "shadowMapSize:int shadowedLightBudget:int backgroundMode:name@background_mode=rayrai_sky "
- "colorMode:name@color_mode pbrEnvironmentLightingTint:color pbrEnvironmentIntensity:num=1 fxaa:flag ssao:flag "
+ "fogColor:color exposure:num=1 gamma:num=2.2 bloomIntensity:num=0 bloomThreshold:num=1 bloomRadius:num=4 "
+ "shadowMapSize:int=0 shadowedLightBudget:int=0 backgroundMode:name@background_mode=rayrai_sky "
+ "colorMode:name@color_mode pbrEnvironmentLightingTint:color pbrEnvironmentIntensity:num=1 fxaa:flag=false ssao:flag=false "
  "heightFogEnabled:flag=false heightFogDensity:num=0 heightFogBaseHeight:num=0 heightFogFalloff:num=0.35"},
 {"weather", 11, Role::Singleton, "", "",
  "enabled:flag=true",
@@ -74,15 +74,15 @@ const KindRow kKinds[] = {
  "cloudShadowStrength:num cloudScale:num cloudAnimationSpeed:num lensDropletsEnabled:flag lensDropletStrength:num "
  "useExplicitSunAngles:flag=false sunAzimuthDegrees:num=180 sunElevationDegrees:num=42"},
 {"rayrai_render", 12, Role::Singleton, "", "", "",
- "preset:name@render_preset=balanced custom:flag=false colorMode:name@color_mode viewerMsaaSamples:int "
- "textureAnisotropy:num shadowResolution:int shadowBias:num shadowStrength:num shadowPcfRadius:num "
+ "preset:name@render_preset=balanced custom:flag=false colorMode:name@color_mode viewerMsaaSamples:int=4 "
+ "textureAnisotropy:num shadowResolution:int=2048 shadowBias:num=0.0008 shadowStrength:num=0.85 shadowPcfRadius:num=1.25 "
  "directionalShadowCascadeCount:int directionalShadowCascadeLambda:num directionalShadowCascadeMaxDistance:num "
- "highFidelityPbr:flag pbrToneMapping:flag pbrExposure:num pbrEnvironmentIntensity:num addViewerFillLights:flag "
- "reflectiveGround:flag autoExposure:flag autoExposureKey:num autoExposureSpeed:num volumetricFog:flag "
- "volumetricFogDensity:num volumetricLightStrength:num contactShadows:flag contactShadowsLength:num "
- "contactShadowsStrength:num screenSpaceReflections:flag screenSpaceReflectionStrength:num motionBlur:flag "
- "motionBlurDirection:vec2 motionBlurStrength:num depthOfField:flag depthOfFieldFocusDistance:num "
- "depthOfFieldAperture:num diagnostics:flag"},
+ "highFidelityPbr:flag pbrToneMapping:flag pbrExposure:num=1 pbrEnvironmentIntensity:num=1 addViewerFillLights:flag "
+ "reflectiveGround:flag=false autoExposure:flag=false autoExposureKey:num=0.18 autoExposureSpeed:num=0.05 "
+ "volumetricFog:flag=false volumetricFogDensity:num=0 volumetricLightStrength:num=0 contactShadows:flag=false "
+ "contactShadowsLength:num=0.12 contactShadowsStrength:num=0.7 screenSpaceReflections:flag=false "
+ "screenSpaceReflectionStrength:num=0 motionBlur:flag=false motionBlurDirection:vec2 motionBlurStrength:num "
+ "depthOfField:flag=false depthOfFieldFocusDistance:num=5 depthOfFieldAperture:num=0 diagnostics:flag"},
 {"material", 13, Role::Plain, "", "",
  "name:text color:rgba=0.55,0.62,0.72,1 metallic:num=0 roughness:num=0.55 emissive:rgb=0,0,0 "
  "emissiveStrength:num=0 doubleSided:flag=false albedoTexture:path normalTexture:path metallicTexture:path "
@@ -168,12 +168,13 @@ const KindRow kKinds[] = {
  "slot:int@texslot=0 enabled:flag=true strength:num=1 weights:nums"},
 {"terrain_foliage_layer", 19, Role::Child, "", "terrain_region",
  "terrain:ref@terrain",
- "id:id name:text enabled:flag=true primitive:name meshPath:path size:vec3 colorA:color colorB:color "
- "density:nums densityPerSquareMeter:num maxInstances:int minScale:num maxScale:num randomYawDegrees:num "
- "randomPitchDegrees:num randomRollDegrees:num alignToNormal:flag minHeight:num maxHeight:num "
- "minSlopeDegrees:num maxSlopeDegrees:num castShadows:flag detectable:flag automaticMeshLod:flag "
- "maxRenderedInstances:int renderedInstanceStride:int projectedLod:flag projectedLodMinRadiusPixels:num "
- "projectedLodMaxStride:int doubleBufferedInstanceUploads:flag sortTransparentInstances:flag seed:int"},
+ "id:id name:text enabled:flag=true primitive:name=grass_blade meshPath:path size:vec3=0.06,0.06,0.3 "
+ "colorA:color=0.3,0.55,0.2,1 colorB:color=0.45,0.65,0.25,1 density:nums densityPerSquareMeter:num=0 "
+ "maxInstances:int=200000 minScale:num=1 maxScale:num=1 randomYawDegrees:num=180 randomPitchDegrees:num=0 "
+ "randomRollDegrees:num=0 alignToNormal:flag=false minHeight:num=-1e9 maxHeight:num=1e9 minSlopeDegrees:num=0 "
+ "maxSlopeDegrees:num=90 castShadows:flag=false detectable:flag automaticMeshLod:flag "
+ "maxRenderedInstances:int=0 renderedInstanceStride:int=1 projectedLod:flag projectedLodMinRadiusPixels:num "
+ "projectedLodMaxStride:int doubleBufferedInstanceUploads:flag sortTransparentInstances:flag seed:int=0"},
 {"light", 20, Role::Node, "light_", "",
  "path:text direction:vec3 intensity:num",
  "id:id parentGroupId:ref@node type:name@light_type=directional position:vec3=0,0,3 color:color=1,1,1 "
@@ -181,10 +182,10 @@ const KindRow kKinds[] = {
  "attenuationLinear:num=0.04 attenuationQuadratic:num=0.012 range:num=0 coneAngle:num=30 innerConeAngle:num=18 "
  "radius:num=0 areaSize:vec3=0,0,0 areaRight:vec3 areaUp:vec3 projectorTexture:path projectorStrength:num "
  "projectorUvScale:vec2 projectorUvOffset:vec2 negative:flag=false temperatureEnabled:flag shadows:flag=true "
- "colorTemperature:num distanceFadeEnabled:flag distanceFadeBegin:num distanceFadeShadow:num "
- "distanceFadeLength:num shadowResolution:int shadowBias:num shadowStrength:num shadowPcfRadius:num "
- "shadowOrthoHalfSize:num shadowNear:num shadowFar:num shadowCenter:vec3 shadowPosition:vec3 "
- "shadowUseCustomPosition:flag"},
+ "colorTemperature:num distanceFadeEnabled:flag=false distanceFadeBegin:num=40 distanceFadeShadow:num=50 "
+ "distanceFadeLength:num=10 shadowResolution:int=0 shadowBias:num=0.0008 shadowStrength:num=1 "
+ "shadowPcfRadius:num=1 shadowOrthoHalfSize:num=12.5 shadowNear:num=0.1 shadowFar:num=55 shadowCenter:vec3=0,0,0 "
+ "shadowPosition:vec3=0,0,0 shadowUseCustomPosition:flag=false"},
 {"camera", 21, Role::Node, "", "",
  "path:text position:vec3 orientation:quat verticalFov:num nearPlane:num farPlane:num width:int height:int "
  "renderMode:name@render_mode enabled:flag",
@@ -209,18 +210,19 @@ const KindRow kKinds[] = {
  "size:vec3=0,0,0 radius:num=0 height:num=0 contactMaterial:ref@contact material:ref@material meshPath:path"},
 {"deformable", 24, Role::Node, "", "",
  "path:text kind:name@deformable_kind meshPath:path position:vec3 orientation:quat scale:vec3",
- "id:id parentGroupId:ref@node pinnedVertices:ints scale:num totalMass:num distanceCompliance:num "
- "distanceStiffness:num bendCompliance:num bendStiffness:num youngsModulus:num poissonRatio:num thickness:num "
- "damping:num collisionRadius:num iterations:int substeps:int solverMode:name particleMode:name "
- "particleSpacing:num contactMaterial:ref@contact material:ref@material visible:flag collidable:flag "
- "collisionGroup:u64 collisionMask:u64"},
+ "id:id parentGroupId:ref@node pinnedVertices:ints scale:num=1 totalMass:num=1 distanceCompliance:num=0 "
+ "distanceStiffness:num=1000 bendCompliance:num=0 bendStiffness:num=100 youngsModulus:num=0 poissonRatio:num=0.3 "
+ "thickness:num=0.002 damping:num=0.01 collisionRadius:num=0.01 iterations:int=20 substeps:int=1 "
+ "solverMode:name=xpbd particleMode:name=skinned particleSpacing:num=0.05 contactMaterial:ref@contact "
+ "material:ref@material visible:flag=true collidable:flag=true collisionGroup:u64=1 "
+ "collisionMask:u64=18446744073709551615"},
 {"granular", 25, Role::Node, "", "",
  "path:text kind:name position:vec3 orientation:quat scale:vec3",
- "id:id parentGroupId:ref@node positions:vec3s radii:nums boxMin:vec3 boxMax:vec3 radius:num spacing:num "
- "maxParticles:int velocity:vec3 angularVelocity:vec3 materialId:int fixed:flag density:num "
- "normalStiffness:num normalDamping:num tangentialStiffness:num tangentialDamping:num friction:num "
- "rollingFriction:num cohesionStiffness:num cohesionMaxDistance:num normalContactModel:name substeps:int "
- "visible:flag"},
+ "id:id parentGroupId:ref@node positions:vec3s radii:nums boxMin:vec3=0,0,0 boxMax:vec3=0,0,0 radius:num=0.01 "
+ "spacing:num=0.025 maxParticles:int=20000 velocity:vec3=0,0,0 angularVelocity:vec3=0,0,0 materialId:int=0 "
+ "fixed:flag=false density:num=1600 normalStiffness:num=1e6 normalDamping:num=200 tangentialStiffness:num=1e5 "
+ "tangentialDamping:num=20 friction:num=0.6 rollingFriction:num=0.05 cohesionStiffness:num=0 "
+ "cohesionMaxDistance:num=0 normalContactModel:name=hertz substeps:int=2 visible:flag=true"},
 {"articulated", 26, Role::Node, "", "",
  "path:text resource:ref@resource position:vec3 orientation:quat visible:flag collidable:flag",
  "id:id parentGroupId:ref@node sourcePath:path resourceDirectory:path modules:strs jointOrder:strs scale:vec3=1,1,1 "
@@ -243,30 +245,30 @@ const KindRow kKinds[] = {
 {"wire", 28, Role::Node, "", "",
  "path:text kind:name@wire_kind bodyA:ref@body bodyB:ref@body length:num",
  "id:id parentGroupId:ref@node localIndexA:int=0 localIndexB:int=0 localPositionA:vec3=0,0,0 "
- "localPositionB:vec3=0,0,0 stiffness:num=1000 damping:num=0 compliance:num=0 visualizationWidth:num "
+ "localPositionB:vec3=0,0,0 stiffness:num=1000 damping:num=0 compliance:num=0 visualizationWidth:num=0.01 "
  "enabled:flag=true"},
 {"reflection_probe", 29, Role::Node, "", "",
  "path:text position:vec3 radius:num",
- "id:id parentGroupId:ref@node strength:num boxProjection:flag boxMin:vec3 boxMax:vec3 captureOnApply:flag "
- "captureCached:flag captureFiltered:flag cubemapSize:int captureDrawVisualizationObjects:flag "
- "captureDrawCoordinateFrames:flag captureDrawPointClouds:flag captureShadows:flag "
- "captureEnvironmentBackground:flag captureEnvironmentExposure:num irradianceResolution:int "
- "irradianceSamples:int prefilteredResolution:int prefilteredMipLevels:int prefilteredSamples:int "
- "brdfLutSize:int brdfLutSamples:int enabled:flag=true"},
+ "id:id parentGroupId:ref@node strength:num=1 boxProjection:flag=false boxMin:vec3=-1,-1,-1 boxMax:vec3=1,1,1 "
+ "captureOnApply:flag captureCached:flag captureFiltered:flag cubemapSize:int=128 "
+ "captureDrawVisualizationObjects:flag=false captureDrawCoordinateFrames:flag captureDrawPointClouds:flag=false "
+ "captureShadows:flag=true captureEnvironmentBackground:flag=true captureEnvironmentExposure:num=1 "
+ "irradianceResolution:int=32 irradianceSamples:int=64 prefilteredResolution:int=128 prefilteredMipLevels:int=5 "
+ "prefilteredSamples:int=64 brdfLutSize:int=128 brdfLutSamples:int=512 enabled:flag=true"},
 {"local_fog", 30, Role::Node, "", "",
  "path:text center:vec3 radius:num",
- "id:id parentGroupId:ref@node color:color density:num edgeFade:num noiseScale:num noiseStrength:num "
- "enabled:flag=true"},
+ "id:id parentGroupId:ref@node color:color=1,1,1 density:num=0.5 edgeFade:num=0.3 noiseScale:num=0.25 "
+ "noiseStrength:num=0 enabled:flag=true"},
 {"projected_decal", 31, Role::Node, "", "",
  "path:text position:vec3 orientation:quat scale:vec3",
- "id:id parentGroupId:ref@node halfExtents:vec3 color:color edgeFade:num normalFade:num upperFade:num "
- "lowerFade:num albedoTexture:path emissionTexture:path normalTexture:path ormTexture:path uvScale:vec2 "
- "uvOffset:vec2 albedoMix:num emissionEnergy:num normalStrength:num ormStrength:num distanceFadeEnabled:flag "
- "distanceFadeBegin:num distanceFadeLength:num enabled:flag=true"},
+ "id:id parentGroupId:ref@node halfExtents:vec3=0.5,0.5,0.5 color:color=1,1,1,1 edgeFade:num=0.05 normalFade:num=0.5 "
+ "upperFade:num=0.1 lowerFade:num=0.1 albedoTexture:path emissionTexture:path normalTexture:path ormTexture:path "
+ "uvScale:vec2=1,1 uvOffset:vec2=0,0 albedoMix:num=1 emissionEnergy:num=0 normalStrength:num=1 ormStrength:num=1 "
+ "distanceFadeEnabled:flag=false distanceFadeBegin:num=12 distanceFadeLength:num=4 enabled:flag=true"},
 {"irradiance_volume", 32, Role::Node, "", "",
  "path:text position:vec3 orientation:quat scale:vec3",
- "id:id parentGroupId:ref@node halfExtents:vec3 color:color strength:num edgeFade:num normalBias:num "
- "enabled:flag=true"},
+ "id:id parentGroupId:ref@node halfExtents:vec3=1,1,1 color:color=1,1,1,1 strength:num=1 edgeFade:num=0.2 "
+ "normalBias:num=0.02 enabled:flag=true"},
 {"point_cloud", 33, Role::Node, "", "",
  "path:text",
  "id:id parentGroupId:ref@node points:vec3s colors:colors pointSize:num=1 maxRenderedPoints:int "

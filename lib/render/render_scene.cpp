@@ -84,6 +84,17 @@ class Preparer {
     robots();
     for (const SkippedRecord& r : s_.skipped) ++out_.skipped[r.tag];
     if (!s_.wires.empty()) out_.skipped["wire"] += static_cast<int>(s_.wires.size());  // not drawn yet
+    // Modelled but not drawn yet (each line goes when its record is drawn).
+    auto notDrawn = [&](const char* tag, std::size_t n) {
+      if (n) out_.skipped[tag] += static_cast<int>(n);
+    };
+    notDrawn("projected_decal", s_.decals.size());
+    notDrawn("local_fog", s_.localFogs.size());
+    notDrawn("irradiance_volume", s_.irradianceVolumes.size());
+    notDrawn("reflection_probe", s_.reflectionProbes.size());
+    notDrawn("deformable", s_.deformables.size());
+    notDrawn("granular", s_.granulars.size());
+    for (const Terrain& t : s_.terrains) notDrawn("terrain_foliage_layer", t.foliageLayers.size());
   }
 
  private:

@@ -8,6 +8,7 @@
 
 #include "scene/limits.hpp"
 #include "scene/reader.hpp"
+#include "scene/visual_records_read.hpp"
 #include "core/filesystem.hpp"
 #include "core/text.hpp"
 
@@ -29,7 +30,9 @@ Node* lastNamed(std::vector<Node>& nodes, const std::string& ref) {
 constexpr std::string_view kModelled[] = {"group",  "terrain_region", "terrain_splat_layer", "light",
                                           "camera", "object",         "compound",            "compound_child",
                                           "wire",   "instanced_visual", "point_cloud", "articulated",
-                                          "articulated_ik", "sensor"};
+                                          "articulated_ik", "sensor", "projected_decal", "local_fog",
+                                          "irradiance_volume", "reflection_probe", "terrain_foliage_layer",
+                                          "deformable", "granular"};
 
 bool modelled(std::string_view tag) {
   return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
@@ -95,6 +98,13 @@ class Builder {
       else if (tag == "articulated") readArticulated(r, idx);
       else if (tag == "articulated_ik") readArticulatedIk(r, idx);
       else if (tag == "sensor") readSensor(r, idx);
+      else if (tag == "projected_decal") node(s_.decals, readDecal(doc_, r, idx, assetFn()));
+      else if (tag == "local_fog") node(s_.localFogs, readLocalFog(doc_, r, idx));
+      else if (tag == "irradiance_volume") node(s_.irradianceVolumes, readIrradianceVolume(doc_, r, idx));
+      else if (tag == "reflection_probe") node(s_.reflectionProbes, readReflectionProbe(doc_, r, idx));
+      else if (tag == "terrain_foliage_layer") readFoliage(r, idx);
+      else if (tag == "deformable") node(s_.deformables, readDeformable(doc_, r, idx, assetFn()));
+      else if (tag == "granular") node(s_.granulars, readGranular(doc_, r, idx));
       else if ((rec.kind->role == Role::Node || rec.kind->role == Role::Child) && !modelled(tag))
         s_.skipped.push_back({idx, tag, nodePath(doc_, rec)});
     }
@@ -186,6 +196,13 @@ class Builder {
     e.heightFogDensity = r.number("heightFogDensity");
     e.heightFogBaseHeight = r.number("heightFogBaseHeight");
     e.heightFogFalloff = r.number("heightFogFalloff");
+    e.bloomIntensity = r.number("bloomIntensity");
+    e.bloomThreshold = r.number("bloomThreshold");
+    e.bloomRadius = r.number("bloomRadius");
+    e.fxaa = r.flag("fxaa");
+    e.ssao = r.flag("ssao");
+    e.shadowMapSize = r.integer("shadowMapSize");
+    e.shadowedLightBudget = r.integer("shadowedLightBudget");
   }
 
   void readWeather(const RecordReader& r, int idx) {
@@ -206,6 +223,30 @@ class Builder {
     v.recordIndex = idx;
     v.preset = r.name("preset");
     v.colorMode = r.name("colorMode", "");  // empty: not written
+    v.custom = r.flag("custom");
+    v.msaaSamples = r.integer("viewerMsaaSamples");
+    v.shadowResolution = r.integer("shadowResolution");
+    v.shadowBias = r.number("shadowBias");
+    v.shadowStrength = r.number("shadowStrength");
+    v.shadowPcfRadius = r.number("shadowPcfRadius");
+    v.autoExposure = r.flag("autoExposure");
+    v.autoExposureKey = r.number("autoExposureKey");
+    v.autoExposureSpeed = r.number("autoExposureSpeed");
+    v.pbrExposure = r.number("pbrExposure");
+    v.pbrEnvironmentIntensity = r.number("pbrEnvironmentIntensity");
+    v.reflectiveGround = r.flag("reflectiveGround");
+    v.screenSpaceReflections = r.flag("screenSpaceReflections");
+    v.screenSpaceReflectionStrength = r.number("screenSpaceReflectionStrength");
+    v.volumetricFog = r.flag("volumetricFog");
+    v.volumetricFogDensity = r.number("volumetricFogDensity");
+    v.volumetricLightStrength = r.number("volumetricLightStrength");
+    v.contactShadows = r.flag("contactShadows");
+    v.contactShadowsLength = r.number("contactShadowsLength");
+    v.contactShadowsStrength = r.number("contactShadowsStrength");
+    v.depthOfField = r.flag("depthOfField");
+    v.depthOfFieldFocusDistance = r.number("depthOfFieldFocusDistance");
+    v.depthOfFieldAperture = r.number("depthOfFieldAperture");
+    v.motionBlur = r.flag("motionBlur");
   }
 
   // Singleton records a scene may leave out hold every field's schema
@@ -318,6 +359,20 @@ class Builder {
     l.areaSize = r.vec3("areaSize");
     l.shadows = r.flag("shadows");
     l.negative = r.flag("negative");
+    l.shadowResolution = r.integer("shadowResolution");
+    l.shadowBias = r.number("shadowBias");
+    l.shadowStrength = r.number("shadowStrength");
+    l.shadowPcfRadius = r.number("shadowPcfRadius");
+    l.shadowOrthoHalfSize = r.number("shadowOrthoHalfSize");
+    l.shadowNear = r.number("shadowNear");
+    l.shadowFar = r.number("shadowFar");
+    l.shadowCenter = r.vec3("shadowCenter");
+    l.shadowPosition = r.vec3("shadowPosition");
+    l.shadowUseCustomPosition = r.flag("shadowUseCustomPosition");
+    l.distanceFadeEnabled = r.flag("distanceFadeEnabled");
+    l.distanceFadeBegin = r.number("distanceFadeBegin");
+    l.distanceFadeShadow = r.number("distanceFadeShadow");
+    l.distanceFadeLength = r.number("distanceFadeLength");
     l.parentId = r.str("parentGroupId");
     parentOf_[idx] = l.parentId;
     s_.lights.push_back(std::move(l));
@@ -650,6 +705,29 @@ class Builder {
     s_.terrains.push_back(std::move(t));
   }
 
+  AssetPath assetFn() const {
+    return [this](const std::string& p) { return asset(p); };
+  }
+
+  // A node of visual_records.hpp: its parent noted for resolveWorld().
+  template <typename T>
+  void node(std::vector<T>& into, T value) {
+    parentOf_[value.recordIndex] = value.parentId;
+    into.push_back(std::move(value));
+  }
+
+  void readFoliage(const RecordReader& r, int idx) {
+    Terrain* owner = lastNamed(s_.terrains, r.str("terrain"));
+    if (!owner) {
+      orphan(r, "terrain_region");
+      return;
+    }
+    FoliageLayer l = readFoliageLayer(r, idx, assetFn());
+    std::size_t samples = static_cast<std::size_t>(owner->xSamples) * owner->ySamples;
+    sampleList(r, "density", samples, 1, l.density);
+    owner->foliageLayers.push_back(std::move(l));
+  }
+
   void readSplat(const RecordReader& r, int idx) {
     std::string ref = r.str("terrain");
     Terrain* owner = lastNamed(s_.terrains, ref);
@@ -682,6 +760,7 @@ class Builder {
     w.stiffness = r.number("stiffness");
     w.damping = r.number("damping");
     w.compliance = r.number("compliance");
+    w.visualizationWidth = r.number("visualizationWidth");
     w.enabled = r.flag("enabled");
     s_.wires.push_back(std::move(w));
   }
@@ -1140,11 +1219,34 @@ class Builder {
     for (Terrain& t : s_.terrains) t.hiddenByGroup = hiddenByGroup(t.recordIndex);
     for (InstancedVisual& v : s_.instancedVisuals) v.hiddenByGroup = hiddenByGroup(v.recordIndex);
     for (PointCloud& p : s_.pointClouds) p.hiddenByGroup = hiddenByGroup(p.recordIndex);
+    resolveVisualRecords();
     for (Light& l : s_.lights) {
       l.hiddenByGroup = hiddenByGroup(l.recordIndex);
       Pose f = parentFrame(l.recordIndex);
       l.position = f.position + f.orientation * l.position;
       l.direction = f.orientation * l.direction;
+    }
+  }
+
+  // visual_records.hpp nodes: carried by their parent's frame like a light.
+  void resolveVisualRecords() {
+    auto placed = [&](auto& v) {
+      v.world = parentFrame(v.recordIndex) * v.local;
+      v.hiddenByGroup = hiddenByGroup(v.recordIndex);
+    };
+    for (Decal& d : s_.decals) placed(d);
+    for (IrradianceVolume& v : s_.irradianceVolumes) placed(v);
+    for (Deformable& d : s_.deformables) placed(d);
+    for (Granular& g : s_.granulars) placed(g);
+    for (LocalFog& f : s_.localFogs) {
+      Pose p = parentFrame(f.recordIndex);
+      f.center = p.position + p.orientation * f.localCenter;
+      f.hiddenByGroup = hiddenByGroup(f.recordIndex);
+    }
+    for (ReflectionProbe& pr : s_.reflectionProbes) {
+      Pose p = parentFrame(pr.recordIndex);
+      pr.position = p.position + p.orientation * pr.localPosition;
+      pr.hiddenByGroup = hiddenByGroup(pr.recordIndex);
     }
   }
 

@@ -35,6 +35,8 @@
 #include "core/assets.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "scene/pose.hpp"
+#include "scene/visual_records.hpp"
 
 namespace rscene {
 
@@ -62,19 +64,6 @@ inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mas
 inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist
 inline constexpr const char* kUnknownBody = "RS3012";   // wire body that names no node
 }  // namespace scene_code
-
-struct Pose {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // normalised
-
-  Pose operator*(const Pose& child) const {
-    return {position + orientation * child.position, (orientation * child.orientation).normalized()};
-  }
-  Pose inverse() const {
-    Eigen::Quaterniond q = orientation.conjugate();
-    return {q * -position, q};
-  }
-};
 
 struct SceneOptions {
   std::string sceneDir = ".";  // directory of the scene file (assets resolve against it)
@@ -138,6 +127,10 @@ struct Environment {
   double pbrEnvironmentIntensity{};
   bool heightFogEnabled{};
   double heightFogDensity{}, heightFogBaseHeight{}, heightFogFalloff{};
+  // Post-processing (rayrai PostProcess): bloom, FXAA, SSAO; shadow map size.
+  double bloomIntensity{}, bloomThreshold{}, bloomRadius{};
+  bool fxaa{}, ssao{};
+  std::int64_t shadowMapSize{}, shadowedLightBudget{};
 };
 
 // weather record (only what a renderer needs for lighting and fog).
@@ -158,6 +151,22 @@ struct RenderSettings {
   int recordIndex = -1;
   std::string preset{};
   std::string colorMode;  // empty: not written (environment colorMode wins when written)
+  bool custom{};  // the named fields below override the preset's
+  std::int64_t msaaSamples{};  // viewerMsaaSamples
+  std::int64_t shadowResolution{};
+  double shadowBias{}, shadowStrength{}, shadowPcfRadius{};
+  bool autoExposure{};
+  double autoExposureKey{}, autoExposureSpeed{};
+  double pbrExposure{}, pbrEnvironmentIntensity{};
+  bool reflectiveGround{}, screenSpaceReflections{};
+  double screenSpaceReflectionStrength{};
+  bool volumetricFog{};
+  double volumetricFogDensity{}, volumetricLightStrength{};
+  bool contactShadows{};
+  double contactShadowsLength{}, contactShadowsStrength{};
+  bool depthOfField{};
+  double depthOfFieldFocusDistance{}, depthOfFieldAperture{};
+  bool motionBlur{};
 };
 
 struct Material {
@@ -221,6 +230,16 @@ struct Light {
   Eigen::Vector3d areaSize = Eigen::Vector3d::Zero();
   bool shadows{};
   bool negative{};  // subtracts light
+  // Shadow map: resolution in texels (0: the renderer's), depth bias, how
+  // dark (0..1), filter radius in texels.
+  std::int64_t shadowResolution{};
+  double shadowBias{}, shadowStrength{}, shadowPcfRadius{};
+  // Custom directional shadow box (shadowUseCustomPosition).
+  double shadowOrthoHalfSize{}, shadowNear{}, shadowFar{};
+  Eigen::Vector3d shadowCenter = Eigen::Vector3d::Zero(), shadowPosition = Eigen::Vector3d::Zero();
+  bool shadowUseCustomPosition{};
+  bool distanceFadeEnabled{};
+  double distanceFadeBegin{}, distanceFadeShadow{}, distanceFadeLength{};
   bool hiddenByGroup = false;  // an ancestor group has visible=false
 };
 
@@ -409,6 +428,7 @@ struct Terrain {
   std::vector<double> texturePrimary, textureSecondary, textureBlend, wetness, holes;  // per sample or empty
   std::vector<Eigen::Vector4d> vertexColors;  // per sample or empty
   std::vector<TerrainSplatLayer> splatLayers;
+  std::vector<FoliageLayer> foliageLayers;
 
   Eigen::Vector3d samplePosition(int x, int y) const {
     return {center.x() - xSize / 2 + x * xSize / (xSamples - 1), center.y() - ySize / 2 + y * ySize / (ySamples - 1),
@@ -485,6 +505,7 @@ struct Wire {
   int localIndexA{}, localIndexB{};
   Eigen::Vector3d localPositionA = Eigen::Vector3d::Zero(), localPositionB = Eigen::Vector3d::Zero();
   double stiffness{}, damping{}, compliance{};
+  double visualizationWidth{};
   bool enabled{};
   WireEnd endA = WireEnd::World, endB = WireEnd::World;
   std::string tagA, tagB;  // record kind an end names (when it names a node)
@@ -565,6 +586,12 @@ struct Scene {
   std::vector<InstancedVisual> instancedVisuals;
   std::vector<PointCloud> pointClouds;
   std::vector<Sensor> sensors;
+  std::vector<Decal> decals;
+  std::vector<LocalFog> localFogs;
+  std::vector<IrradianceVolume> irradianceVolumes;
+  std::vector<ReflectionProbe> reflectionProbes;
+  std::vector<Deformable> deformables;
+  std::vector<Granular> granulars;
   std::vector<SkippedRecord> skipped;
 
   const Material* findMaterial(const std::string& id) const;

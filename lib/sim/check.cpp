@@ -26,6 +26,8 @@ std::optional<Diagnostic> unsupportedWarning(const Scene& scene) {
     for (const SkippedRecord& t : scene.skipped) n += t.tag == s.tag;
     list += (list.empty() ? "" : ", ") + s.tag + " (" + std::to_string(n) + ")";
   }
+  for (auto [tag, n] : {std::pair{"deformable", scene.deformables.size()}, std::pair{"granular", scene.granulars.size()}})
+    if (n) list += (list.empty() ? "" : ", ") + std::string(tag) + " (" + std::to_string(n) + ")";
   if (list.empty()) return std::nullopt;
   Diagnostic d;
   d.severity = Severity::Warning;

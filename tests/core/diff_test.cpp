@@ -276,10 +276,12 @@ TEST(DiffTyped, PositionalFieldAndKeyOfTheSameNameAreTwoFields) {
   EXPECT_EQ(d.records[0].fields[0].oldValue, "1,1,1");
   EXPECT_EQ(d.records[0].fields[0].newValue, "2,2,2");
 
-  d = run(kTyped, replace(kTyped, " scale=1\n", "\n"));
+  // Removing the key is a change when it differs from the default (1):
+  // the key now reads as its schema default.
+  d = run(replace(kTyped, " scale=1\n", " scale=2\n"), replace(kTyped, " scale=1\n", "\n"));
   ASSERT_EQ(d.records.size(), 1u);
   ASSERT_EQ(d.records[0].fields.size(), 1u);
-  EXPECT_EQ(d.records[0].fields[0].change, Change::Removed);
+  EXPECT_EQ(d.records[0].fields[0].newValue, "1");
   EXPECT_TRUE(d.records[0].fields[0].keyForm);
 }
 

@@ -185,8 +185,10 @@ TEST(Scene, CompoundsWiresAndSkippedRecords) {
   ASSERT_EQ(b.scene.wires.size(), 1u);
   EXPECT_EQ(b.scene.wires[0].kind, "compliant");
   EXPECT_DOUBLE_EQ(b.scene.wires[0].stiffness, 50);
-  ASSERT_EQ(b.scene.skipped.size(), 1u);
-  EXPECT_EQ(b.scene.skipped[0].recordIndex, 6);
+  EXPECT_TRUE(b.scene.skipped.empty());
+  ASSERT_EQ(b.scene.granulars.size(), 1u);
+  EXPECT_EQ(b.scene.granulars[0].recordIndex, 6);
+  EXPECT_EQ(b.scene.granulars[0].kind, "sand");
   ASSERT_EQ(b.scene.sensors.size(), 1u);
   EXPECT_EQ(b.scene.sensors[0].kind, "imu");
   EXPECT_EQ(b.scene.sensors[0].mount.kind, Mount::Kind::World);
