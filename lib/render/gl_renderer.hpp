@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "asset/cache.hpp"
+#include "render/gl_effects.hpp"
 #include "render/mesh.hpp"
 #include "render/view.hpp"
 
@@ -84,6 +85,9 @@ struct DataTargets {
 };
 
 class GlRenderer final : public Renderer {
+  friend class VolumeEffects;
+  friend class ReflectionEffects;
+
  public:
   GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
              std::vector<Camera> lodCameras);
@@ -179,6 +183,10 @@ class GlRenderer final : public Renderer {
   ColorTargets color_;
   DataTargets data_;
   RenderTimings timings_;
+  // The lit pass's modules (gl_effects.hpp): freed after ~GlRenderer's body,
+  // while the GL context still exists.
+  std::unique_ptr<VolumeEffects> volumes_;
+  std::unique_ptr<ReflectionEffects> reflections_;
 };
 
 }  // namespace rscene::render::detail

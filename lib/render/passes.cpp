@@ -240,6 +240,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   const Look& env = scene_.environment;
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
+  if (!reflections_->prepare(view)) return false;
   renderShadowMap(view.sensor);
 
   // Main pass: linear HDR, coverage in alpha, multisampled.
@@ -301,14 +302,8 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glUniform1i(loc(surface, "uAlbedo"), 1);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, shadowTex_);
-  setVec3(surface, "uAmbient", env.ambient);
-  float day = env.night ? 0.02f : float(std::clamp((env.sunDirection.z() + 0.15) / 0.35, 0.0, 1.0));
-  Eigen::Vector3f skyAmbient = env.mode == Background::PlainColor
-                                   ? Eigen::Vector3f(Eigen::Vector3f::Zero())
-                                   : Eigen::Vector3f(Eigen::Vector3f(0.16f, 0.20f, 0.28f) * day);
-  setVec3(surface, "uSkyAmbient", skyAmbient);
-  glUniform1f(loc(surface, "uFogDensity"), env.fogDensity);
-  setVec3(surface, "uFogColor", env.fogColor);
+  volumes_->bind(surface, view);
+  reflections_->bind(surface, view);
   glDisable(GL_BLEND);
   // Each sample is lit once: after a pre-pass, coplanar surfaces (stacked
   // boxes with level tops, overlapping placeholders) all pass GL_LEQUAL, so

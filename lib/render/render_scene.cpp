@@ -1,4 +1,5 @@
 #include "render/render_scene.hpp"
+#include "render/render_effects.hpp"
 
 #include "scene/reader.hpp"
 
@@ -322,6 +323,16 @@ class Preparer {
     Vector3d area = src.areaSize.head<2>().isZero() ? Vector3d(1, 1, 0) : src.areaSize;
     l.areaSize = Eigen::Vector2f(float(area.x()), float(area.y()));
     l.shadows = src.shadows;
+    l.shadowResolution = int(std::clamp<std::int64_t>(src.shadowResolution, 0, 16384));
+    l.shadowBias = float(src.shadowBias);
+    l.shadowStrength = float(std::clamp(src.shadowStrength, 0.0, 1.0));
+    l.shadowPcfRadius = float(std::max(src.shadowPcfRadius, 0.0));
+    l.customShadowBox = src.shadowUseCustomPosition;
+    l.shadowCenter = src.shadowCenter;
+    l.shadowOrthoHalfSize = float(std::max(src.shadowOrthoHalfSize, 0.0));
+    l.shadowNear = float(src.shadowNear);
+    l.shadowFar = float(src.shadowFar);
+    l.line = lineOf(src.recordIndex);
     out_.lights.push_back(l);
   }
 
@@ -384,6 +395,7 @@ class Preparer {
     std::size_t drawn = xs.size() * ys.size();
     t.material = materialIndex(src.material);
     t.castShadow = src.castShadow;
+    t.receiveShadow = src.receiveShadow;
     t.positions.resize(drawn);
     t.colors.assign(drawn, slotColor(src.baseTexture));
     t.holes.assign(drawn, false);
@@ -638,6 +650,7 @@ bool prepareScene(const Document& doc, const Scene& scene, RenderScene& out, Dia
                   const DrawLimits& limits, asset::AssetCache* assets) {
   Preparer p(doc, scene, out, diags, limits, assets);
   p.run();
+  prepareEffects(doc, scene, out);
   return p.ok();
 }
 

@@ -78,6 +78,7 @@ struct Drawable {
   std::string meshPath;   // resolved
   int material = 0;
   bool castShadow = true;
+  bool receiveShadow = true;
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
   std::string file;  // the robot file `line` is in (a link's visual); empty: the scene
@@ -105,6 +106,18 @@ struct RenderLight {
   float range = 0;
   Eigen::Vector2f areaSize{1, 1};
   bool shadows = false;
+  // Shadow map of this light (when `shadows`): side in texels (0: the
+  // renderer's choice), depth bias, strength (0 none .. 1 black), filter
+  // radius in texels.  Filled from the light record (defaults: the schema's),
+  // overridden by rayrai_render when custom=true.
+  int shadowResolution = 0;
+  float shadowBias = 0, shadowStrength = 1, shadowPcfRadius = 1;
+  // A directional light's shadow box when shadowUseCustomPosition: centred
+  // on shadowCenter, half size shadowOrthoHalfSize, near/far along the light.
+  bool customShadowBox = false;
+  Eigen::Vector3d shadowCenter = Eigen::Vector3d::Zero();
+  float shadowOrthoHalfSize = 0, shadowNear = 0, shadowFar = 0;
+  std::uint32_t line = 0;
 };
 
 struct TerrainMesh {
@@ -114,6 +127,7 @@ struct TerrainMesh {
   std::vector<bool> holes;
   int material = 0;
   bool castShadow = true;
+  bool receiveShadow = true;
   Eigen::AlignedBox3d bounds;
   int segment = -1;
 };
@@ -157,6 +171,75 @@ struct Look {
   Eigen::Vector3d sunDirection{0, 0, 1};  // towards the sun, unit
   float cloudCoverage = 0;
   bool overcast = false, night = false;
+  // Height fog (environment heightFog*): density(z) = heightFogDensity *
+  // exp(-heightFogFalloff * (z - heightFogBase)), on top of fogDensity
+  // (which includes the weather's fogDensity).
+  bool heightFog = false;
+  float heightFogDensity = 0, heightFogBase = 0, heightFogFalloff = 0;
+  float environmentIntensity = 1;  // image-based light from the sky or HDR (pbrEnvironmentIntensity)
+  // Post-processing asked for by the environment and rayrai_render records.
+  float bloomIntensity = 0, bloomThreshold = 1, bloomRadius = 4;
+  bool fxaa = false, ssao = false;
+  bool autoExposure = false;
+  float autoExposureKey = 0.18f;
+  bool depthOfField = false;
+  float focusDistance = 5, aperture = 0;
+  // Shadow defaults (rayrai_render custom=true, else the preset's) and how
+  // many lights get shadow maps (environment shadowedLightBudget; 0: all).
+  int shadowResolution = 2048;
+  float shadowBias = 0.0008f, shadowStrength = 0.85f, shadowPcfRadius = 1.25f;
+  bool customShadows = false;  // rayrai_render custom=true: its shadow fields override each light's
+  int shadowedLightBudget = 0;
+  int msaaSamples = 4;         // viewerMsaaSamples
+  std::string preset;          // rayrai_render preset: fast | balanced | high | ultra
+};
+
+// projected_decal: what lies inside the box `world` maps the unit cube
+// [-1, 1]^3 to (pose x scale x halfExtents) is painted, projected along the
+// box's local -z; uv = local xy in [0, 1] x uvScale + uvOffset.
+struct RenderDecal {
+  Eigen::Affine3d world = Eigen::Affine3d::Identity();
+  Eigen::Vector4f color = Eigen::Vector4f::Ones();
+  float edgeFade = 0, normalFade = 0, upperFade = 0, lowerFade = 0;
+  std::string albedoTexture, emissionTexture, normalTexture, ormTexture;  // resolved; empty: none
+  Eigen::Vector2f uvScale = Eigen::Vector2f::Ones(), uvOffset = Eigen::Vector2f::Zero();
+  float albedoMix = 1, emissionEnergy = 0, normalStrength = 1, ormStrength = 1;
+  float fadeBegin = 0, fadeLength = 0;  // distance fade; fadeLength 0: none
+  Eigen::AlignedBox3d bounds;
+  std::uint32_t line = 0;
+};
+
+// local_fog: a sphere of fog.
+struct RenderFog {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  float radius = 0, density = 0, edgeFade = 0, noiseScale = 0, noiseStrength = 0;
+  Eigen::Vector3f color = Eigen::Vector3f::Ones();  // linear
+  std::uint32_t line = 0;
+};
+
+// irradiance_volume: constant indirect light `color` (x strength) inside
+// the box `world` maps the unit cube [-1, 1]^3 to, fading over edgeFade
+// (metres) at its faces.
+struct RenderIrradiance {
+  Eigen::Affine3d world = Eigen::Affine3d::Identity();
+  Eigen::Vector3f color = Eigen::Vector3f::Zero();
+  float edgeFade = 0, normalBias = 0;
+  Eigen::AlignedBox3d bounds;
+  std::uint32_t line = 0;
+};
+
+// reflection_probe: a cube map captured at `position`, for surfaces within
+// `radius`; box-projected onto `box` when boxProjection.
+struct RenderProbe {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  float radius = 0, strength = 1;
+  bool boxProjection = false;
+  Eigen::AlignedBox3d box;
+  int cubemapSize = 128, prefilteredResolution = 128, prefilteredMipLevels = 5, prefilteredSamples = 64;
+  int irradianceResolution = 32, irradianceSamples = 64, brdfLutSize = 128, brdfLutSamples = 512;
+  bool captureShadows = true, captureBackground = true, drawVisuals = false, drawPointClouds = false;
+  float exposure = 1;
+  std::uint32_t line = 0;
 };
 
 struct RenderScene {
@@ -168,6 +251,10 @@ struct RenderScene {
   std::vector<Instanced> instanced;
   std::vector<PointBatch> pointClouds;
   std::vector<Segment> segments;  // the segmentation legend
+  std::vector<RenderDecal> decals;
+  std::vector<RenderFog> fogs;
+  std::vector<RenderIrradiance> irradianceVolumes;
+  std::vector<RenderProbe> probes;
   Look environment;
   std::size_t robots = 0;              // articulated systems drawn
   // Every articulated system's model, indexed like Scene::articulated

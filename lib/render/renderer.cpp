@@ -331,7 +331,9 @@ bool GlRenderer::uploadDrawables() {
                    const Eigen::Affine3d& post, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
                    bool placeholder = false) {
       Eigen::Affine3d world = (placeholder ? d.placeholderWorld.value_or(d.world) : d.world) * post;
-      InstanceRef r = add(mesh, tex, blend, doubleSided, d.castShadow, world, color, pbr,
+      Eigen::Vector4f flagged = pbr;
+      if (!d.receiveShadow) flagged.w() += 2;  // the surface shader's flag bit 2
+      InstanceRef r = add(mesh, tex, blend, doubleSided, d.castShadow, world, color, flagged,
                           placeholder ? Eigen::Vector3f::Zero() : mat.emissive, d.segment, d.bounds, d.worldObject,
                           d.shape == Shape::Ground);
       r.post = post;
@@ -408,8 +410,8 @@ void GlRenderer::uploadTerrains() {
       }
     const RenderMaterial& mat = scene_.materials[std::size_t(t.material)];
     add(uploadMesh(m, &t.colors), 0, false, true, t.castShadow, Eigen::Affine3d::Identity(),
-        Eigen::Vector4f(1, 1, 1, 1), Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(),
-        t.segment, t.bounds, true, true);
+        Eigen::Vector4f(1, 1, 1, 1), Eigen::Vector4f(mat.metallic, mat.roughness, 0, t.receiveShadow ? 0.f : 2.f),
+        Eigen::Vector3f::Zero(), t.segment, t.bounds, true, true);
   }
 }
 
@@ -482,10 +484,10 @@ void GlRenderer::uploadPoints() {
 
 bool GlRenderer::buildPrograms() {
   std::string log;
-  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::kSurfaceFragment, log);
+  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::surfaceFragment().c_str(), log);
   shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
   pointProg_ = program(shaders::kPointVertex, shaders::kPointFragment, log);
-  postProg_ = program(shaders::kPostVertex, shaders::kPostFragment, log);
+  postProg_ = program(shaders::kPostVertex, shaders::postFragment().c_str(), log);
   dataProg_ = program(shaders::kDataVertex, shaders::kDataFragment, log);
   pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
   if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_) return true;
@@ -563,6 +565,9 @@ bool GlRenderer::upload() {
       if (batches_[i].background == bool(background)) drawOrder_.push_back(i);
   buildLights();
   glGenVertexArrays(1, &emptyVao_);
+  volumes_ = std::make_unique<VolumeEffects>(*this);
+  reflections_ = std::make_unique<ReflectionEffects>(*this);
+  if (!volumes_->upload() || !reflections_->upload()) return false;
   return glOk();
 }
 
