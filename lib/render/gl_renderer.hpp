@@ -19,10 +19,14 @@
 
 #include "asset/cache.hpp"
 #include "render/gl_effects.hpp"
+#include "render/gl_post.hpp"
 #include "render/mesh.hpp"
 #include "render/view.hpp"
 
 namespace rscene::render::detail {
+
+// Compiles and links a program (renderer.cpp); 0 with the log appended.
+GLuint linkProgram(const char* vertex, const char* fragment, std::string& log);
 
 struct GpuMesh {
   GLuint vbo = 0, ebo = 0, colorVbo = 0;
@@ -87,6 +91,7 @@ struct DataTargets {
 class GlRenderer final : public Renderer {
   friend class VolumeEffects;
   friend class ReflectionEffects;
+  friend class PostEffects;
 
  public:
   GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
@@ -187,6 +192,7 @@ class GlRenderer final : public Renderer {
   // while the GL context still exists.
   std::unique_ptr<VolumeEffects> volumes_;
   std::unique_ptr<ReflectionEffects> reflections_;
+  std::unique_ptr<PostEffects> post_;  // after the lit pass (gl_post.hpp)
 };
 
 }  // namespace rscene::render::detail

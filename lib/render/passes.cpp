@@ -237,7 +237,6 @@ bool GlRenderer::dataTargets(int w, int h) {
 
 bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out) {
   const Camera& camera = view.camera;
-  const Look& env = scene_.environment;
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
   if (!reflections_->prepare(view)) return false;
@@ -337,37 +336,17 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
 
-  // Resolve, then background + tone map into RGBA8.
+  // Resolve, then background + tone map into RGBA8, with the
+  // post-processing the scene asks for (gl_post.cpp).  glFinish: the lit
+  // pass is done, so that what follows is the post-processing's own time.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, color_.fbo[0]);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, color_.fbo[1]);
   glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[2]);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  GLuint post = postProg_;
-  glUseProgram(post);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, color_.resolved);
-  glUniform1i(loc(post, "uScene"), 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, hdrTexture_);
-  glUniform1i(loc(post, "uHdr"), 1);
-  setMat(post, "uInvViewProj", viewProj.inverse());
-  int mode = env.mode == Background::PlainColor ? 0 : (env.mode == Background::Hdr && hdrTexture_) ? 1 : 2;
-  glUniform1i(loc(post, "uMode"), mode);
-  glUniform1i(loc(post, "uTransparent"), opt_.transparent);
-  setVec3(post, "uBackground", env.background);
-  setVec3(post, "uSunDir", env.sunDirection.cast<float>());
-  glUniform1f(loc(post, "uCloud"), env.cloudCoverage);
-  glUniform1i(loc(post, "uNight"), env.night);
-  glUniform1f(loc(post, "uFogDensity"), env.fogDensity);
-  setVec3(post, "uFogColor", env.fogColor);
-  glUniform1f(loc(post, "uExposure"), env.exposure);
-  glUniform1f(loc(post, "uGamma"), env.gamma);
-  glUniform1i(loc(post, "uToneMap"), int(env.toneMap));
-  glBindVertexArray(emptyVao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
+  glFinish();
+  auto tPost = Clock::now();
+  if (!post_->run(view, viewProj)) return false;
+  glFinish();
+  timings_.postSeconds += std::chrono::duration<double>(Clock::now() - tPost).count();
 
   out.width = w;
   out.height = h;
@@ -454,6 +433,7 @@ bool GlRenderer::dataPass(const View& view, const Eigen::Matrix4d& viewProj, Vie
 
 bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnostics) {
   auto t0 = Clock::now();
+  double post0 = timings_.postSeconds;
   diags_ = &diagnostics;
   out = ViewImages{};
   if (std::string problem = viewProblem(view); !problem.empty()) {
@@ -474,7 +454,7 @@ bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnost
   if (color) ok = colorPass(view, viewProj, out.color);
   if (ok && (depth || segmentation)) ok = dataPass(view, viewProj, out, depth, segmentation);
   if (ok && depth) addDepthNoise(out.depth, view.noiseMean, view.noiseStddev, view.noiseSeed);
-  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count() - (timings_.postSeconds - post0);
   return ok;
 }
 

@@ -80,6 +80,10 @@ void writeMatrix(float* data, const Eigen::Affine3d& world) {
 
 }  // namespace
 
+GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
+  return program(vertex, fragment, log);
+}
+
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
     : scene_(scene),
@@ -568,6 +572,8 @@ bool GlRenderer::upload() {
   volumes_ = std::make_unique<VolumeEffects>(*this);
   reflections_ = std::make_unique<ReflectionEffects>(*this);
   if (!volumes_->upload() || !reflections_->upload()) return false;
+  post_ = std::make_unique<PostEffects>(*this);
+  if (!post_->upload()) return false;
   return glOk();
 }
 

@@ -1,0 +1,69 @@
+// PostEffects: the post-processing of a color view (internal to
+// lib/render, a friend of GlRenderer like the modules of gl_effects.hpp),
+// what the environment and rayrai_render records ask for (post_plan.hpp).
+// After the lit pass is resolved, run() draws, in this order:
+//   ambient occlusion  half size, from the resolved depth, blurred
+//   composite          surfaces x occlusion over the background, linear HDR
+//   auto exposure      log luminance of a 1/16 downsample, read back
+//   depth of field     a half-size gather, blended in by the blur radius
+//   bloom              soft threshold, then a dual-filter chain of 5 levels
+//   final              bloom added, exposure, tone map, gamma
+//   FXAA               on the display colors
+// into the renderer's RGBA8 target.  With nothing asked for it is the one
+// pass it always was (background, tone map).  GLSL: shader_post.cpp and
+// shader_post_effects.cpp.
+#pragma once
+#include <GL/glcorearb.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "render/post_plan.hpp"
+#include "render/view.hpp"
+
+namespace rscene::render::detail {
+
+class GlRenderer;
+
+// A texture and the framebuffer that draws into it.
+struct PostTarget {
+  GLuint texture = 0, fbo = 0;
+  int width = 0, height = 0;
+};
+
+class PostEffects {
+ public:
+  explicit PostEffects(GlRenderer& r) : r_(r) {}
+  ~PostEffects();
+  PostEffects(const PostEffects&) = delete;
+  PostEffects& operator=(const PostEffects&) = delete;
+  bool upload();  // the programs: false with an error diagnostic
+  // color_.resolved (and the multisampled depth) into color_.final, which
+  // is left bound for the read-back.
+  bool run(const View& view, const Eigen::Matrix4d& viewProj);
+  float lastExposure() const { return exposure_; }  // environment x auto exposure of the last run
+
+ private:
+  bool ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type, GLenum filter,
+              bool depth = false);
+  void draw(const PostTarget* into);
+  void composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint ao);
+  void ambientOcclusion(const View& view, const Eigen::Matrix4d& proj);
+  float autoExposure(float key);
+  void depthOfField(const Eigen::Matrix4d& proj, const Eigen::Vector3f& dof);
+  void bloom(float exposure);
+  void finalPass(const Eigen::Matrix4d& proj, const Eigen::Vector3f& dof, const PostTarget* into);
+  void fxaa();
+
+  GlRenderer& r_;
+  PostPlan plan_;
+  GLuint ssaoProg_ = 0, ssaoBlurProg_ = 0, prefilterProg_ = 0, downProg_ = 0, upProg_ = 0, luminanceProg_ = 0,
+         dofProg_ = 0, finalProg_ = 0, fxaaProg_ = 0;
+  PostTarget depth_, hdr_, ldr_, aoRaw_, ao_, luminance_, dof_;
+  std::vector<PostTarget> bloom_;
+  int bloomLevels_ = 0;
+  float exposure_ = 1;
+  std::vector<float> logLuminance_;
+};
+
+}  // namespace rscene::render::detail
