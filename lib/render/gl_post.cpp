@@ -38,7 +38,7 @@ void setTargetTexel(GLuint p, const PostTarget& t) {
 }  // namespace
 
 PostEffects::~PostEffects() {
-  for (GLuint p : {ssaoProg_, ssaoBlurProg_, prefilterProg_, downProg_, upProg_, luminanceProg_, dofProg_, finalProg_,
+  for (GLuint p : {depthResolveProg_, ssaoProg_, ssaoBlurProg_, prefilterProg_, downProg_, upProg_, luminanceProg_, dofProg_, finalProg_,
                    fxaaProg_})
     if (p) glDeleteProgram(p);
   auto free = [](PostTarget& t) {
@@ -52,6 +52,7 @@ PostEffects::~PostEffects() {
 bool PostEffects::upload() {
   std::string log;
   const char* v = shaders::kPostVertex;
+  depthResolveProg_ = linkProgram(v, shaders::kDepthResolveFragment, log);
   ssaoProg_ = linkProgram(v, shaders::kSsaoFragment, log);
   ssaoBlurProg_ = linkProgram(v, shaders::kSsaoBlurFragment, log);
   prefilterProg_ = linkProgram(v, shaders::kBloomPrefilterFragment, log);
@@ -61,7 +62,7 @@ bool PostEffects::upload() {
   dofProg_ = linkProgram(v, shaders::dofFragment().c_str(), log);
   finalProg_ = linkProgram(v, shaders::finalFragment().c_str(), log);
   fxaaProg_ = linkProgram(v, shaders::kFxaaFragment, log);
-  if (ssaoProg_ && ssaoBlurProg_ && prefilterProg_ && downProg_ && upProg_ && luminanceProg_ && dofProg_ &&
+  if (depthResolveProg_ && ssaoProg_ && ssaoBlurProg_ && prefilterProg_ && downProg_ && upProg_ && luminanceProg_ && dofProg_ &&
       finalProg_ && fxaaProg_)
     return true;
   r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
@@ -71,7 +72,7 @@ bool PostEffects::upload() {
 // Targets are made on first use and remade when the image size changes,
 // so a scene that asks for no effect pays for none.
 bool PostEffects::ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type,
-                         GLenum filter, bool depth) {
+                         GLenum filter) {
   w = std::max(w, 1), h = std::max(h, 1);
   if (t.texture && t.width == w && t.height == h) return true;
   if (!t.texture) {
@@ -86,12 +87,7 @@ bool PostEffects::ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLe
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, depth ? GL_DEPTH_STENCIL_ATTACHMENT : GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                         t.texture, 0);
-  if (depth) {
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
-  }
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.texture, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
   r_.diag(Severity::Error, "RS9011", 0,
           "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " post-processing framebuffer");
@@ -141,10 +137,20 @@ void PostEffects::composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint
   draw(linear ? &hdr_ : nullptr);
 }
 
+void PostEffects::resolveDepth() {
+  glUseProgram(depthResolveProg_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, r_.color_.msaaDepth);
+  glUniform1i(loc(depthResolveProg_, "uDepthMs"), 0);
+  glUniform1i(loc(depthResolveProg_, "uSamples"), r_.color_.samples);
+  draw(&depth_);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+}
+
 void PostEffects::ambientOcclusion(const View& view, const Eigen::Matrix4d& proj) {
   const ColorTargets& c = r_.color_;
   glUseProgram(ssaoProg_);
-  bindTexture(ssaoProg_, "uDepth", 0, depth_.texture);
+  bindTexture(ssaoProg_, "uDepth", 0, depthSource_);
   setMat(ssaoProg_, "uInvProj", proj.inverse());
   glUniform1f(loc(ssaoProg_, "uPixelsPerMetre"), float(proj(1, 1)) * float(c.height) / 2);
   glUniform1i(loc(ssaoProg_, "uOrtho"), view.camera.projection == "orthographic");
@@ -173,7 +179,7 @@ float PostEffects::autoExposure(float key) {
 void PostEffects::depthOfField(const Eigen::Matrix4d& proj, const Eigen::Vector3f& dof) {
   glUseProgram(dofProg_);
   bindTexture(dofProg_, "uHdrImage", 0, hdr_.texture);
-  bindTexture(dofProg_, "uDepth", 1, depth_.texture);
+  bindTexture(dofProg_, "uDepth", 1, depthSource_);
   setMat(dofProg_, "uInvProj", proj.inverse());
   setVec3(dofProg_, "uDof", dof);
   draw(&dof_);
@@ -219,7 +225,7 @@ void PostEffects::finalPass(const Eigen::Matrix4d& proj, const Eigen::Vector3f& 
   bindTexture(p, "uHdrImage", 0, hdr_.texture);
   bindTexture(p, "uBloom", 1, plan_.bloom ? bloom_[0].texture : 0);
   bindTexture(p, "uDofImage", 2, plan_.depthOfField ? dof_.texture : 0);
-  bindTexture(p, "uDepth", 3, plan_.needsDepth() ? depth_.texture : 0);
+  bindTexture(p, "uDepth", 3, plan_.needsDepth() ? depthSource_ : 0);
   glUniform1i(loc(p, "uHasBloom"), plan_.bloom);
   glUniform1f(loc(p, "uBloomGain"), plan_.bloom ? env.bloomIntensity / float(bloomLevels_) / exposure_ : 0.0f);
   glUniform1i(loc(p, "uHasDof"), plan_.depthOfField);
@@ -262,13 +268,10 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
   Eigen::Matrix4d proj = viewProj * viewMatrix(view.camera).inverse();
   int hw = (w + 1) / 2, hh = (h + 1) / 2;
   bool ok = ensure(hdr_, w, h, GL_RGBA16F, GL_RGBA, GL_FLOAT, GL_LINEAR);
-  if (plan_.needsDepth()) {
-    ok = ok && ensure(depth_, w, h, GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, GL_NEAREST, true);
-    if (ok) {
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, c.fbo[0]);
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, depth_.fbo);
-      glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-    }
+  depthSource_ = c.msaaDepth;
+  if (plan_.needsDepth() && c.samples > 1) {
+    ok = ok && ensure(depth_, w, h, GL_R32F, GL_RED, GL_FLOAT, GL_NEAREST);
+    depthSource_ = depth_.texture;
   }
   if (plan_.ssao)
     ok = ok && ensure(aoRaw_, hw, hh, GL_RG16F, GL_RG, GL_FLOAT, GL_NEAREST) &&
@@ -286,6 +289,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
   if (plan_.fxaa) ok = ok && ensure(ldr_, w, h, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, GL_LINEAR);
   if (!ok) return false;
 
+  if (plan_.needsDepth() && c.samples > 1) resolveDepth();
   if (plan_.ssao) ambientOcclusion(view, proj);
   composite(viewProj, true, plan_.ssao ? ao_.texture : 0);
   if (plan_.autoExposure) exposure_ *= autoExposure(env.autoExposureKey);

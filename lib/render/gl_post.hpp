@@ -2,7 +2,8 @@
 // lib/render, a friend of GlRenderer like the modules of gl_effects.hpp),
 // what the environment and rayrai_render records ask for (post_plan.hpp).
 // After the lit pass is resolved, run() draws, in this order:
-//   ambient occlusion  half size, from the resolved depth, blurred
+//   depth resolve      the nearest sample of each pixel (SSAO, depth of field)
+//   ambient occlusion  half size, from that depth, blurred
 //   composite          surfaces x occlusion over the background, linear HDR
 //   auto exposure      log luminance of a 1/16 downsample, read back
 //   depth of field     a half-size gather, blended in by the blur radius
@@ -44,10 +45,10 @@ class PostEffects {
   float lastExposure() const { return exposure_; }  // environment x auto exposure of the last run
 
  private:
-  bool ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type, GLenum filter,
-              bool depth = false);
+  bool ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type, GLenum filter);
   void draw(const PostTarget* into);
   void composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint ao);
+  void resolveDepth();
   void ambientOcclusion(const View& view, const Eigen::Matrix4d& proj);
   float autoExposure(float key);
   void depthOfField(const Eigen::Matrix4d& proj, const Eigen::Vector3f& dof);
@@ -57,8 +58,11 @@ class PostEffects {
 
   GlRenderer& r_;
   PostPlan plan_;
-  GLuint ssaoProg_ = 0, ssaoBlurProg_ = 0, prefilterProg_ = 0, downProg_ = 0, upProg_ = 0, luminanceProg_ = 0,
+  GLuint depthResolveProg_ = 0, ssaoProg_ = 0, ssaoBlurProg_ = 0, prefilterProg_ = 0, downProg_ = 0, upProg_ = 0, luminanceProg_ = 0,
          dofProg_ = 0, finalProg_ = 0, fxaaProg_ = 0;
+  // depth_: the nearest sample of each pixel of a multisampled pass (R32F);
+  // depthSource_: what the passes read, depth_ or the single-sample depth.
+  GLuint depthSource_ = 0;
   PostTarget depth_, hdr_, ldr_, aoRaw_, ao_, luminance_, dof_;
   std::vector<PostTarget> bloom_;
   int bloomLevels_ = 0;

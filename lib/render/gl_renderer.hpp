@@ -80,7 +80,8 @@ struct InstanceRef {
 // of that size follow (a size change remakes them).
 struct ColorTargets {
   int width = 0, height = 0, samples = 0;
-  GLuint msaaColor = 0, msaaDepth = 0, resolved = 0, final = 0;
+  GLuint msaaColor = 0, resolved = 0, final = 0;
+  GLuint msaaDepth = 0;  // a texture: GL_TEXTURE_2D_MULTISAMPLE when samples > 1, else GL_TEXTURE_2D
   GLuint fbo[3] = {0, 0, 0};  // multisampled, resolved, final
 };
 struct DataTargets {

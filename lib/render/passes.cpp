@@ -171,9 +171,7 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
   if (t.fbo[0] && t.width == w && t.height == h && t.samples == samples) return true;
   if (!t.fbo[0]) {
     glGenFramebuffers(3, t.fbo);
-    GLuint rb[2];
-    glGenRenderbuffers(2, rb);
-    t.msaaColor = rb[0], t.msaaDepth = rb[1];
+    glGenRenderbuffers(1, &t.msaaColor);
     GLuint tex[2];
     glGenTextures(2, tex);
     t.resolved = tex[0], t.final = tex[1];
@@ -181,11 +179,23 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
   t.width = w, t.height = h, t.samples = samples;
   glBindRenderbuffer(GL_RENDERBUFFER, t.msaaColor);
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA16F, w, h);
-  glBindRenderbuffer(GL_RENDERBUFFER, t.msaaDepth);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH24_STENCIL8, w, h);
+  // The depth is a texture, so that the post-processing can read every
+  // sample (gl_post.cpp); a texture's kind is fixed once bound, so a new
+  // one for each sample count.
+  if (t.msaaDepth) glDeleteTextures(1, &t.msaaDepth);
+  glGenTextures(1, &t.msaaDepth);
+  GLenum depthTarget = samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+  glBindTexture(depthTarget, t.msaaDepth);
+  if (samples > 1) {
+    glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, GL_DEPTH24_STENCIL8, w, h, GL_TRUE);
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, w, h, 0, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, t.fbo[0]);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.msaaColor);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t.msaaDepth);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, depthTarget, t.msaaDepth, 0);
   bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   for (int i = 0; i < 2; ++i) {
     GLuint tex = i == 0 ? t.resolved : t.final;
@@ -245,6 +255,9 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  GLint maxDepthSamples = 1;  // the depth is a multisampled texture (colorTargets)
+  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &maxDepthSamples);
+  maxSamples = std::min(maxSamples, maxDepthSamples);
   int samples = std::clamp(view.samples > 0 ? view.samples : opt_.samples, 1, std::max(1, int(maxSamples)));
   if (!colorTargets(w, h, samples)) return false;
   glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[0]);

@@ -111,10 +111,9 @@ GlRenderer::~GlRenderer() {
     if (p) glDeleteProgram(p);
   if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
-  GLuint colorRbs[2] = {color_.msaaColor, color_.msaaDepth};
-  glDeleteRenderbuffers(2, colorRbs);
-  GLuint colorTex[2] = {color_.resolved, color_.final};
-  glDeleteTextures(2, colorTex);
+  glDeleteRenderbuffers(1, &color_.msaaColor);
+  GLuint colorTex[3] = {color_.resolved, color_.final, color_.msaaDepth};
+  glDeleteTextures(3, colorTex);
   glDeleteFramebuffers(1, &data_.fbo);
   GLuint dataRbs[3] = {data_.segmentation, data_.depth, data_.z};
   glDeleteRenderbuffers(3, dataRbs);

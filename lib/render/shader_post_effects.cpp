@@ -32,12 +32,36 @@ uniform bool uHasDof;
 uniform sampler2D uDofImage;  // the half-size gather
 uniform sampler2D uDepth;
 
+// The depth of field image at full size: of the four nearest half-size
+// texels, those whose blur radius is close to this pixel's, so that a
+// blurred background next to a sharp edge does not take its colour.
+vec3 dofUpsampled(ivec2 p, float coc) {
+  ivec2 size = textureSize(uDofImage, 0);
+  vec2 h = (vec2(p) + 0.5) * 0.5 - 0.5;
+  ivec2 base = ivec2(floor(h));
+  vec2 f = h - vec2(base);
+  vec3 sum = vec3(0.0);
+  float weight = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 o = ivec2(k & 1, k >> 1);
+    vec4 d = texelFetch(uDofImage, clamp(base + o, ivec2(0), size - 1), 0);
+    float w = mix(1.0 - f.x, f.x, float(o.x)) * mix(1.0 - f.y, f.y, float(o.y)) / (1e-3 + abs(d.a - coc));
+    sum += d.rgb * w;
+    weight += w;
+  }
+  return sum / max(weight, 1e-9);
+}
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec2 uv = gl_FragCoord.xy / vec2(textureSize(uHdrImage, 0));
   vec4 c = texelFetch(uHdrImage, p, 0);
   vec3 lit = c.rgb;
-  if (uHasDof) lit = mix(lit, texture(uDofImage, uv).rgb, smoothstep(0.5, 1.5, cocRadius(texelFetch(uDepth, p, 0).r)));
+  if (uHasDof) {
+    float coc = cocRadius(texelFetch(uDepth, p, 0).r);
+    float t = smoothstep(0.5, 1.5, coc);
+    if (t > 0.0) lit = mix(lit, dofUpsampled(p, coc), t);
+  }
   if (uHasBloom) lit += texture(uBloom, uv).rgb * uBloomGain;
   vec3 d = toneMap(lit);
   // A plain_color background shows as written (plus the glow on it).
@@ -49,6 +73,22 @@ void main() {
 }  // namespace
 
 std::string finalFragment() { return std::string(kPostPrelude) + kViewDepthGlsl + kFinalMain; }
+
+// The depth buffer of a multisampled pass, one value per pixel: the
+// nearest of its samples, so that a pixel an edge crosses takes the depth
+// of the surface in front (whose colour it mostly shows) and depth of
+// field keeps it with that surface.
+const char* const kDepthResolveFragment = R"(#version 330 core
+out vec4 fragColor;
+uniform sampler2DMS uDepthMs;
+uniform int uSamples;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float z = 1.0;
+  for (int i = 0; i < uSamples; ++i) z = min(z, texelFetch(uDepthMs, p, i).r);
+  fragColor = vec4(z);
+}
+)";
 
 // Scalable ambient obscurance (McGuire et al. 2012) at half size: eye
 // positions from the depth buffer, the normal from the neighbours on the
@@ -198,34 +238,37 @@ void main() {
 )";
 
 // Depth of field at half size: a gather over a disk of the pixel's own
-// blur radius (24 samples on a golden spiral).  A sample counts where its
-// own blur circle reaches this pixel; one behind the pixel is limited to
-// twice the pixel's radius, so that a blurred background does not spill
-// over a sharp subject (Gustafsson's single-pass bokeh).
+// blur radius (24 samples on a golden spiral), writing the radius in
+// alpha for finalFragment's upsampling.  Each half-size texel stands for
+// one full-size pixel (its colour and depth together, never a mix of a
+// sharp edge and what lies behind it).  A sample counts where its own blur
+// circle reaches this pixel; one behind the pixel is limited to twice the
+// pixel's radius, so that a blurred background does not spill over a sharp
+// subject (Gustafsson's single-pass bokeh).
 const char* const kDofMain = R"(
 out vec4 fragColor;
 uniform sampler2D uHdrImage;
 uniform sampler2D uDepth;
 const int N = 24;
 void main() {
-  vec2 full = vec2(textureSize(uHdrImage, 0));
-  vec2 uv = gl_FragCoord.xy * 2.0 / full;
-  float z = texture(uDepth, uv).r;
+  ivec2 size = textureSize(uHdrImage, 0);
+  ivec2 c = min(ivec2(gl_FragCoord.xy) * 2 + 1, size - 1);
+  float z = texelFetch(uDepth, c, 0).r;
   float centreDepth = viewDepth(z), centreCoc = cocRadius(z);
-  vec3 sum = texture(uHdrImage, uv).rgb;
+  vec3 sum = texelFetch(uHdrImage, c, 0).rgb;
   float weight = 1.0;
   for (int i = 0; i < N; ++i) {
     float a = float(i) * 2.3999632;
     vec2 off = vec2(cos(a), sin(a)) * (sqrt((float(i) + 0.5) / float(N)) * centreCoc);
-    vec2 q = uv + off / full;
-    float zs = texture(uDepth, q).r;
+    ivec2 q = clamp(c + ivec2(round(off)), ivec2(0), size - 1);
+    float zs = texelFetch(uDepth, q, 0).r;
     float cs = cocRadius(zs);
     if (viewDepth(zs) > centreDepth) cs = min(cs, 2.0 * centreCoc);
     float w = clamp(cs - length(off) + 1.0, 0.0, 1.0);
-    sum += texture(uHdrImage, q).rgb * w;
+    sum += texelFetch(uHdrImage, q, 0).rgb * w;
     weight += w;
   }
-  fragColor = vec4(sum / weight, 1.0);
+  fragColor = vec4(sum / weight, centreCoc);
 }
 )";
 

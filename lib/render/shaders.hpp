@@ -35,6 +35,7 @@ std::string surfaceFragment();  // GGX PBR, lights, shadows, decals, indirect li
 std::string postFragment();     // background, exposure, tone map, gamma
 
 // Post-processing passes (shader_post_effects.cpp, run by gl_post.cpp).
+extern const char* const kDepthResolveFragment;
 extern const char* const kSsaoFragment;
 extern const char* const kSsaoBlurFragment;
 extern const char* const kBloomPrefilterFragment;
