@@ -17,8 +17,10 @@ namespace {
 // the same at any radius, but far samples miss the texture cache.
 constexpr float kAoRadius = 0.5f, kAoIntensity = 1.0f, kAoMaxScreen = 0.1f;
 // Bloom: the brightest (exposed) value a pixel gives the chain, so that
-// the sun's disk (40) or a specular spike does not flood the image.
-constexpr float kBloomSourceClamp = 64.0f;
+// the sun's disk (40), a specular spike or an overexposed wall does not
+// flood the image with a blurred copy of itself: the glow next to a large
+// bright area is at most about bloomIntensity x (16 - bloomThreshold).
+constexpr float kBloomSourceClamp = 16.0f;
 
 GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
 void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
