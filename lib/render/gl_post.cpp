@@ -40,7 +40,7 @@ void setTargetTexel(GLuint p, const PostTarget& t) {
 }  // namespace
 
 PostEffects::~PostEffects() {
-  for (GLuint p : {depthResolveProg_, ssaoProg_, ssaoBlurProg_, prefilterProg_, downProg_, upProg_, luminanceProg_, dofProg_, finalProg_,
+  for (GLuint p : {depthResolveProg_, ssaoProg_, ssaoMsProg_, ssaoBlurProg_, prefilterProg_, downProg_, upProg_, luminanceProg_, dofProg_, finalProg_,
                    fxaaProg_})
     if (p) glDeleteProgram(p);
   auto free = [](PostTarget& t) {
@@ -55,7 +55,8 @@ bool PostEffects::upload() {
   std::string log;
   const char* v = shaders::kPostVertex;
   depthResolveProg_ = linkProgram(v, shaders::kDepthResolveFragment, log);
-  ssaoProg_ = linkProgram(v, shaders::kSsaoFragment, log);
+  ssaoProg_ = linkProgram(v, shaders::ssaoFragment(false).c_str(), log);
+  ssaoMsProg_ = linkProgram(v, shaders::ssaoFragment(true).c_str(), log);
   ssaoBlurProg_ = linkProgram(v, shaders::kSsaoBlurFragment, log);
   prefilterProg_ = linkProgram(v, shaders::kBloomPrefilterFragment, log);
   downProg_ = linkProgram(v, shaders::kBloomDownFragment, log);
@@ -64,7 +65,7 @@ bool PostEffects::upload() {
   dofProg_ = linkProgram(v, shaders::dofFragment().c_str(), log);
   finalProg_ = linkProgram(v, shaders::finalFragment().c_str(), log);
   fxaaProg_ = linkProgram(v, shaders::kFxaaFragment, log);
-  if (depthResolveProg_ && ssaoProg_ && ssaoBlurProg_ && prefilterProg_ && downProg_ && upProg_ && luminanceProg_ && dofProg_ &&
+  if (depthResolveProg_ && ssaoProg_ && ssaoMsProg_ && ssaoBlurProg_ && prefilterProg_ && downProg_ && upProg_ && luminanceProg_ && dofProg_ &&
       finalProg_ && fxaaProg_)
     return true;
   r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
@@ -151,15 +152,22 @@ void PostEffects::resolveDepth() {
 
 void PostEffects::ambientOcclusion(const View& view, const Eigen::Matrix4d& proj) {
   const ColorTargets& c = r_.color_;
-  glUseProgram(ssaoProg_);
-  bindTexture(ssaoProg_, "uDepth", 0, depthSource_);
-  setMat(ssaoProg_, "uInvProj", proj.inverse());
-  glUniform1f(loc(ssaoProg_, "uPixelsPerMetre"), float(proj(1, 1)) * float(c.height) / 2);
-  glUniform1i(loc(ssaoProg_, "uOrtho"), view.camera.projection == "orthographic");
-  glUniform1f(loc(ssaoProg_, "uRadius"), kAoRadius);
-  glUniform1f(loc(ssaoProg_, "uIntensity"), kAoIntensity);
-  glUniform1f(loc(ssaoProg_, "uMaxPixels"), kAoMaxScreen * float(c.height));
+  // Straight from the multisampled depth unless it was resolved (depth of field).
+  bool multisampled = c.samples > 1 && depthSource_ == c.msaaDepth;
+  GLuint prog = multisampled ? ssaoMsProg_ : ssaoProg_;
+  glUseProgram(prog);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(multisampled ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, depthSource_);
+  glUniform1i(loc(prog, "uDepth"), 0);
+  glUniform2i(loc(prog, "uDepthSize"), c.width, c.height);
+  setMat(prog, "uInvProj", proj.inverse());
+  glUniform1f(loc(prog, "uPixelsPerMetre"), float(proj(1, 1)) * float(c.height) / 2);
+  glUniform1i(loc(prog, "uOrtho"), view.camera.projection == "orthographic");
+  glUniform1f(loc(prog, "uRadius"), kAoRadius);
+  glUniform1f(loc(prog, "uIntensity"), kAoIntensity);
+  glUniform1f(loc(prog, "uMaxPixels"), kAoMaxScreen * float(c.height));
   draw(&aoRaw_);
+  if (multisampled) glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
   glUseProgram(ssaoBlurProg_);
   bindTexture(ssaoBlurProg_, "uAoRaw", 0, aoRaw_.texture);
   draw(&ao_);
@@ -227,7 +235,7 @@ void PostEffects::finalPass(const Eigen::Matrix4d& proj, const Eigen::Vector3f& 
   bindTexture(p, "uHdrImage", 0, hdr_.texture);
   bindTexture(p, "uBloom", 1, plan_.bloom ? bloom_[0].texture : 0);
   bindTexture(p, "uDofImage", 2, plan_.depthOfField ? dof_.texture : 0);
-  bindTexture(p, "uDepth", 3, plan_.needsDepth() ? depthSource_ : 0);
+  bindTexture(p, "uDepth", 3, plan_.depthOfField ? depthSource_ : 0);
   glUniform1i(loc(p, "uHasBloom"), plan_.bloom);
   glUniform1f(loc(p, "uBloomGain"), plan_.bloom ? env.bloomIntensity / float(bloomLevels_) / exposure_ : 0.0f);
   glUniform1i(loc(p, "uHasDof"), plan_.depthOfField);
@@ -271,7 +279,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
   int hw = (w + 1) / 2, hh = (h + 1) / 2;
   bool ok = ensure(hdr_, w, h, GL_RGBA16F, GL_RGBA, GL_FLOAT, GL_LINEAR);
   depthSource_ = c.msaaDepth;
-  if (plan_.needsDepth() && c.samples > 1) {
+  if (plan_.depthOfField && c.samples > 1) {
     ok = ok && ensure(depth_, w, h, GL_R32F, GL_RED, GL_FLOAT, GL_NEAREST);
     depthSource_ = depth_.texture;
   }
@@ -291,7 +299,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
   if (plan_.fxaa) ok = ok && ensure(ldr_, w, h, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, GL_LINEAR);
   if (!ok) return false;
 
-  if (plan_.needsDepth() && c.samples > 1) resolveDepth();
+  if (plan_.depthOfField && c.samples > 1) resolveDepth();
   if (plan_.ssao) ambientOcclusion(view, proj);
   composite(viewProj, true, plan_.ssao ? ao_.texture : 0);
   if (plan_.autoExposure) exposure_ *= autoExposure(env.autoExposureKey);

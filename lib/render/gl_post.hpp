@@ -2,8 +2,8 @@
 // lib/render, a friend of GlRenderer like the modules of gl_effects.hpp),
 // what the environment and rayrai_render records ask for (post_plan.hpp).
 // After the lit pass is resolved, run() draws, in this order:
-//   depth resolve      the nearest sample of each pixel (SSAO, depth of field)
-//   ambient occlusion  half size, from that depth, blurred
+//   depth resolve      the nearest sample of each pixel (for depth of field)
+//   ambient occlusion  half size, from the depth buffer, blurred
 //   composite          surfaces x occlusion over the background, linear HDR
 //   auto exposure      log luminance of a 1/16 downsample, read back
 //   depth of field     a half-size gather, blended in by the blur radius
@@ -58,10 +58,11 @@ class PostEffects {
 
   GlRenderer& r_;
   PostPlan plan_;
-  GLuint depthResolveProg_ = 0, ssaoProg_ = 0, ssaoBlurProg_ = 0, prefilterProg_ = 0, downProg_ = 0, upProg_ = 0, luminanceProg_ = 0,
+  GLuint depthResolveProg_ = 0, ssaoProg_ = 0, ssaoMsProg_ = 0, ssaoBlurProg_ = 0, prefilterProg_ = 0, downProg_ = 0, upProg_ = 0, luminanceProg_ = 0,
          dofProg_ = 0, finalProg_ = 0, fxaaProg_ = 0;
-  // depth_: the nearest sample of each pixel of a multisampled pass (R32F);
-  // depthSource_: what the passes read, depth_ or the single-sample depth.
+  // depth_: the nearest sample of each pixel of a multisampled pass (R32F,
+  // depth of field only); depthSource_: what the passes read, depth_ or
+  // the depth buffer itself.
   GLuint depthSource_ = 0;
   PostTarget depth_, hdr_, ldr_, aoRaw_, ao_, luminance_, dof_;
   std::vector<PostTarget> bloom_;

@@ -12,7 +12,6 @@ namespace rscene::render {
 struct PostPlan {
   bool bloom = false, ssao = false, fxaa = false, autoExposure = false, depthOfField = false;
   bool any() const { return bloom || ssao || fxaa || autoExposure || depthOfField; }
-  bool needsDepth() const { return ssao || depthOfField; }
 };
 
 // The effects `look` asks for; none when !enabled (rscene-render --no-post).

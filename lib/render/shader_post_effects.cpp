@@ -94,10 +94,13 @@ void main() {
 // positions from the depth buffer, the normal from the neighbours on the
 // flatter side (no smearing across silhouettes), 10 samples on a golden
 // spiral rotated by a 4x4 Bayer pattern that the blur then averages out.
-// Writes (occlusion, view depth) for the depth-aware blur.
-const char* const kSsaoFragment = R"(#version 330 core
+// Writes (occlusion, view depth) for the depth-aware blur.  It reads the
+// depth buffer itself (sample 0 of a multisampled one: ssaoFragment(true))
+// unless depth of field had it resolved already.
+const char* const kSsaoMain = R"(
 out vec4 fragColor;
-uniform sampler2D uDepth;      // full size
+uniform DEPTH_SAMPLER uDepth;  // full size: texelFetch(uDepth, p, 0) is level 0 or sample 0
+uniform ivec2 uDepthSize;
 uniform mat4 uInvProj;
 uniform float uPixelsPerMetre; // at 1 m (perspective) or anywhere (orthographic)
 uniform bool uOrtho;
@@ -114,7 +117,7 @@ vec3 eyePos(ivec2 p, ivec2 size) {
 }
 
 void main() {
-  ivec2 size = textureSize(uDepth, 0);
+  ivec2 size = uDepthSize;
   ivec2 p = min(ivec2(gl_FragCoord.xy) * 2, size - 1);
   if (texelFetch(uDepth, p, 0).r >= 1.0) {  // nothing drawn: the background
     fragColor = vec4(1.0, 0.0, 0.0, 0.0);
@@ -151,6 +154,11 @@ void main() {
   fragColor = vec4(ao, -P.z, 0.0, 0.0);
 }
 )";
+
+std::string ssaoFragment(bool multisampled) {
+  return std::string("#version 330 core\n#define DEPTH_SAMPLER ") + (multisampled ? "sampler2DMS" : "sampler2D") +
+         "\n" + kSsaoMain;
+}
 
 // 4x4 depth-aware average of the raw occlusion: one period of the Bayer
 // rotation, without mixing surfaces more than 5 % apart in depth.

@@ -36,7 +36,7 @@ std::string postFragment();     // background, exposure, tone map, gamma
 
 // Post-processing passes (shader_post_effects.cpp, run by gl_post.cpp).
 extern const char* const kDepthResolveFragment;
-extern const char* const kSsaoFragment;
+std::string ssaoFragment(bool multisampled);  // reading a multisampled depth buffer or a single one
 extern const char* const kSsaoBlurFragment;
 extern const char* const kBloomPrefilterFragment;
 extern const char* const kBloomDownFragment;
