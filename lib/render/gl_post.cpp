@@ -51,7 +51,11 @@ PostEffects::~PostEffects() {
   for (PostTarget& t : bloom_) free(t);
 }
 
-bool PostEffects::upload() {
+// The programs are built by the first view that asks for an effect, so
+// that a scene that asks for none does not pay for compiling them.
+bool PostEffects::buildPrograms() {
+  if (built_) return true;
+  built_ = true;
   std::string log;
   const char* v = shaders::kPostVertex;
   depthResolveProg_ = linkProgram(v, shaders::kDepthResolveFragment, log);
@@ -66,8 +70,10 @@ bool PostEffects::upload() {
   finalProg_ = linkProgram(v, shaders::finalFragment().c_str(), log);
   fxaaProg_ = linkProgram(v, shaders::kFxaaFragment, log);
   if (depthResolveProg_ && ssaoProg_ && ssaoMsProg_ && ssaoBlurProg_ && prefilterProg_ && downProg_ && upProg_ && luminanceProg_ && dofProg_ &&
-      finalProg_ && fxaaProg_)
+      finalProg_ && fxaaProg_) {
+    ready_ = true;
     return true;
+  }
   r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
   return false;
 }
@@ -275,6 +281,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
     composite(viewProj, false, 0);
     return true;
   }
+  if (!buildPrograms() || !ready_) return false;
   Eigen::Matrix4d proj = viewProj * viewMatrix(view.camera).inverse();
   int hw = (w + 1) / 2, hh = (h + 1) / 2;
   bool ok = ensure(hdr_, w, h, GL_RGBA16F, GL_RGBA, GL_FLOAT, GL_LINEAR);

@@ -38,13 +38,14 @@ class PostEffects {
   ~PostEffects();
   PostEffects(const PostEffects&) = delete;
   PostEffects& operator=(const PostEffects&) = delete;
-  bool upload();  // the programs: false with an error diagnostic
   // color_.resolved (and the multisampled depth) into color_.final, which
-  // is left bound for the read-back.
+  // is left bound for the read-back; false with an error diagnostic (a
+  // program or a target that cannot be made).
   bool run(const View& view, const Eigen::Matrix4d& viewProj);
   float lastExposure() const { return exposure_; }  // environment x auto exposure of the last run
 
  private:
+  bool buildPrograms();  // once; false (with the diagnostic) if any fails
   bool ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type, GLenum filter);
   void draw(const PostTarget* into);
   void composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint ao);
@@ -68,6 +69,7 @@ class PostEffects {
   std::vector<PostTarget> bloom_;
   int bloomLevels_ = 0;
   float exposure_ = 1;
+  bool built_ = false, ready_ = false;
   std::vector<float> logLuminance_;
 };
 

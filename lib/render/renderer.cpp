@@ -571,8 +571,7 @@ bool GlRenderer::upload() {
   volumes_ = std::make_unique<VolumeEffects>(*this);
   reflections_ = std::make_unique<ReflectionEffects>(*this);
   if (!volumes_->upload() || !reflections_->upload()) return false;
-  post_ = std::make_unique<PostEffects>(*this);
-  if (!post_->upload()) return false;
+  post_ = std::make_unique<PostEffects>(*this);  // builds its programs when a view first needs them
   return glOk();
 }
 
