@@ -243,7 +243,7 @@ void PostEffects::finalPass(const Eigen::Matrix4d& proj, const Eigen::Vector3f& 
   bindTexture(p, "uDofImage", 2, plan_.depthOfField ? dof_.texture : 0);
   bindTexture(p, "uDepth", 3, plan_.depthOfField ? depthSource_ : 0);
   glUniform1i(loc(p, "uHasBloom"), plan_.bloom);
-  glUniform1f(loc(p, "uBloomGain"), plan_.bloom ? env.bloomIntensity / float(bloomLevels_) / exposure_ : 0.0f);
+  glUniform1f(loc(p, "uBloomGain"), plan_.bloom ? bloomGain(env.bloomIntensity, bloomLevels_, exposure_) : 0.0f);
   glUniform1i(loc(p, "uHasDof"), plan_.depthOfField);
   setMat(p, "uInvProj", proj.inverse());
   setVec3(p, "uDof", dof);

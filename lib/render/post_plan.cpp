@@ -41,4 +41,9 @@ int bloomLevels(int width, int height) {
   return levels;
 }
 
+float bloomGain(float intensity, int levels, float exposure) {
+  if (!(intensity > 0)) return 0;
+  return std::min(intensity, 1e3f) / float(std::max(levels, 1)) / std::max(exposure, 1e-6f);
+}
+
 }  // namespace rscene::render

@@ -37,5 +37,9 @@ float maxCocPixels(int imageHeight);
 // Bloom: how many levels of the chain (half size, then halving) an image
 // of this size gets: at most 5, none smaller than 2 pixels a side.
 int bloomLevels(int width, int height);
+// What the top level of the chain (the sum of `levels` levels, in exposed
+// units) is multiplied by before it is added to the unexposed image:
+// intensity / levels / exposure, finite for any exposure and intensity.
+float bloomGain(float intensity, int levels, float exposure);
 
 }  // namespace rscene::render

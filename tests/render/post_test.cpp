@@ -175,6 +175,13 @@ TEST(PostPlan, CircleOfConfusionIsZeroAtFocusAndGrowsAway) {
   EXPECT_EQ(bloomLevels(3, 3), 0);
 }
 
+TEST(PostPlan, BloomGainIsFiniteForAnyExposure) {
+  EXPECT_FLOAT_EQ(bloomGain(0.5f, 5, 2.0f), 0.05f);
+  EXPECT_TRUE(std::isfinite(bloomGain(0.5f, 5, 0.0f)));  // environment exposure=0
+  EXPECT_TRUE(std::isfinite(bloomGain(1e30f, 0, 1e-30f)));
+  EXPECT_EQ(bloomGain(NAN, 5, 1), 0.0f);
+}
+
 TEST(Post, BloomLightsThePixelsAroundABrightSphereOnly) {
   auto b = build(std::string(kEnvironment) +
                  "object /World/Lamp sphere 5 0 0 1 0 0 0 1 1 1 0.5 1 1 default white false true false - static "
