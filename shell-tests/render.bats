@@ -28,7 +28,7 @@ is_png() {
   run "$RENDER" --help
   [ "$status" -eq 0 ]
   for f in --output --width --height --samples --max-pixels --max-instances --max-texture-pixels \
-           --transparent --backend --camera --all-cameras --trajectory --every --stdin-filename \
+           --transparent --no-post --backend --camera --all-cameras --trajectory --every --stdin-filename \
            --base-dir --allow-missing-assets --reference --threshold --diff-output --verbose --version; do
     [[ "$output" == *"$f"* ]] || { echo "missing $f"; return 1; }
   done
@@ -79,7 +79,20 @@ is_png() {
   [ "$status" -eq 0 ]
   [[ "$stderr" == *"rscene-render: backend cpu via EGL"* ]]
   [[ "$stderr" == *"renderer "* ]]
-  [[ "$stderr" == *"start-up "*"drawing "*"png encoding "* ]]
+  [[ "$stderr" == *"start-up "*"drawing "*"post-processing "*"png encoding "* ]]
+}
+
+@test "post-processing: the scene's bloom, SSAO and FXAA change the picture; --no-post draws it without them" {
+  sed 's/ bloomIntensity=[^ ]*//; s/ fxaa=true//; s/ ssao=true//' "$DATA/render_post.rscene" > plain.rscene
+  ! cmp -s "$DATA/render_post.rscene" plain.rscene
+  run -0 "$RENDER" plain.rscene -o plain.png
+  run -0 "$RENDER" "$DATA/render_post.rscene" --no-post -o nopost.png
+  cmp plain.png nopost.png
+  run -0 --separate-stderr "$RENDER" "$DATA/render_post.rscene" -v -o post.png
+  [[ "$stderr" =~ post-processing\ [0-9.]+\ s ]]
+  # The glow around the lamp, the darker contact under the crate: more than
+  # a tenth of the pixels change by more than 16/255.
+  run -1 "$RENDER" "$DATA/render_post.rscene" --reference plain.png --threshold 0.1
 }
 
 @test "--backend rejects other names" {

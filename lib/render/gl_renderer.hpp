@@ -19,10 +19,14 @@
 
 #include "asset/cache.hpp"
 #include "render/gl_effects.hpp"
+#include "render/gl_post.hpp"
 #include "render/mesh.hpp"
 #include "render/view.hpp"
 
 namespace rscene::render::detail {
+
+// Compiles and links a program (renderer.cpp); 0 with the log appended.
+GLuint linkProgram(const char* vertex, const char* fragment, std::string& log);
 
 struct GpuMesh {
   GLuint vbo = 0, ebo = 0, colorVbo = 0;
@@ -76,7 +80,8 @@ struct InstanceRef {
 // of that size follow (a size change remakes them).
 struct ColorTargets {
   int width = 0, height = 0, samples = 0;
-  GLuint msaaColor = 0, msaaDepth = 0, resolved = 0, final = 0;
+  GLuint msaaColor = 0, resolved = 0, final = 0;
+  GLuint msaaDepth = 0;  // a texture: GL_TEXTURE_2D_MULTISAMPLE when samples > 1, else GL_TEXTURE_2D
   GLuint fbo[3] = {0, 0, 0};  // multisampled, resolved, final
 };
 struct DataTargets {
@@ -87,6 +92,7 @@ struct DataTargets {
 class GlRenderer final : public Renderer {
   friend class VolumeEffects;
   friend class ReflectionEffects;
+  friend class PostEffects;
 
  public:
   GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
@@ -187,6 +193,7 @@ class GlRenderer final : public Renderer {
   // while the GL context still exists.
   std::unique_ptr<VolumeEffects> volumes_;
   std::unique_ptr<ReflectionEffects> reflections_;
+  std::unique_ptr<PostEffects> post_;  // after the lit pass (gl_post.hpp)
 };
 
 }  // namespace rscene::render::detail

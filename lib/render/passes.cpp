@@ -171,9 +171,7 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
   if (t.fbo[0] && t.width == w && t.height == h && t.samples == samples) return true;
   if (!t.fbo[0]) {
     glGenFramebuffers(3, t.fbo);
-    GLuint rb[2];
-    glGenRenderbuffers(2, rb);
-    t.msaaColor = rb[0], t.msaaDepth = rb[1];
+    glGenRenderbuffers(1, &t.msaaColor);
     GLuint tex[2];
     glGenTextures(2, tex);
     t.resolved = tex[0], t.final = tex[1];
@@ -181,11 +179,23 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
   t.width = w, t.height = h, t.samples = samples;
   glBindRenderbuffer(GL_RENDERBUFFER, t.msaaColor);
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA16F, w, h);
-  glBindRenderbuffer(GL_RENDERBUFFER, t.msaaDepth);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH24_STENCIL8, w, h);
+  // The depth is a texture, so that the post-processing can read every
+  // sample (gl_post.cpp); a texture's kind is fixed once bound, so a new
+  // one for each sample count.
+  if (t.msaaDepth) glDeleteTextures(1, &t.msaaDepth);
+  glGenTextures(1, &t.msaaDepth);
+  GLenum depthTarget = samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+  glBindTexture(depthTarget, t.msaaDepth);
+  if (samples > 1) {
+    glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, GL_DEPTH24_STENCIL8, w, h, GL_TRUE);
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, w, h, 0, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, t.fbo[0]);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.msaaColor);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t.msaaDepth);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, depthTarget, t.msaaDepth, 0);
   bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   for (int i = 0; i < 2; ++i) {
     GLuint tex = i == 0 ? t.resolved : t.final;
@@ -237,7 +247,6 @@ bool GlRenderer::dataTargets(int w, int h) {
 
 bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out) {
   const Camera& camera = view.camera;
-  const Look& env = scene_.environment;
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
   if (!reflections_->prepare(view)) return false;
@@ -246,6 +255,9 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  GLint maxDepthSamples = 1;  // the depth is a multisampled texture (colorTargets)
+  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &maxDepthSamples);
+  maxSamples = std::min(maxSamples, maxDepthSamples);
   int samples = std::clamp(view.samples > 0 ? view.samples : opt_.samples, 1, std::max(1, int(maxSamples)));
   if (!colorTargets(w, h, samples)) return false;
   glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[0]);
@@ -337,37 +349,17 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
 
-  // Resolve, then background + tone map into RGBA8.
+  // Resolve, then background + tone map into RGBA8, with the
+  // post-processing the scene asks for (gl_post.cpp).  glFinish: the lit
+  // pass is done, so that what follows is the post-processing's own time.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, color_.fbo[0]);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, color_.fbo[1]);
   glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[2]);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  GLuint post = postProg_;
-  glUseProgram(post);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, color_.resolved);
-  glUniform1i(loc(post, "uScene"), 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, hdrTexture_);
-  glUniform1i(loc(post, "uHdr"), 1);
-  setMat(post, "uInvViewProj", viewProj.inverse());
-  int mode = env.mode == Background::PlainColor ? 0 : (env.mode == Background::Hdr && hdrTexture_) ? 1 : 2;
-  glUniform1i(loc(post, "uMode"), mode);
-  glUniform1i(loc(post, "uTransparent"), opt_.transparent);
-  setVec3(post, "uBackground", env.background);
-  setVec3(post, "uSunDir", env.sunDirection.cast<float>());
-  glUniform1f(loc(post, "uCloud"), env.cloudCoverage);
-  glUniform1i(loc(post, "uNight"), env.night);
-  glUniform1f(loc(post, "uFogDensity"), env.fogDensity);
-  setVec3(post, "uFogColor", env.fogColor);
-  glUniform1f(loc(post, "uExposure"), env.exposure);
-  glUniform1f(loc(post, "uGamma"), env.gamma);
-  glUniform1i(loc(post, "uToneMap"), int(env.toneMap));
-  glBindVertexArray(emptyVao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
+  glFinish();
+  auto tPost = Clock::now();
+  if (!post_->run(view, viewProj)) return false;
+  glFinish();
+  timings_.postSeconds += std::chrono::duration<double>(Clock::now() - tPost).count();
 
   out.width = w;
   out.height = h;
@@ -454,6 +446,7 @@ bool GlRenderer::dataPass(const View& view, const Eigen::Matrix4d& viewProj, Vie
 
 bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnostics) {
   auto t0 = Clock::now();
+  double post0 = timings_.postSeconds;
   diags_ = &diagnostics;
   out = ViewImages{};
   if (std::string problem = viewProblem(view); !problem.empty()) {
@@ -474,7 +467,7 @@ bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnost
   if (color) ok = colorPass(view, viewProj, out.color);
   if (ok && (depth || segmentation)) ok = dataPass(view, viewProj, out, depth, segmentation);
   if (ok && depth) addDepthNoise(out.depth, view.noiseMean, view.noiseStddev, view.noiseSeed);
-  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count() - (timings_.postSeconds - post0);
   return ok;
 }
 

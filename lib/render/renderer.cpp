@@ -80,6 +80,10 @@ void writeMatrix(float* data, const Eigen::Affine3d& world) {
 
 }  // namespace
 
+GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
+  return program(vertex, fragment, log);
+}
+
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
     : scene_(scene),
@@ -107,10 +111,9 @@ GlRenderer::~GlRenderer() {
     if (p) glDeleteProgram(p);
   if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
-  GLuint colorRbs[2] = {color_.msaaColor, color_.msaaDepth};
-  glDeleteRenderbuffers(2, colorRbs);
-  GLuint colorTex[2] = {color_.resolved, color_.final};
-  glDeleteTextures(2, colorTex);
+  glDeleteRenderbuffers(1, &color_.msaaColor);
+  GLuint colorTex[3] = {color_.resolved, color_.final, color_.msaaDepth};
+  glDeleteTextures(3, colorTex);
   glDeleteFramebuffers(1, &data_.fbo);
   GLuint dataRbs[3] = {data_.segmentation, data_.depth, data_.z};
   glDeleteRenderbuffers(3, dataRbs);
@@ -568,6 +571,7 @@ bool GlRenderer::upload() {
   volumes_ = std::make_unique<VolumeEffects>(*this);
   reflections_ = std::make_unique<ReflectionEffects>(*this);
   if (!volumes_->upload() || !reflections_->upload()) return false;
+  post_ = std::make_unique<PostEffects>(*this);  // builds its programs when a view first needs them
   return glOk();
 }
 

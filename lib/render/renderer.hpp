@@ -19,6 +19,10 @@ struct RenderOptions {
   int samples = 4;            // clamped to what the driver offers
   bool transparent = false;   // alpha 0 where no geometry covers a pixel
   bool allowMissingAssets = false;  // placeholder box + warning instead of an error
+  // The post-processing the scene asks for (bloom, SSAO, FXAA, auto
+  // exposure, depth of field); false: background, exposure, tone map and
+  // gamma only (rscene-render --no-post).
+  bool post = true;
   // Largest texture or HDR background decoded, in pixels; a larger one is
   // not drawn (RS9002 / RS9003 warnings).  8192 x 8192: 256 MiB as RGBA8.
   std::uint64_t maxTexturePixels = std::uint64_t{1} << 26;
@@ -40,7 +44,8 @@ inline constexpr int kMaxImageSide = 16384;
 
 struct RenderTimings {
   double uploadSeconds = 0;  // meshes, textures, instance buffers
-  double drawSeconds = 0;    // passes and read-back
+  double drawSeconds = 0;    // passes and read-back, post-processing apart
+  double postSeconds = 0;    // post-processing: bloom, SSAO, FXAA, auto exposure, depth of field, tone map
 };
 
 // Renders; false (with an error diagnostic naming the record's line) when

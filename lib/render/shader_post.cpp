@@ -1,6 +1,9 @@
 // GLSL of the post pass (full-screen triangle after the lit pass):
 // background (plain color, HDR or the procedural sky of shader_sky.cpp),
-// exposure, tone mapping and gamma.  postFragment() assembles it.
+// exposure, tone mapping and gamma.  postFragment() assembles it: without
+// post effects it writes display color; with them (gl_post.cpp) the
+// surface times ambient occlusion over the background in linear HDR, and
+// finalFragment() tone maps that after bloom and depth of field.
 #include "render/shaders.hpp"
 
 namespace rscene::render::shaders {
@@ -14,6 +17,7 @@ uniform bool uOrtho;
 uniform int uMode;             // 0 plain color, 1 hdr, 2 sky
 uniform bool uTransparent;
 uniform vec3 uBackground;      // display color of plain_color
+uniform vec3 uPlainLinear;     // the same as linear light, for the post chain (gl_post.cpp)
 uniform sampler2D uHdr;
 uniform float uFogDensity;
 uniform vec3 uFogColor;
@@ -54,8 +58,13 @@ vec3 toneMap(vec3 c) {
 )";
 
 const char* const kPostMain = R"(
-vec3 background(vec3 d) {
-  if (uMode == 0) return uBackground;
+uniform bool uLinearOut;  // write linear HDR for the post chain, not display color
+uniform bool uHasAo;
+uniform sampler2D uAo;    // ambient occlusion at half size, 1 where open
+
+// Linear HDR background; plain_color is a display color, the others are
+// light (tone mapped with the surfaces).
+vec3 backgroundLinear(vec3 d) {
   vec3 c;
   if (uMode == 1) {
     vec2 uv = vec2(atan(d.y, d.x) / (2.0 * PI) + 0.5, acos(clamp(d.z, -1.0, 1.0)) / PI);
@@ -64,21 +73,45 @@ vec3 background(vec3 d) {
     c = sky(d);
   }
   if (uFogDensity > 0.0) c = mix(c, pow(uFogColor, vec3(2.2)), clamp(uFogDensity * 20.0, 0.0, 0.9));
-  return toneMap(c);
+  return c;
 }
+
+vec3 viewDir() {
+  vec4 far = uInvViewProj * vec4(vNdc, 1.0, 1.0);
+  vec4 near = uInvViewProj * vec4(vNdc, -1.0, 1.0);
+  return normalize(far.xyz / far.w - near.xyz / near.w);
+}
+
+// The post chain's input: linear HDR with coverage in alpha, over the
+// background unless transparent.  A plain_color background is a display
+// color, not light: it goes in as uPlainLinear (its linear value) so that
+// bloom and blur see it, and finalFragment() puts the exact color back.
+void compositeLinear(vec4 s) {
+  vec3 surface = s.a > 0.0 ? s.rgb / s.a : vec3(0.0);
+  if (uHasAo) surface *= texture(uAo, gl_FragCoord.xy / vec2(textureSize(uScene, 0))).r;
+  if (uTransparent || s.a >= 1.0) {
+    fragColor = vec4(surface, s.a);
+    return;
+  }
+  vec3 bg = uMode == 0 ? uPlainLinear : backgroundLinear(viewDir());
+  fragColor = vec4(surface * s.a + bg * (1.0 - s.a), s.a);
+}
+
+vec3 background(vec3 d) { return uMode == 0 ? uBackground : toneMap(backgroundLinear(d)); }
 
 void main() {
   vec4 s = texelFetch(uScene, ivec2(gl_FragCoord.xy), 0);
+  if (uLinearOut) {
+    compositeLinear(s);
+    return;
+  }
   vec3 surface = s.a > 0.0 ? toneMap(s.rgb / s.a) : vec3(0.0);
   // Fully covered (most pixels): no background to blend, no sky to compute.
   if (uTransparent || s.a >= 1.0) {
     fragColor = vec4(surface, uTransparent ? s.a : 1.0);
     return;
   }
-  vec4 far = uInvViewProj * vec4(vNdc, 1.0, 1.0);
-  vec4 near = uInvViewProj * vec4(vNdc, -1.0, 1.0);
-  vec3 dir = normalize(far.xyz / far.w - near.xyz / near.w);
-  vec3 bg = background(dir);
+  vec3 bg = background(viewDir());
   fragColor = vec4(surface * s.a + bg * (1.0 - s.a), 1.0);
 }
 )";

@@ -34,4 +34,16 @@ extern const char* const kPostMain;
 std::string surfaceFragment();  // GGX PBR, lights, shadows, decals, indirect light, fog
 std::string postFragment();     // background, exposure, tone map, gamma
 
+// Post-processing passes (shader_post_effects.cpp, run by gl_post.cpp).
+extern const char* const kDepthResolveFragment;
+std::string ssaoFragment(bool multisampled);  // reading a multisampled depth buffer or a single one
+extern const char* const kSsaoBlurFragment;
+extern const char* const kBloomPrefilterFragment;
+extern const char* const kBloomDownFragment;
+extern const char* const kBloomUpFragment;
+extern const char* const kLuminanceFragment;
+extern const char* const kFxaaFragment;
+std::string dofFragment();
+std::string finalFragment();  // bloom and depth of field added, then exposure, tone map, gamma
+
 }  // namespace rscene::render::shaders
