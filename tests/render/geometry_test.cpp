@@ -106,8 +106,8 @@ int green(const Image& im, int x0, int y0, int x1, int y1) {
 
 TEST(GrassBlade, IsAThinTaperedBladeOfHeightOne) {
   MeshData m = grassBlade();
-  ASSERT_EQ(m.vertexCount(), 7u);
-  EXPECT_EQ(m.indices.size(), 15u);  // 5 triangles
+  ASSERT_EQ(m.vertexCount(), 5u);
+  EXPECT_EQ(m.indices.size(), 9u);  // 3 triangles
   float top = 0, widthAtBase = 0;
   for (std::size_t v = 0; v < m.vertexCount(); ++v) {
     top = std::max(top, m.vertices[v * 8 + 2]);
