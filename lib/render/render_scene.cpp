@@ -11,6 +11,7 @@
 #include "render/render_foliage.hpp"
 #include "render/robot_drawables.hpp"
 #include "robot/instance.hpp"
+#include "robot/kinematics.hpp"
 #include "core/assets.hpp"
 #include "scene/check.hpp"
 #include "scene/reader.hpp"
@@ -678,6 +679,23 @@ class Preparer {
     out_.instanced.push_back(std::move(b));
   }
 
+  // The link whose frame is RaiSim's body `body` of robot `robot` (as
+  // rscene-sim attaches a wire: body 0 the root, body k the child link of
+  // the k-th movable joint in RaiSim's order, fixed links merged away), or
+  // -1 when the robot did not load or has no such body.
+  int robotBodyLink(std::size_t robot, int body) const {
+    if (robot >= out_.robotModels.size() || !out_.robotModels[robot] || robot >= robotLinks_.size() || body < 0)
+      return -1;
+    const robot::Model& model = *out_.robotModels[robot];
+    int link = model.root;
+    if (body > 0) {
+      std::vector<int> order = robot::defaultJointOrder(model);
+      if (std::size_t(body) > order.size()) return -1;
+      link = model.joints[std::size_t(order[std::size_t(body) - 1])].childLink;
+    }
+    return link >= 0 && std::size_t(link) < robotLinks_[robot].size() ? link : -1;
+  }
+
   // Where a wire end is attached: the body `ref` names (id or path; its
   // record frame, or a robot's link localIndex), or the world when `ref` is
   // empty.  False when it names nothing that is drawn at a known pose.
@@ -709,11 +727,12 @@ class Preparer {
       }
     for (std::size_t i = 0; i < s_.articulated.size(); ++i)
       if (named(s_.articulated[i])) {
-        if (i >= robotLinks_.size() || localIndex < 0 || std::size_t(localIndex) >= robotLinks_[i].size()) return false;
+        int link = robotBodyLink(i, localIndex);
+        if (link < 0) return false;
         at.kind = Mount::Kind::Articulated;
         at.index = int(i);
-        at.link = localIndex;
-        world = affine(robotLinks_[i][std::size_t(localIndex)]) * point;
+        at.link = link;
+        world = affine(robotLinks_[i][std::size_t(link)]) * point;
         return true;
       }
     return false;

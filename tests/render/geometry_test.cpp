@@ -349,3 +349,30 @@ TEST(Deformable, MeshAppearsAtItsPose) {
   EXPECT_TRUE(renderScene(missing->render, cam, allow, none, warned));
   std::filesystem::remove_all(dir);
 }
+
+TEST(Wire, RobotEndIsRaiSimsBodyLocalIndex) {
+  // Body 0 is the base; body 1 the child of the first movable joint (the
+  // fixed `tip` merges into it), as rscene-sim attaches the wire.
+  auto dir = std::filesystem::temp_directory_path() / "rscene_geometry_wire_robot";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "arm.urdf") << R"(<robot name="arm">
+  <link name="base"><visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual></link>
+  <link name="arm"><visual><geometry><box size="0.1 0.1 1"/></geometry></visual></link>
+  <link name="tip"/>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 1"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="f" type="fixed"><parent link="arm"/><child link="tip"/><origin xyz="0 0 0.5"/></joint>
+</robot>
+)";
+  auto b = build(
+      "articulated_resource arm_res Arm arm.urdf\n"
+      "articulated /World/Arm arm_res 2 0 0 1 0 0 0 true true id=arm\n"
+      "wire /World/W stiff arm - 3 localIndexA=1 localPositionA=0,0,0.5 localPositionB=0,0,0\n"
+      "wire /World/Bad stiff arm - 3 localIndexA=2\n",
+      {}, dir.string());
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(b->render.wires.size(), 1u);
+  EXPECT_TRUE((b->render.wires[0].a - Eigen::Vector3d(2, 0, 1.5)).norm() < 1e-9) << b->render.wires[0].a.transpose();
+  EXPECT_TRUE(b->render.wires[0].b.isZero());
+  EXPECT_EQ(b->render.skipped.at("wire"), 1);  // body 2 does not exist
+}
