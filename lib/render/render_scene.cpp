@@ -579,7 +579,7 @@ class Preparer {
       b.castShadow = l.castShadows;
       // A flat blade (a zero lean) or a zero size would make the normal
       // matrix singular: every axis keeps a sliver.
-      Vector3d unit = unitScale(b.shape, l.size).cwiseMax(1e-4);
+      Vector3d unit = unitScale(b.shape, l.size).unaryExpr([](double v) { return std::isfinite(v) ? std::max(v, 1e-4) : 1e-4; });
       Vector4f colorA = toF(l.colorA), colorB = toF(l.colorB);
       std::vector<FoliageInstance> placed = scatterFoliage(t, l, sc);
       b.worlds.reserve(placed.size());
@@ -625,6 +625,9 @@ class Preparer {
     d.material = materialIndex(src.material);
     d.segment = segment("deformable", src.recordIndex, src.path, src.id, "", -1);
     d.worldObject = true;  // a body of the world, as sensors see it
+    // A sheet of cloth is seen from both sides; a closed volume's back
+    // faces are hidden anyway.
+    d.doubleSided = src.kind == "cloth";
     d.world = affine(src.world) * Eigen::Scaling(src.scale);
     addDrawable(std::move(d), meshBounds(src.meshPath));
   }

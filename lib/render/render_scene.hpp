@@ -80,6 +80,7 @@ struct Drawable {
   int material = 0;
   bool castShadow = true;
   bool receiveShadow = true;
+  bool doubleSided = false;  // both faces drawn whatever the material says (cloth)
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
   std::string file;  // the robot file `line` is in (a link's visual); empty: the scene

@@ -348,7 +348,7 @@ bool GlRenderer::uploadDrawables() {
     // A mirroring scale (a URDF's scale="1 -1 1" for the other side's leg)
     // reverses the triangles' winding: such a drawable culls no faces (its
     // normals, carried by the inverse transpose, still point outwards).
-    bool twoSided = mat.doubleSided || d.world.linear().determinant() < 0;
+    bool twoSided = mat.doubleSided || d.doubleSided || d.world.linear().determinant() < 0;
     if (d.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, d.file, failed);

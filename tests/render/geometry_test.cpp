@@ -333,6 +333,17 @@ TEST(Deformable, MeshAppearsAtItsPose) {
   const std::uint8_t* c = im.pixel(100, 100);
   EXPECT_GT(c[0], 2 * c[1] + 10);  // red
   EXPECT_EQ(im.pixel(5, 100)[0], 0);  // beside it: background
+  // Turned away from the camera: a cloth shows its back, a one-sided fem
+  // surface does not.
+  for (std::string kind : {"cloth", "fem"}) {
+    auto back = build(std::string(kBlack) + kSun + kForward + kRed + "deformable /World/Sheet " + kind +
+                          " sheet.obj 5 0 -1 0.70710678 0 0 0.70710678 2 2 2 material=red\n",
+                      {}, dir.string());
+    Image bi = draw(*back);
+    ASSERT_EQ(bi.width, 200);
+    if (kind == "cloth") EXPECT_GT(bi.pixel(100, 100)[0], 2 * bi.pixel(100, 100)[1] + 10) << kind;
+    else EXPECT_EQ(bi.pixel(100, 100)[0], 0) << kind;
+  }
   // A missing mesh: RS5001, an error unless missing assets are allowed.
   auto missing = build(std::string(kForward) + "deformable /World/Gone cloth gone.obj 5 0 0 1 0 0 0 1 1 1\n", {},
                        dir.string());
