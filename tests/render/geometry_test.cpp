@@ -387,3 +387,30 @@ TEST(Wire, RobotEndIsRaiSimsBodyLocalIndex) {
   EXPECT_TRUE(b->render.wires[0].b.isZero());
   EXPECT_EQ(b->render.skipped.at("wire"), 1);  // body 2 does not exist
 }
+
+TEST(Foliage, ScaleRotationAndAlignmentWithinTheirRanges) {
+  // No random rotation, scales in [0.5, 2] x size; aligned to the normal.
+  auto b = build(terrain(false, "maxSlopeDegrees=90 randomYawDegrees=0 minScale=0.5 maxScale=2 alignToNormal=true"));
+  const Instanced* grass = batchOf(b->render, "terrain_foliage_layer");
+  ASSERT_NE(grass, nullptr);
+  const Eigen::Vector3d steepNormal = Eigen::Vector3d(-0.5 / 0.4, 0, 1).normalized();
+  double smallest = 1e9, largest = 0;
+  int steep = 0;
+  for (const Eigen::Affine3d& m : grass->worlds) {
+    double height = m.linear().col(2).norm();  // the blade's height: 0.3 x scale
+    smallest = std::min(smallest, height / 0.3);
+    largest = std::max(largest, height / 0.3);
+    Eigen::Vector3d up = m.linear().col(2).normalized();
+    if (m.translation().x() > 0.5) {  // inside the steep half: along its normal
+      EXPECT_NEAR(up.dot(steepNormal), 1.0, 1e-9);
+      ++steep;
+    } else if (m.translation().x() < -0.5) {
+      EXPECT_NEAR(up.z(), 1.0, 1e-9);  // flat: upright
+    }
+  }
+  EXPECT_GT(steep, 100);
+  EXPECT_GE(smallest, 0.5 - 1e-9);
+  EXPECT_LE(largest, 2 + 1e-9);
+  EXPECT_LT(smallest, 0.6);  // the range is used, not one value
+  EXPECT_GT(largest, 1.9);
+}
