@@ -47,14 +47,12 @@ std::uint64_t walk(const Terrain& t, const FoliageLayer& l, Accept&& accept) {
   auto weight = [&](std::size_t i) { return hasDensity ? std::clamp(finiteOr(l.density[i], 0), 0.0, 1.0) : 1.0; };
   std::uint64_t cap = l.maxInstances > 0 ? std::min<std::uint64_t>(std::uint64_t(l.maxInstances), kMaxFoliageGenerated)
                                          : kMaxFoliageGenerated;
-  // Expected total first: a cap scales every cell alike.
-  double expected = 0;
-  for (std::size_t i = 0; i < n; ++i) expected += weight(i) * cellSide(i % nx, nx, dx) * cellSide(i / nx, ny, dy);
-  expected *= l.densityPerSquareMeter;
-  if (!(expected > 0)) return 0;
-  double factor = std::isfinite(expected) && expected > double(cap) ? double(cap) / expected : 1.0;
-  if (!std::isfinite(expected)) factor = 0;  // a density of 1e308: nothing sensible to scatter
-  double perArea = l.densityPerSquareMeter * factor;
+  // Expected total first: a cap scales every cell alike.  Compared as
+  // densities, so that a density of 1e308 is capped, not infinite.
+  double area = 0;  // weighted by density
+  for (std::size_t i = 0; i < n; ++i) area += weight(i) * cellSide(i % nx, nx, dx) * cellSide(i / nx, ny, dy);
+  if (!(area > 0) || !std::isfinite(area)) return 0;
+  double perArea = std::min(l.densityPerSquareMeter, double(cap) / area);
   double minScale = finiteOr(l.minScale, 1), maxScale = std::max(finiteOr(l.maxScale, 1), minScale);
   double yawMax = finiteOr(l.randomYawDegrees, 0) * kPi / 180, pitchMax = finiteOr(l.randomPitchDegrees, 0) * kPi / 180,
          rollMax = finiteOr(l.randomRollDegrees, 0) * kPi / 180;

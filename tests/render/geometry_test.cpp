@@ -187,6 +187,13 @@ TEST(Foliage, MaxInstancesCapsWhatIsGenerated) {
   ASSERT_NE(grass, nullptr);
   EXPECT_LE(grass->generated, 1000u);
   EXPECT_GT(grass->generated, 900u);  // scaled down everywhere, so nearly all of it still fits
+  // A density that overflows when multiplied by the area is capped too.
+  std::string text = terrain(false, "maxSlopeDegrees=90 maxInstances=50");
+  text.replace(text.find("densityPerSquareMeter=60"), 24, "densityPerSquareMeter=1e308");
+  auto huge = build(text);
+  ASSERT_NE(batchOf(huge->render, "terrain_foliage_layer"), nullptr);
+  EXPECT_LE(batchOf(huge->render, "terrain_foliage_layer")->generated, 50u);
+  EXPECT_GT(batchOf(huge->render, "terrain_foliage_layer")->generated, 40u);
 }
 
 TEST(Foliage, GlobalInstanceLimitIsRS9014) {
