@@ -106,6 +106,8 @@ TerrainSurface::Point TerrainSurface::at(double x, double y) const {
   double dx = t_.xSize / (nx - 1), dy = t_.ySize / (ny - 1);
   double fx = std::clamp((x - (t_.center.x() - t_.xSize / 2)) / dx, 0.0, double(nx - 1));
   double fy = std::clamp((y - (t_.center.y() - t_.ySize / 2)) / dy, 0.0, double(ny - 1));
+  if (!std::isfinite(fx)) fx = 0;  // a terrain at 1e308: never an int of NaN
+  if (!std::isfinite(fy)) fy = 0;
   int i = std::min(int(fx), nx - 2), j = std::min(int(fy), ny - 2);
   double tx = fx - i, ty = fy - j;
   auto idx = [&](int a, int b) { return std::size_t(b) * std::size_t(nx) + std::size_t(a); };
