@@ -487,3 +487,53 @@ SCENE
   run -0 --separate-stderr bash -c "cd '$ROOT/examples' && '$RSCENE_BIN/rscene-sim' --steps 1 robot_cell.rscene 2>/dev/null | '$RENDER' --width 64 --height 48 --stdin-filename robot_cell.rscene -o '$BATS_TEST_TMPDIR/p.png'"
   [ -s "$BATS_TEST_TMPDIR/p.png" ]
 }
+
+# Issue 13, geometry: foliage, wires, deformables and granular media are
+# drawn (no longer listed as skipped), with their errors at the record.
+geometry_scene() {
+  cat <<SCENE
+raisim_engine_scene 1
+camera /World/Cam -6 0 2 0.98 0 0.17 0 60 0.05 100 96 64 rgb true id=cam
+light /World/Sun 0.2 0.1 -1 3 type=directional
+terrain_region /World/T 5 5 4 4 0 0 0 id=terrain
+terrain_foliage_layer /World/T id=grass densityPerSquareMeter=50 seed=5 $1
+object /World/A box 0 0 2 1 0 0 0 0.2 0.2 0.2 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615 id=a
+wire /World/W stiff a - 1 localPositionB=0,0,0
+deformable /World/D cloth $DATA/render_assets/crate.obj 0 1 0.5 1 0 0 0 1 1 1
+granular /World/S particles 0 -1 0 1 0 0 0 1 1 1 boxMax=0.4,0.4,0.2 radius=0.05 spacing=0.1 $2
+SCENE
+}
+
+@test "geometry: foliage, wire, deformable and granular are drawn, not skipped" {
+  geometry_scene > g.rscene
+  run "$RENDER" g.rscene -o g.png
+  [ "$status" -eq 0 ]
+  [ "$output" = "" ]
+  is_png g.png
+  # Another seed scatters the grass elsewhere: another image.
+  geometry_scene > a.rscene
+  sed 's/seed=5/seed=6/' a.rscene > b.rscene
+  "$RENDER" a.rscene -o a.png
+  "$RENDER" b.rscene -o b.png
+  cmp a.png g.png
+  ! cmp -s a.png b.png
+}
+
+@test "geometry: granular beyond maxParticles or --max-instances is RS9070, exit 2" {
+  geometry_scene "" "maxParticles=10" > g.rscene
+  run -2 --separate-stderr "$RENDER" g.rscene -o g.png
+  [ "${stderr_lines[0]}" = "g.rscene:9:1: error: granular /World/S has 32 particles, more than its maxParticles 10 [RS9070]" ]
+  [ ! -e g.png ]
+  geometry_scene "maxRenderedInstances=1" > g.rscene
+  run -2 --separate-stderr "$RENDER" g.rscene --max-instances 20 -o g.png
+  [ "${stderr_lines[0]}" = "g.rscene:9:1: error: granular /World/S has 32 particles, more than the limit of 19 [RS9070]" ]
+  run "$RENDER" g.rscene --max-instances 33 -o g.png
+  [ "$status" -eq 0 ]
+}
+
+@test "geometry: a foliage primitive it does not know is drawn as blades with RS9072" {
+  geometry_scene "primitive=fern" > g.rscene
+  run "$RENDER" g.rscene -o g.png
+  [ "$status" -eq 0 ]
+  [ "${lines[0]}" = "g.rscene:5:1: warning: terrain_foliage_layer primitive 'fern' is drawn as grass_blade [RS9072]" ]
+}

@@ -112,6 +112,38 @@ MeshData unitPlane() {
   return m;
 }
 
+// Rows at heights t (width 1 - t), each a left and a right vertex, then
+// the tip: 3 triangles, as few as still bend (80,000 blades are 240,000
+// triangles; llvmpipe pays for each).  A lawn is lit like a surface, not
+// like edge-on cards.
+MeshData grassBlade() {
+  MeshData m;
+  const double rows[] = {0.0, 0.5};
+  // Mostly up: seen from above, from either side, the normal faces the
+  // viewer, so the double-sided flip (which would turn it to the ground
+  // and the blade black) does not happen.
+  auto normal = [](double t) { return Eigen::Vector3d(0, -0.3 * (1 - t), 1).normalized(); };
+  for (double t : rows) {
+    Eigen::Vector3d n = normal(t);
+    double half = 0.5 * (1 - t);
+    vertex(m, -half, t * t, t, n.x(), n.y(), n.z(), 0, t);
+    vertex(m, half, t * t, t, n.x(), n.y(), n.z(), 1, t);
+  }
+  Eigen::Vector3d n = normal(1);
+  vertex(m, 0, 1, 1, n.x(), n.y(), n.z(), 0.5, 1);
+  quad(m, 0, 1, 3, 2);
+  m.indices.insert(m.indices.end(), {2, 3, 4});
+  return m;
+}
+
+std::vector<Eigen::Vector4f> grassBladeShading() {
+  std::vector<Eigen::Vector4f> c;
+  for (float t : {0.0f, 0.5f})
+    for (int k = 0; k < 2; ++k) c.emplace_back(0.55f + 0.45f * t, 0.55f + 0.45f * t, 0.55f + 0.45f * t, 1.0f);
+  c.emplace_back(1.0f, 1.0f, 1.0f, 1.0f);
+  return c;
+}
+
 MeshData interleave(const asset::MeshPart& part) {
   MeshData m;
   m.vertices.reserve(part.vertexCount() * 8);

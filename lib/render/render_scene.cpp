@@ -7,8 +7,11 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "render/render_bodies.hpp"
+#include "render/render_foliage.hpp"
 #include "render/robot_drawables.hpp"
 #include "robot/instance.hpp"
+#include "robot/kinematics.hpp"
 #include "core/assets.hpp"
 #include "scene/check.hpp"
 #include "scene/reader.hpp"
@@ -80,11 +83,14 @@ class Preparer {
     for (const Camera& c : s_.cameras) camera(c);
     terrainColors();
     for (const Terrain& t : s_.terrains) terrain(t);
+    for (const Terrain& t : s_.terrains) foliage(t);
     for (const InstancedVisual& v : s_.instancedVisuals) instanced(v);
     for (const PointCloud& p : s_.pointClouds) points(p);
     robots();
+    for (const Deformable& d : s_.deformables) deformable(d);
+    for (const Granular& g : s_.granulars) granular(g);
+    for (const Wire& w : s_.wires) wire(w);  // after robots(): an end may be a robot's link
     for (const SkippedRecord& r : s_.skipped) ++out_.skipped[r.tag];
-    if (!s_.wires.empty()) out_.skipped["wire"] += static_cast<int>(s_.wires.size());  // not drawn yet
     // Modelled but not drawn yet (each line goes when its record is drawn).
     auto notDrawn = [&](const char* tag, std::size_t n) {
       if (n) out_.skipped[tag] += static_cast<int>(n);
@@ -93,9 +99,6 @@ class Preparer {
     notDrawn("local_fog", s_.localFogs.size());
     notDrawn("irradiance_volume", s_.irradianceVolumes.size());
     notDrawn("reflection_probe", s_.reflectionProbes.size());
-    notDrawn("deformable", s_.deformables.size());
-    notDrawn("granular", s_.granulars.size());
-    for (const Terrain& t : s_.terrains) notDrawn("terrain_foliage_layer", t.foliageLayers.size());
   }
 
  private:
@@ -229,8 +232,10 @@ class Preparer {
     d.attachment.local = affine(body).inverse() * d.world;
   }
 
-  void addDrawable(Drawable d) {
-    d.localBounds = unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight);
+  // `local`: the bounds `world` maps from, when not the unit shape's (a
+  // mesh read for its size).
+  void addDrawable(Drawable d, const std::optional<Eigen::AlignedBox3d>& local = std::nullopt) {
+    d.localBounds = local && !local->isEmpty() ? *local : unitShapeBounds(d.shape, d.capsuleRadius, d.capsuleHeight);
     d.bounds = transformBox(d.world, d.localBounds);
     if (d.shape == Shape::Ground) out_.hasGround = true;
     else out_.bounds.extend(d.bounds);
@@ -452,36 +457,27 @@ class Preparer {
       b.meshPath = v.meshPath;
       b.meshColumn = columnOf(v.recordIndex, "meshPath");
     }
+    // A grass patch draws blades unless it names a mesh (its own blades).
+    if (v.grassPatch && b.shape != Shape::Mesh) b.shape = Shape::GrassBlade;
+    b.doubleSided = b.shape == Shape::GrassBlade;
     b.castShadow = v.castShadows;
-    // size is the primitive's extent: box sides, sphere/cylinder diameter.
-    Vector3d unit = b.shape == Shape::Box || b.shape == Shape::Mesh ? v.size : Vector3d(v.size / 2);
-    if (b.shape == Shape::Cylinder) unit.z() = v.size.z();
+    Vector3d unit = unitScale(b.shape, v.size);
+    const Terrain* bound = boundTerrain(v);
     Vector4f colorA = toF(v.colorA), colorB = toF(v.colorB);
     std::size_t stride = std::size_t(std::max<std::int64_t>(v.renderedStride, 1));
     std::size_t count = drawnCount(v.instances.size(), v.maxRendered, v.renderedStride);
+    b.generated = v.instances.size();
     // Checked before anything per instance is allocated.
-    if (count > limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances)) {
-      Diagnostic d;
-      d.severity = Severity::Error;
-      d.code = "RS9014";
-      d.line = b.line;
-      d.column = b.line ? 1 : 0;
-      d.message = "instanced_visual draws " + std::to_string(count) + " instances, more than the " +
-                  std::to_string(limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances)) +
-                  " left of --max-instances " + std::to_string(limits_.maxInstances);
-      d.hint = "set maxRenderedInstances or renderedInstanceStride on the record, or raise --max-instances";
-      diags_.push_back(std::move(d));
-      ok_ = false;
-      return;
-    }
-    instancesDrawn_ += count;
+    if (!reserveInstances(count, b.line, "instanced_visual")) return;
     b.worlds.reserve(count);
     b.colors.reserve(count);
     b.instanceBounds.reserve(count);
     for (std::size_t k = 0; k < count; ++k) {
       std::size_t i = k * stride;
       const Instance& in = v.instances[i];
-      Affine3d m = Eigen::Translation3d(in.position) * in.orientation * Eigen::Scaling(in.scale.cwiseProduct(unit));
+      Vector3d position = in.position;
+      if (bound) position = onTerrain(*bound, position);
+      Affine3d m = Eigen::Translation3d(position) * in.orientation * Eigen::Scaling(in.scale.cwiseProduct(unit));
       b.worlds.push_back(m);
       float w = i < v.colorWeights.size() ? std::clamp(float(v.colorWeights[i]), 0.f, 1.f) : 0.f;
       b.colors.push_back(colorA * (1 - w) + colorB * w);
@@ -490,6 +486,296 @@ class Preparer {
     }
     out_.bounds.extend(b.bounds);
     out_.instanced.push_back(std::move(b));
+  }
+
+  // The unit shape's scale for a primitive of extent `size`: box sides and
+  // mesh scale as written, sphere/cylinder diameters halved to radii, a
+  // grass blade's width, lean and height as written.
+  static Vector3d unitScale(Shape shape, const Vector3d& size) {
+    Vector3d unit = shape == Shape::Box || shape == Shape::Mesh || shape == Shape::GrassBlade ? size : Vector3d(size / 2);
+    if (shape == Shape::Cylinder) unit.z() = size.z();
+    return unit;
+  }
+
+  // Room for `count` more instances under limits_.maxInstances, taken; else
+  // RS9014 on the record that asks for them.
+  bool reserveInstances(std::uint64_t count, std::uint32_t line, const std::string& kind) {
+    std::uint64_t left = limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances);
+    if (count <= left) {
+      instancesDrawn_ += count;
+      return true;
+    }
+    Diagnostic d;
+    d.severity = Severity::Error;
+    d.code = "RS9014";
+    d.line = line;
+    d.column = line ? 1 : 0;
+    d.message = kind + " draws " + std::to_string(count) + " instances, more than the " + std::to_string(left) +
+                " left of --max-instances " + std::to_string(limits_.maxInstances);
+    d.hint = "set maxRenderedInstances or renderedInstanceStride on the record, or raise --max-instances";
+    diags_.push_back(std::move(d));
+    ok_ = false;
+    return false;
+  }
+
+  // The terrain an instanced_visual's terrainBinding names (id or path).
+  const Terrain* boundTerrain(const InstancedVisual& v) const {
+    if (v.terrainBinding.empty()) return nullptr;
+    for (const Terrain& t : s_.terrains)
+      if (t.id == v.terrainBinding || t.path == v.terrainBinding) return TerrainSurface(t).valid() ? &t : nullptr;
+    return nullptr;
+  }
+
+  // terrainBinding: an instance over the terrain stands on its surface,
+  // its z an offset above it; one beyond the terrain's rectangle keeps its
+  // position.
+  static Vector3d onTerrain(const Terrain& t, Vector3d p) {
+    TerrainSurface surface(t);
+    if (surface.contains(p.x(), p.y())) p.z() += surface.at(p.x(), p.y()).z;
+    return p;
+  }
+
+  static Shape foliageShape(const std::string& primitive) {
+    if (primitive == "box" || primitive == "cube") return Shape::Box;
+    if (primitive == "sphere") return Shape::Sphere;
+    if (primitive == "cylinder" || primitive == "capsule") return Shape::Cylinder;
+    if (primitive == "mesh") return Shape::Mesh;
+    return Shape::GrassBlade;
+  }
+
+  // Every enabled terrain_foliage_layer of a drawn terrain, scattered
+  // (render_foliage.hpp): visual only, so sensors do not see it.
+  void foliage(const Terrain& t) {
+    if (!t.visible || t.hiddenByGroup) return;
+    for (std::size_t k = 0; k < t.foliageLayers.size(); ++k) {
+      const FoliageLayer& l = t.foliageLayers[k];
+      if (!l.enabled) continue;
+      Instanced b;
+      b.kind = "terrain_foliage_layer";
+      b.line = lineOf(l.recordIndex);
+      b.shape = foliageShape(l.primitive);
+      static const char* const known[] = {"grass_blade", "grass", "box", "cube", "sphere", "cylinder", "capsule", "mesh", ""};
+      if (std::find(std::begin(known), std::end(known), l.primitive) == std::end(known)) {
+        Diagnostic d;
+        d.severity = Severity::Warning;
+        d.code = "RS9072";
+        d.line = b.line;
+        d.column = b.line ? 1 : 0;
+        d.message = "terrain_foliage_layer primitive '" + l.primitive + "' is drawn as grass_blade";
+        d.hint = "use grass_blade, box, sphere, cylinder, or mesh with meshPath";
+        diags_.push_back(std::move(d));
+      }
+      FoliageScatter sc = countFoliage(t, l);
+      b.generated = sc.generated;
+      if (sc.drawn == 0) continue;
+      if (!reserveInstances(sc.drawn, b.line, "terrain_foliage_layer")) continue;
+      std::string name = !l.id.empty() ? l.id : !l.name.empty() ? l.name : "foliage" + std::to_string(k);
+      b.segment = segment("terrain_foliage_layer", l.recordIndex, t.path + "#" + name, l.id, "", -1);
+      if (b.shape == Shape::Mesh) {
+        b.meshPath = l.meshPath;
+        b.meshColumn = columnOf(l.recordIndex, "meshPath");
+      }
+      b.doubleSided = b.shape == Shape::GrassBlade;
+      b.castShadow = l.castShadows;
+      // A flat blade (a zero lean) or a zero size would make the normal
+      // matrix singular: every axis keeps a sliver.
+      Vector3d unit = unitScale(b.shape, l.size).unaryExpr([](double v) { return std::isfinite(v) ? std::max(v, 1e-4) : 1e-4; });
+      Vector4f colorA = toF(l.colorA), colorB = toF(l.colorB);
+      std::vector<FoliageInstance> placed = scatterFoliage(t, l, sc);
+      b.worlds.reserve(placed.size());
+      b.colors.reserve(placed.size());
+      b.instanceBounds.reserve(placed.size());
+      Eigen::AlignedBox3d unitBounds = unitShapeBounds(b.shape);
+      for (const FoliageInstance& f : placed) {
+        Affine3d m = Eigen::Translation3d(f.position) * f.rotation * Eigen::Scaling(Vector3d(unit * f.scale));
+        b.worlds.push_back(m);
+        b.colors.push_back(colorA * (1 - f.colorWeight) + colorB * f.colorWeight);
+        b.instanceBounds.push_back(transformBox(m, unitBounds));
+        b.bounds.extend(b.instanceBounds.back());
+      }
+      out_.bounds.extend(b.bounds);
+      out_.instanced.push_back(std::move(b));
+    }
+  }
+
+  // The bounds of a mesh file in its own frame (empty when it cannot be
+  // read: the renderer reports that, with the same cache).
+  Eigen::AlignedBox3d meshBounds(const std::string& path) {
+    Eigen::AlignedBox3d box;
+    std::string err;
+    if (path.empty()) return box;
+    if (std::shared_ptr<const asset::Mesh> mesh = assets().mesh(path, asset::MeshContent::Surface, &err))
+      for (const asset::MeshPart& p : mesh->parts)
+        for (std::size_t i = 0; i < p.vertexCount(); ++i)
+          box.extend(Vector3d(p.positions[i * 3], p.positions[i * 3 + 1], p.positions[i * 3 + 2]));
+    return box;
+  }
+
+  // deformable: its mesh at rest (the format stores no deformed state and
+  // nothing simulates it yet), at its pose and scale, in its material.  A
+  // missing mesh is the renderer's RS5001 (a placeholder box of the
+  // record's scale with --allow-missing-assets).
+  void deformable(const Deformable& src) {
+    if (!src.visible || src.hiddenByGroup) return;
+    Drawable d;
+    d.shape = Shape::Mesh;
+    d.meshPath = src.meshPath;
+    d.line = lineOf(src.recordIndex);
+    d.meshColumn = columnOf(src.recordIndex, "meshPath");
+    d.material = materialIndex(src.material);
+    d.segment = segment("deformable", src.recordIndex, src.path, src.id, "", -1);
+    d.worldObject = true;  // a body of the world, as sensors see it
+    // A sheet of cloth is seen from both sides; a closed volume's back
+    // faces are hidden anyway.
+    d.doubleSided = src.kind == "cloth";
+    d.world = affine(src.world) * Eigen::Scaling(src.scale);
+    addDrawable(std::move(d), meshBounds(src.meshPath));
+  }
+
+  // granular: its particles (box fill or explicit) as spheres of their
+  // radii in the record's frame, sand-colored: materialId names the
+  // particles' contact material, not a look.
+  void granular(const Granular& g) {
+    if (!g.visible || g.hiddenByGroup) return;
+    std::uint64_t left = limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances);
+    std::vector<Vector3d> positions;
+    std::vector<double> radii;
+    std::string why = granularParticles(g, left, positions, radii);
+    if (!why.empty()) {
+      bool tooMany = why.find(" particles, more than ") != std::string::npos;
+      Diagnostic d;
+      d.severity = Severity::Error;
+      d.code = tooMany ? "RS9070" : "RS9071";
+      d.line = lineOf(g.recordIndex);
+      d.column = d.line ? 1 : 0;
+      d.message = why;
+      if (tooMany)
+        d.hint = "maxParticles is " + std::to_string(g.maxParticles) + "; " + std::to_string(left) + " of --max-instances " +
+                 std::to_string(limits_.maxInstances) + " are left: fill a smaller box, space the particles wider, or raise "
+                 "--max-instances";
+      diags_.push_back(std::move(d));
+      ok_ = false;
+      return;
+    }
+    if (positions.empty()) return;
+    instancesDrawn_ += positions.size();
+    Instanced b;
+    b.kind = "granular";
+    b.generated = positions.size();
+    b.shape = Shape::Sphere;
+    b.line = lineOf(g.recordIndex);
+    b.segment = segment("granular", g.recordIndex, g.path, g.id, "", -1);
+    b.worldObject = true;
+    Affine3d frame = affine(g.world);
+    const Vector4f sand(0.76f, 0.64f, 0.45f, 1.0f);
+    b.worlds.reserve(positions.size());
+    b.colors.assign(positions.size(), sand);
+    b.instanceBounds.reserve(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      double r = std::isfinite(radii[i]) ? std::max(radii[i], 0.0) : 0.0;
+      Affine3d m = frame * Eigen::Translation3d(positions[i]) * Eigen::Scaling(r);
+      b.worlds.push_back(m);
+      b.instanceBounds.push_back(transformBox(m, unitShapeBounds(Shape::Sphere)));
+      b.bounds.extend(b.instanceBounds.back());
+    }
+    out_.bounds.extend(b.bounds);
+    out_.instanced.push_back(std::move(b));
+  }
+
+  // The link whose frame is RaiSim's body `body` of robot `robot` (as
+  // rscene-sim attaches a wire: body 0 the root, body k the child link of
+  // the k-th movable joint in RaiSim's order, fixed links merged away), or
+  // -1 when the robot did not load or has no such body.
+  int robotBodyLink(std::size_t robot, int body) const {
+    if (robot >= out_.robotModels.size() || !out_.robotModels[robot] || robot >= robotLinks_.size() || body < 0)
+      return -1;
+    const robot::Model& model = *out_.robotModels[robot];
+    int link = model.root;
+    if (body > 0) {
+      std::vector<int> order = robot::defaultJointOrder(model);
+      if (std::size_t(body) > order.size()) return -1;
+      link = model.joints[std::size_t(order[std::size_t(body) - 1])].childLink;
+    }
+    return link >= 0 && std::size_t(link) < robotLinks_[robot].size() ? link : -1;
+  }
+
+  // Where a wire end is attached: the body `ref` names (id or path; its
+  // record frame, or a robot's link localIndex), or the world when `ref` is
+  // empty.  False when it names nothing that is drawn at a known pose.
+  bool wireEnd(const std::string& ref, int localIndex, const Vector3d& point, Attachment& at, Vector3d& world) const {
+    at = Attachment{};
+    at.local = Affine3d(Eigen::Translation3d(point));
+    world = point;
+    if (ref.empty()) return true;
+    auto named = [&](const auto& node) { return node.id == ref || node.path == ref; };
+    for (std::size_t i = 0; i < s_.objects.size(); ++i)
+      if (named(s_.objects[i])) {
+        at.kind = Mount::Kind::Object;
+        at.index = int(i);
+        world = affine(s_.objects[i].world) * point;
+        return true;
+      }
+    for (std::size_t i = 0; i < s_.compounds.size(); ++i)
+      if (named(s_.compounds[i])) {
+        at.kind = Mount::Kind::Compound;
+        at.index = int(i);
+        world = affine(s_.compounds[i].world) * point;
+        return true;
+      }
+    for (const Terrain& t : s_.terrains)  // a terrain does not move: its centre is its frame
+      if (named(t)) {
+        world = t.center + point;
+        at.local = Affine3d(Eigen::Translation3d(world));
+        return true;
+      }
+    for (std::size_t i = 0; i < s_.articulated.size(); ++i)
+      if (named(s_.articulated[i])) {
+        int link = robotBodyLink(i, localIndex);
+        if (link < 0) return false;
+        at.kind = Mount::Kind::Articulated;
+        at.index = int(i);
+        at.link = link;
+        world = affine(robotLinks_[i][std::size_t(link)]) * point;
+        return true;
+      }
+    return false;
+  }
+
+  // wire: a dark cylinder of visualizationWidth between its two attachment
+  // points, recomputed from both ends when bodies move (poseScene()).  An
+  // end that names nothing drawable (the validator's RS3012, a robot
+  // without that link) leaves the wire undrawn, counted as skipped.
+  void wire(const Wire& w) {
+    if (!w.enabled) return;
+    WireSpan span;
+    if (!wireEnd(w.bodyA, w.localIndexA, w.localPositionA, span.endA, span.a) ||
+        !wireEnd(w.bodyB, w.localIndexB, w.localPositionB, span.endB, span.b)) {
+      ++out_.skipped["wire"];
+      return;
+    }
+    span.width = std::isfinite(w.visualizationWidth) ? std::max(w.visualizationWidth, 0.0) : 0.0;
+    if (wireMaterial_ < 0) {
+      RenderMaterial m;
+      m.id = "(wire)";
+      m.color = Vector4f(0.06f, 0.06f, 0.065f, 1.0f);  // neutral dark: a steel cable in shade
+      m.roughness = 0.45f;
+      m.isDefault = false;
+      wireMaterial_ = static_cast<int>(out_.materials.size());
+      out_.materials.push_back(m);
+    }
+    Drawable d;
+    d.shape = Shape::Cylinder;
+    d.material = wireMaterial_;
+    d.line = lineOf(w.recordIndex);
+    d.segment = segment("wire", w.recordIndex, w.path, w.id, "", -1);
+    d.world = wireTransform(span.a, span.b, span.width);
+    // The renderer moves drawables that are attached; poseScene() sets the
+    // transform from both ends.
+    d.attachment = span.endA.kind != Mount::Kind::World ? span.endA : span.endB;
+    d.wire = static_cast<int>(out_.wires.size());
+    span.drawable = out_.drawables.size();
+    out_.wires.push_back(span);
+    addDrawable(std::move(d));
   }
 
   void points(const PointCloud& src) {
@@ -516,11 +802,10 @@ class Preparer {
   // file and one read per mesh file, however many robots share them.
   void robots() {
     if (s_.articulated.empty()) return;
-    std::optional<asset::AssetCache> own;
-    asset::AssetCache& assets = assets_ ? *assets_ : own.emplace();
-    RobotDrawer drawer(out_, assets);
+    RobotDrawer drawer(out_, assets());
     robot::ModelCache models;
     out_.robotModels.assign(s_.articulated.size(), nullptr);
+    robotLinks_.assign(s_.articulated.size(), {});
     for (std::size_t i = 0; i < s_.articulated.size(); ++i) {
       const Articulated& a = s_.articulated[i];
       if (!robot::checkRobotFile(doc_, a, diags_)) {
@@ -533,6 +818,7 @@ class Preparer {
       if (!robot::makeInstance(doc_, a, models, r, diags_)) ok_ = false;
       if (!r.model) continue;
       out_.robotModels[i] = r.model;
+      robotLinks_[i] = robot::linkPoses(r);
       if (!a.visible || a.hiddenByGroup) continue;
       int seg = segment("articulated", a.recordIndex, a.path, a.id, a.semanticClass, -1);
       if (drawer.add(*r.model, robot::linkPoses(r), static_cast<int>(i), seg) == 0) {
@@ -551,6 +837,8 @@ class Preparer {
     }
   }
 
+  asset::AssetCache& assets() { return assets_ ? *assets_ : ownAssets_ ? *ownAssets_ : ownAssets_.emplace(); }
+
   const Document& doc_;
   const Scene& s_;
   RenderScene& out_;
@@ -558,6 +846,9 @@ class Preparer {
   const DrawLimits& limits_;
   asset::AssetCache* assets_;
   std::uint64_t instancesDrawn_ = 0;
+  std::optional<asset::AssetCache> ownAssets_;  // when prepareScene was given none
+  std::vector<std::vector<Pose>> robotLinks_;   // per Scene::articulated: link poses at its record's state
+  int wireMaterial_ = -1;
   bool ok_ = true;
   std::unordered_map<std::string, int> materialByRef_;
   std::unordered_map<int, int> segmentOf_;  // record index -> RenderScene::segments
@@ -628,10 +919,21 @@ void poseScene(RenderScene& scene, const BodyPoseView& poses) {
     }
     return false;
   };
+  // A wire follows both its ends: each moved end's point is its body's
+  // pose times the attachment point.
+  for (WireSpan& w : scene.wires) {
+    Pose body;
+    if (w.endA.kind != Mount::Kind::World && bodyPose(w.endA, body)) w.a = affine(body) * w.endA.local.translation();
+    if (w.endB.kind != Mount::Kind::World && bodyPose(w.endB, body)) w.b = affine(body) * w.endB.local.translation();
+    if (w.drawable >= scene.drawables.size()) continue;
+    Drawable& d = scene.drawables[w.drawable];
+    d.world = wireTransform(w.a, w.b, w.width);
+    d.bounds = transformBox(d.world, d.localBounds);
+  }
   Eigen::AlignedBox3d bounds;
   for (Drawable& d : scene.drawables) {
     Pose body;
-    if (d.attachment.kind != Mount::Kind::World && bodyPose(d.attachment, body)) {
+    if (d.wire < 0 && d.attachment.kind != Mount::Kind::World && bodyPose(d.attachment, body)) {
       Affine3d world = affine(body) * d.attachment.local;
       if (d.placeholderWorld && std::abs(d.world.linear().determinant()) > 0)
         d.placeholderWorld = world * d.world.inverse() * *d.placeholderWorld;

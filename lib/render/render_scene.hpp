@@ -42,7 +42,8 @@ struct RenderMaterial {
   bool isDefault = true;        // engine_default: meshes keep their own materials
 };
 
-enum class Shape { Box, Sphere, Cylinder, Capsule, Ground, Mesh };
+// GrassBlade: mesh.hpp's grassBlade() (terrain foliage, grass patches).
+enum class Shape { Box, Sphere, Cylinder, Capsule, Ground, Mesh, GrassBlade };
 
 // The body a drawable moves with (rscene-render --trajectory): its world
 // transform is the body's current pose times `local`.  World: it never
@@ -79,6 +80,7 @@ struct Drawable {
   int material = 0;
   bool castShadow = true;
   bool receiveShadow = true;
+  bool doubleSided = false;  // both faces drawn whatever the material says (cloth)
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of the mesh path field on `line`, for messages
   std::string file;  // the robot file `line` is in (a link's visual); empty: the scene
@@ -92,6 +94,19 @@ struct Drawable {
   // A simulated body (not visual-only), a terrain or a robot: what sensor
   // views draw (RaiSim renders sensors from world objects only).
   bool worldObject = false;
+  // A wire's line (index into RenderScene::wires): its transform spans two
+  // bodies, so poseScene() recomputes it from both ends.
+  int wire = -1;
+};
+
+// A wire drawn as a cylinder of `width` between two attachment points:
+// each end is a point (`local`'s translation) on the body its Attachment
+// names, or in the world.  `a` and `b` are the ends' current world points.
+struct WireSpan {
+  std::size_t drawable = 0;  // index into RenderScene::drawables
+  Attachment endA, endB;
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double width = 0;
 };
 
 enum class LightType { Directional, Point, Spot, Area };
@@ -140,10 +155,18 @@ struct Instanced {
   std::vector<Eigen::AlignedBox3d> instanceBounds;  // world-space, one per instance
   int material = 0;
   bool castShadow = true;
+  bool doubleSided = false;  // grass blades: both faces drawn and lit
+  bool worldObject = false;  // drawn by sensor views too (granular particles)
   std::uint32_t line = 0;
   std::uint32_t meshColumn = 0;  // of meshPath on `line`
   Eigen::AlignedBox3d bounds;
   int segment = -1;
+  // What it was made from, for messages and tests: the record kind
+  // (instanced_visual, terrain_foliage_layer, granular) and how many
+  // instances that record generated before the draw limits (foliage: those
+  // scattered; otherwise the record's own count).
+  std::string kind = "instanced_visual";
+  std::uint64_t generated = 0;
 };
 
 struct PointBatch {
@@ -255,6 +278,7 @@ struct RenderScene {
   std::vector<RenderFog> fogs;
   std::vector<RenderIrradiance> irradianceVolumes;
   std::vector<RenderProbe> probes;
+  std::vector<WireSpan> wires;
   Look environment;
   std::size_t robots = 0;              // articulated systems drawn
   // Every articulated system's model, indexed like Scene::articulated
@@ -270,8 +294,9 @@ struct RenderScene {
 // maxRenderedInstances / renderedInstanceStride / maxRenderedPoints /
 // renderedPointStride are honoured first.
 struct DrawLimits {
-  // Instances drawn, all instanced_visual records together; past it the
-  // record that crosses it is an error (RS9014).  ~1 KB each in all.
+  // Instances drawn, all instanced_visual, terrain_foliage_layer and
+  // granular records together; past it the record that crosses it is an
+  // error (RS9014; a granular record: RS9070).  ~1 KB each in all.
   std::uint64_t maxInstances = 1'000'000;
   // Vertices of one drawn terrain grid: a larger one is drawn decimated
   // (every k-th sample, the last row and column kept), a uniform flat one

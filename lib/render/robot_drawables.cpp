@@ -94,7 +94,8 @@ std::size_t RobotDrawer::add(const robot::Model& model, const std::vector<Pose>&
           d.placeholderWorld = pose * Eigen::Scaling(kRobotPlaceholderSide);
           local = meshBounds(g.meshPath);
           break;
-        case Shape::Ground: break;
+        case Shape::Ground:
+        case Shape::GrassBlade: break;
       }
       if (d.shape == Shape::Mesh)
         // A mesh that cannot be read is drawn as its placeholder box (a

@@ -975,6 +975,8 @@ class Builder {
     v.renderedStride = r.integer("renderedInstanceStride", 1);
     v.castShadows = r.flag("castShadows");
     v.grassPatch = r.flag("grassPatch");
+    v.terrainBinding = r.str("terrainBinding");
+    v.terrainFoliageLayer = r.integer("terrainFoliageLayer", -1);
     v.enabled = r.flag("enabled");
     v.parentId = r.str("parentGroupId");
     parentOf_[idx] = v.parentId;

@@ -539,6 +539,11 @@ struct InstancedVisual {
   // them (0: no limit of the record's own); the data keeps them all.
   std::int64_t maxRendered = 0, renderedStride = 1;
   bool castShadows{}, enabled{}, grassPatch{};
+  // terrainBinding: the terrain_region (id or path, as written) the
+  // instances stand on; terrainFoliageLayer: which of its foliage layers
+  // the patch belongs to (-1: none).
+  std::string terrainBinding;
+  std::int64_t terrainFoliageLayer = -1;
   bool hiddenByGroup = false;
 };
 
