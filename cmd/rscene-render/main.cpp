@@ -123,13 +123,13 @@ int run(const Options& opt) {
   std::string png = render::encodePng(image);
   double encodeSeconds = since(tEncode);
   if (opt.verbose) {
-    char line[240];
+    char line[320];
     std::snprintf(line, sizeof line,
                   "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "drawing %.3f s, png encoding %.3f s\n",
+                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
                   cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), scene.robots, startSeconds,
-                  buildSeconds,
-                  timings.uploadSeconds, timings.drawSeconds, encodeSeconds);
+                  buildSeconds, timings.uploadSeconds, timings.shadowSeconds, timings.drawSeconds,
+                  timings.postSeconds, encodeSeconds);
     std::cerr << line;
   }
   if (!opt.output.empty() && !cli::writeOutput(opt.output, [&](Sink& s) {
