@@ -87,7 +87,10 @@ struct ColorTargets {
 // passes are averaged into ColorTargets' first framebuffer.
 struct JitterTargets {
   int width = 0, height = 0;
-  GLuint fbo = 0, color = 0, depthStencil = 0;
+  GLuint fbo = 0, color = 0;
+  // Multisampled ids and depth: where the samples of a pixel differ.
+  int idSamples = 0;
+  GLuint idFbo = 0, ids = 0, idDepth = 0;
 };
 struct DataTargets {
   int width = 0, height = 0;
@@ -160,6 +163,10 @@ class GlRenderer final : public Renderer {
   // early-depth speed.
   bool jitteredLayers(const View& view, const Eigen::Matrix4d& viewProj, int samples);
   bool jitterTargets(int w, int h);
+  // Sets the stencil (of color_'s depth-stencil) to 1 where the `samples`
+  // samples of a pixel do not all see the same triangle; false when it
+  // cannot (then every pass draws every pixel).
+  bool markEdges(const View& view, const Eigen::Matrix4d& viewProj, int samples);
   const std::vector<Eigen::Vector2f>& samplePositions(int samples);
   bool dataTargets(int w, int h);
   bool glOk();
@@ -188,7 +195,7 @@ class GlRenderer final : public Renderer {
   std::vector<float> pointSizes_;
   std::vector<int> pointSegments_;
   GLuint surfaceProg_ = 0, shadowProg_ = 0, pointProg_ = 0, postProg_ = 0, dataProg_ = 0, pointDataProg_ = 0;
-  GLuint prepassProg_ = 0, averageProg_ = 0;  // main_pass.hpp
+  GLuint prepassProg_ = 0, averageProg_ = 0, idProg_ = 0, edgeProg_ = 0, clearProg_ = 0;  // main_pass.hpp
   GLuint emptyVao_ = 0;
   bool software_ = false;
   // Shadow map of the main light: remade when the poses or the kind of

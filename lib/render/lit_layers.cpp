@@ -52,7 +52,7 @@ void GlRenderer::drawLayers(const View& view, const Eigen::Matrix4d& viewProj, b
   glUseProgram(surface);
   setMatrix(surface, "uViewProj", viewProj);
   drawBatches(surface, false, false);
-  glDisable(GL_STENCIL_TEST);
+  if (prepass) glDisable(GL_STENCIL_TEST);  // else the caller's stencil test holds for every layer
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   if (pointVao_ && !view.sensor) {  // point clouds are visuals: no sensor sees them
@@ -131,26 +131,137 @@ const std::vector<Eigen::Vector2f>& GlRenderer::samplePositions(int samples) {
   return samplePositions_.emplace(samples, std::move(positions)).first->second;
 }
 
+bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, int samples) {
+  JitterTargets& t = jitter_;
+  int w = t.width, h = t.height;
+  if (!t.idFbo) {
+    glGenFramebuffers(1, &t.idFbo);
+    glGenTextures(1, &t.ids);
+    glGenRenderbuffers(1, &t.idDepth);
+    t.idSamples = 0;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, t.idFbo);
+  GLint have[2] = {0, 0};
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.ids);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_WIDTH, &have[0]);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_HEIGHT, &have[1]);
+  if (have[0] != w || have[1] != h || t.idSamples != samples) {
+    glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, GL_RG32UI, w, h, GL_TRUE);
+    glBindRenderbuffer(GL_RENDERBUFFER, t.idDepth);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, t.ids, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.idDepth);
+    t.idSamples = samples;
+  }
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    t.idSamples = 0;
+    return false;
+  }
+  // Ids of every sample: opaque layers by the depth test, blended ones
+  // xor-ed over them (so an edge seen through glass is still an edge).
+  glViewport(0, 0, w, h);
+  const GLuint none[4] = {0, 0, 0, 0};
+  glClearBufferuiv(GL_COLOR, 0, none);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
+  glCullFace(GL_BACK);
+  glUseProgram(idProg_);
+  setMatrix(idProg_, "uViewProj", viewProj);
+  GLint base = glGetUniformLocation(idProg_, "uBase");
+  GLuint first = 0;
+  for (int blended = 0; blended < 2; ++blended) {
+    if (blended) {
+      glDepthMask(GL_FALSE);
+      glEnable(GL_COLOR_LOGIC_OP);
+      glLogicOp(GL_XOR);
+    }
+    for (std::size_t i : drawOrder_) {
+      const Batch& b = batches_[i];
+      if (b.blend != bool(blended) || b.inView == 0) continue;
+      if (b.doubleSided)
+        glDisable(GL_CULL_FACE);
+      else
+        glEnable(GL_CULL_FACE);
+      glUniform1ui(base, first);
+      first += GLuint(b.inView);
+      glBindVertexArray(b.vao);
+      glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
+    }
+  }
+  glBindVertexArray(0);
+  glDisable(GL_COLOR_LOGIC_OP);
+  glDepthMask(GL_TRUE);
+  // Stencil 1 where the samples differ.
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 1, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glUseProgram(edgeProg_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.ids);
+  glUniform1i(glGetUniformLocation(edgeProg_, "uIds"), 0);
+  glUniform1i(glGetUniformLocation(edgeProg_, "uSamples"), samples);
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+  glDisable(GL_STENCIL_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+  (void)view;
+  return true;
+}
+
 bool GlRenderer::jitteredLayers(const View& view, const Eigen::Matrix4d& viewProj, int samples) {
   int w = view.camera.width, h = view.camera.height;
   const std::vector<Eigen::Vector2f>& positions = samplePositions(samples);
   if (!jitterTargets(w, h)) return false;
   // The lit program's textures stay bound across the passes but unit 0,
-  // which the average borrows.
+  // which the edges and the average borrow.
   GLint unit0 = 0;
   glActiveTexture(GL_TEXTURE0);
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit0);
+  // After the first pass, only the pixels whose samples see different
+  // triangles are drawn again (the stencil); the others keep the first
+  // pass's color, as MSAA shades such a pixel once.  Point clouds are not
+  // in the ids: with them every pass draws every pixel.
+  bool edgesOnly = !(pointVao_ && !view.sensor) && markEdges(view, viewProj, int(positions.size()));
   auto weight = GLfloat(1.0 / double(positions.size()));
-  for (const Eigen::Vector2f& offset : positions) {
+  for (std::size_t k = 0; k < positions.size(); ++k) {
     glBindFramebuffer(GL_FRAMEBUFFER, jitter_.fbo);
     glViewport(0, 0, w, h);
     glClearColor(0, 0, 0, 0);
-    glClearStencil(0);
     glDepthMask(GL_TRUE);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    if (!edgesOnly) {
+      glClearStencil(0);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    } else if (k == 0) {
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    } else {
+      // Edge pixels start clear (a draw: glClear ignores the stencil);
+      // the others keep the first pass's color.
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_EQUAL, 1, 0xff);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_BLEND);
+      glUseProgram(clearProg_);
+      glBindVertexArray(emptyVao_);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glBindVertexArray(0);
+    }
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, GLuint(unit0));
-    drawLayers(view, jittered(viewProj, offset, w, h), false);
+    drawLayers(view, jittered(viewProj, positions[k], w, h), false);
+    glDisable(GL_STENCIL_TEST);
     // Sum into the color target (cleared by colorPass), each pass weighted
     // 1/N: the MSAA resolve's average.
     glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[0]);

@@ -82,4 +82,42 @@ out vec4 fragColor;
 void main() { fragColor = texelFetch(uPass, ivec2(gl_FragCoord.xy), 0); }
 )";
 
+const char* const kIdVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPos;
+layout(location = 4) in vec4 iM0;
+layout(location = 5) in vec4 iM1;
+layout(location = 6) in vec4 iM2;
+layout(location = 7) in vec4 iM3;
+uniform mat4 uViewProj;
+uniform uint uBase;
+flat out uint vId;
+void main() {
+  gl_Position = uViewProj * (mat4(iM0, iM1, iM2, iM3) * vec4(aPos, 1.0));
+  vId = uBase + uint(gl_InstanceID) + 1u;  // 0: nothing drawn
+}
+)";
+
+const char* const kIdFragment = R"(#version 330 core
+flat in uint vId;
+out uvec2 fragId;
+void main() { fragId = uvec2(vId, uint(gl_PrimitiveID)); }
+)";
+
+const char* const kEdgeFragment = R"(#version 330 core
+uniform usampler2DMS uIds;
+uniform int uSamples;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  uvec2 first = texelFetch(uIds, p, 0).xy;
+  for (int s = 1; s < uSamples; ++s)
+    if (texelFetch(uIds, p, s).xy != first) return;  // an edge: the stencil marks it
+  discard;
+}
+)";
+
+const char* const kClearFragment = R"(#version 330 core
+out vec4 fragColor;
+void main() { fragColor = vec4(0.0); }
+)";
+
 }  // namespace rscene::render::detail

@@ -62,5 +62,12 @@ std::vector<Eigen::Vector2f> standardSamplePattern(int samples);
 // the pre-pass, kPostVertex for the average).
 extern const char* const kPrepassFragment;  // depth only
 extern const char* const kAverageFragment;  // one jittered pass, weighted by the blend constant
+// What each sample of a multisampled target sees (instance, triangle), and
+// the pixels whose samples do not all see the same: only those are drawn
+// by the jittered passes after the first.
+extern const char* const kIdVertex;
+extern const char* const kIdFragment;
+extern const char* const kEdgeFragment;
+extern const char* const kClearFragment;  // transparent black
 
 }  // namespace rscene::render::detail

@@ -105,12 +105,16 @@ GlRenderer::~GlRenderer() {
   if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
   for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_, prepassProg_,
-                   averageProg_})
+                   averageProg_, idProg_, edgeProg_, clearProg_})
     if (p) glDeleteProgram(p);
   if (jitter_.fbo) {
     glDeleteFramebuffers(1, &jitter_.fbo);
     glDeleteTextures(1, &jitter_.color);
-    glDeleteRenderbuffers(1, &jitter_.depthStencil);
+  }
+  if (jitter_.idFbo) {
+    glDeleteFramebuffers(1, &jitter_.idFbo);
+    glDeleteTextures(1, &jitter_.ids);
+    glDeleteRenderbuffers(1, &jitter_.idDepth);
   }
   if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
@@ -499,8 +503,11 @@ bool GlRenderer::buildPrograms() {
   pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
   prepassProg_ = program(shaders::kSurfaceVertex, kPrepassFragment, log);
   averageProg_ = program(shaders::kPostVertex, kAverageFragment, log);
+  idProg_ = program(kIdVertex, kIdFragment, log);
+  edgeProg_ = program(shaders::kPostVertex, kEdgeFragment, log);
+  clearProg_ = program(shaders::kPostVertex, kClearFragment, log);
   if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_ && prepassProg_ &&
-      averageProg_)
+      averageProg_ && idProg_ && edgeProg_ && clearProg_)
     return true;
   diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
   return false;
