@@ -91,6 +91,10 @@ struct JitterTargets {
   // Multisampled ids and depth: where the samples of a pixel differ.
   int idSamples = 0;
   GLuint idFbo = 0, ids = 0, idDepth = 0;
+  // The instance ids of every sample side by side (w * samples x h), read
+  // back to leave out what no sample sees.
+  int spreadWidth = 0, spreadHeight = 0;
+  GLuint spreadFbo = 0, spread = 0;
 };
 struct DataTargets {
   int width = 0, height = 0;
@@ -148,6 +152,9 @@ class GlRenderer final : public Renderer {
   // Chooses and orders each batch's instances for `view` (re-uploading a
   // batch only when that changed).
   void selectInstances(const View& view, const Eigen::Matrix4d& viewProj);
+  // Makes `order` the batch's (its first inView drawn), uploading the
+  // instance data when that changed; `data`: scratch.
+  void setOrder(Batch& b, std::vector<std::uint32_t>& order, GLsizei inView, std::vector<float>& data);
   void drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat = false);
   bool renderShadowMap(bool sensorView);
   bool colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out);
@@ -167,6 +174,8 @@ class GlRenderer final : public Renderer {
   // samples of a pixel do not all see the same triangle; false when it
   // cannot (then every pass draws every pixel).
   bool markEdges(const View& view, const Eigen::Matrix4d& viewProj, int samples);
+  // After the opaque ids: moves the instances no sample sees out of view.
+  void keepVisible(int samples, const std::vector<std::pair<std::size_t, GLuint>>& firstIds);
   const std::vector<Eigen::Vector2f>& samplePositions(int samples);
   bool dataTargets(int w, int h);
   bool glOk();
@@ -195,7 +204,8 @@ class GlRenderer final : public Renderer {
   std::vector<float> pointSizes_;
   std::vector<int> pointSegments_;
   GLuint surfaceProg_ = 0, shadowProg_ = 0, pointProg_ = 0, postProg_ = 0, dataProg_ = 0, pointDataProg_ = 0;
-  GLuint prepassProg_ = 0, averageProg_ = 0, idProg_ = 0, edgeProg_ = 0, clearProg_ = 0;  // main_pass.hpp
+  GLuint prepassProg_ = 0, averageProg_ = 0, idProg_ = 0, edgeProg_ = 0, clearProg_ = 0,
+         spreadProg_ = 0;  // main_pass.hpp
   GLuint emptyVao_ = 0;
   bool software_ = false;
   // Shadow map of the main light: remade when the poses or the kind of
@@ -214,6 +224,9 @@ class GlRenderer final : public Renderer {
   // Layers of surface per pixel the current view's in-view instances
   // estimate (selectInstances): picks the lit pass's strategy.
   double depthComplexity_ = 0;
+  // The lit pass drew fewer instances than selectInstances chose (those no
+  // sample sees, markEdges): a data pass of the same view selects again.
+  bool reselect_ = false;
   std::map<int, std::vector<Eigen::Vector2f>> samplePositions_;  // per requested sample count
   RenderTimings timings_;
   // Where colorPass's post-processing began (its lit layers drawn): the

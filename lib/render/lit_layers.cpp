@@ -171,10 +171,15 @@ bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, in
   glCullFace(GL_BACK);
   glUseProgram(idProg_);
   setMatrix(idProg_, "uViewProj", viewProj);
-  GLint base = glGetUniformLocation(idProg_, "uBase");
   GLuint first = 0;
+  std::vector<std::pair<std::size_t, GLuint>> firstIds;  // opaque batch, its first instance's id - 1
   for (int blended = 0; blended < 2; ++blended) {
+    glUseProgram(idProg_);
+    GLint base = glGetUniformLocation(idProg_, "uBase");
     if (blended) {
+      glBindFramebuffer(GL_FRAMEBUFFER, t.idFbo);
+      glViewport(0, 0, w, h);
+      glEnable(GL_DEPTH_TEST);
       glDepthMask(GL_FALSE);
       glEnable(GL_COLOR_LOGIC_OP);
       glLogicOp(GL_XOR);
@@ -186,11 +191,14 @@ bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, in
         glDisable(GL_CULL_FACE);
       else
         glEnable(GL_CULL_FACE);
+      if (!blended) firstIds.emplace_back(i, first);
       glUniform1ui(base, first);
       first += GLuint(b.inView);
       glBindVertexArray(b.vao);
       glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
     }
+    glBindVertexArray(0);
+    if (!blended) keepVisible(samples, firstIds);
   }
   glBindVertexArray(0);
   glDisable(GL_COLOR_LOGIC_OP);
@@ -217,6 +225,67 @@ bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, in
   glEnable(GL_DEPTH_TEST);
   (void)view;
   return true;
+}
+
+void GlRenderer::keepVisible(int samples, const std::vector<std::pair<std::size_t, GLuint>>& firstIds) {
+  JitterTargets& t = jitter_;
+  int sw = t.width * samples, sh = t.height;
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  if (sw > maxSize || firstIds.empty()) return;
+  if (!t.spreadFbo) {
+    glGenFramebuffers(1, &t.spreadFbo);
+    glGenTextures(1, &t.spread);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, t.spreadFbo);
+  if (t.spreadWidth != sw || t.spreadHeight != sh) {
+    glBindTexture(GL_TEXTURE_2D, t.spread);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, sw, sh, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.spread, 0);
+    t.spreadWidth = sw, t.spreadHeight = sh;
+  }
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    t.spreadWidth = t.spreadHeight = 0;
+    return;
+  }
+  glViewport(0, 0, sw, sh);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(spreadProg_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.ids);
+  glUniform1i(glGetUniformLocation(spreadProg_, "uIds"), 0);
+  glUniform1i(glGetUniformLocation(spreadProg_, "uSamples"), samples);
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+  std::vector<GLuint> ids(std::size_t(sw) * std::size_t(sh));
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, sw, sh, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+  const Batch& last = batches_[firstIds.back().first];
+  std::vector<char> seen(std::size_t(firstIds.back().second) + std::size_t(last.inView) + 1, 0);
+  for (GLuint v : ids)
+    if (v < seen.size()) seen[v] = 1;
+  std::vector<std::uint32_t> order, hidden;
+  std::vector<float> data;
+  for (const auto& [bi, first] : firstIds) {
+    Batch& b = batches_[bi];
+    order.clear();
+    hidden.clear();
+    for (GLsizei k = 0; k < b.inView; ++k)
+      (seen[std::size_t(first) + std::size_t(k) + 1] ? order : hidden).push_back(b.order[std::size_t(k)]);
+    if (hidden.empty()) continue;
+    auto visible = GLsizei(order.size());
+    timings_.occludedInstances += hidden.size();
+    order.insert(order.end(), hidden.begin(), hidden.end());
+    order.insert(order.end(), b.order.begin() + b.inView, b.order.end());
+    setOrder(b, order, visible, data);
+    reselect_ = true;
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 bool GlRenderer::jitteredLayers(const View& view, const Eigen::Matrix4d& viewProj, int samples) {

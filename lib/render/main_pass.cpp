@@ -120,4 +120,14 @@ out vec4 fragColor;
 void main() { fragColor = vec4(0.0); }
 )";
 
+const char* const kSpreadFragment = R"(#version 330 core
+uniform usampler2DMS uIds;
+uniform int uSamples;
+out uint fragId;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  fragId = texelFetch(uIds, ivec2(p.x / uSamples, p.y), p.x % uSamples).x;
+}
+)";
+
 }  // namespace rscene::render::detail

@@ -11,7 +11,12 @@
 // single-sample pass per MSAA sample position, each jittered by that
 // sample's offset, front to back (no depth pre-pass: on the warehouse it
 // cost more raster than it saved shading), and averages them: the same
-// coverage as the MSAA resolve, each sample shaded about once.  On a
+// coverage as the MSAA resolve, each sample shaded about once.  A
+// multisampled id pass first (cheap: a flat id per instance and triangle)
+// tells which instances some sample sees (the others are not drawn) and
+// which pixels have samples that see different triangles: after the first
+// pass only those are drawn again (the stencil), the rest keep the first
+// pass's color, as MSAA shades such a pixel once.  On a
 // shallow scene (the 5000-object yard) MSAA's one shade per pixel is
 // cheaper than N jittered passes, so the choice is made per view from the
 // estimated depth complexity.
@@ -69,5 +74,6 @@ extern const char* const kIdVertex;
 extern const char* const kIdFragment;
 extern const char* const kEdgeFragment;
 extern const char* const kClearFragment;  // transparent black
+extern const char* const kSpreadFragment;  // the ids' samples side by side, for reading back
 
 }  // namespace rscene::render::detail

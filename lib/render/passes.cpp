@@ -110,19 +110,10 @@ void GlRenderer::selectInstances(const View& view, const Eigen::Matrix4d& viewPr
     order = std::move(inFrustum[bi]);
     auto inView = GLsizei(order.size());
     order.insert(order.end(), outside[bi].begin(), outside[bi].end());
-    if (!b.dirty && b.everUploaded && order == b.order && inView == b.inView) continue;
-    data.resize(order.size() * kInstanceFloats);
-    for (std::size_t k = 0; k < order.size(); ++k)
-      std::copy_n(b.instances[order[k]].data, kInstanceFloats, data.data() + k * kInstanceFloats);
-    glBindBuffer(GL_ARRAY_BUFFER, b.instanceVbo);
-    if (!data.empty()) glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
-    b.order.swap(order);
-    b.inView = inView;
-    b.count = GLsizei(b.order.size());
-    b.dirty = false;
-    b.everUploaded = true;
+    setOrder(b, order, inView, data);
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  reselect_ = false;
   // Nearest opaque batches first, then the other non-background batches
   // (blended ones, those out of view) and the background ones, each group
   // in the order they were made.
@@ -135,6 +126,20 @@ void GlRenderer::selectInstances(const View& view, const Eigen::Matrix4d& viewPr
   for (int background = 0; background < 2; ++background)
     for (std::size_t i = 0; i < batches_.size(); ++i)
       if (!placed[i] && batches_[i].background == bool(background)) drawOrder_.push_back(i);
+}
+
+void GlRenderer::setOrder(Batch& b, std::vector<std::uint32_t>& order, GLsizei inView, std::vector<float>& data) {
+  if (!b.dirty && b.everUploaded && order == b.order && inView == b.inView) return;
+  data.resize(order.size() * kInstanceFloats);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    std::copy_n(b.instances[order[k]].data, kInstanceFloats, data.data() + k * kInstanceFloats);
+  glBindBuffer(GL_ARRAY_BUFFER, b.instanceVbo);
+  if (!data.empty()) glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
+  b.order.swap(order);
+  b.inView = inView;
+  b.count = GLsizei(b.order.size());
+  b.dirty = false;
+  b.everUploaded = true;
 }
 
 void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat) {
@@ -507,6 +512,9 @@ bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnost
     ok = colorPass(view, viewProj, out.color);
     timings_.postSeconds += std::chrono::duration<double>(Clock::now() - postStart_).count();
   }
+  // The jittered passes may have left out what no sample of the color
+  // pass sees; the data pass samples pixel centres: select again.
+  if (ok && (depth || segmentation) && reselect_) selectInstances(view, viewProj);
   if (ok && (depth || segmentation)) ok = dataPass(view, viewProj, out, depth, segmentation);
   if (ok && depth) addDepthNoise(out.depth, view.noiseMean, view.noiseStddev, view.noiseSeed);
   timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count() -

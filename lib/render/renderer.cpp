@@ -105,11 +105,15 @@ GlRenderer::~GlRenderer() {
   if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
   for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_, prepassProg_,
-                   averageProg_, idProg_, edgeProg_, clearProg_})
+                   averageProg_, idProg_, edgeProg_, clearProg_, spreadProg_})
     if (p) glDeleteProgram(p);
   if (jitter_.fbo) {
     glDeleteFramebuffers(1, &jitter_.fbo);
     glDeleteTextures(1, &jitter_.color);
+  }
+  if (jitter_.spreadFbo) {
+    glDeleteFramebuffers(1, &jitter_.spreadFbo);
+    glDeleteTextures(1, &jitter_.spread);
   }
   if (jitter_.idFbo) {
     glDeleteFramebuffers(1, &jitter_.idFbo);
@@ -506,8 +510,9 @@ bool GlRenderer::buildPrograms() {
   idProg_ = program(kIdVertex, kIdFragment, log);
   edgeProg_ = program(shaders::kPostVertex, kEdgeFragment, log);
   clearProg_ = program(shaders::kPostVertex, kClearFragment, log);
+  spreadProg_ = program(shaders::kPostVertex, kSpreadFragment, log);
   if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_ && prepassProg_ &&
-      averageProg_ && idProg_ && edgeProg_ && clearProg_)
+      averageProg_ && idProg_ && edgeProg_ && clearProg_ && spreadProg_)
     return true;
   diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
   return false;

@@ -45,7 +45,8 @@ struct RenderTimings {
   double postSeconds = 0;    // resolve, background, post-processing, tone map, color read-back
   // How the lit layers were drawn (passes.cpp, main_pass.hpp): views drawn
   // as jittered single-sample passes instead of MSAA, and instances left
-  // out as hidden behind opaque boxes (occlusion.hpp), summed over views.
+  // out as hidden (behind opaque boxes, occlusion.hpp; in jittered views
+  // also those no sample sees), summed over views.
   std::uint64_t jitteredViews = 0;
   std::uint64_t occludedInstances = 0;
 };

@@ -183,10 +183,11 @@ std::string object(const std::string& path, const std::string& shape, double x, 
 
 struct Drawn {
   Image color;
+  std::vector<float> depth;
   RenderTimings timings;
 };
 
-Drawn draw(const std::string& body, int samples = 4) {
+Drawn draw(const std::string& body, int samples = 4, bool depth = false) {
   Drawn out;
   if (!context()) return out;
   LoadResult loaded = parse(std::string(kDeepHeader) + body);
@@ -200,6 +201,7 @@ Drawn draw(const std::string& body, int samples = 4) {
   v.camera = lookingAlongX(200, 150);
   v.camera.verticalFov = 50;
   v.passes = {Pass::Color};
+  if (depth) v.passes.push_back(Pass::Depth);
   v.samples = samples;
   RenderOptions o;
   auto r = Renderer::create(scene, o, d);
@@ -208,6 +210,7 @@ Drawn draw(const std::string& body, int samples = 4) {
   ViewImages im;
   EXPECT_TRUE(r->render(v, im, d)) << (d.empty() ? "" : d.front().message);
   out.color = std::move(im.color);
+  out.depth = std::move(im.depth);
   out.timings = r->timings();
   return out;
 }
@@ -252,6 +255,29 @@ TEST(MainPass, JitteredPassesMatchMsaa) {
   EXPECT_LT(differing(d.color, s.color), 0.002);
   // Anti-aliased: the outline differs from the one-sample drawing.
   EXPECT_GT(differing(d.color, aliased.color), 0.002);
+  // The 79 spheres behind the first are seen by no sample: not drawn.
+  EXPECT_EQ(d.timings.occludedInstances, 79u);
+}
+
+// The data pass of a jittered view draws what it selects itself: the same
+// depth as the shallow scene's.
+TEST(MainPass, DepthAfterJitteredPassesIsExact) {
+  Eigen::Vector3d ray = Eigen::Vector3d(6, 3, 1).normalized();
+  std::string deep, shallow;
+  for (int i = 0; i < 80; ++i) {
+    Eigen::Vector3d c = ray * (6.7 + 0.25 * i);
+    std::string o = object("/World/S" + std::to_string(i), "sphere", c.x(), c.y(), c.z(), 6, "red", 1, 1, 1);
+    deep += o;
+    if (i == 0) shallow = o;
+  }
+  Drawn d = draw(deep, 4, true), s = draw(shallow, 4, true);
+  EXPECT_EQ(d.timings.jitteredViews, 1u);
+  ASSERT_EQ(d.depth.size(), s.depth.size());
+  ASSERT_FALSE(d.depth.empty());
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < d.depth.size(); ++i)
+    same += (std::isnan(d.depth[i]) && std::isnan(s.depth[i])) || d.depth[i] == s.depth[i];
+  EXPECT_EQ(same, d.depth.size());
 }
 
 // Boxes behind a wall are left out and the image is that of the wall and
