@@ -166,6 +166,7 @@ const char* kDeepHeader =
     "environment 0 0 0 0.2 0.2 0.2 0 false true 10 - backgroundMode=plain_color colorMode=linear\n"
     "material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red\n"
     "material blue 0.1 0.2 0.8 1 0 0.6 0 0 0 0 false - - - - - - id=blue\n"
+    "material glass 0.2 0.9 0.4 0.4 0 0.3 0 0 0 0 false - - - - - - id=glass\n"
     "light /World/Sun 1 0.4 -0.4 3 type=directional shadows=false\n";
 
 // An object of `shape` centred at (x, y, z), of size s or sx x sy x sz,
@@ -257,6 +258,26 @@ TEST(MainPass, JitteredPassesMatchMsaa) {
   EXPECT_GT(differing(d.color, aliased.color), 0.002);
   // The 79 spheres behind the first are seen by no sample: not drawn.
   EXPECT_EQ(d.timings.occludedInstances, 79u);
+}
+
+// A blended pane in front, over the deep row and over the shallow one:
+// blended once per sample in both (the passes after the first keep the
+// stencil for the blended layers too), and its edges are anti-aliased.
+TEST(MainPass, BlendedLayersInJitteredPassesMatchMsaa) {
+  Eigen::Vector3d ray = Eigen::Vector3d(6, 3, 1).normalized();
+  std::string deep, shallow;
+  for (int i = 0; i < 80; ++i) {
+    Eigen::Vector3d c = ray * (6.7 + 0.25 * i);
+    std::string o = object("/World/S" + std::to_string(i), "sphere", c.x(), c.y(), c.z(), 6, "red", 1, 1, 1);
+    deep += o;
+    if (i == 0) shallow = o;
+  }
+  std::string pane = object("/World/Pane", "box", 3, -0.3, -0.2, 1, "glass", 0.05, 1.5, 1.2);
+  Drawn d = draw(deep + pane), s = draw(shallow + pane);
+  EXPECT_EQ(d.timings.jitteredViews, 1u);
+  EXPECT_EQ(s.timings.jitteredViews, 0u);
+  EXPECT_LT(differing(d.color, s.color), 0.002);
+  EXPECT_GT(differing(d.color, draw(deep).color), 0.02);  // the pane shows
 }
 
 // The data pass of a jittered view draws what it selects itself: the same
