@@ -229,7 +229,10 @@ bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, in
 
 void GlRenderer::keepVisible(int samples, const std::vector<std::pair<std::size_t, GLuint>>& firstIds) {
   JitterTargets& t = jitter_;
-  int sw = t.width * samples, sh = t.height;
+  // In bands of rows: the spread texture and the read-back hold
+  // kBandRows rows, not the image (memory: README, "Resource limits").
+  constexpr int kBandRows = 64;
+  int sw = t.width * samples, sh = std::min(t.height, kBandRows);
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   if (sw > maxSize || firstIds.empty()) return;
@@ -258,17 +261,22 @@ void GlRenderer::keepVisible(int samples, const std::vector<std::pair<std::size_
   glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.ids);
   glUniform1i(glGetUniformLocation(spreadProg_, "uIds"), 0);
   glUniform1i(glGetUniformLocation(spreadProg_, "uSamples"), samples);
-  glBindVertexArray(emptyVao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
-  std::vector<GLuint> ids(std::size_t(sw) * std::size_t(sh));
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, sw, sh, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+  GLint row = glGetUniformLocation(spreadProg_, "uRow");
   const Batch& last = batches_[firstIds.back().first];
   std::vector<char> seen(std::size_t(firstIds.back().second) + std::size_t(last.inView) + 1, 0);
-  for (GLuint v : ids)
-    if (v < seen.size()) seen[v] = 1;
+  std::vector<GLuint> ids(std::size_t(sw) * std::size_t(sh));
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glBindVertexArray(emptyVao_);
+  for (int y0 = 0; y0 < t.height; y0 += sh) {
+    int rows = std::min(sh, t.height - y0);
+    glUniform1i(row, y0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glReadPixels(0, 0, sw, rows, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+    for (std::size_t i = 0; i < std::size_t(sw) * std::size_t(rows); ++i)
+      if (ids[i] < seen.size()) seen[ids[i]] = 1;
+  }
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
   std::vector<std::uint32_t> order, hidden;
   std::vector<float> data;
   for (const auto& [bi, first] : firstIds) {

@@ -123,10 +123,12 @@ void main() { fragColor = vec4(0.0); }
 const char* const kSpreadFragment = R"(#version 330 core
 uniform usampler2DMS uIds;
 uniform int uSamples;
+uniform int uRow;  // the band's first row
 out uint fragId;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  fragId = texelFetch(uIds, ivec2(p.x / uSamples, p.y), p.x % uSamples).x;
+  ivec2 at = ivec2(p.x / uSamples, p.y + uRow);
+  fragId = at.y < textureSize(uIds).y ? texelFetch(uIds, at, p.x % uSamples).x : 0u;
 }
 )";
 
