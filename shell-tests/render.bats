@@ -79,6 +79,9 @@ is_png() {
   [ "$status" -eq 0 ]
   [[ "$stderr" == *"rscene-render: backend cpu via EGL"* ]]
   [[ "$stderr" == *"renderer "* ]]
+  [[ "$stderr" == *"start-up "*"drawing "*"png encoding "* ]]
+  # The split (issue 13): every part in the order of the work, each a number of seconds.
+  [[ "$stderr" =~ start-up\ [0-9.]+\ s,\ scene\ build\ [0-9.]+\ s,\ upload\ [0-9.]+\ s,\ shadow\ passes\ [0-9.]+\ s,\ drawing\ [0-9.]+\ s,\ post-processing\ [0-9.]+\ s,\ png\ encoding\ [0-9.]+\ s ]]
   [[ "$stderr" == *"start-up "*"drawing "*"post-processing "*"png encoding "* ]]
 }
 

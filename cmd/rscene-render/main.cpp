@@ -32,7 +32,7 @@ struct Options {
   std::uint64_t maxPixels = render::kDefaultMaxPixels;
   render::DrawLimits limits;
   std::uint64_t maxTexturePixels = render::RenderOptions{}.maxTexturePixels;
-  bool transparent = false, allowMissing = false, verbose = false, noPost = false;
+  bool transparent = false, allowMissing = false, verbose = false;
   render_cli::BaselineOptions baseline;
   render_cli::ViewsOptions views;
 };
@@ -79,7 +79,6 @@ int run(const Options& opt) {
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
-  ro.post = !opt.noPost;
   render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
   if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord))
     return render_cli::renderViews(opt.views, prepared);
@@ -124,13 +123,13 @@ int run(const Options& opt) {
   std::string png = render::encodePng(image);
   double encodeSeconds = since(tEncode);
   if (opt.verbose) {
-    char line[240];
+    char line[320];
     std::snprintf(line, sizeof line,
                   "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
+                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
                   cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), scene.robots, startSeconds,
-                  buildSeconds,
-                  timings.uploadSeconds, timings.drawSeconds, timings.postSeconds, encodeSeconds);
+                  buildSeconds, timings.uploadSeconds, timings.shadowSeconds, timings.drawSeconds,
+                  timings.postSeconds, encodeSeconds);
     std::cerr << line;
   }
   if (!opt.output.empty() && !cli::writeOutput(opt.output, [&](Sink& s) {
@@ -192,9 +191,6 @@ int main(int argc, char** argv) {
                  "Largest texture or HDR background decoded; a larger one is not drawn (default 67108864)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 28));
   app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
-  app.add_flag("--no-post", opt.noPost,
-               "Skip the post-processing the scene asks for (bloom, SSAO, FXAA, auto exposure, depth of field); "
-               "exposure, tone mapping and gamma stay");
   app.add_option("--backend", opt.backend, "auto (GPU if one answers, else CPU), gpu (EGL device) or cpu (llvmpipe)")
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
   app.add_option("--camera", opt.camera,

@@ -11,6 +11,7 @@
 #pragma once
 #include <GL/glcorearb.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <string>
@@ -58,6 +59,9 @@ struct Batch {
   // the depth test rejects what objects hide before it is shaded
   // (llvmpipe shades every fragment that passes; it has no pre-pass).
   bool background = false;
+  // Its mesh is the unit box primitive and it is opaque: its instances
+  // hide what is behind them (occlusion.hpp).
+  bool occluder = false;
   std::vector<Instance> instances;  // in the order they were added
   GLuint vao = 0, instanceVbo = 0;
   // The GPU buffer holds instances[order[i]]: the first inView inside the
@@ -83,6 +87,19 @@ struct ColorTargets {
   GLuint msaaColor = 0, resolved = 0, final = 0;
   GLuint msaaDepth = 0;  // a texture: GL_TEXTURE_2D_MULTISAMPLE when samples > 1, else GL_TEXTURE_2D
   GLuint fbo[3] = {0, 0, 0};  // multisampled, resolved, final
+};
+// The single-sample target of one jittered lit pass (main_pass.hpp); the
+// passes are averaged into ColorTargets' first framebuffer.
+struct JitterTargets {
+  int width = 0, height = 0;
+  GLuint fbo = 0, color = 0;
+  // Multisampled ids and depth: where the samples of a pixel differ.
+  int idSamples = 0;
+  GLuint idFbo = 0, ids = 0, idDepth = 0;
+  // The instance ids of every sample side by side (w * samples x h), read
+  // back to leave out what no sample sees.
+  int spreadWidth = 0, spreadHeight = 0;
+  GLuint spreadFbo = 0, spread = 0;
 };
 struct DataTargets {
   int width = 0, height = 0;
@@ -141,12 +158,31 @@ class GlRenderer final : public Renderer {
   // Chooses and orders each batch's instances for `view` (re-uploading a
   // batch only when that changed).
   void selectInstances(const View& view, const Eigen::Matrix4d& viewProj);
+  // Makes `order` the batch's (its first inView drawn), uploading the
+  // instance data when that changed; `data`: scratch.
+  void setOrder(Batch& b, std::vector<std::uint32_t>& order, GLsizei inView, std::vector<float>& data);
   void drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat = false);
   bool renderShadowMap(bool sensorView);
   bool colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out);
   bool dataPass(const View& view, const Eigen::Matrix4d& viewProj, ViewImages& out, bool wantDepth,
                 bool wantSegmentation);
   bool colorTargets(int w, int h, int samples);
+  // ---- the lit pass's layers (lit_layers.cpp, main_pass.hpp)
+  // Opaque batches (after a depth pre-pass when `prepass`), point clouds,
+  // then blended batches, into the bound framebuffer.
+  void drawLayers(const View& view, const Eigen::Matrix4d& viewProj, bool prepass);
+  // One single-sample pass per sample position, averaged into color_.fbo[0]
+  // (single-sample then): MSAA's coverage at a software rasteriser's
+  // early-depth speed.
+  bool jitteredLayers(const View& view, const Eigen::Matrix4d& viewProj, int samples);
+  bool jitterTargets(int w, int h);
+  // Sets the stencil (of color_'s depth-stencil) to 1 where the `samples`
+  // samples of a pixel do not all see the same triangle; false when it
+  // cannot (then every pass draws every pixel).
+  bool markEdges(const View& view, const Eigen::Matrix4d& viewProj, int samples);
+  // After the opaque ids: moves the instances no sample sees out of view.
+  void keepVisible(int samples, const std::vector<std::pair<std::size_t, GLuint>>& firstIds);
+  const std::vector<Eigen::Vector2f>& samplePositions(int samples);
   bool dataTargets(int w, int h);
   bool glOk();
 
@@ -174,6 +210,8 @@ class GlRenderer final : public Renderer {
   std::vector<float> pointSizes_;
   std::vector<int> pointSegments_;
   GLuint surfaceProg_ = 0, shadowProg_ = 0, pointProg_ = 0, postProg_ = 0, dataProg_ = 0, pointDataProg_ = 0;
+  GLuint prepassProg_ = 0, averageProg_ = 0, idProg_ = 0, edgeProg_ = 0, clearProg_ = 0,
+         spreadProg_ = 0;  // main_pass.hpp
   GLuint emptyVao_ = 0;
   bool software_ = false;
   // Shadow map of the main light: remade when the poses or the kind of
@@ -188,7 +226,18 @@ class GlRenderer final : public Renderer {
   bool visualCasters_ = false;
   ColorTargets color_;
   DataTargets data_;
+  JitterTargets jitter_;
+  // Layers of surface per pixel the current view's in-view instances
+  // estimate (selectInstances): picks the lit pass's strategy.
+  double depthComplexity_ = 0;
+  // The lit pass drew fewer instances than selectInstances chose (those no
+  // sample sees, markEdges): a data pass of the same view selects again.
+  bool reselect_ = false;
+  std::map<int, std::vector<Eigen::Vector2f>> samplePositions_;  // per requested sample count
   RenderTimings timings_;
+  // Where colorPass's post-processing began (its lit layers drawn): the
+  // split of RenderTimings.
+  std::chrono::steady_clock::time_point postStart_;
   // The lit pass's modules (gl_effects.hpp): freed after ~GlRenderer's body,
   // while the GL context still exists.
   std::unique_ptr<VolumeEffects> volumes_;

@@ -10,6 +10,8 @@
 
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
+#include "render/main_pass.hpp"
+#include "render/occlusion.hpp"
 
 namespace rscene::render::detail {
 namespace {
@@ -47,31 +49,97 @@ bool GlRenderer::glOk() {
 }
 
 void GlRenderer::selectInstances(const View& view, const Eigen::Matrix4d& viewProj) {
-  std::vector<std::uint32_t> order, rest;
-  std::vector<float> data;
-  for (Batch& b : batches_) {
-    order.clear();
-    rest.clear();
+  // Front to back: opaque instances nearest first within a batch, batches
+  // by their nearest instance, so that the depth test rejects what they
+  // hide before it is shaded (GPUs; llvmpipe's single-sample passes), and
+  // what opaque boxes hide entirely not drawn at all (occlusion.hpp; it
+  // still casts shadows).  Blended batches keep their order (blending
+  // depends on it) and the background batches (ground, terrains) stay last.
+  const Camera& cam = view.camera;
+  const Eigen::Vector3d eye = cam.world.position;
+  const Eigen::Vector3d forward = cam.world.orientation.normalized() * Eigen::Vector3d::UnitX();
+  const bool ortho = cam.projection == "orthographic";
+  struct Candidate {
+    double key;
+    std::uint32_t batch, index;
+  };
+  std::vector<Candidate> candidates;  // in the frustum, of opaque batches
+  std::vector<std::vector<std::uint32_t>> inFrustum(batches_.size());
+  std::vector<std::vector<std::uint32_t>> outside(batches_.size());
+  for (std::size_t bi = 0; bi < batches_.size(); ++bi) {
+    const Batch& b = batches_[bi];
     for (std::uint32_t i = 0; i < b.instances.size(); ++i) {
       const Instance& in = b.instances[i];
       if (view.sensor && !in.worldObject) continue;  // RaiSim's sensors see world objects only
-      (boxInFrustum(viewProj, in.bounds) ? order : rest).push_back(i);
+      if (!boxInFrustum(viewProj, in.bounds)) {
+        outside[bi].push_back(i);
+      } else if (b.blend) {
+        inFrustum[bi].push_back(i);
+      } else {
+        candidates.push_back({nearness(in.bounds, eye, forward, ortho), std::uint32_t(bi), i});
+      }
     }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.key < y.key; });
+  OcclusionBuffer occlusion(viewProj, cam.width, cam.height);
+  DepthComplexity complexity(viewProj);
+  std::vector<std::pair<double, std::size_t>> batchNearest;
+  std::vector<bool> nearestSet(batches_.size(), false);
+  for (const Candidate& c : candidates) {
+    const Batch& b = batches_[c.batch];
+    const Instance& in = b.instances[c.index];
+    if (!b.background && occlusion.hidden(in.bounds)) {
+      outside[c.batch].push_back(c.index);
+      ++timings_.occludedInstances;
+      continue;
+    }
+    if (b.occluder) occlusion.addBox(Eigen::Map<const Eigen::Matrix4f>(in.data).cast<double>());
+    inFrustum[c.batch].push_back(c.index);
+    complexity.add(in.bounds, b.doubleSided && !b.background ? 2 : 1);
+    if (!b.background && !nearestSet[c.batch]) {
+      nearestSet[c.batch] = true;
+      batchNearest.emplace_back(c.key, c.batch);
+    }
+  }
+  depthComplexity_ = complexity.value();
+  std::vector<std::uint32_t> order;
+  std::vector<float> data;
+  for (std::size_t bi = 0; bi < batches_.size(); ++bi) {
+    Batch& b = batches_[bi];
+    order = std::move(inFrustum[bi]);
     auto inView = GLsizei(order.size());
-    order.insert(order.end(), rest.begin(), rest.end());
-    if (!b.dirty && b.everUploaded && order == b.order && inView == b.inView) continue;
-    data.resize(order.size() * kInstanceFloats);
-    for (std::size_t k = 0; k < order.size(); ++k)
-      std::copy_n(b.instances[order[k]].data, kInstanceFloats, data.data() + k * kInstanceFloats);
-    glBindBuffer(GL_ARRAY_BUFFER, b.instanceVbo);
-    if (!data.empty()) glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
-    b.order.swap(order);
-    b.inView = inView;
-    b.count = GLsizei(b.order.size());
-    b.dirty = false;
-    b.everUploaded = true;
+    order.insert(order.end(), outside[bi].begin(), outside[bi].end());
+    setOrder(b, order, inView, data);
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  reselect_ = false;
+  // Nearest opaque batches first, then the other non-background batches
+  // (blended ones, those out of view) and the background ones, each group
+  // in the order they were made.
+  drawOrder_.clear();
+  std::vector<bool> placed(batches_.size(), false);
+  for (const auto& n : batchNearest) {  // already nearest first
+    drawOrder_.push_back(n.second);
+    placed[n.second] = true;
+  }
+  for (int background = 0; background < 2; ++background)
+    for (std::size_t i = 0; i < batches_.size(); ++i)
+      if (!placed[i] && batches_[i].background == bool(background)) drawOrder_.push_back(i);
+}
+
+void GlRenderer::setOrder(Batch& b, std::vector<std::uint32_t>& order, GLsizei inView, std::vector<float>& data) {
+  if (!b.dirty && b.everUploaded && order == b.order && inView == b.inView) return;
+  data.resize(order.size() * kInstanceFloats);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    std::copy_n(b.instances[order[k]].data, kInstanceFloats, data.data() + k * kInstanceFloats);
+  glBindBuffer(GL_ARRAY_BUFFER, b.instanceVbo);
+  if (!data.empty()) glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
+  b.order.swap(order);
+  b.inView = inView;
+  b.count = GLsizei(b.order.size());
+  b.dirty = false;
+  b.everUploaded = true;
 }
 
 void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat) {
@@ -250,7 +318,10 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
   if (!reflections_->prepare(view)) return false;
+  auto shadowStart = Clock::now();
   renderShadowMap(view.sensor);
+  glFinish();
+  timings_.shadowSeconds += std::chrono::duration<double>(Clock::now() - shadowStart).count();
 
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
@@ -259,7 +330,8 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &maxDepthSamples);
   maxSamples = std::min(maxSamples, maxDepthSamples);
   int samples = std::clamp(view.samples > 0 ? view.samples : opt_.samples, 1, std::max(1, int(maxSamples)));
-  if (!colorTargets(w, h, samples)) return false;
+  bool jitter = software_ && preferJitteredPasses(depthComplexity_, samples);
+  if (!colorTargets(w, h, jitter ? 1 : samples)) return false;
   glBindFramebuffer(GL_FRAMEBUFFER, color_.fbo[0]);
   glViewport(0, 0, w, h);
   glClearColor(0, 0, 0, 0);
@@ -269,26 +341,6 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glCullFace(GL_BACK);
-  // Depth pre-pass on GPUs: the lit shader then runs once per visible
-  // sample.  Not on llvmpipe, where it was measured slower (it shades every
-  // sample of a multisampled target and pays the rasterisation twice): 0.87
-  // against 0.70 s of drawing on the 5000-object bench scene.
-  bool prepass = !software_;
-  if (prepass) {
-    glUseProgram(shadowProg_);
-    setMat(shadowProg_, "uViewProj", viewProj);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    for (const Batch& b : batches_) {
-      if (b.blend || b.inView == 0) continue;
-      glBindVertexArray(b.vao);
-      glDrawElementsInstanced(GL_TRIANGLES, b.mesh->indexCount, GL_UNSIGNED_INT, nullptr, b.inView);
-    }
-    glBindVertexArray(0);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-  }
   GLuint surface = surfaceProg_;
   glUseProgram(surface);
   setMat(surface, "uViewProj", viewProj);
@@ -316,50 +368,27 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glBindTexture(GL_TEXTURE_2D, shadowTex_);
   volumes_->bind(surface, view);
   reflections_->bind(surface, view);
-  glDisable(GL_BLEND);
-  // Each sample is lit once: after a pre-pass, coplanar surfaces (stacked
-  // boxes with level tops, overlapping placeholders) all pass GL_LEQUAL, so
-  // the stencil lets the first one drawn through and rejects the rest
-  // before they are shaded.
-  if (prepass) {
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 0, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  // The layers: MSAA after a depth pre-pass on GPUs (the lit shader then
+  // runs once per visible sample); on llvmpipe, which shades every
+  // fragment of a multisampled target hidden or not, MSAA without one
+  // (measured faster on shallow scenes) or, when the view is deep, one
+  // jittered single-sample pass per sample (main_pass.hpp).
+  if (jitter) {
+    ++timings_.jitteredViews;
+    if (!jitteredLayers(view, viewProj, samples)) return false;
+  } else {
+    drawLayers(view, viewProj, !software_);
   }
-  drawBatches(surface, false, false);
-  glDisable(GL_STENCIL_TEST);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
-  if (pointVao_ && !view.sensor) {  // point clouds are visuals: no sensor sees them
-    glUseProgram(pointProg_);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-    setMat(pointProg_, "uViewProj", viewProj);
-    glBindVertexArray(pointVao_);
-    for (std::size_t i = 0; i < pointRanges_.size(); ++i) {
-      glUniform1f(loc(pointProg_, "uPointSize"), pointSizes_[i]);
-      glDrawArrays(GL_POINTS, pointRanges_[i].first, pointRanges_[i].second);
-    }
-    glBindVertexArray(0);
-    glUseProgram(surface);
-  }
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  glDepthMask(GL_FALSE);
-  drawBatches(surface, true, false);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
+  glFinish();
+  postStart_ = Clock::now();
 
   // Resolve, then background + tone map into RGBA8, with the
-  // post-processing the scene asks for (gl_post.cpp).  glFinish: the lit
-  // pass is done, so that what follows is the post-processing's own time.
+  // post-processing the scene asks for (gl_post.cpp).  The glFinish above:
+  // the lit pass is done, so that what follows is post-processing time.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, color_.fbo[0]);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, color_.fbo[1]);
   glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glFinish();
-  auto tPost = Clock::now();
   if (!post_->run(view, viewProj)) return false;
-  glFinish();
-  timings_.postSeconds += std::chrono::duration<double>(Clock::now() - tPost).count();
 
   out.width = w;
   out.height = h;
@@ -446,7 +475,6 @@ bool GlRenderer::dataPass(const View& view, const Eigen::Matrix4d& viewProj, Vie
 
 bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnostics) {
   auto t0 = Clock::now();
-  double post0 = timings_.postSeconds;
   diags_ = &diagnostics;
   out = ViewImages{};
   if (std::string problem = viewProblem(view); !problem.empty()) {
@@ -464,10 +492,21 @@ bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnost
   Eigen::Matrix4d viewProj = viewProjection(view);
   selectInstances(view, viewProj);
   bool ok = true;
-  if (color) ok = colorPass(view, viewProj, out.color);
+  // Drawing is what the shadow passes and the post-processing (from the
+  // resolve to the read-back) leave of the view's time.
+  double before = timings_.shadowSeconds + timings_.postSeconds;
+  if (color) {
+    postStart_ = Clock::now();
+    ok = colorPass(view, viewProj, out.color);
+    timings_.postSeconds += std::chrono::duration<double>(Clock::now() - postStart_).count();
+  }
+  // The jittered passes may have left out what no sample of the color
+  // pass sees; the data pass samples pixel centres: select again.
+  if (ok && (depth || segmentation) && reselect_) selectInstances(view, viewProj);
   if (ok && (depth || segmentation)) ok = dataPass(view, viewProj, out, depth, segmentation);
   if (ok && depth) addDepthNoise(out.depth, view.noiseMean, view.noiseStddev, view.noiseSeed);
-  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count() - (timings_.postSeconds - post0);
+  timings_.drawSeconds += std::chrono::duration<double>(Clock::now() - t0).count() -
+                          (timings_.shadowSeconds + timings_.postSeconds - before);
   return ok;
 }
 

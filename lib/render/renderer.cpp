@@ -12,6 +12,7 @@
 #include "core/assets.hpp"
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
+#include "render/main_pass.hpp"
 #include "render/mesh.hpp"
 #include "render/mipmap.hpp"
 #include "render/shaders.hpp"
@@ -107,8 +108,22 @@ GlRenderer::~GlRenderer() {
   if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
   if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
-  for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_})
+  for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_, prepassProg_,
+                   averageProg_, idProg_, edgeProg_, clearProg_, spreadProg_})
     if (p) glDeleteProgram(p);
+  if (jitter_.fbo) {
+    glDeleteFramebuffers(1, &jitter_.fbo);
+    glDeleteTextures(1, &jitter_.color);
+  }
+  if (jitter_.spreadFbo) {
+    glDeleteFramebuffers(1, &jitter_.spreadFbo);
+    glDeleteTextures(1, &jitter_.spread);
+  }
+  if (jitter_.idFbo) {
+    glDeleteFramebuffers(1, &jitter_.idFbo);
+    glDeleteTextures(1, &jitter_.ids);
+    glDeleteRenderbuffers(1, &jitter_.idDepth);
+  }
   if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
   glDeleteRenderbuffers(1, &color_.msaaColor);
@@ -506,7 +521,15 @@ bool GlRenderer::buildPrograms() {
   postProg_ = program(shaders::kPostVertex, shaders::postFragment().c_str(), log);
   dataProg_ = program(shaders::kDataVertex, shaders::kDataFragment, log);
   pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
-  if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_) return true;
+  prepassProg_ = program(shaders::kSurfaceVertex, kPrepassFragment, log);
+  averageProg_ = program(shaders::kPostVertex, kAverageFragment, log);
+  idProg_ = program(kIdVertex, kIdFragment, log);
+  edgeProg_ = program(shaders::kPostVertex, kEdgeFragment, log);
+  clearProg_ = program(shaders::kPostVertex, kClearFragment, log);
+  spreadProg_ = program(shaders::kPostVertex, kSpreadFragment, log);
+  if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_ && prepassProg_ &&
+      averageProg_ && idProg_ && edgeProg_ && clearProg_ && spreadProg_)
+    return true;
   diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
   return false;
 }
@@ -576,6 +599,8 @@ bool GlRenderer::upload() {
   uploadBackground();
   uploadPoints();
   makeVertexArrays();
+  if (auto box = primitives_.find(std::to_string(int(Shape::Box))); box != primitives_.end())
+    for (Batch& b : batches_) b.occluder = b.mesh == box->second && !b.blend;
   for (int background = 0; background < 2; ++background)
     for (std::size_t i = 0; i < batches_.size(); ++i)
       if (batches_[i].background == bool(background)) drawOrder_.push_back(i);

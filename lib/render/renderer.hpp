@@ -44,8 +44,15 @@ inline constexpr int kMaxImageSide = 16384;
 
 struct RenderTimings {
   double uploadSeconds = 0;  // meshes, textures, instance buffers
-  double drawSeconds = 0;    // passes and read-back, post-processing apart
-  double postSeconds = 0;    // post-processing: bloom, SSAO, FXAA, auto exposure, depth of field, tone map
+  double shadowSeconds = 0;  // shadow map passes
+  double drawSeconds = 0;    // the lit layers, depth and segmentation passes
+  double postSeconds = 0;    // resolve, background, post-processing, tone map, color read-back
+  // How the lit layers were drawn (passes.cpp, main_pass.hpp): views drawn
+  // as jittered single-sample passes instead of MSAA, and instances left
+  // out as hidden (behind opaque boxes, occlusion.hpp; in jittered views
+  // also those no sample sees), summed over views.
+  std::uint64_t jitteredViews = 0;
+  std::uint64_t occludedInstances = 0;
 };
 
 // Renders; false (with an error diagnostic naming the record's line) when
