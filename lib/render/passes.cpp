@@ -365,6 +365,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glUniform1f(loc(post, "uExposure"), env.exposure);
   glUniform1f(loc(post, "uGamma"), env.gamma);
   glUniform1i(loc(post, "uToneMap"), int(env.toneMap));
+  volumes_->bindBackground(post, view);
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
