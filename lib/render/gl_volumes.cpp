@@ -160,6 +160,11 @@ void VolumeEffects::configure(const RenderScene& scene, std::string& source) {
     }
   if (!scene.irradianceVolumes.empty()) defines += "#define RSCENE_IRRADIANCE\n";
   if (!scene.fogs.empty()) defines += "#define RSCENE_FOG_SPHERES\n";
+  for (const RenderFog& f : scene.fogs)
+    if (f.noiseStrength > 0 && f.noiseScale > 0) {
+      defines += "#define RSCENE_FOG_NOISE\n";
+      break;
+    }
   if (scene.environment.heightFog) defines += "#define RSCENE_HEIGHT_FOG\n";
   std::size_t afterVersion = source.find('\n');  // #version comes first
   source.insert(afterVersion == std::string::npos ? source.size() : afterVersion + 1, defines);
@@ -226,9 +231,11 @@ void VolumeEffects::bind(GLuint program, const View& view) {
   for (const RenderFog& f : scene.fogs) {
     Eigen::AlignedBox3d box(f.center.array() - f.radius, f.center.array() + f.radius);
     if (!boxInFrustum(viewProj, box)) continue;
-    put(data_, f.center.cast<float>(), f.radius);
+    Eigen::Vector3d fromCentre = eye - f.center;
+    put(data_, fromCentre.cast<float>(), float(fromCentre.squaredNorm() - double(f.radius) * f.radius));
     put(data_, f.color, f.density);
-    put(data_, f.edgeFade, f.noiseScale, f.noiseStrength, 0);
+    float inner = f.radius * (1 - f.edgeFade);
+    put(data_, f.radius * f.radius - inner * inner, f.noiseScale, f.noiseStrength, 0);
     ++fogs_;
   }
   GLint maxTexels = 65536;
@@ -263,10 +270,11 @@ void VolumeEffects::bind(GLuint program, const View& view) {
   glUniform1i(loc("uFogCount"), fogs_);
   glUniform1i(loc("uFogBase"), fogBase_);
   glUniform1f(loc("uFogDensity"), env.fogDensity);
-  glUniform3f(loc("uFogColor"), env.fogColor.x(), env.fogColor.y(), env.fogColor.z());
+  Eigen::Vector3f fogLinear = linear(env.fogColor);
+  glUniform3f(loc("uFogColorLinear"), fogLinear.x(), fogLinear.y(), fogLinear.z());
+  glUniform3f(loc("uFogEye"), float(eye.x()), float(eye.y()), float(eye.z()));
   glUniform4f(loc("uHeightFog"), env.heightFogDensity, env.heightFogBase, env.heightFogFalloff,
               env.heightFog ? 1.f : 0.f);
-  Eigen::Vector3f fogLinear = linear(env.fogColor);
   glUniform3f(loc("uHeightFogColor"), fogLinear.x(), fogLinear.y(), fogLinear.z());
 }
 
@@ -282,7 +290,7 @@ void VolumeEffects::bindBackground(GLuint program, const View& view) {
   Eigen::Vector3f fogLinear = linear(env.fogColor);
   glUniform3f(loc("uHeightFogColor"), fogLinear.x(), fogLinear.y(), fogLinear.z());
   Eigen::Vector3f eye = view.camera.world.position.cast<float>();
-  glUniform3f(loc("uCameraPos"), eye.x(), eye.y(), eye.z());
+  glUniform3f(loc("uFogEye"), eye.x(), eye.y(), eye.z());
 }
 
 }  // namespace rscene::render::detail

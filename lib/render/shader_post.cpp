@@ -55,7 +55,7 @@ vec3 toneMap(vec3 c) {
 
 const char* const kPostMain = R"(
 vec3 background(vec3 d) {
-  if (uMode == 0) return pow(backgroundFog(pow(uBackground, vec3(2.2)), uCameraPos, d), vec3(1.0 / 2.2));  // display color
+  if (uMode == 0) return pow(backgroundFog(pow(uBackground, vec3(2.2)), d), vec3(1.0 / 2.2));  // display color
   vec3 c;
   if (uMode == 1) {
     vec2 uv = vec2(atan(d.y, d.x) / (2.0 * PI) + 0.5, acos(clamp(d.z, -1.0, 1.0)) / PI);
@@ -64,7 +64,7 @@ vec3 background(vec3 d) {
     c = sky(d);
   }
   if (uFogDensity > 0.0) c = mix(c, pow(uFogColor, vec3(2.2)), clamp(uFogDensity * 20.0, 0.0, 0.9));
-  c = backgroundFog(c, uCameraPos, d);  // height fog and fog spheres (shader_volumes.cpp)
+  c = backgroundFog(c, d);  // height fog and fog spheres (shader_volumes.cpp)
   return toneMap(c);
 }
 

@@ -15,12 +15,13 @@
 //   irradiance  5 texels each from uIrradianceBase: world -> unit cube
 //               rows (3), (linear color x strength, edgeFade), (half
 //               sizes in metres, normalBias)
-//   fog spheres 3 texels each from uFogBase: (centre, radius), (linear
-//               color, density), (edgeFade, noiseScale, noiseStrength, 0)
+//   fog spheres 3 texels each from uFogBase: (eye - centre, |eye -
+//               centre|^2 - R^2), (linear color, density), (R^2 - (R (1 -
+//               edgeFade))^2, noiseScale, noiseStrength, 0)
 //
 // Each kind is compiled in only when the scene has it (RSCENE_DECALS,
 // RSCENE_DECAL_TEXTURES, RSCENE_IRRADIANCE, RSCENE_FOG_SPHERES,
-// RSCENE_HEIGHT_FOG: VolumeEffects::configure): llvmpipe runs both sides
+// RSCENE_FOG_NOISE, RSCENE_HEIGHT_FOG: VolumeEffects::configure): llvmpipe runs both sides
 // of every branch and one pass of a loop that does not run, so code
 // skipped at run time is still paid for by every fragment.
 #include "render/shaders.hpp"
@@ -36,10 +37,11 @@ vec4 volumeTexel(int i) { return texelFetch(uVolumeData, i); }
 #endif
 uniform int uFogCount;
 uniform int uFogBase;
+uniform vec3 uFogEye;           // the eye the fog spheres' data is relative to
 uniform vec4 uHeightFog;        // density, base height, falloff
 uniform vec3 uHeightFogColor;   // linear
 
-#ifdef RSCENE_FOG_SPHERES
+#ifdef RSCENE_FOG_NOISE
 float hash13(vec3 p) {
   p = fract(p * 0.1031);
   p += dot(p, p.zyx + 31.32);
@@ -72,52 +74,53 @@ float heightFogDepth(vec3 o, vec3 d, float len) {
 #endif
 }
 
-// `c` seen through the fog spheres crossed by o + t d, t in [0, len].
-// Density is uniform inside, falling to 0 over the outer edgeFade of the
-// radius, modulated by value noise; without either the chord is exact.
-vec3 localFogs(vec3 c, vec3 o, vec3 d, float len) {
+// Integral over [0, u] (u >= 0, both ends of a chord at once) of a fog
+// sphere's density profile along a chord, per unit density: 1 where
+// u <= inner, (outer2 - s^2) / ramp beyond (s from the chord's middle;
+// ramp = R^2 - (R (1 - edgeFade))^2).
+vec2 chordIntegral(vec2 u, float inner, float outer2, float ramp) {
+  vec2 beyond = inner + (outer2 * (u - inner) - (u * u * u - inner * inner * inner) / 3.0) / ramp;
+  return mix(u, beyond, step(inner, u));
+}
+
+// `c` seen through the fog spheres crossed by eye + t d, t in [0, len].
+// Density is uniform inside and falls to 0 over the outer edgeFade of the
+// radius (linearly in r^2, so that the path integral has a closed form),
+// modulated by value noise at the middle of the path through it.  No
+// sampling loop: llvmpipe would run it for every sample on screen.
+vec3 localFogs(vec3 c, vec3 d, float len) {
 #ifdef RSCENE_FOG_SPHERES
-  for (int k = 0; k < uFogCount; ++k) {
+  int k = 0;
+  if (uFogCount > 0) do {
     int b = uFogBase + 3 * k;
-    vec4 cr = volumeTexel(b);
-    vec3 oc = o - cr.xyz;
-    float half_b = dot(oc, d);
-    float h = half_b * half_b - (dot(oc, oc) - cr.w * cr.w);
-    if (h <= 0.0) continue;
-    h = sqrt(h);
-    float t0 = max(-half_b - h, 0.0), t1 = min(-half_b + h, len);
-    if (t1 <= t0) continue;
+    vec4 eyeFromCentre = volumeTexel(b);  // eye - centre, |eye - centre|^2 - R^2
+    float tc = -dot(eyeFromCentre.xyz, d);  // the chord's middle
+    float outer2 = tc * tc - eyeFromCentre.w;  // half chord, squared
+    if (outer2 <= 0.0) continue;
+    float outer = sqrt(outer2);
+    vec2 s = vec2(max(tc - outer, 0.0), min(tc + outer, len)) - tc;  // the part in [0, len]
+    if (s.y <= s.x) continue;
     vec4 colorDensity = volumeTexel(b + 1);
-    vec4 shape = volumeTexel(b + 2);  // edgeFade, noiseScale, noiseStrength
-    float tau;
-    if (shape.x <= 0.0 && shape.z <= 0.0) {
-      tau = colorDensity.w * (t1 - t0);
-    } else {
-      const int N = 8;  // midpoint rule along the chord
-      float dt = (t1 - t0) / float(N);
-      tau = 0.0;
-      for (int i = 0; i < N; ++i) {
-        vec3 p = o + d * (t0 + (float(i) + 0.5) * dt);
-        float r = length(p - cr.xyz) / cr.w;
-        float rho = shape.x > 0.0 ? smoothstep(0.0, 1.0, (1.0 - r) / shape.x) : 1.0;
-        if (shape.z > 0.0) rho *= 1.0 + shape.z * (2.0 * valueNoise(p * shape.y) - 1.0);
-        tau += rho;
-      }
-      tau *= colorDensity.w * dt;
-    }
-    c = mix(c, colorDensity.rgb, 1.0 - exp(-tau));
-  }
+    vec4 shape = volumeTexel(b + 2);  // ramp (R^2 units), noiseScale, noiseStrength
+    float ramp = max(shape.x, 1e-6);
+    vec2 g = sign(s) * chordIntegral(abs(s), sqrt(max(outer2 - ramp, 0.0)), outer2, ramp);
+    float tau = (g.y - g.x) * colorDensity.w;
+#ifdef RSCENE_FOG_NOISE
+    tau *= 1.0 + shape.z * (2.0 * valueNoise((uFogEye + d * (tc + 0.5 * (s.x + s.y))) * shape.y) - 1.0);
+#endif
+    c = mix(c, colorDensity.rgb, 1.0 - exp(-max(tau, 0.0)));
+  } while (++k < uFogCount);
 #endif
   return c;
 }
 
-// The background seen along d from o: height fog and fog spheres out to
-// infinity (post pass).
-vec3 backgroundFog(vec3 c, vec3 o, vec3 d) {
+// The background seen along d from the eye: height fog and fog spheres
+// out to infinity (post pass).
+vec3 backgroundFog(vec3 c, vec3 d) {
 #if defined(RSCENE_HEIGHT_FOG) || defined(RSCENE_FOG_SPHERES)
-  float tau = heightFogDepth(o, d, 1e30);
+  float tau = heightFogDepth(uFogEye, d, 1e30);
   if (tau > 0.0) c = mix(c, uHeightFogColor, 1.0 - exp(-tau));
-  c = localFogs(c, o, d, 1e30);
+  c = localFogs(c, d, 1e30);
 #endif
   return c;
 }
@@ -125,7 +128,7 @@ vec3 backgroundFog(vec3 c, vec3 o, vec3 d) {
 
 const char* const kVolumesGlsl = R"(
 uniform float uFogDensity;
-uniform vec3 uFogColor;
+uniform vec3 uFogColorLinear;
 uniform int uDecalCount;
 uniform int uIrradianceCount;
 uniform int uIrradianceBase;
@@ -149,7 +152,21 @@ void applyDecals(inout Surface s) {
   // Texture gradients from the position's: the loop is non-uniform flow.
   vec3 dPdx = dFdx(s.P), dPdy = dFdy(s.P);
   vec3 geometric = s.N;
-  for (int k = 0; k < uDecalCount; ++k) {
+  // A cheap pass finds the range of decals whose boxes hold P; the full
+  // work runs over that range only (llvmpipe pays for a loop's body once
+  // per pass for every fragment, so the expensive body must not run once
+  // per decal in view).  Loops are do-whiles behind an if: a while loop
+  // costs llvmpipe one more (masked) pass of its body than it runs.
+  int first = uDecalCount, last = -1;
+  int k = 0;
+  if (uDecalCount > 0) do {
+    if (all(lessThanEqual(abs(boxLocal(8 * k, s.P)), vec3(1.0)))) {
+      first = min(first, k);
+      last = k;
+    }
+  } while (++k < uDecalCount);
+  k = first;
+  if (first <= last) do {
     int b = 8 * k;
     vec3 q = boxLocal(b, s.P);
     if (any(greaterThan(abs(q), vec3(1.0)))) continue;
@@ -197,7 +214,7 @@ void applyDecals(inout Surface s) {
       s.metallic = mix(s.metallic, orm.b, m);
     }
 #endif
-  }
+  } while (++k <= last);
 #endif
 }
 
@@ -207,7 +224,8 @@ void applyDecals(inout Surface s) {
 vec3 volumeIrradiance(Surface s) {
   vec3 sum = vec3(0.0);
 #ifdef RSCENE_IRRADIANCE
-  for (int k = 0; k < uIrradianceCount; ++k) {
+  int k = 0;
+  if (uIrradianceCount > 0) do {
     int b = uIrradianceBase + 5 * k;
     vec4 sizes = volumeTexel(b + 4);  // half sizes in metres, normalBias
     vec3 q = boxLocal(b, s.P + s.N * sizes.w);
@@ -219,7 +237,7 @@ vec3 volumeIrradiance(Surface s) {
       w = clamp(min(inside.x, min(inside.y, inside.z)) / ce.w, 0.0, 1.0);
     }
     sum += ce.rgb * w;
-  }
+  } while (++k < uIrradianceCount);
 #endif
   return sum;
 }
@@ -232,10 +250,10 @@ vec3 applyFog(vec3 color, vec3 P, vec3 eye) {
   float len = max(length(d), 1e-6);
   d /= len;
   float tau = uFogDensity * len + heightFogDepth(eye, d, len);
-  if (tau > 0.0) color = mix(color, toLinear(uFogColor), 1.0 - exp(-tau));
-  return localFogs(color, eye, d, len);
+  if (tau > 0.0) color = mix(color, uFogColorLinear, 1.0 - exp(-tau));
+  return localFogs(color, d, len);
 #else
-  if (uFogDensity > 0.0) color = mix(color, toLinear(uFogColor), 1.0 - exp(-uFogDensity * length(eye - P)));
+  if (uFogDensity > 0.0) color = mix(color, uFogColorLinear, 1.0 - exp(-uFogDensity * length(eye - P)));
   return color;
 #endif
 }
