@@ -319,3 +319,33 @@ TEST(Volumes, IrradianceVolumeFadesOverEdgeFadeMetres) {
   EXPECT_GT(gainEdge, 2);
   EXPECT_LT(gainEdge, gain0 * 0.6);
 }
+
+TEST(Volumes, DecalsNeverPaintTheBackground) {
+  // A decal box floating in front of the sky, nothing inside it.
+  auto with = build(decal("") + "projected_decal /World/Sky 10 0 3 1 0 0 0 1 1 1 halfExtents=2,2,2 color=1,0,0,1\n",
+                    "backgroundMode=rayrai_sky");
+  auto without = build(decal(""), "backgroundMode=rayrai_sky");
+  View v = topDown();
+  v.camera.world.position = Eigen::Vector3d(0, 0, 3);
+  v.camera.world.orientation = Eigen::Quaterniond::Identity();
+  Image a = draw(with->scene, v, "decal_sky"), b = draw(without->scene, v, "decal_sky_ref");
+  ASSERT_EQ(a.width, kSide);
+  ASSERT_EQ(a.rgba.size(), b.rgba.size());
+  EXPECT_EQ(a.rgba, b.rgba);
+}
+
+TEST(Volumes, WeatherFogAddsToTheEnvironmentsAndNoneIsSkipped) {
+  auto b = build("weather true preset=fog fogDensity=0.05\n"
+                 "local_fog /World/Fog 0 0 2.5 2\n"
+                 "irradiance_volume /World/Light 0 0 0 1 0 0 0 1 1 1\n" +
+                     decal(""),
+                 "fogColor=0,0,1");
+  EXPECT_NEAR(b->scene.environment.fogDensity, 0.05, 1e-6);
+  auto off = build("weather false preset=fog fogDensity=0.05\n");
+  EXPECT_EQ(off->scene.environment.fogDensity, 0);
+  EXPECT_TRUE(b->scene.skipped.empty());
+  ASSERT_EQ(b->scene.fogs.size(), 1u);
+  // Colors as the shaders take them: linear.
+  EXPECT_NEAR(b->scene.fogs[0].color.x(), 1, 1e-6);
+  EXPECT_EQ(b->scene.irradianceVolumes.size(), 1u);
+}
