@@ -59,10 +59,6 @@ class VolumeEffects {
   // surface there is shaded again.  Nothing on other renderers (the one
   // program has it all).
   void overlay(GLuint plain, const View& view);
-  // The program for the view's blended batches, made current: the full one
-  // when overlay() drew (transparent surfaces are drawn once, whole), else
-  // `plain`.
-  GLuint blendProgram(GLuint plain);
 
  private:
   bool uploadDecalTextures();
@@ -70,7 +66,6 @@ class VolumeEffects {
   GlRenderer& r_;
   GLuint full_ = 0;  // llvmpipe with local records: the surface program with them (surfaceProg_ has none)
   std::vector<std::array<int, 4>> rects_;  // x, y, w, h of this view's records on screen (GL, bottom-up)
-  bool overlaid_ = false;                  // overlay() drew this view: full_'s uniforms are set
   GLuint buffer_ = 0, bufferTexture_ = 0, decalTextures_ = 0;
   std::vector<std::array<float, 4>> decalLayers_;  // per RenderScene::decals: albedo, emission, normal, orm; -1 none
   std::vector<float> data_;                       // this view's texels (RGBA32F)

@@ -440,16 +440,8 @@ void VolumeEffects::setUniforms(GLuint program, const View& view) {
   glUniform3f(loc("uHeightFogColor"), fogLinear.x(), fogLinear.y(), fogLinear.z());
 }
 
-GLuint VolumeEffects::blendProgram(GLuint plain) {
-  GLuint p = overlaid_ ? full_ : plain;
-  glUseProgram(p);
-  return p;
-}
-
 void VolumeEffects::overlay(GLuint plain, const View& view) {
-  overlaid_ = false;
   if (!full_ || rects_.empty()) return;
-  overlaid_ = true;
   glUseProgram(full_);
   copyUniforms(plain, full_);
   setUniforms(full_, view);

@@ -334,8 +334,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);
-  GLuint blended = volumes_->blendProgram(surface);  // in use: with the view's decals and fog, if any
-  drawBatches(blended, true, false);
+  drawBatches(surface, true, false);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
 
