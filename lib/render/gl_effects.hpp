@@ -42,30 +42,16 @@ class VolumeEffects {
   // Switches on, in a fragment program's source (the surface's or the
   // post pass's), the code of the record kinds `scene` has: the rest is
   // left out, as llvmpipe would pay for it at every fragment.
-  // `local` false: height fog only (the surface program llvmpipe draws
-  // everything with, see overlay()).
-  static void configure(const RenderScene& scene, std::string& fragmentSource, bool local = true);
+  static void configure(const RenderScene& scene, std::string& fragmentSource);
   bool upload();  // false with an error diagnostic (a missing decal texture)
   void bind(GLuint program, const View& view);
   // The post pass (`program`, in use): the sky behind height fog and fog
   // spheres, from the records the last bind() gathered.
   void bindBackground(GLuint program, const View& view);
-  // On llvmpipe, which runs every line of a shader for every fragment it
-  // shades (overdraw included), the lit pass draws with a program without
-  // decals, fog spheres and irradiance volumes; after its opaque batches,
-  // this draws them again with the full program (its uniforms copied from
-  // `plain`, the program in use), scissored to the screen rectangles of
-  // the view's records, depth-tested GL_LEQUAL so that only the visible
-  // surface there is shaded again.  Nothing on other renderers (the one
-  // program has it all).
-  void overlay(GLuint plain, const View& view);
 
  private:
   bool uploadDecalTextures();
-  void setUniforms(GLuint program, const View& view);
   GlRenderer& r_;
-  GLuint full_ = 0;  // llvmpipe with local records: the surface program with them (surfaceProg_ has none)
-  std::vector<std::array<int, 4>> rects_;  // x, y, w, h of this view's records on screen (GL, bottom-up)
   GLuint buffer_ = 0, bufferTexture_ = 0, decalTextures_ = 0;
   std::vector<std::array<float, 4>> decalLayers_;  // per RenderScene::decals: albedo, emission, normal, orm; -1 none
   std::vector<float> data_;                       // this view's texels (RGBA32F)

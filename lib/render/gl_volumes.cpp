@@ -10,7 +10,6 @@
 #include "render/gl_effects.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/mipmap.hpp"
-#include "render/shaders.hpp"
 
 namespace rscene::render::detail {
 namespace {
@@ -59,144 +58,9 @@ std::vector<std::uint8_t> resample(const Image& img, int side) {
   return out;
 }
 
-GLuint compileShader(GLenum type, const char* source, std::string& log) {
-  GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char buf[2048];
-    glGetShaderInfoLog(s, sizeof buf, nullptr, buf);
-    log += buf;
-  }
-  return s;
-}
-
-GLuint linkProgram(const char* vs, const char* fs, std::string& log) {
-  GLuint p = glCreateProgram();
-  GLuint a = compileShader(GL_VERTEX_SHADER, vs, log), b = compileShader(GL_FRAGMENT_SHADER, fs, log);
-  glAttachShader(p, a);
-  glAttachShader(p, b);
-  glLinkProgram(p);
-  glDeleteShader(a);
-  glDeleteShader(b);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (ok) return p;
-  char buf[2048];
-  glGetProgramInfoLog(p, sizeof buf, nullptr, buf);
-  log += buf;
-  glDeleteProgram(p);
-  return 0;
-}
-
-// Every active uniform of `from` set to the same value in `to` (in use),
-// and its uniform blocks bound alike: whatever the other modules set on
-// the lit program, the full one gets.
-void copyUniforms(GLuint from, GLuint to) {
-  GLint blocks = 0;
-  glGetProgramiv(from, GL_ACTIVE_UNIFORM_BLOCKS, &blocks);
-  for (GLint i = 0; i < blocks; ++i) {
-    char name[256];
-    GLsizei length = 0;
-    GLint binding = 0;
-    glGetActiveUniformBlockName(from, GLuint(i), sizeof name, &length, name);
-    glGetActiveUniformBlockiv(from, GLuint(i), GL_UNIFORM_BLOCK_BINDING, &binding);
-    GLuint index = glGetUniformBlockIndex(to, name);
-    if (index != GL_INVALID_INDEX) glUniformBlockBinding(to, index, GLuint(binding));
-  }
-  GLint count = 0;
-  glGetProgramiv(from, GL_ACTIVE_UNIFORMS, &count);
-  for (GLint i = 0; i < count; ++i) {
-    char name[256];
-    GLsizei length = 0;
-    GLint size = 0;
-    GLenum type = 0;
-    glGetActiveUniform(from, GLuint(i), sizeof name, &length, &size, &type, name);
-    std::string base(name, std::size_t(length));
-    if (base.compare(0, 3, "gl_") == 0) continue;
-    bool array = base.size() > 3 && base.compare(base.size() - 3, 3, "[0]") == 0;
-    if (array) base.resize(base.size() - 3);
-    for (GLint e = 0; e < size; ++e) {
-      std::string element = array ? base + "[" + std::to_string(e) + "]" : base;
-      GLint src = glGetUniformLocation(from, element.c_str()), dst = glGetUniformLocation(to, element.c_str());
-      if (src < 0 || dst < 0) continue;
-      float f[16];
-      GLint n[4];
-      switch (type) {
-        case GL_FLOAT: glGetUniformfv(from, src, f); glUniform1fv(dst, 1, f); break;
-        case GL_FLOAT_VEC2: glGetUniformfv(from, src, f); glUniform2fv(dst, 1, f); break;
-        case GL_FLOAT_VEC3: glGetUniformfv(from, src, f); glUniform3fv(dst, 1, f); break;
-        case GL_FLOAT_VEC4: glGetUniformfv(from, src, f); glUniform4fv(dst, 1, f); break;
-        case GL_FLOAT_MAT3: glGetUniformfv(from, src, f); glUniformMatrix3fv(dst, 1, GL_FALSE, f); break;
-        case GL_FLOAT_MAT4: glGetUniformfv(from, src, f); glUniformMatrix4fv(dst, 1, GL_FALSE, f); break;
-        case GL_INT_VEC2: case GL_BOOL_VEC2: glGetUniformiv(from, src, n); glUniform2iv(dst, 1, n); break;
-        case GL_INT_VEC3: case GL_BOOL_VEC3: glGetUniformiv(from, src, n); glUniform3iv(dst, 1, n); break;
-        case GL_INT_VEC4: case GL_BOOL_VEC4: glGetUniformiv(from, src, n); glUniform4iv(dst, 1, n); break;
-        default: glGetUniformiv(from, src, n); glUniform1iv(dst, 1, n); break;  // int, bool, samplers
-      }
-    }
-  }
-}
-
-// Where `boxes` may show in a w x h view (GL pixels, bottom-up): each
-// box's projected corners (the whole view for one reaching behind the
-// eye), overlapping rectangles merged, and all merged into one past 4 (each
-// rectangle costs a pass over the scene's geometry).
-std::vector<std::array<int, 4>> screenRects(const std::vector<Eigen::AlignedBox3d>& boxes,
-                                            const Eigen::Matrix4d& viewProj, int w, int h) {
-  struct Rect {
-    int x0, y0, x1, y1;
-  };
-  std::vector<Rect> rects;
-  for (const Eigen::AlignedBox3d& b : boxes) {
-    double x0 = 1, y0 = 1, x1 = -1, y1 = -1;
-    bool behind = false;
-    for (int i = 0; i < 8 && !behind; ++i) {
-      Eigen::Vector4d c = viewProj * b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)).homogeneous();
-      if (c.w() <= 1e-6) {
-        behind = true;
-        break;
-      }
-      x0 = std::min(x0, c.x() / c.w()), x1 = std::max(x1, c.x() / c.w());
-      y0 = std::min(y0, c.y() / c.w()), y1 = std::max(y1, c.y() / c.w());
-    }
-    if (behind) x0 = y0 = -1, x1 = y1 = 1;
-    Rect r{int(std::floor((std::max(x0, -1.0) + 1) / 2 * w)) - 1, int(std::floor((std::max(y0, -1.0) + 1) / 2 * h)) - 1,
-           int(std::ceil((std::min(x1, 1.0) + 1) / 2 * w)) + 1, int(std::ceil((std::min(y1, 1.0) + 1) / 2 * h)) + 1};
-    r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0), r.x1 = std::min(r.x1, w), r.y1 = std::min(r.y1, h);
-    if (r.x1 > r.x0 && r.y1 > r.y0) rects.push_back(r);
-  }
-  auto overlap = [](const Rect& a, const Rect& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; };
-  auto unite = [](Rect& a, const Rect& b) {
-    a = {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
-  };
-  for (bool merged = true; merged;) {
-    merged = false;
-    for (std::size_t i = 0; i < rects.size() && !merged; ++i)
-      for (std::size_t j = i + 1; j < rects.size() && !merged; ++j)
-        if (overlap(rects[i], rects[j])) {
-          unite(rects[i], rects[j]);
-          rects.erase(rects.begin() + std::ptrdiff_t(j));
-          merged = true;
-        }
-  }
-  std::vector<std::array<int, 4>> out;
-  if (rects.size() > 4) {
-    Rect all = rects.front();
-    for (const Rect& r : rects) unite(all, r);
-    out.push_back({all.x0, all.y0, all.x1 - all.x0, all.y1 - all.y0});
-    return out;
-  }
-  for (const Rect& r : rects) out.push_back({r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0});
-  return out;
-}
-
 }  // namespace
 
 VolumeEffects::~VolumeEffects() {
-  if (full_) glDeleteProgram(full_);
   if (bufferTexture_) glDeleteTextures(1, &bufferTexture_);
   if (decalTextures_) glDeleteTextures(1, &decalTextures_);
   if (buffer_) glDeleteBuffers(1, &buffer_);
@@ -286,43 +150,28 @@ bool VolumeEffects::uploadDecalTextures() {
   return true;
 }
 
-void VolumeEffects::configure(const RenderScene& scene, std::string& source, bool local) {
+void VolumeEffects::configure(const RenderScene& scene, std::string& source) {
   std::string defines;
+  if (!scene.decals.empty()) defines += "#define RSCENE_DECALS\n";
+  for (const RenderDecal& d : scene.decals)
+    if (!d.albedoTexture.empty() || !d.emissionTexture.empty() || !d.normalTexture.empty() || !d.ormTexture.empty()) {
+      defines += "#define RSCENE_DECAL_TEXTURES\n";
+      break;
+    }
+  if (!scene.irradianceVolumes.empty()) defines += "#define RSCENE_IRRADIANCE\n";
+  if (!scene.fogs.empty()) defines += "#define RSCENE_FOG_SPHERES\n";
+  for (const RenderFog& f : scene.fogs)
+    if (f.noiseStrength > 0 && f.noiseScale > 0) {
+      defines += "#define RSCENE_FOG_NOISE\n";
+      break;
+    }
   if (scene.environment.heightFog) defines += "#define RSCENE_HEIGHT_FOG\n";
-  if (local) {
-    if (!scene.decals.empty()) defines += "#define RSCENE_DECALS\n";
-    for (const RenderDecal& d : scene.decals)
-      if (!d.albedoTexture.empty() || !d.emissionTexture.empty() || !d.normalTexture.empty() ||
-          !d.ormTexture.empty()) {
-        defines += "#define RSCENE_DECAL_TEXTURES\n";
-        break;
-      }
-    if (!scene.irradianceVolumes.empty()) defines += "#define RSCENE_IRRADIANCE\n";
-    if (!scene.fogs.empty()) defines += "#define RSCENE_FOG_SPHERES\n";
-    for (const RenderFog& f : scene.fogs)
-      if (f.noiseStrength > 0 && f.noiseScale > 0) {
-        defines += "#define RSCENE_FOG_NOISE\n";
-        break;
-      }
-  }
   std::size_t afterVersion = source.find('\n');  // #version comes first
   source.insert(afterVersion == std::string::npos ? source.size() : afterVersion + 1, defines);
 }
 
 bool VolumeEffects::upload() {
   if (!uploadDecalTextures()) return false;
-  const RenderScene& scene = r_.scene_;
-  if (r_.software_ && (!scene.decals.empty() || !scene.irradianceVolumes.empty() || !scene.fogs.empty())) {
-    std::string plain = shaders::surfaceFragment(), log;
-    configure(scene, plain, false);
-    GLuint p = linkProgram(shaders::kSurfaceVertex, plain.c_str(), log);
-    if (!p) {
-      r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
-      return false;
-    }
-    full_ = r_.surfaceProg_;
-    r_.surfaceProg_ = p;  // freed by ~GlRenderer; full_ by ~VolumeEffects
-  }
   glGenBuffers(1, &buffer_);
   glBindBuffer(GL_TEXTURE_BUFFER, buffer_);
   const float none[4] = {0, 0, 0, 0};
@@ -335,8 +184,7 @@ bool VolumeEffects::upload() {
   // Samplers of different types may not share a unit, and the samplers'
   // default unit 0 is the shadow map's: set them now, before any draw (a
   // reflection probe's capture may draw before the first view's bind()).
-  for (GLuint p : {r_.surfaceProg_, r_.postProg_, full_}) {
-    if (!p) continue;
+  for (GLuint p : {r_.surfaceProg_, r_.postProg_}) {
     glUseProgram(p);
     glUniform1i(glGetUniformLocation(p, "uVolumeData"), units::kVolumes);
     glUniform1i(glGetUniformLocation(p, "uDecalTextures"), units::kVolumes + 1);
@@ -347,9 +195,9 @@ bool VolumeEffects::upload() {
 
 void VolumeEffects::bind(GLuint program, const View& view) {
   const RenderScene& scene = r_.scene_;
+  const Look& env = scene.environment;
   Eigen::Matrix4d viewProj = viewProjection(view);
   Eigen::Vector3d eye = view.camera.world.position;
-  std::vector<Eigen::AlignedBox3d> drawn;  // bounds of what this view draws
   data_.clear();
   decals_ = irradiance_ = fogs_ = 0;
   // Only what may touch a visible surface: the records inside the frustum.
@@ -368,7 +216,6 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     put(data_, d.uvScale.x(), d.uvScale.y(), d.uvOffset.x(), d.uvOffset.y());
     put(data_, d.albedoMix, d.emissionEnergy, d.normalStrength, d.ormStrength);
     put(data_, d.edgeFade, d.normalFade, d.upperFade, d.lowerFade);
-    drawn.push_back(d.bounds);
     ++decals_;
   }
   irradianceBase_ = int(data_.size() / 4);
@@ -378,7 +225,6 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     put(data_, v.color, v.edgeFade);
     Eigen::Vector3f half = v.world.linear().colwise().norm().transpose().cast<float>();
     put(data_, half, v.normalBias);
-    drawn.push_back(v.bounds);
     ++irradiance_;
   }
   fogBase_ = int(data_.size() / 4);
@@ -388,7 +234,6 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     Eigen::Vector3d fromCentre = eye - f.center;
     put(data_, fromCentre.cast<float>(), float(fromCentre.squaredNorm() - double(f.radius) * f.radius));
     put(data_, f.color, f.density);
-    drawn.push_back(box);
     float inner = f.radius * (1 - f.edgeFade);
     put(data_, f.radius * f.radius - inner * inner, f.noiseScale, f.noiseStrength, 0);
     ++fogs_;
@@ -404,7 +249,6 @@ void VolumeEffects::bind(GLuint program, const View& view) {
                   " texels, more than this OpenGL's " + std::to_string(maxTexels) + ": none is drawn");
     warnedOverflow_ = true;
     data_.clear();
-    drawn.clear();
     decals_ = irradiance_ = fogs_ = 0;
   }
   if (data_.empty()) put(data_, 0, 0, 0, 0);
@@ -416,13 +260,7 @@ void VolumeEffects::bind(GLuint program, const View& view) {
   glActiveTexture(GL_TEXTURE0 + units::kVolumes + 1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, decalTextures_);
   glActiveTexture(GL_TEXTURE0);
-  rects_ = screenRects(drawn, viewProj, view.camera.width, view.camera.height);
-  setUniforms(program, view);
-}
 
-void VolumeEffects::setUniforms(GLuint program, const View& view) {
-  const Look& env = r_.scene_.environment;
-  Eigen::Vector3d eye = view.camera.world.position;
   auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
   glUniform1i(loc("uVolumeData"), units::kVolumes);
   glUniform1i(loc("uDecalTextures"), units::kVolumes + 1);
@@ -438,28 +276,6 @@ void VolumeEffects::setUniforms(GLuint program, const View& view) {
   glUniform4f(loc("uHeightFog"), env.heightFogDensity, env.heightFogBase, env.heightFogFalloff,
               env.heightFog ? 1.f : 0.f);
   glUniform3f(loc("uHeightFogColor"), fogLinear.x(), fogLinear.y(), fogLinear.z());
-}
-
-void VolumeEffects::overlay(GLuint plain, const View& view) {
-  if (!full_ || rects_.empty()) return;
-  glUseProgram(full_);
-  copyUniforms(plain, full_);
-  setUniforms(full_, view);
-  GLint depthFunc = GL_LESS;
-  GLboolean depthMask = GL_TRUE;
-  glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
-  glDepthFunc(GL_LEQUAL);  // the depth the first draw left: only the visible surface passes
-  glDepthMask(GL_FALSE);
-  glEnable(GL_SCISSOR_TEST);
-  for (const auto& r : rects_) {
-    glScissor(r[0], r[1], r[2], r[3]);
-    r_.drawBatches(full_, false, false);
-  }
-  glDisable(GL_SCISSOR_TEST);
-  glDepthFunc(GLenum(depthFunc));
-  glDepthMask(depthMask);
-  glUseProgram(plain);
 }
 
 void VolumeEffects::bindBackground(GLuint program, const View& view) {

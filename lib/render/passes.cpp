@@ -315,7 +315,6 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   }
   drawBatches(surface, false, false);
-  volumes_->overlay(surface, view);  // llvmpipe: decals, fog spheres, irradiance volumes where they show
   glDisable(GL_STENCIL_TEST);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
