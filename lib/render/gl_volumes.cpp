@@ -153,11 +153,18 @@ bool VolumeEffects::uploadDecalTextures() {
 void VolumeEffects::configure(const RenderScene& scene, std::string& source) {
   std::string defines;
   if (!scene.decals.empty()) defines += "#define RSCENE_DECALS\n";
-  for (const RenderDecal& d : scene.decals)
-    if (!d.albedoTexture.empty() || !d.emissionTexture.empty() || !d.normalTexture.empty() || !d.ormTexture.empty()) {
-      defines += "#define RSCENE_DECAL_TEXTURES\n";
-      break;
-    }
+  // Each texture slot a decal uses: four textureGrad calls cost llvmpipe
+  // at every fragment whether a decal holds it or not.
+  bool slots[4] = {false, false, false, false};
+  for (const RenderDecal& d : scene.decals) {
+    slots[0] = slots[0] || !d.albedoTexture.empty();
+    slots[1] = slots[1] || !d.emissionTexture.empty();
+    slots[2] = slots[2] || !d.normalTexture.empty();
+    slots[3] = slots[3] || !d.ormTexture.empty();
+  }
+  const char* names[4] = {"ALBEDO", "EMISSION", "NORMAL", "ORM"};
+  for (int i = 0; i < 4; ++i)
+    if (slots[i]) defines += std::string("#define RSCENE_DECAL_") + names[i] + "\n";
   if (!scene.irradianceVolumes.empty()) defines += "#define RSCENE_IRRADIANCE\n";
   if (!scene.fogs.empty()) defines += "#define RSCENE_FOG_SPHERES\n";
   for (const RenderFog& f : scene.fogs)

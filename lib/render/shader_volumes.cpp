@@ -20,7 +20,8 @@
 //               edgeFade))^2, noiseScale, noiseStrength, 0)
 //
 // Each kind is compiled in only when the scene has it (RSCENE_DECALS,
-// RSCENE_DECAL_TEXTURES, RSCENE_IRRADIANCE, RSCENE_FOG_SPHERES,
+// RSCENE_DECAL_ALBEDO, _EMISSION, _NORMAL, _ORM (a texture slot some
+// decal uses), RSCENE_IRRADIANCE, RSCENE_FOG_SPHERES,
 // RSCENE_FOG_NOISE, RSCENE_HEIGHT_FOG: VolumeEffects::configure): llvmpipe runs both sides
 // of every branch and one pass of a loop that does not run, so code
 // skipped at run time is still paid for by every fragment.
@@ -132,7 +133,7 @@ uniform vec3 uFogColorLinear;
 uniform int uDecalCount;
 uniform int uIrradianceCount;
 uniform int uIrradianceBase;
-#ifdef RSCENE_DECAL_TEXTURES
+#if defined(RSCENE_DECAL_ALBEDO) || defined(RSCENE_DECAL_EMISSION) || defined(RSCENE_DECAL_NORMAL) || defined(RSCENE_DECAL_ORM)
 uniform sampler2DArray uDecalTextures;
 #endif
 
@@ -187,23 +188,28 @@ void applyDecals(inout Surface s) {
     vec2 gy = vec2(dot(ax, dPdy), -dot(ay, dPdy)) * 0.5 * uvst.xy;
     vec4 albedo = color;
     vec3 glow = albedo.rgb;
-#ifdef RSCENE_DECAL_TEXTURES
+#ifdef RSCENE_DECAL_ALBEDO
     if (layers.x >= 0.0) {
       vec4 t = textureGrad(uDecalTextures, vec3(uv, layers.x), gx, gy);
       albedo *= vec4(toLinear(t.rgb), t.a);
     }
+    glow = albedo.rgb;
+#endif
+#ifdef RSCENE_DECAL_EMISSION
     // Emission: the emission texture's, else the decal's own color, x emissionEnergy.
-    glow = layers.y >= 0.0 ? toLinear(textureGrad(uDecalTextures, vec3(uv, layers.y), gx, gy).rgb) : albedo.rgb;
+    if (layers.y >= 0.0) glow = toLinear(textureGrad(uDecalTextures, vec3(uv, layers.y), gx, gy).rgb);
 #endif
     float w = clamp(albedo.a * fade, 0.0, 1.0);
     s.base.rgb = mix(s.base.rgb, albedo.rgb, w * mixes.x);
     s.emissive += glow * mixes.y * w;
-#ifdef RSCENE_DECAL_TEXTURES
+#ifdef RSCENE_DECAL_NORMAL
     if (layers.z >= 0.0) {
       vec3 n = textureGrad(uDecalTextures, vec3(uv, layers.z), gx, gy).xyz * 2.0 - 1.0;
       vec3 nw = normalize(normalize(ax) * n.x + normalize(ay) * n.y + normalize(az) * n.z);
       s.N = normalize(mix(s.N, nw, clamp(w * mixes.z, 0.0, 1.0)));
     }
+#endif
+#ifdef RSCENE_DECAL_ORM
     if (layers.w >= 0.0) {
       // Occlusion darkens the color: the Surface carries no separate
       // occlusion term for the indirect light alone.
