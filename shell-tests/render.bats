@@ -141,9 +141,41 @@ is_png() {
 }
 
 @test "skipped record kinds are listed in one warning" {
+  # local_fog is drawn (no warning); a kind not drawn yet is listed.
   run "$RENDER" "$DATA/render_skipped.rscene" -o out.png
   [ "$status" -eq 0 ]
-  [ "$output" = "rscene-render: warning: skipped records it does not draw yet: local_fog (2)" ]
+  [ "$output" = "" ]
+  { cat "$DATA/render_skipped.rscene"; echo "reflection_probe /World/Probe 0 0 1 2"; } > probe.rscene
+  run "$RENDER" probe.rscene -o out.png
+  [ "$status" -eq 0 ]
+  [ "$output" = "rscene-render: warning: skipped records it does not draw yet: reflection_probe (1)" ]
+}
+
+@test "decals, fog spheres, irradiance volumes and height fog are drawn" {
+  { sed 's/^raisim_engine_scene 1$/&\nenvironment 0 0 0 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color heightFogEnabled=true heightFogDensity=0.1/' "$DATA/render_skipped.rscene"
+    echo "projected_decal /World/Decal 4.5 0 0 0 0.7071 0 0.7071 1 1 1 halfExtents=1,1,1 color=1,0,0,1"
+    echo "irradiance_volume /World/Light 5 0 0 1 0 0 0 1 1 1 halfExtents=2,2,2 color=0,1,0,1"; } > fx.rscene
+  run "$RENDER" fx.rscene -o fx.png
+  [ "$status" -eq 0 ]
+  [ "$output" = "" ]
+  is_png fx.png
+  grep -v -e projected_decal -e irradiance_volume -e local_fog -e heightFog fx.rscene > plain.rscene
+  run "$RENDER" plain.rscene -o plain.png
+  [ "$status" -eq 0 ]
+  ! cmp -s fx.png plain.png
+}
+
+@test "missing decal texture: exit 2 at the field; --allow-missing-assets draws the decal's color" {
+  { cat "$DATA/render_skipped.rscene"
+    echo "projected_decal /World/Decal 4.5 0 0 1 0 0 0 1 1 1 halfExtents=1,1,1 normalTexture=tex/bumps.png"; } > scene.rscene
+  run -2 "$RENDER" scene.rscene -o out.png
+  col=$(awk 'NR == 7 { print index($0, "tex/bumps.png") }' scene.rscene)
+  [ "${lines[0]}" = "scene.rscene:7:$col: error: decal texture file 'tex/bumps.png' does not exist [RS5001]" ]
+  [ ! -e out.png ]
+  run "$RENDER" scene.rscene --allow-missing-assets -o out.png
+  [ "$status" -eq 0 ]
+  [ "${lines[0]}" = "scene.rscene:7:$col: warning: decal texture file 'tex/bumps.png' does not exist [RS5001]" ]
+  is_png out.png
 }
 
 @test "a camera that sees nothing warns" {

@@ -170,6 +170,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS9046", E, Render, "render", "malformed --trajectory line (not what rscene-sim --trajectory writes)"},
     {"RS9047", E, Render, "render", "--trajectory names a body, robot or joint the scene does not have"},
     {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
+    // RS9055 and on: projected decals, fog, irradiance volumes
+    {"RS9055", W, Render, "render", "decal textures or volume records past what this OpenGL holds: those are not drawn"},
     // RS907x geometry records drawn: foliage, wires, deformables, granular media
     {"RS9070", E, Render, "render", "granular record with more particles than its maxParticles or the --max-instances left"},
     {"RS9071", E, Render, "render", "granular record whose particles cannot be made (radius or spacing not positive, radii not matching positions)"},

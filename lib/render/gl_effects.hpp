@@ -8,6 +8,11 @@
 #pragma once
 #include <GL/glcorearb.h>
 
+#include <array>
+#include <string>
+#include <vector>
+
+#include "render/render_scene.hpp"
 #include "render/view.hpp"
 
 namespace rscene::render::detail {
@@ -19,22 +24,39 @@ namespace units {
 inline constexpr int kShadow = 0;       // the main light's shadow map
 inline constexpr int kAlbedo = 1;       // the batch's albedo texture
 inline constexpr int kLights = 2;       // 2..7: more shadow maps
-inline constexpr int kVolumes = 8;      // 8..11: decal textures
+inline constexpr int kVolumes = 8;      // 8: volume records (buffer), 9: decal textures, 10..11 free
 inline constexpr int kReflections = 12;  // 12..15: environment, probes, BRDF table
 }  // namespace units
 
 // Projected decals, irradiance volumes and fog (global, height, local).
+// upload() reads the decals' textures into one texture array (unit
+// kVolumes + 1); bind() gathers the records inside the view's frustum into
+// one buffer texture (unit kVolumes) the surface shader loops over, so the
+// cost per pixel grows with what the view holds and is nil without any.
 class VolumeEffects {
  public:
   explicit VolumeEffects(GlRenderer& r) : r_(r) {}
   ~VolumeEffects();
   VolumeEffects(const VolumeEffects&) = delete;
   VolumeEffects& operator=(const VolumeEffects&) = delete;
-  bool upload();  // false with an error diagnostic
+  // Switches on, in a fragment program's source (the surface's or the
+  // post pass's), the code of the record kinds `scene` has: the rest is
+  // left out, as llvmpipe would pay for it at every fragment.
+  static void configure(const RenderScene& scene, std::string& fragmentSource);
+  bool upload();  // false with an error diagnostic (a missing decal texture)
   void bind(GLuint program, const View& view);
+  // The post pass (`program`, in use): the sky behind height fog and fog
+  // spheres, from the records the last bind() gathered.
+  void bindBackground(GLuint program, const View& view);
 
  private:
+  bool uploadDecalTextures();
   GlRenderer& r_;
+  GLuint buffer_ = 0, bufferTexture_ = 0, decalTextures_ = 0;
+  std::vector<std::array<float, 4>> decalLayers_;  // per RenderScene::decals: albedo, emission, normal, orm; -1 none
+  std::vector<float> data_;                       // this view's texels (RGBA32F)
+  int decals_ = 0, irradiance_ = 0, fogs_ = 0, irradianceBase_ = 0, fogBase_ = 0;
+  bool warnedOverflow_ = false;
 };
 
 // Ambient and sky light, environment reflections, reflection probes.

@@ -118,7 +118,7 @@ void PostEffects::draw(const PostTarget* into) {
 // The lit pass over its background: display colors (linear false: the
 // whole post-processing when nothing else is asked for) or linear HDR
 // with coverage in alpha into hdr_.
-void PostEffects::composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint ao) {
+void PostEffects::composite(const View& view, const Eigen::Matrix4d& viewProj, bool linear, GLuint ao) {
   const Look& env = r_.scene_.environment;
   GLuint post = r_.postProg_;
   glUseProgram(post);
@@ -143,6 +143,7 @@ void PostEffects::composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint
   glUniform1f(loc(post, "uExposure"), env.exposure);
   glUniform1f(loc(post, "uGamma"), env.gamma);
   glUniform1i(loc(post, "uToneMap"), int(env.toneMap));
+  r_.volumes_->bindBackground(post, view);  // height fog and fog spheres over the background
   draw(linear ? &hdr_ : nullptr);
 }
 
@@ -278,7 +279,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
   glDisable(GL_BLEND);
   exposure_ = env.exposure;
   if (!plan_.any()) {
-    composite(viewProj, false, 0);
+    composite(view, viewProj, false, 0);
     return true;
   }
   if (!buildPrograms() || !ready_) return false;
@@ -308,7 +309,7 @@ bool PostEffects::run(const View& view, const Eigen::Matrix4d& viewProj) {
 
   if (plan_.depthOfField && c.samples > 1) resolveDepth();
   if (plan_.ssao) ambientOcclusion(view, proj);
-  composite(viewProj, true, plan_.ssao ? ao_.texture : 0);
+  composite(view, viewProj, true, plan_.ssao ? ao_.texture : 0);
   if (plan_.autoExposure) exposure_ *= autoExposure(env.autoExposureKey);
   Eigen::Vector3f dof = Eigen::Vector3f::Zero();
   if (plan_.depthOfField) {

@@ -48,7 +48,7 @@ class PostEffects {
   bool buildPrograms();  // once; false (with the diagnostic) if any fails
   bool ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLenum format, GLenum type, GLenum filter);
   void draw(const PostTarget* into);
-  void composite(const Eigen::Matrix4d& viewProj, bool linear, GLuint ao);
+  void composite(const View& view, const Eigen::Matrix4d& viewProj, bool linear, GLuint ao);
   void resolveDepth();
   void ambientOcclusion(const View& view, const Eigen::Matrix4d& proj);
   float autoExposure(float key);

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/reader.hpp"
+
 namespace rscene::render {
 namespace {
 
@@ -23,6 +25,14 @@ Eigen::Affine3d affineOf(const Pose& p) {
 }
 
 float nonNegative(double v) { return std::isfinite(v) ? float(std::max(v, 0.0)) : 0.f; }
+
+// A color as written (display, gamma 2.2) in linear light, as the shaders
+// take the ambient and fog colors.
+Eigen::Vector3f linear(const Eigen::Vector3d& c) {
+  Eigen::Vector3f out;
+  for (int i = 0; i < 3; ++i) out[i] = float(std::pow(std::isfinite(c[i]) ? std::max(c[i], 0.0) : 0.0, 2.2));
+  return out;
+}
 
 // Unit cube [-1, 1]^3 -> world of a box record: pose x scale x halfExtents.
 Eigen::Affine3d boxWorld(const Pose& pose, const Eigen::Vector3d& scale, const Eigen::Vector3d& halfExtents) {
@@ -63,6 +73,12 @@ void prepareEffects(const Document& doc, const Scene& s, RenderScene& out) {
     }
     r.bounds = cubeBounds(r.world);
     r.line = lineOf(doc, d.recordIndex);
+    if (d.recordIndex >= 0 && std::size_t(d.recordIndex) < doc.records.size()) {
+      Diagnostics unused;
+      RecordReader reader(doc, std::size_t(d.recordIndex), unused);
+      const char* fields[4] = {"albedoTexture", "emissionTexture", "normalTexture", "ormTexture"};
+      for (std::size_t k = 0; k < 4; ++k) r.textureColumns[k] = reader.columnOf(fields[k]);
+    }
     out.decals.push_back(std::move(r));
   }
   for (const LocalFog& f : s.localFogs) {
@@ -74,7 +90,7 @@ void prepareEffects(const Document& doc, const Scene& s, RenderScene& out) {
     r.edgeFade = float(std::clamp(f.edgeFade, 0.0, 1.0));
     r.noiseScale = nonNegative(f.noiseScale);
     r.noiseStrength = float(std::clamp(f.noiseStrength, 0.0, 1.0));
-    r.color = f.color.cast<float>();
+    r.color = linear(f.color);
     r.line = lineOf(doc, f.recordIndex);
     out.fogs.push_back(r);
   }
@@ -82,7 +98,7 @@ void prepareEffects(const Document& doc, const Scene& s, RenderScene& out) {
     if (!v.enabled || v.hiddenByGroup) continue;
     RenderIrradiance r;
     r.world = boxWorld(v.world, v.scale, v.halfExtents);
-    r.color = (v.color.head<3>() * std::max(v.strength, 0.0)).cast<float>();
+    r.color = linear(v.color.head<3>()) * nonNegative(v.strength);
     r.edgeFade = nonNegative(v.edgeFade);
     r.normalBias = float(v.normalBias);
     r.bounds = cubeBounds(r.world);

@@ -95,9 +95,6 @@ class Preparer {
     auto notDrawn = [&](const char* tag, std::size_t n) {
       if (n) out_.skipped[tag] += static_cast<int>(n);
     };
-    notDrawn("projected_decal", s_.decals.size());
-    notDrawn("local_fog", s_.localFogs.size());
-    notDrawn("irradiance_volume", s_.irradianceVolumes.size());
     notDrawn("reflection_probe", s_.reflectionProbes.size());
   }
 
@@ -162,7 +159,9 @@ class Preparer {
     Look& e = out_.environment;
     e.background = toF(env.background);
     e.ambient = toF(env.ambient);
-    e.fogDensity = float(std::max(0.0, env.fogDensity));
+    // The weather's fog (when it is enabled) adds to the environment's.
+    const Weather& wx = s_.weather;
+    e.fogDensity = float(std::max(0.0, env.fogDensity) + (wx.recordIndex >= 0 && wx.enabled ? std::max(0.0, wx.fogDensity) : 0.0));
     e.fogColor = rgb(env.fogColor);
     e.shadows = env.shadows;
     e.exposure = shade(env.exposure);

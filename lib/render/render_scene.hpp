@@ -9,6 +9,7 @@
 // local +x with local +z up).
 #pragma once
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -230,9 +231,12 @@ struct RenderDecal {
   float fadeBegin = 0, fadeLength = 0;  // distance fade; fadeLength 0: none
   Eigen::AlignedBox3d bounds;
   std::uint32_t line = 0;
+  std::array<std::uint32_t, 4> textureColumns{};  // of albedo, emission, normal, ormTexture on `line`
 };
 
-// local_fog: a sphere of fog.
+// local_fog: a sphere of fog; density (per metre) falls to 0 over the
+// outer edgeFade fraction of the radius, modulated by value noise of
+// frequency noiseScale (per metre) by +-noiseStrength.
 struct RenderFog {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   float radius = 0, density = 0, edgeFade = 0, noiseScale = 0, noiseStrength = 0;
@@ -240,7 +244,7 @@ struct RenderFog {
   std::uint32_t line = 0;
 };
 
-// irradiance_volume: constant indirect light `color` (x strength) inside
+// irradiance_volume: constant indirect light `color` (linear, x strength) inside
 // the box `world` maps the unit cube [-1, 1]^3 to, fading over edgeFade
 // (metres) at its faces.
 struct RenderIrradiance {

@@ -515,10 +515,13 @@ void GlRenderer::uploadPoints() {
 
 bool GlRenderer::buildPrograms() {
   std::string log;
-  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::surfaceFragment().c_str(), log);
+  std::string surface = shaders::surfaceFragment(), post = shaders::postFragment();
+  VolumeEffects::configure(scene_, surface);
+  VolumeEffects::configure(scene_, post);
+  surfaceProg_ = program(shaders::kSurfaceVertex, surface.c_str(), log);
   shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
   pointProg_ = program(shaders::kPointVertex, shaders::kPointFragment, log);
-  postProg_ = program(shaders::kPostVertex, shaders::postFragment().c_str(), log);
+  postProg_ = program(shaders::kPostVertex, post.c_str(), log);
   dataProg_ = program(shaders::kDataVertex, shaders::kDataFragment, log);
   pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
   prepassProg_ = program(shaders::kSurfaceVertex, kPrepassFragment, log);

@@ -63,7 +63,8 @@ uniform bool uHasAo;
 uniform sampler2D uAo;    // ambient occlusion at half size, 1 where open
 
 // Linear HDR background; plain_color is a display color, the others are
-// light (tone mapped with the surfaces).
+// light (tone mapped with the surfaces).  Height fog and fog spheres
+// (backgroundFog, shader_volumes.cpp) veil it.
 vec3 backgroundLinear(vec3 d) {
   vec3 c;
   if (uMode == 1) {
@@ -73,6 +74,7 @@ vec3 backgroundLinear(vec3 d) {
     c = sky(d);
   }
   if (uFogDensity > 0.0) c = mix(c, pow(uFogColor, vec3(2.2)), clamp(uFogDensity * 20.0, 0.0, 0.9));
+  c = backgroundFog(c, d);  // height fog and fog spheres (shader_volumes.cpp)
   return c;
 }
 
@@ -93,11 +95,15 @@ void compositeLinear(vec4 s) {
     fragColor = vec4(surface, s.a);
     return;
   }
-  vec3 bg = uMode == 0 ? uPlainLinear : backgroundLinear(viewDir());
+  vec3 d = viewDir();
+  vec3 bg = uMode == 0 ? backgroundFog(uPlainLinear, d) : backgroundLinear(d);
   fragColor = vec4(surface * s.a + bg * (1.0 - s.a), s.a);
 }
 
-vec3 background(vec3 d) { return uMode == 0 ? uBackground : toneMap(backgroundLinear(d)); }
+// plain_color is a display color: fogged in linear, back to display.
+vec3 background(vec3 d) {
+  return uMode == 0 ? pow(backgroundFog(pow(uBackground, vec3(2.2)), d), vec3(1.0 / 2.2)) : toneMap(backgroundLinear(d));
+}
 
 void main() {
   vec4 s = texelFetch(uScene, ivec2(gl_FragCoord.xy), 0);
@@ -116,6 +122,6 @@ void main() {
 }
 )";
 
-std::string postFragment() { return std::string(kPostPrelude) + kSkyGlsl + kPostMain; }
+std::string postFragment() { return std::string(kPostPrelude) + kSkyGlsl + kFogGlsl + kPostMain; }
 
 }  // namespace rscene::render::shaders

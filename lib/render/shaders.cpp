@@ -198,7 +198,7 @@ void main() {
 namespace rscene::render::shaders {
 
 std::string surfaceFragment() {
-  return std::string(kSurfacePrelude) + kLightsGlsl + kVolumesGlsl + kReflectionsGlsl + kSurfaceMain;
+  return std::string(kSurfacePrelude) + kLightsGlsl + kFogGlsl + kVolumesGlsl + kReflectionsGlsl + kSurfaceMain;
 }
 
 }  // namespace rscene::render::shaders

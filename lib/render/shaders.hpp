@@ -3,7 +3,7 @@
 // The surface (lit) fragment is assembled by surfaceFragment() from a
 // prelude (inputs, the `Surface` struct), the modules' GLSL and a main:
 //   shader_lights.cpp       directLight(Surface): lights and shadows
-//   shader_volumes.cpp      applyDecals, volumeIrradiance, applyFog
+//   shader_volumes.cpp      kFogGlsl (also the post pass's), then applyDecals, volumeIrradiance, applyFog
 //   shader_reflections.cpp  indirectLight(Surface, irradiance): ambient, sky, probes
 //   shader_sky.cpp          sky(dir): the procedural sky (also the post pass's)
 // Each module declares the uniforms it reads; the renderer sets them.
@@ -26,6 +26,7 @@ extern const char* const kSurfacePrelude;
 extern const char* const kSurfaceMain;
 extern const char* const kLightsGlsl;
 extern const char* const kVolumesGlsl;
+extern const char* const kFogGlsl;  // height fog and fog spheres: the surface's and the post pass's
 extern const char* const kReflectionsGlsl;
 extern const char* const kSkyGlsl;
 extern const char* const kPostPrelude;
