@@ -32,7 +32,7 @@ struct Options {
   std::uint64_t maxPixels = render::kDefaultMaxPixels;
   render::DrawLimits limits;
   std::uint64_t maxTexturePixels = render::RenderOptions{}.maxTexturePixels;
-  bool transparent = false, allowMissing = false, verbose = false;
+  bool transparent = false, allowMissing = false, verbose = false, noPost = false;
   render_cli::BaselineOptions baseline;
   render_cli::ViewsOptions views;
 };
@@ -79,6 +79,7 @@ int run(const Options& opt) {
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
+  ro.post = !opt.noPost;
   render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
   if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord))
     return render_cli::renderViews(opt.views, prepared);
@@ -191,6 +192,9 @@ int main(int argc, char** argv) {
                  "Largest texture or HDR background decoded; a larger one is not drawn (default 67108864)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 28));
   app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
+  app.add_flag("--no-post", opt.noPost,
+               "Skip the post-processing the scene asks for (bloom, SSAO, FXAA, auto exposure, depth of field); "
+               "exposure, tone mapping and gamma stay");
   app.add_option("--backend", opt.backend, "auto (GPU if one answers, else CPU), gpu (EGL device) or cpu (llvmpipe)")
       ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
   app.add_option("--camera", opt.camera,
