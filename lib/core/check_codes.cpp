@@ -170,6 +170,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS9046", E, Render, "render", "malformed --trajectory line (not what rscene-sim --trajectory writes)"},
     {"RS9047", E, Render, "render", "--trajectory names a body, robot or joint the scene does not have"},
     {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
+    // RS906x reflections: environment light and reflection probes
+    {"RS9060", W, Render, "render", "reflection probes not drawn: the OpenGL has no cube map arrays"},
+    {"RS9061", W, Render, "render", "more than 8 reflection probes; the rest are not drawn"},
 };
 
 }  // namespace

@@ -92,7 +92,6 @@ class Preparer {
     notDrawn("projected_decal", s_.decals.size());
     notDrawn("local_fog", s_.localFogs.size());
     notDrawn("irradiance_volume", s_.irradianceVolumes.size());
-    notDrawn("reflection_probe", s_.reflectionProbes.size());
     notDrawn("deformable", s_.deformables.size());
     notDrawn("granular", s_.granulars.size());
     for (const Terrain& t : s_.terrains) notDrawn("terrain_foliage_layer", t.foliageLayers.size());

@@ -80,6 +80,10 @@ void writeMatrix(float* data, const Eigen::Affine3d& world) {
 
 }  // namespace
 
+GLuint GlRenderer::linkProgram(const char* vertex, const char* fragment, std::string& log) {
+  return program(vertex, fragment, log);
+}
+
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
     : scene_(scene),
@@ -484,7 +488,7 @@ void GlRenderer::uploadPoints() {
 
 bool GlRenderer::buildPrograms() {
   std::string log;
-  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::surfaceFragment().c_str(), log);
+  surfaceProg_ = program(shaders::kSurfaceVertex, shaders::surfaceFragment(!scene_.probes.empty()).c_str(), log);
   shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
   pointProg_ = program(shaders::kPointVertex, shaders::kPointFragment, log);
   postProg_ = program(shaders::kPostVertex, shaders::postFragment().c_str(), log);

@@ -31,7 +31,9 @@ extern const char* const kSkyGlsl;
 extern const char* const kPostPrelude;
 extern const char* const kPostMain;
 
-std::string surfaceFragment();  // GGX PBR, lights, shadows, decals, indirect light, fog
+// GGX PBR, lights, shadows, decals, indirect light, fog; with the code of
+// reflection probes when the scene has some.
+std::string surfaceFragment(bool reflectionProbes = false);
 std::string postFragment();     // background, exposure, tone map, gamma
 
 }  // namespace rscene::render::shaders
