@@ -178,6 +178,25 @@ is_png() {
   is_png out.png
 }
 
+@test "reflection probes are drawn, not skipped; past 8 the rest warn RS9061" {
+  {
+    echo "raisim_engine_scene 1"
+    echo "camera /World/Cam 0 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=cam_main"
+    echo "material chrome 1 1 1 1 1 0.05 0 0 0 0 false - - - - - - id=chrome"
+    echo "object /World/Ball sphere 3 0 1 1 0 0 0 0.5 0.5 0.5 1 1 1 default chrome false true false - static true 1 18446744073709551615"
+    echo "reflection_probe /World/Probe 2 0 1 4 cubemapSize=16 prefilteredResolution=16"
+  } > probe.rscene
+  run "$RENDER" probe.rscene -o out.png
+  [ "$status" -eq 0 ]
+  [ "$output" = "" ]
+  is_png out.png
+  for i in 1 2 3 4 5 6 7 8; do echo "reflection_probe /World/P$i 2 0 1 4 cubemapSize=8 prefilteredResolution=8"; done >> probe.rscene
+  run "$RENDER" probe.rscene -o out.png
+  [ "$status" -eq 0 ]
+  [ "${lines[0]}" = "probe.rscene:13:1: warning: 9 reflection probes; only the first 8 are drawn [RS9061]" ]
+  [ "${lines[1]}" = "  reflection_probe /World/P8 2 0 1 4 cubemapSize=8 prefilteredResolution=8" ]
+}
+
 @test "a camera that sees nothing warns" {
   sed 's#^camera /World/Cam 0 0 0 1 0 0 0#camera /World/Cam 0 0 0 0 0 0 1#' "$DATA/render_skipped.rscene" |
     grep -v -e sensor -e local_fog > back.rscene

@@ -172,6 +172,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
     // RS9055 and on: projected decals, fog, irradiance volumes
     {"RS9055", W, Render, "render", "decal textures or volume records past what this OpenGL holds: those are not drawn"},
+    // RS906x reflections: environment light and reflection probes
+    {"RS9060", W, Render, "render", "reflection probes not drawn: the OpenGL has no cube map arrays"},
+    {"RS9061", W, Render, "render", "more than 8 reflection probes; the rest are not drawn"},
     // RS907x geometry records drawn: foliage, wires, deformables, granular media
     {"RS9070", E, Render, "render", "granular record with more particles than its maxParticles or the --max-instances left"},
     {"RS9071", E, Render, "render", "granular record whose particles cannot be made (radius or spacing not positive, radii not matching positions)"},

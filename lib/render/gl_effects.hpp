@@ -59,7 +59,14 @@ class VolumeEffects {
   bool warnedOverflow_ = false;
 };
 
-// Ambient and sky light, environment reflections, reflection probes.
+// Ambient light, the environment's image-based light and reflection
+// probes (GLSL: shader_reflections.cpp; the CPU half: environment_light.hpp).
+// upload() builds, once per renderer, the environment's prefiltered
+// radiance cube, its irradiance (spherical harmonics) and binds the BRDF
+// table; prepare() captures the reflection probes on the first colour
+// pass (static captures, as rayrai's: poses that change later do not
+// recapture them).  Units: units::kReflections + 0 the environment, + 1
+// the BRDF table, + 2 the probes' cube map array.
 class ReflectionEffects {
  public:
   explicit ReflectionEffects(GlRenderer& r) : r_(r) {}
@@ -72,8 +79,35 @@ class ReflectionEffects {
   bool prepare(const View& view);
   void bind(GLuint program, const View& view);
 
+  static constexpr int kMaxProbes = 8;  // the surface program's uniform arrays
+
  private:
+  bool buildPrograms();
+  void uploadHdr();
+  // Draws the background (plain colour, HDR, sky) x scale into face
+  // `face` of `cube` (level 0, `size` texels); with `scene`, the probe
+  // camera's resolved image whose clip matrix is faceViewProj over it.
+  void drawBackgroundFace(GLuint cube, int face, int size, float scale, GLuint scene = 0,
+                          const Eigen::Matrix4d& faceViewProj = Eigen::Matrix4d::Identity(),
+                          const Eigen::Vector3d& probe = Eigen::Vector3d::Zero());
+  void downsample(GLuint cube, int size);  // fills levels 1.. of a cube from level 0
+  // GGX-prefilters the mipmapped cube `source` into `levels` levels of
+  // `target`: a cube map, or layers 6 x layer .. of a cube map array.
+  void prefilter(GLuint source, int sourceSize, GLuint target, bool array, int layer, int size, int levels,
+                 int samples);
+  bool captureProbes();
+  bool captureProbe(std::size_t index, int size);
+
   GlRenderer& r_;
+  GLuint backgroundProg_ = 0, prefilterProg_ = 0, fbo_ = 0;
+  GLuint hdr_ = 0;          // the HDR background, box-filtered to about a cube texel
+  GLuint envSpecular_ = 0;  // prefiltered radiance of the background
+  GLuint brdfLut_ = 0;
+  GLuint probeCubes_ = 0;   // cube map array: one cube per probe, prefiltered
+  int probeLevels_ = 1, probeSize_ = 0, probeSamples_ = 0;
+  std::vector<float> sh_;   // 9 x 3 floats of the environment, then 27 per probe
+  std::size_t probeCount_ = 0;  // captured (at most kMaxProbes)
+  bool probeArrays_ = false, captured_ = false, capturing_ = false;
 };
 
 }  // namespace rscene::render::detail

@@ -91,11 +91,6 @@ class Preparer {
     for (const Granular& g : s_.granulars) granular(g);
     for (const Wire& w : s_.wires) wire(w);  // after robots(): an end may be a robot's link
     for (const SkippedRecord& r : s_.skipped) ++out_.skipped[r.tag];
-    // Modelled but not drawn yet (each line goes when its record is drawn).
-    auto notDrawn = [&](const char* tag, std::size_t n) {
-      if (n) out_.skipped[tag] += static_cast<int>(n);
-    };
-    notDrawn("reflection_probe", s_.reflectionProbes.size());
   }
 
  private:

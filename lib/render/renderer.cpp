@@ -85,6 +85,10 @@ GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
   return program(vertex, fragment, log);
 }
 
+GLuint GlRenderer::linkProgram(const char* vertex, const char* fragment, std::string& log) {
+  return program(vertex, fragment, log);
+}
+
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
     : scene_(scene),
@@ -515,7 +519,7 @@ void GlRenderer::uploadPoints() {
 
 bool GlRenderer::buildPrograms() {
   std::string log;
-  std::string surface = shaders::surfaceFragment(), post = shaders::postFragment();
+  std::string surface = shaders::surfaceFragment(!scene_.probes.empty()), post = shaders::postFragment();
   VolumeEffects::configure(scene_, surface);
   VolumeEffects::configure(scene_, post);
   surfaceProg_ = program(shaders::kSurfaceVertex, surface.c_str(), log);

@@ -197,8 +197,18 @@ void main() {
 
 namespace rscene::render::shaders {
 
-std::string surfaceFragment() {
-  return std::string(kSurfacePrelude) + kLightsGlsl + kFogGlsl + kVolumesGlsl + kReflectionsGlsl + kSurfaceMain;
+std::string surfaceFragment(bool reflectionProbes) {
+  std::string prelude = kSurfacePrelude;
+  if (reflectionProbes) {
+    // Probes sample a cube map array (GL 4.0, or this extension of 3.3):
+    // enabled right after the #version line (no other token may come
+    // first); shader_reflections.cpp compiles them out where it is
+    // missing.  Only a scene with probes gets this code: llvmpipe pays for
+    // the loop even when it runs no iteration.
+    prelude.insert(prelude.find('\n') + 1,
+                   "#extension GL_ARB_texture_cube_map_array : enable\n#define RSCENE_REFLECTION_PROBES 1\n");
+  }
+  return prelude + kLightsGlsl + kFogGlsl + kVolumesGlsl + kReflectionsGlsl + kSurfaceMain;
 }
 
 }  // namespace rscene::render::shaders

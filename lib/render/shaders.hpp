@@ -32,7 +32,9 @@ extern const char* const kSkyGlsl;
 extern const char* const kPostPrelude;
 extern const char* const kPostMain;
 
-std::string surfaceFragment();  // GGX PBR, lights, shadows, decals, indirect light, fog
+// GGX PBR, lights, shadows, decals, indirect light, fog; with the code of
+// reflection probes when the scene has some.
+std::string surfaceFragment(bool reflectionProbes = false);
 std::string postFragment();     // background, exposure, tone map, gamma
 
 // Post-processing passes (shader_post_effects.cpp, run by gl_post.cpp).
