@@ -126,10 +126,10 @@ int run(const Options& opt) {
     char line[240];
     std::snprintf(line, sizeof line,
                   "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "drawing %.3f s, png encoding %.3f s\n",
+                  "drawing %.3f s (shadows %.3f s), png encoding %.3f s\n",
                   cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), scene.robots, startSeconds,
                   buildSeconds,
-                  timings.uploadSeconds, timings.drawSeconds, encodeSeconds);
+                  timings.uploadSeconds, timings.drawSeconds, timings.shadowSeconds, encodeSeconds);
     std::cerr << line;
   }
   if (!opt.output.empty() && !cli::writeOutput(opt.output, [&](Sink& s) {

@@ -457,9 +457,9 @@ class ViewsRun {
     char line[400];
     std::snprintf(line, sizeof line,
                   "%s: %zu view(s) x %llu frame(s), %zu files in %.3f s; upload %.3f s, drawing %.3f s (%.4f s "
-                  "per view per frame); on %u thread(s) beside it: encoding %.3f s, writing %.3f s\n",
+                  "per view per frame; shadows %.3f s); on %u thread(s) beside it: encoding %.3f s, writing %.3f s\n",
                   cli::toolName().c_str(), views_.size(), (unsigned long long)frames, writer.filesWritten(), seconds,
-                  t.uploadSeconds, drawSeconds_, perView, writer.threads(), writer.encodeSeconds(),
+                  t.uploadSeconds, drawSeconds_, perView, t.shadowSeconds, writer.threads(), writer.encodeSeconds(),
                   writer.writeSeconds());
     std::cerr << line;
   }

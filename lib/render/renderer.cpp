@@ -21,7 +21,6 @@ namespace detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kMaxLights = 8;
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -105,7 +104,6 @@ GlRenderer::~GlRenderer() {
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
   for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_})
     if (p) glDeleteProgram(p);
-  if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
   GLuint colorRbs[2] = {color_.msaaColor, color_.msaaDepth};
   glDeleteRenderbuffers(2, colorRbs);
@@ -528,29 +526,6 @@ void GlRenderer::makeVertexArrays() {
   }
 }
 
-void GlRenderer::buildLights() {
-  lights_ = scene_.lights;
-  if (lights_.empty()) {  // a scene without lights is lit by the sun of its sky
-    RenderLight sun;
-    sun.direction = -scene_.environment.sunDirection;
-    sun.color = Eigen::Vector3f(1.0f, 0.96f, 0.9f) * 3.0f;
-    sun.shadows = true;
-    lights_.push_back(sun);
-  }
-  if (lights_.size() > std::size_t(kMaxLights)) {
-    diag(Severity::Warning, "RS9004", 0,
-         std::to_string(lights_.size()) + " lights; only the first " + std::to_string(kMaxLights) + " are drawn");
-    lights_.resize(kMaxLights);
-  }
-  if (!scene_.environment.shadows) return;
-  for (int pass = 0; pass < 2 && shadowLight_ < 0; ++pass)
-    for (std::size_t i = 0; i < lights_.size(); ++i)
-      if (lights_[i].type == LightType::Directional && (pass == 1 || lights_[i].shadows)) {
-        shadowLight_ = int(i);
-        break;
-      }
-}
-
 bool GlRenderer::upload() {
   software_ = softwareGl();
   if (!buildPrograms()) return false;
@@ -563,7 +538,8 @@ bool GlRenderer::upload() {
   for (int background = 0; background < 2; ++background)
     for (std::size_t i = 0; i < batches_.size(); ++i)
       if (batches_[i].background == bool(background)) drawOrder_.push_back(i);
-  buildLights();
+  lights_ = std::make_unique<LightEffects>(*this);
+  if (!lights_->upload()) return false;
   glGenVertexArrays(1, &emptyVao_);
   volumes_ = std::make_unique<VolumeEffects>(*this);
   reflections_ = std::make_unique<ReflectionEffects>(*this);

@@ -41,6 +41,7 @@ inline constexpr int kMaxImageSide = 16384;
 struct RenderTimings {
   double uploadSeconds = 0;  // meshes, textures, instance buffers
   double drawSeconds = 0;    // passes and read-back
+  double shadowSeconds = 0;  // shadow maps (part of drawSeconds)
 };
 
 // Renders; false (with an error diagnostic naming the record's line) when

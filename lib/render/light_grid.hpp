@@ -1,0 +1,47 @@
+// Which lights reach which part of an image (CPU, no GL): a light's reach
+// (where its attenuated intensity falls below 1/256, or its range), the
+// world box it can light, and the per-view grid of 16x16-pixel tiles that
+// lists the local lights whose box covers each tile.  The surface shader
+// loops over its tile's list (shader_lights.cpp), so the cost of a pixel
+// grows with the lights that reach it, not with the scene's light count.
+#pragma once
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "render/render_scene.hpp"
+
+namespace rscene::render {
+
+// Linear light below which a light is not drawn: one step of an 8-bit
+// channel at exposure 1.
+inline constexpr float kLightCutoff = 1.0f / 256;
+// Reach of any light, metres: a light without attenuation reaches this far.
+inline constexpr float kMaxLightReach = 1e5f;
+
+// The distance beyond which `l` adds less than kLightCutoff (its range
+// when that is shorter); kMaxLightReach for directional lights.
+float lightReach(const RenderLight& l);
+
+// The world box `l` can light within `reach`: a sphere's box for point
+// lights, the cone's for spot lights, the front half-sphere's for area
+// lights (one-sided emitters); infinite for directional lights.
+Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach);
+
+// Tiles of tileSize x tileSize pixels, row 0 at the bottom (GL window
+// coordinates, as gl_FragCoord).  `data` is what the shader reads: for
+// each tile (row-major) its offset into `data` and its count, then the
+// light indices of all tiles.
+struct LightGrid {
+  int tileSize = 16, tilesX = 0, tilesY = 0;
+  std::vector<std::int32_t> data;
+  std::int32_t count(int tx, int ty) const { return data[std::size_t(2 * (ty * tilesX + tx) + 1)]; }
+};
+
+// Lists light `indices[i]` (whose world box is `bounds[i]`) in every tile
+// its box covers on screen under clip-space matrix `viewProj`; a box that
+// reaches behind the eye covers every tile.
+void buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
+                    const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out);
+
+}  // namespace rscene::render
