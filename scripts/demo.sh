@@ -13,6 +13,7 @@ rm -rf "$OUT"
 mkdir -p "$OUT"
 cp "$ROOT"/examples/*.rscene "$OUT"/
 cp -R "$ROOT"/examples/robots "$OUT"/  # robot files the scenes name
+cp -R "$ROOT"/examples/gallery "$OUT"/  # the gallery's mesh and texture
 cd "$OUT"
 
 # step TOOL TITLE 'COMMAND' : runs the shell COMMAND (with $BIN first on
@@ -52,6 +53,8 @@ step rscene-render "every camera of robot_cell: the overview, the head camera's 
   'rscene-render --all-cameras -o "views/{name}.{kind}.png" robot_cell.rscene && ls views'
 step rscene-render "the head camera along the simulated trajectory (one image per saved frame)" \
   'rscene-render --camera /World/Robot/HeadCam --trajectory robot_cell.csv -o "frames/head.{kind}.{frame}.png" robot_cell.rscene && ls frames | wc -l'
+step rscene-render "the gallery: every visual record kind, lights of every type with shadows, reflections, decal, fog, foliage, post-processing (1280x720, CPU)" \
+  'rscene-render -v -o gallery.png gallery.rscene'
 step rscene-render "thumbnails (CPU, headless EGL)" \
   'for f in *.rscene; do rscene-render --width 480 --height 300 --allow-missing-assets -o "${f%.rscene}.png" "$f" || exit $?; done; ls *.png'
 

@@ -37,3 +37,12 @@ robot_files() {
   done <<<"$output"
   [ -f out/robots/quadruped/quadruped.urdf ]
 }
+
+@test "the gallery's mesh and texture are in examples/gallery and the demo copies them" {
+  run -0 "${RSCENE_BIN:-$ROOT/build/bin}/rscene-validate" --check-files "$ROOT/examples/gallery.rscene"
+  mkdir nobin
+  run -0 env RSCENE_BIN="$PWD/nobin" RSCENE_DEMO_OUT="$PWD/out" sh "$ROOT/scripts/demo.sh"
+  [ -f out/gallery/meshes/flag.obj ]
+  [ -f out/gallery/textures/warning.png ]
+  run -0 "${RSCENE_BIN:-$ROOT/build/bin}/rscene-validate" --check-files out/gallery.rscene
+}
