@@ -130,7 +130,9 @@ vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, f
   float D = a2 / (PI * dn * dn);
   float k = (rough + 1.0) * (rough + 1.0) / 8.0;
   float G = nv / (nv * (1.0 - k) + k) * nl / (nl * (1.0 - k) + k);
-  vec3 F = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, s.V), 0.0), 5.0);
+  // Clamped: pow() of a negative base is undefined (NaN, a black pixel
+  // where a light lies exactly between the eye and the surface).
+  vec3 F = f0 + (1.0 - f0) * pow(clamp(1.0 - dot(h, s.V), 0.0, 1.0), 5.0);
   vec3 spec = D * G * F / max(4.0 * nv * nl, 1e-4);
   return ((1.0 - F) * diffuse / PI + spec) * t2.rgb * att * nl;
 }
