@@ -64,12 +64,8 @@ GLuint depthProgram(std::string& log) {
   return 0;
 }
 
-float areaGain(const RenderLight& l) {
-  return l.type == LightType::Area ? std::max(l.areaSize.x() * l.areaSize.y(), 1e-3f) : 1.f;
-}
-
 // What "strongest" means for environment shadowedLightBudget.
-float strengthOf(const RenderLight& l) { return l.color.cwiseAbs().maxCoeff() * areaGain(l); }
+float strengthOf(const RenderLight& l) { return l.color.cwiseAbs().maxCoeff(); }
 
 void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
   Eigen::Matrix4f f = m.cast<float>();
@@ -416,11 +412,12 @@ bool LightEffects::prepare(const View& view, const Eigen::Matrix4d& viewProj) {
 //   0  position, type + 4 when it has a shadow map
 //   1  unit direction of travel, cos(outer cone)
 //   2  color x intensity, cos(inner cone)
-//   3  attenuation constant, linear, quadratic (over an area light's area), reach
+//   3  attenuation constant, linear, quadratic, reach
 //   4  shadow strength, bias (m), filter radius (texels), texel size (m; perspective: per m)
 //   5  map origin in the atlas (uv), map side (uv; a cube: one face's), kind (1 ortho, 2 perspective, 3 cube)
 //   6  near, far (m along the light), cube face scale
 //   7..10  rows of the map's clip matrix
+//   11, 12  an area light's half width and half height vectors
 void LightEffects::writeLightBuffer() {
   texels_.assign(lights_.size() * kLightTexels * 4, 0.f);
   constexpr float kDeg = float(kPi / 180);
@@ -428,7 +425,6 @@ void LightEffects::writeLightBuffer() {
     const RenderLight& l = lights_[i];
     float* t = texels_.data() + i * kLightTexels * 4;
     Eigen::Vector3f d = l.direction.norm() > 1e-12 ? l.direction.normalized().cast<float>() : Eigen::Vector3f(0, 0, -1);
-    float g = areaGain(l);
     const Caster* c = casterOf_[i] >= 0 ? &casters_[std::size_t(casterOf_[i])] : nullptr;
     if (c && (c->views.empty() || std::all_of(c->views.begin(), c->views.end(), [](const ShadowView& v) { return v.empty; })))
       c = nullptr;
@@ -436,12 +432,20 @@ void LightEffects::writeLightBuffer() {
     float v1[4] = {d.x(), d.y(), d.z(), std::cos(l.coneDegrees * kDeg)};
     float v2[4] = {l.color.x(), l.color.y(), l.color.z(),
                    std::cos(std::min(l.innerConeDegrees, l.coneDegrees - 0.01f) * kDeg)};
-    float v3[4] = {l.attenuation.x() / g, l.attenuation.y() / g, l.attenuation.z() / g,
+    float v3[4] = {l.attenuation.x(), l.attenuation.y(), l.attenuation.z(),
                    l.type == LightType::Directional ? 0.f : reach_[i]};
     std::copy_n(v0, 4, t);
     std::copy_n(v1, 4, t + 4);
     std::copy_n(v2, 4, t + 8);
     std::copy_n(v3, 4, t + 12);
+    if (l.type == LightType::Area) {
+      Eigen::Vector3d halfRight, halfUp;
+      areaAxes(l, halfRight, halfUp);
+      for (int k = 0; k < 3; ++k) {
+        t[44 + k] = float(halfRight[k]);
+        t[48 + k] = float(halfUp[k]);
+      }
+    }
     if (!c) continue;
     const ShadowView& v = c->views[0];
     const float side = float(atlasSide_);

@@ -22,7 +22,7 @@ class GlRenderer;
 
 // Texels (RGBA32F) per light in the light buffer; shader_lights.cpp reads
 // the same layout.
-inline constexpr int kLightTexels = 11;
+inline constexpr int kLightTexels = 13;
 inline constexpr int kLightTileSize = 16;
 
 class LightEffects {

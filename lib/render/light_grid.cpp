@@ -11,13 +11,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// An area light's attenuation is divided by its area in the shader
-// (shader_lights.cpp): it is as bright as that many square metres of a
-// point light.
-float areaGain(const RenderLight& l) {
-  return l.type == LightType::Area ? std::max(l.areaSize.x() * l.areaSize.y(), 1e-3f) : 1.f;
-}
-
 // Box of the points within `reach` of `apex` inside the cone of half angle
 // `halfAngle` (<= 90 degrees) around unit `axis`.  A linear function is
 // largest over that solid at the apex, on the rim circle, or at the
@@ -43,9 +36,18 @@ Eigen::AlignedBox3d coneBox(const Eigen::Vector3d& apex, const Eigen::Vector3d& 
 
 }  // namespace
 
+void areaAxes(const RenderLight& l, Eigen::Vector3d& halfRight, Eigen::Vector3d& halfUp) {
+  Eigen::Vector3d d = l.direction.norm() > 1e-12 ? l.direction.normalized() : Eigen::Vector3d(0, 0, -1);
+  Eigen::Vector3d right = Eigen::Vector3d::UnitX() - d * d.x();
+  if (right.norm() < 1e-6) right = Eigen::Vector3d::UnitY() - d * d.y();
+  right.normalize();
+  halfRight = right * (0.5 * std::max(double(l.areaSize.x()), 0.0));
+  halfUp = right.cross(d) * (0.5 * std::max(double(l.areaSize.y()), 0.0));
+}
+
 float lightReach(const RenderLight& l) {
   if (l.type == LightType::Directional) return kMaxLightReach;
-  double intensity = l.color.cwiseAbs().maxCoeff() * areaGain(l);
+  double intensity = l.color.cwiseAbs().maxCoeff();
   double c = l.attenuation.x(), lin = l.attenuation.y(), q = l.attenuation.z();
   // intensity / (c + lin d + q d^2) < cutoff  <=>  c + lin d + q d^2 > intensity / cutoff
   double need = intensity / kLightCutoff;
@@ -76,7 +78,14 @@ Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach) {
     double half = std::clamp(double(l.coneDegrees), 0.0, 90.0) * kPi / 180;
     return coneBox(p, axis, half, reach);
   }
-  if (l.type == LightType::Area) return coneBox(p, axis, kPi / 2, reach);
+  if (l.type == LightType::Area) {
+    // The front half-sphere around every point of the rectangle.
+    Eigen::AlignedBox3d b = coneBox(p, axis, kPi / 2, reach);
+    Eigen::Vector3d halfRight, halfUp;
+    areaAxes(l, halfRight, halfUp);
+    Eigen::Vector3d grow = halfRight.cwiseAbs() + halfUp.cwiseAbs();
+    return Eigen::AlignedBox3d(b.min() - grow, b.max() + grow);
+  }
   return Eigen::AlignedBox3d(p - Eigen::Vector3d::Constant(reach), p + Eigen::Vector3d::Constant(reach));
 }
 

@@ -23,9 +23,16 @@ inline constexpr float kMaxLightReach = 1e5f;
 // when that is shorter); kMaxLightReach for directional lights.
 float lightReach(const RenderLight& l);
 
+// An area light's rectangle: half its width along `halfRight`, half its
+// height along `halfUp`, across its direction (areaRight / areaUp are not
+// in the scene model: width runs along world x made perpendicular to the
+// direction, so a light facing down lies along x and y as the defaults).
+void areaAxes(const RenderLight& l, Eigen::Vector3d& halfRight, Eigen::Vector3d& halfUp);
+
 // The world box `l` can light within `reach`: a sphere's box for point
 // lights, the cone's for spot lights, the front half-sphere's for area
-// lights (one-sided emitters); infinite for directional lights.
+// lights (one-sided emitters) grown by their rectangle; infinite for
+// directional lights.
 Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach);
 
 // Tiles of tileSize x tileSize pixels, row 0 at the bottom (GL window

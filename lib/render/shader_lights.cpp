@@ -19,7 +19,7 @@ void main() { gl_Position = uViewProj * (mat4(iM0, iM1, iM2, iM3) * vec4(aPos, 1
 )";
 
 const char* const kLightsGlsl = R"(
-uniform samplerBuffer uLights;       // 11 texels per light, directional ones first
+uniform samplerBuffer uLights;       // 13 texels per light, directional ones first
 uniform isamplerBuffer uLightGrid;   // per tile: offset, count; then light indices
 uniform int uDirectionalCount;       // lights [0, n): directional, they reach every pixel
 uniform int uTileSize;
@@ -28,7 +28,7 @@ uniform int uTilesY;
 uniform sampler2DShadow uShadowAtlas;
 uniform float uAtlasTexel;           // 1 / atlas side
 
-const int kLightTexels = 11;
+const int kLightTexels = 13;
 // Cube faces: as shadow_fit.hpp's kCubeForward / kCubeRight.
 const vec3 kCubeForward[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1),
                                      vec3(0, 0, -1));
@@ -109,7 +109,15 @@ vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, f
     l = -t1.xyz;
   } else {
     vec4 t3 = texelFetch(uLights, base + 3);  // attenuation, reach
-    vec3 d = t0.xyz - s.P;
+    vec3 from = t0.xyz;
+    if (type == 3) {
+      // A rectangle: light comes from its point nearest the surface (a
+      // representative point), so a long strip lights its whole length.
+      vec3 r = texelFetch(uLights, base + 11).xyz, u = texelFetch(uLights, base + 12).xyz;
+      vec3 o = s.P - from;
+      from += r * clamp(dot(o, r) / max(dot(r, r), 1e-8), -1.0, 1.0) + u * clamp(dot(o, u) / max(dot(u, u), 1e-8), -1.0, 1.0);
+    }
+    vec3 d = from - s.P;
     float dist = length(d);
     l = d / max(dist, 1e-4);
     att = 1.0 / max(t3.x + t3.y * dist + t3.z * dist * dist, 1e-4);
