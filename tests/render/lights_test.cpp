@@ -355,6 +355,18 @@ TEST(LightPixels, ObjectThatCastsNoShadowLeavesTheFloorLit) {
   EXPECT_NEAR(s.luminance({1.9, 0, 0}), s.luminance({-1.9, 0, 0}), 10);
 }
 
+TEST(LightPixels, AreaStripLightsItsWholeLength) {
+  // A 10 m x 0.2 m strip 2 m above the floor along x: the floor under its
+  // end (x = 4.5) is lit as under its middle; 2.5 m to the side it is darker.
+  Shot s = shoot("light /World/Strip 0 0 -1 3 type=area position=0,0,2 areaSize=10,0.2,0 shadows=false "
+                 "attenuationConstant=1 attenuationLinear=0 attenuationQuadratic=0.5\n");
+  ASSERT_TRUE(s.ok);
+  int middle = s.luminance({0, 0, 0}), end = s.luminance({4.5, 0, 0}), side = s.luminance({0, 2.5, 0});
+  EXPECT_GT(middle, 100);
+  EXPECT_NEAR(end, middle, middle / 10);
+  EXPECT_LT(side, middle * 3 / 4);
+}
+
 TEST(LightPixels, LightsBetweenTheEyeAndTheFloorLeaveNoBlackPixel) {
   // Where a light lies on the ray from the eye to the floor the half
   // vector equals the view vector; pow() of the rounding-negative
