@@ -355,6 +355,24 @@ TEST(LightPixels, ObjectThatCastsNoShadowLeavesTheFloorLit) {
   EXPECT_NEAR(s.luminance({1.9, 0, 0}), s.luminance({-1.9, 0, 0}), 10);
 }
 
+TEST(LightPixels, TerrainThatReceivesNoShadowStaysLit) {
+  std::string heights;
+  for (int i = 0; i < 81; ++i) heights += i ? ",0" : "0";
+  for (bool receive : {true, false}) {
+    Shot s = shoot("light /World/Spot 0 0 -1 8 type=spot position=0,0,3 coneAngle=55 innerConeAngle=50 "
+                   "attenuationConstant=1 attenuationLinear=0 attenuationQuadratic=0.3\n"
+                   "terrain_region /World/T 9 9 16 16 0 0 0.01 heights=" + heights +
+                   " receiveShadow=" + (receive ? "true" : "false") + "\n" + cube("/World/Cube", 1, 0, 0.5, 1));
+    ASSERT_TRUE(s.ok);
+    int shadow = s.luminance({1.9, 0, 0}), lit = s.luminance({-1.9, 0, 0});
+    EXPECT_GT(lit, 40);
+    if (receive)
+      EXPECT_LT(shadow, lit / 3);
+    else
+      EXPECT_NEAR(shadow, lit, lit / 10 + 3);
+  }
+}
+
 TEST(LightPixels, AreaStripLightsItsWholeLength) {
   // A 10 m x 0.2 m strip 2 m above the floor along x: the floor under its
   // end (x = 4.5) is lit as under its middle; 2.5 m to the side it is darker.
