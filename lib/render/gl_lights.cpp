@@ -468,7 +468,12 @@ void LightEffects::bind(GLuint program, const View& view, const Eigen::Matrix4d&
   glBindBuffer(GL_TEXTURE_BUFFER, lightBuffer_);
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(texels_.size(), 4) * sizeof(float)),
                texels_.empty() ? nullptr : texels_.data(), GL_DYNAMIC_DRAW);
-  buildLightGrid(localBounds_, localIndices_, viewProj, view.camera.width, view.camera.height, kLightTileSize, grid_);
+  // Larger tiles when the lists would pass 16 Mi entries (64 MiB): thousands
+  // of lights over a large image stay bounded; one tile at the last.
+  int tile = kLightTileSize;
+  while (!buildLightGrid(localBounds_, localIndices_, viewProj, view.camera.width, view.camera.height, tile, grid_,
+                         tile >= 16384 ? std::size_t(-1) : std::size_t{1} << 24))
+    tile *= 2;
   glBindBuffer(GL_TEXTURE_BUFFER, gridBuffer_);
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(grid_.data.size() * sizeof(std::int32_t)), grid_.data.data(),
                GL_DYNAMIC_DRAW);

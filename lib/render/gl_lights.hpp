@@ -39,7 +39,8 @@ class LightEffects {
   // draws world objects only), or, for a fitted directional light, whose
   // box changed with the view.  Adds its time to RenderTimings::shadowSeconds.
   bool prepare(const View& view, const Eigen::Matrix4d& viewProj);
-  // The lights, the view's tile lists and the shadow atlas on `program`.
+  // The lights, the view's tile lists and the shadow atlas on `program`,
+  // with the maps the last prepare() drew (call it for the same view first).
   void bind(GLuint program, const View& view, const Eigen::Matrix4d& viewProj);
 
  private:

@@ -89,12 +89,14 @@ Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach) {
   return Eigen::AlignedBox3d(p - Eigen::Vector3d::Constant(reach), p + Eigen::Vector3d::Constant(reach));
 }
 
-void buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
-                    const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out) {
-  out.tileSize = std::max(tileSize, 1);
-  out.tilesX = std::max(1, (width + out.tileSize - 1) / out.tileSize);
-  out.tilesY = std::max(1, (height + out.tileSize - 1) / out.tileSize);
-  const int tiles = out.tilesX * out.tilesY;
+bool buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
+                    const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out,
+                    std::size_t maxEntries) {
+  LightGrid g;
+  g.tileSize = std::max(tileSize, 1);
+  g.tilesX = std::max(1, (width + g.tileSize - 1) / g.tileSize);
+  g.tilesY = std::max(1, (height + g.tileSize - 1) / g.tileSize);
+  const int tiles = g.tilesX * g.tilesY;
   // Each light's tile rectangle [x0, x1) x [y0, y1), then counts, offsets, fill.
   struct Rect {
     int x0, y0, x1, y1;
@@ -118,31 +120,36 @@ void buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::v
     if (behind) x0 = y0 = -1, x1 = y1 = 1;
     auto tileOf = [&](double ndc, int pixels, int count) {
       double px = (std::clamp(ndc, -1.0, 1.0) * 0.5 + 0.5) * pixels;
-      return std::clamp(int(std::floor(px / out.tileSize)), 0, count - 1);
+      return std::clamp(int(std::floor(px / g.tileSize)), 0, count - 1);
     };
     if (x1 < -1 || y1 < -1 || x0 > 1 || y0 > 1) continue;
-    rects[i] = {tileOf(x0, width, out.tilesX), tileOf(y0, height, out.tilesY), tileOf(x1, width, out.tilesX) + 1,
-                tileOf(y1, height, out.tilesY) + 1};
+    rects[i] = {tileOf(x0, width, g.tilesX), tileOf(y0, height, g.tilesY), tileOf(x1, width, g.tilesX) + 1,
+                tileOf(y1, height, g.tilesY) + 1};
   }
+  std::size_t entries = 0;
+  for (const Rect& r : rects) entries += std::size_t(r.x1 - r.x0) * std::size_t(r.y1 - r.y0);
+  if (entries > maxEntries) return false;
   std::vector<std::int32_t> counts(std::size_t(tiles), 0);
   for (const Rect& r : rects)
     for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x) ++counts[std::size_t(y * out.tilesX + x)];
-  out.data.assign(std::size_t(2 * tiles), 0);
+      for (int x = r.x0; x < r.x1; ++x) ++counts[std::size_t(y * g.tilesX + x)];
+  g.data.assign(std::size_t(2 * tiles), 0);
   std::int32_t offset = 2 * tiles;
   for (int t = 0; t < tiles; ++t) {
-    out.data[std::size_t(2 * t)] = offset;
+    g.data[std::size_t(2 * t)] = offset;
     offset += counts[std::size_t(t)];
   }
-  out.data.resize(std::size_t(offset), 0);
+  g.data.resize(std::size_t(offset), 0);
   for (std::size_t i = 0; i < rects.size(); ++i) {
     const Rect& r = rects[i];
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
-        auto t = std::size_t(y * out.tilesX + x);
-        out.data[std::size_t(out.data[2 * t] + out.data[2 * t + 1]++)] = indices[i];
+        auto t = std::size_t(y * g.tilesX + x);
+        g.data[std::size_t(g.data[2 * t] + g.data[2 * t + 1]++)] = indices[i];
       }
   }
+  out = std::move(g);
+  return true;
 }
 
 }  // namespace rscene::render

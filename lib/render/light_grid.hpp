@@ -47,8 +47,11 @@ struct LightGrid {
 
 // Lists light `indices[i]` (whose world box is `bounds[i]`) in every tile
 // its box covers on screen under clip-space matrix `viewProj`; a box that
-// reaches behind the eye covers every tile.
-void buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
-                    const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out);
+// reaches behind the eye covers every tile.  False, with `out` untouched,
+// when the lists would hold more than `maxEntries` indices (thousands of
+// lights over a large image: the caller takes larger tiles).
+bool buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
+                    const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out,
+                    std::size_t maxEntries = std::size_t(-1));
 
 }  // namespace rscene::render

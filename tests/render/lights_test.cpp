@@ -106,6 +106,13 @@ TEST(LightGrid, ListsALightOnlyInTheTilesItsBoxCovers) {
   // The 1 m box at 10 m spans about 0.1 / tan(30 deg) of the half image: 2 to 4 tiles a side.
   EXPECT_GE(withSmall, 4);
   EXPECT_LE(withSmall, 16);
+  // A cap on the lists: refused at 16-pixel tiles (the eye's light alone
+  // covers 256 tiles), taken at 64-pixel ones, `g` untouched in between.
+  EXPECT_FALSE(buildLightGrid(boxes, {7, 8, 9}, vp, 256, 256, 16, g, 100));
+  EXPECT_EQ(g.tilesX, 16);
+  EXPECT_TRUE(buildLightGrid(boxes, {7, 8, 9}, vp, 256, 256, 64, g, 100));
+  EXPECT_EQ(g.tilesX, 4);
+  EXPECT_EQ(g.count(0, 0), 1);
 }
 
 TEST(ShadowFit, DirectionalBoxCoversWhatTheViewSeesNotTheWholeScene) {
