@@ -479,7 +479,11 @@ void LightEffects::bind(GLuint program, const View& view, const Eigen::Matrix4d&
                GL_DYNAMIC_DRAW);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
+  int head = std::min(directionalCount_, kHeadLights);
+  glUniform1i(loc("uHeadCount"), head);
+  if (head > 0) glUniform4fv(loc("uLightHead"), head * kLightTexels, texels_.data());
   glUniform1i(loc("uDirectionalCount"), directionalCount_);
+  glUniform1i(loc("uHasLocalLights"), !localIndices_.empty());
   glUniform1i(loc("uTileSize"), grid_.tileSize);
   glUniform1i(loc("uTilesX"), grid_.tilesX);
   glUniform1i(loc("uTilesY"), grid_.tilesY);

@@ -24,6 +24,8 @@ class GlRenderer;
 // the same layout.
 inline constexpr int kLightTexels = 13;
 inline constexpr int kLightTileSize = 16;
+// Directional lights also given as uniforms (shader_lights.cpp: kHeadLights).
+inline constexpr int kHeadLights = 8;
 
 class LightEffects {
  public:

@@ -25,15 +25,21 @@ uniform int uDirectionalCount;       // lights [0, n): directional, they reach e
 uniform int uTileSize;
 uniform int uTilesX;
 uniform int uTilesY;
+uniform bool uHasLocalLights;        // false: no tile lists to read (a sun alone costs nothing more)
 uniform sampler2DShadow uShadowAtlas;
 uniform float uAtlasTexel;           // 1 / atlas side
 
 const int kLightTexels = 13;
-// Cube faces: as shadow_fit.hpp's kCubeForward / kCubeRight.
-const vec3 kCubeForward[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1),
-                                     vec3(0, 0, -1));
-const vec3 kCubeRight[6] = vec3[6](vec3(0, 1, 0), vec3(0, -1, 0), vec3(-1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0),
-                                   vec3(1, 0, 0));
+// The first directional lights' texels also sit in uniforms, read by
+// their own loop (sunLight): llvmpipe runs both sides of a branch on a
+// per-pixel value, so one function choosing between uniform and buffer
+// would pay for both.
+const int kHeadLights = 8;
+uniform vec4 uLightHead[kHeadLights * kLightTexels];
+uniform int uHeadCount;              // directional lights in uLightHead
+
+vec4 lightTexel(int i, int k) { return texelFetch(uLights, i * kLightTexels + k); }
+vec4 headTexel(int i, int k) { return uLightHead[i * kLightTexels + k]; }
 
 // Four bilinear comparisons spread over the filter radius: a tent as soft
 // as nine point taps at under half their cost (the lit pass's largest part
@@ -48,10 +54,10 @@ float shadowFilter(vec2 uv, float z, vec4 cell, float radius) {
 }
 
 // How much of light `base`'s light reaches s.P past its casters (1 lit).
-float shadowVisibility(int base, vec3 lightPos, Surface s, vec3 l) {
-  vec4 sh = texelFetch(uLights, base + 4);    // strength, bias (m), radius (texels), texel size
-  vec4 map = texelFetch(uLights, base + 5);   // origin (uv), side (uv), kind
-  vec4 nf = texelFetch(uLights, base + 6);    // near, far, cube face scale
+float shadowVisibility(int i, vec3 lightPos, Surface s, vec3 l) {
+  vec4 sh = lightTexel(i, 4);    // strength, bias (m), radius (texels), texel size
+  vec4 map = lightTexel(i, 5);   // origin (uv), side (uv), kind
+  vec4 nf = lightTexel(i, 6);    // near, far, cube face scale
   int kind = int(map.w + 0.5);
   float nl = clamp(dot(s.N, l), 0.0, 1.0);
   // Normal offset of one to three texels (more where the light grazes):
@@ -62,19 +68,37 @@ float shadowVisibility(int base, vec3 lightPos, Surface s, vec3 l) {
   float depth;
   vec4 cell;
   if (kind == 3) {
+    // The face of the largest axis, as shadow_fit.hpp's kCubeForward and
+    // kCubeRight (up = right x forward), written out: no array indexing,
+    // which llvmpipe pays per pixel.
     vec3 d = Q - lightPos;
     vec3 a = abs(d);
-    int face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0 ? 0 : 1) : a.y >= a.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);
-    vec3 F = kCubeForward[face], R = kCubeRight[face];
-    depth = dot(d, F);
-    vec2 ndc = vec2(dot(d, R), dot(d, cross(R, F))) * nf.z / max(depth, 1e-6);
-    vec2 origin = map.xy + vec2(face % 3, face / 3) * map.z;
+    float face;
+    vec2 st;
+    if (a.x >= a.y && a.x >= a.z) {
+      float sx = d.x >= 0.0 ? 1.0 : -1.0;
+      face = sx > 0.0 ? 0.0 : 1.0;
+      depth = a.x;
+      st = vec2(sx * d.y, -d.z);
+    } else if (a.y >= a.z) {
+      float sy = d.y >= 0.0 ? 1.0 : -1.0;
+      face = sy > 0.0 ? 2.0 : 3.0;
+      depth = a.y;
+      st = vec2(-sy * d.x, -d.z);
+    } else {
+      float sz = d.z >= 0.0 ? 1.0 : -1.0;
+      face = sz > 0.0 ? 4.0 : 5.0;
+      depth = a.z;
+      st = vec2(d.x, -sz * d.y);
+    }
+    vec2 ndc = st * nf.z / max(depth, 1e-6);
+    vec2 origin = map.xy + vec2(mod(face, 3.0), floor(face / 3.0)) * map.z;
     uv = origin + (ndc * 0.5 + 0.5) * map.z;
     cell = vec4(origin, origin + map.z);
   } else {
     vec4 q = vec4(Q, 1.0);
-    vec4 c = vec4(dot(texelFetch(uLights, base + 7), q), dot(texelFetch(uLights, base + 8), q),
-                  dot(texelFetch(uLights, base + 9), q), dot(texelFetch(uLights, base + 10), q));
+    vec4 c = vec4(dot(lightTexel(i, 7), q), dot(lightTexel(i, 8), q),
+                  dot(lightTexel(i, 9), q), dot(lightTexel(i, 10), q));
     if (c.w <= 0.0) return 1.0;
     vec3 ndc = c.xyz / c.w;
     if (abs(ndc.x) >= 1.0 || abs(ndc.y) >= 1.0) return 1.0;  // outside the map: nothing shadows it
@@ -95,12 +119,50 @@ float shadowVisibility(int base, vec3 lightPos, Surface s, vec3 l) {
   return mix(1.0, shadowFilter(uv, z, cell, sh.z), sh.x);
 }
 
-// Light `i` arriving at s and reflected towards the eye (GGX).
+// Light of radiance `light` arriving from direction l, reflected towards the eye (GGX).
+vec3 brdf(Surface s, vec3 l, float nl, vec3 light, vec3 f0, vec3 diffuse, float a2, float rough, float nv) {
+  vec3 h = normalize(l + s.V);
+  float nh = max(dot(s.N, h), 0.0);
+  float dn = nh * nh * (a2 - 1.0) + 1.0;
+  float D = a2 / (PI * dn * dn);
+  float k = (rough + 1.0) * (rough + 1.0) / 8.0;
+  float G = nv / (nv * (1.0 - k) + k) * nl / (nl * (1.0 - k) + k);
+  // Clamped: pow() of a negative base is undefined (NaN, a black pixel
+  // where a light lies exactly between the eye and the surface).
+  vec3 F = f0 + (1.0 - f0) * pow(clamp(1.0 - dot(h, s.V), 0.0, 1.0), 5.0);
+  vec3 spec = D * G * F / max(4.0 * nv * nl, 1e-4);
+  return ((1.0 - F) * diffuse / PI + spec) * light * nl;
+}
+
+// Directional light `i` (< uHeadCount) from the uniforms; its shadow map
+// is orthographic.
+vec3 sunLight(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, float nv) {
+  vec4 t0 = headTexel(i, 0);
+  vec3 l = -headTexel(i, 1).xyz;
+  float nl = dot(s.N, l);
+  if (nl <= 0.0) return vec3(0.0);
+  float vis = 1.0;
+  if (t0.w >= 4.0 && s.receiveShadow) {
+    vec4 sh = headTexel(i, 4);
+    vec4 map = headTexel(i, 5);
+    vec4 nf = headTexel(i, 6);
+    vec4 q = vec4(s.P + s.N * sh.w * (1.0 + 2.0 * (1.0 - clamp(nl, 0.0, 1.0))), 1.0);
+    vec3 c = vec3(dot(headTexel(i, 7), q), dot(headTexel(i, 8), q), dot(headTexel(i, 9), q));
+    if (abs(c.x) < 1.0 && abs(c.y) < 1.0) {
+      vec2 uv = map.xy + (c.xy * 0.5 + 0.5) * map.z;
+      float z = min(c.z * 0.5 + 0.5 - sh.y / (nf.y - nf.x), 0.99999);
+      vec4 cell = vec4(map.xy, map.xy + map.z) + vec4(0.5, 0.5, -0.5, -0.5) * uAtlasTexel;
+      vis = mix(1.0, shadowFilter(uv, z, cell, sh.z), sh.x);
+    }
+  }
+  return brdf(s, l, nl, headTexel(i, 2).rgb * vis, f0, diffuse, a2, rough, nv);
+}
+
+// Light `i` from the buffer, any type, arriving at s and reflected towards the eye.
 vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, float nv) {
-  int base = i * kLightTexels;
-  vec4 t0 = texelFetch(uLights, base);       // position, type (+4: has a shadow map)
-  vec4 t1 = texelFetch(uLights, base + 1);   // direction, cos(outer cone)
-  vec4 t2 = texelFetch(uLights, base + 2);   // color, cos(inner cone)
+  vec4 t0 = lightTexel(i, 0);       // position, type (+4: has a shadow map)
+  vec4 t1 = lightTexel(i, 1);   // direction, cos(outer cone)
+  vec4 t2 = lightTexel(i, 2);   // color, cos(inner cone)
   int code = int(t0.w + 0.5);
   int type = code & 3;
   vec3 l;
@@ -108,12 +170,12 @@ vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, f
   if (type == 0) {
     l = -t1.xyz;
   } else {
-    vec4 t3 = texelFetch(uLights, base + 3);  // attenuation, reach
+    vec4 t3 = lightTexel(i, 3);  // attenuation, reach
     vec3 from = t0.xyz;
     if (type == 3) {
       // A rectangle: light comes from its point nearest the surface (a
       // representative point), so a long strip lights its whole length.
-      vec3 r = texelFetch(uLights, base + 11).xyz, u = texelFetch(uLights, base + 12).xyz;
+      vec3 r = lightTexel(i, 11).xyz, u = lightTexel(i, 12).xyz;
       vec3 o = s.P - from;
       from += r * clamp(dot(o, r) / max(dot(r, r), 1e-8), -1.0, 1.0) + u * clamp(dot(o, u) / max(dot(u, u), 1e-8), -1.0, 1.0);
     }
@@ -131,18 +193,8 @@ vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, f
   }
   float nl = dot(s.N, l);
   if (nl <= 0.0 || att <= 0.0) return vec3(0.0);
-  if (code >= 4 && s.receiveShadow) att *= shadowVisibility(base, t0.xyz, s, l);
-  vec3 h = normalize(l + s.V);
-  float nh = max(dot(s.N, h), 0.0);
-  float dn = nh * nh * (a2 - 1.0) + 1.0;
-  float D = a2 / (PI * dn * dn);
-  float k = (rough + 1.0) * (rough + 1.0) / 8.0;
-  float G = nv / (nv * (1.0 - k) + k) * nl / (nl * (1.0 - k) + k);
-  // Clamped: pow() of a negative base is undefined (NaN, a black pixel
-  // where a light lies exactly between the eye and the surface).
-  vec3 F = f0 + (1.0 - f0) * pow(clamp(1.0 - dot(h, s.V), 0.0, 1.0), 5.0);
-  vec3 spec = D * G * F / max(4.0 * nv * nl, 1e-4);
-  return ((1.0 - F) * diffuse / PI + spec) * t2.rgb * att * nl;
+  if (code >= 4 && s.receiveShadow) att *= shadowVisibility(i, t0.xyz, s, l);
+  return brdf(s, l, nl, t2.rgb * att, f0, diffuse, a2, rough, nv);
 }
 
 // Light arriving directly from the scene's lights, reflected towards the
@@ -154,7 +206,9 @@ vec3 directLight(Surface s) {
   vec3 diffuse = s.base.rgb * (1.0 - s.metallic);
   float nv = max(dot(s.N, s.V), 1e-4);
   vec3 color = vec3(0.0);
-  for (int i = 0; i < uDirectionalCount; ++i) color += lightFrom(i, s, f0, diffuse, a2, rough, nv);
+  for (int i = 0; i < uHeadCount; ++i) color += sunLight(i, s, f0, diffuse, a2, rough, nv);
+  for (int i = uHeadCount; i < uDirectionalCount; ++i) color += lightFrom(i, s, f0, diffuse, a2, rough, nv);
+  if (!uHasLocalLights) return color;
   ivec2 tile = min(ivec2(gl_FragCoord.xy) / uTileSize, ivec2(uTilesX - 1, uTilesY - 1));
   int cell = tile.y * uTilesX + tile.x;
   int offset = texelFetch(uLightGrid, 2 * cell).r, count = texelFetch(uLightGrid, 2 * cell + 1).r;
