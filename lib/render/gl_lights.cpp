@@ -113,11 +113,6 @@ bool LightEffects::upload() {
     reach_.push_back(lightReach(l));
     bounds_.push_back(lightBounds(l, reach_.back()));
   }
-  for (std::size_t i = std::size_t(directionalCount_); i < lights_.size(); ++i)
-    if (reach_[i] > 0) {
-      localBounds_.push_back(bounds_[i]);
-      localIndices_.push_back(std::int32_t(i));
-    }
   chooseCasters();
   std::string log;
   depthProg_ = depthProgram(log);
@@ -127,6 +122,15 @@ bool LightEffects::upload() {
   }
   if (!makeAtlas()) return false;
   makeShadowArrays();
+  // The lights the grid lists: those without a shadow map first.
+  for (int shadowed = 0; shadowed < 2; ++shadowed) {
+    if (shadowed) firstShadowed_ = localIndices_.size();
+    for (std::size_t i = std::size_t(directionalCount_); i < lights_.size(); ++i)
+      if (reach_[i] > 0 && (casterOf_[i] >= 0) == bool(shadowed)) {
+        localBounds_.push_back(bounds_[i]);
+        localIndices_.push_back(std::int32_t(i));
+      }
+  }
   GLuint buffers[2], textures[2];
   glGenBuffers(2, buffers);
   glGenTextures(2, textures);
@@ -472,7 +476,7 @@ void LightEffects::bind(GLuint program, const View& view, const Eigen::Matrix4d&
   // of lights over a large image stay bounded; one tile at the last.
   int tile = kLightTileSize;
   while (!buildLightGrid(localBounds_, localIndices_, viewProj, view.camera.width, view.camera.height, tile, grid_,
-                         tile >= 16384 ? std::size_t(-1) : std::size_t{1} << 24))
+                         tile >= 16384 ? std::size_t(-1) : std::size_t{1} << 24, firstShadowed_))
     tile *= 2;
   glBindBuffer(GL_TEXTURE_BUFFER, gridBuffer_);
   glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(grid_.data.size() * sizeof(std::int32_t)), grid_.data.data(),

@@ -76,6 +76,7 @@ class LightEffects {
   // The local lights the grid lists: their boxes and indices into lights_.
   std::vector<Eigen::AlignedBox3d> localBounds_;
   std::vector<std::int32_t> localIndices_;
+  std::size_t firstShadowed_ = 0;  // into localIndices_: where lights with shadow maps start
   std::vector<Caster> casters_;
   std::vector<int> casterOf_;  // per light: index into casters_, -1
   int atlasSide_ = 0;

@@ -91,7 +91,7 @@ Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach) {
 
 bool buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
                     const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out,
-                    std::size_t maxEntries) {
+                    std::size_t maxEntries, std::size_t firstShadowed) {
   LightGrid g;
   g.tileSize = std::max(tileSize, 1);
   g.tilesX = std::max(1, (width + g.tileSize - 1) / g.tileSize);
@@ -133,19 +133,21 @@ bool buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::v
   for (const Rect& r : rects)
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) ++counts[std::size_t(y * g.tilesX + x)];
-  g.data.assign(std::size_t(2 * tiles), 0);
-  std::int32_t offset = 2 * tiles;
+  g.data.assign(std::size_t(3 * tiles), 0);
+  std::int32_t offset = 3 * tiles;
   for (int t = 0; t < tiles; ++t) {
-    g.data[std::size_t(2 * t)] = offset;
+    g.data[std::size_t(3 * t)] = offset;
     offset += counts[std::size_t(t)];
   }
   g.data.resize(std::size_t(offset), 0);
+  // In input order: a tile's unshadowed lights come first.
   for (std::size_t i = 0; i < rects.size(); ++i) {
     const Rect& r = rects[i];
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
         auto t = std::size_t(y * g.tilesX + x);
-        g.data[std::size_t(g.data[2 * t] + g.data[2 * t + 1]++)] = indices[i];
+        g.data[std::size_t(g.data[3 * t] + g.data[3 * t + 1]++)] = indices[i];
+        if (i < firstShadowed) ++g.data[3 * t + 2];
       }
   }
   out = std::move(g);

@@ -37,21 +37,25 @@ Eigen::AlignedBox3d lightBounds(const RenderLight& l, float reach);
 
 // Tiles of tileSize x tileSize pixels, row 0 at the bottom (GL window
 // coordinates, as gl_FragCoord).  `data` is what the shader reads: for
-// each tile (row-major) its offset into `data` and its count, then the
-// light indices of all tiles.
+// each tile (row-major) its offset into `data`, its count and how many of
+// its first lights cast no shadow, then the light indices of all tiles.
+// The shader loops over the two parts apart: llvmpipe runs both sides of
+// a per-pixel branch, so a light without a shadow would pay for one.
 struct LightGrid {
   int tileSize = 16, tilesX = 0, tilesY = 0;
   std::vector<std::int32_t> data;
-  std::int32_t count(int tx, int ty) const { return data[std::size_t(2 * (ty * tilesX + tx) + 1)]; }
+  std::int32_t count(int tx, int ty) const { return data[std::size_t(3 * (ty * tilesX + tx) + 1)]; }
+  std::int32_t unshadowed(int tx, int ty) const { return data[std::size_t(3 * (ty * tilesX + tx) + 2)]; }
 };
 
 // Lists light `indices[i]` (whose world box is `bounds[i]`) in every tile
 // its box covers on screen under clip-space matrix `viewProj`; a box that
-// reaches behind the eye covers every tile.  False, with `out` untouched,
+// reaches behind the eye covers every tile.  Lights [firstShadowed, n) cast
+// shadows (the caller orders them last); each tile lists them last.  False, with `out` untouched,
 // when the lists would hold more than `maxEntries` indices (thousands of
 // lights over a large image: the caller takes larger tiles).
 bool buildLightGrid(const std::vector<Eigen::AlignedBox3d>& bounds, const std::vector<std::int32_t>& indices,
                     const Eigen::Matrix4d& viewProj, int width, int height, int tileSize, LightGrid& out,
-                    std::size_t maxEntries = std::size_t(-1));
+                    std::size_t maxEntries = std::size_t(-1), std::size_t firstShadowed = std::size_t(-1));
 
 }  // namespace rscene::render

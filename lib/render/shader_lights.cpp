@@ -20,7 +20,7 @@ void main() { gl_Position = uViewProj * (mat4(iM0, iM1, iM2, iM3) * vec4(aPos, 1
 
 const char* const kLightsGlsl = R"(
 uniform samplerBuffer uLights;       // 13 texels per light, directional ones first
-uniform isamplerBuffer uLightGrid;   // per tile: offset, count; then light indices
+uniform isamplerBuffer uLightGrid;   // per tile: offset, count, unshadowed count; then light indices
 uniform int uDirectionalCount;       // lights [0, n): directional, they reach every pixel
 uniform int uTileSize;
 uniform int uTilesX;
@@ -158,8 +158,10 @@ vec3 sunLight(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, fl
   return brdf(s, l, nl, headTexel(i, 2).rgb * vis, f0, diffuse, a2, rough, nv);
 }
 
-// Light `i` from the buffer, any type, arriving at s and reflected towards the eye.
-vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, float nv) {
+// Light `i` from the buffer, any type, arriving at s and reflected towards
+// the eye; its shadow only when `withShadow` (a constant at each call, so
+// the loop of lights without maps carries no shadow code at all).
+vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, float nv, bool withShadow) {
   vec4 t0 = lightTexel(i, 0);       // position, type (+4: has a shadow map)
   vec4 t1 = lightTexel(i, 1);   // direction, cos(outer cone)
   vec4 t2 = lightTexel(i, 2);   // color, cos(inner cone)
@@ -193,7 +195,7 @@ vec3 lightFrom(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, f
   }
   float nl = dot(s.N, l);
   if (nl <= 0.0 || att <= 0.0) return vec3(0.0);
-  if (code >= 4 && s.receiveShadow) att *= shadowVisibility(i, t0.xyz, s, l);
+  if (withShadow && code >= 4 && s.receiveShadow) att *= shadowVisibility(i, t0.xyz, s, l);
   return brdf(s, l, nl, t2.rgb * att, f0, diffuse, a2, rough, nv);
 }
 
@@ -207,12 +209,16 @@ vec3 directLight(Surface s) {
   float nv = max(dot(s.N, s.V), 1e-4);
   vec3 color = vec3(0.0);
   for (int i = 0; i < uHeadCount; ++i) color += sunLight(i, s, f0, diffuse, a2, rough, nv);
-  for (int i = uHeadCount; i < uDirectionalCount; ++i) color += lightFrom(i, s, f0, diffuse, a2, rough, nv);
+  for (int i = uHeadCount; i < uDirectionalCount; ++i) color += lightFrom(i, s, f0, diffuse, a2, rough, nv, true);
   if (!uHasLocalLights) return color;
   ivec2 tile = min(ivec2(gl_FragCoord.xy) / uTileSize, ivec2(uTilesX - 1, uTilesY - 1));
   int cell = tile.y * uTilesX + tile.x;
-  int offset = texelFetch(uLightGrid, 2 * cell).r, count = texelFetch(uLightGrid, 2 * cell + 1).r;
-  for (int k = 0; k < count; ++k) color += lightFrom(texelFetch(uLightGrid, offset + k).r, s, f0, diffuse, a2, rough, nv);
+  int offset = texelFetch(uLightGrid, 3 * cell).r, count = texelFetch(uLightGrid, 3 * cell + 1).r,
+      plain = texelFetch(uLightGrid, 3 * cell + 2).r;
+  for (int k = 0; k < plain; ++k)
+    color += lightFrom(texelFetch(uLightGrid, offset + k).r, s, f0, diffuse, a2, rough, nv, false);
+  for (int k = plain; k < count; ++k)
+    color += lightFrom(texelFetch(uLightGrid, offset + k).r, s, f0, diffuse, a2, rough, nv, true);
   return color;
 }
 )";

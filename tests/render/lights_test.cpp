@@ -97,7 +97,7 @@ TEST(LightGrid, ListsALightOnlyInTheTilesItsBoxCovers) {
   int withSmall = 0;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
-      std::int32_t off = g.data[std::size_t(2 * (y * 16 + x))];
+      std::int32_t off = g.data[std::size_t(3 * (y * 16 + x))];
       for (int k = 0; k < g.count(x, y); ++k) {
         EXPECT_NE(g.data[std::size_t(off + k)], 9);
         withSmall += g.data[std::size_t(off + k)] == 7;
@@ -113,6 +113,13 @@ TEST(LightGrid, ListsALightOnlyInTheTilesItsBoxCovers) {
   EXPECT_TRUE(buildLightGrid(boxes, {7, 8, 9}, vp, 256, 256, 64, g, 100));
   EXPECT_EQ(g.tilesX, 4);
   EXPECT_EQ(g.count(0, 0), 1);
+  // Lights from index 1 on cast shadows: the centre tile lists the small
+  // light first, as its one unshadowed light.
+  ASSERT_TRUE(buildLightGrid(boxes, {7, 8, 9}, vp, 256, 256, 16, g, std::size_t(-1), 1));
+  EXPECT_EQ(g.count(8, 8), 2);
+  EXPECT_EQ(g.unshadowed(8, 8), 1);
+  EXPECT_EQ(g.data[std::size_t(g.data[3 * (8 * 16 + 8)])], 7);
+  EXPECT_EQ(g.unshadowed(0, 0), 0);
 }
 
 TEST(ShadowFit, DirectionalBoxCoversWhatTheViewSeesNotTheWholeScene) {
