@@ -591,3 +591,20 @@ SCENE
   [ "$status" -eq 0 ]
   [ "${lines[0]}" = "g.rscene:5:1: warning: terrain_foliage_layer primitive 'fern' is drawn as grass_blade [RS9072]" ]
 }
+
+@test "forty shadowed point lights are all drawn, and -v splits out the shadow maps' time" {
+  {
+    echo "raisim_engine_scene 2"
+    echo "camera /World/Cam 0 0 14 0.70710678 0 0.70710678 0 60 0.05 100 160 120 rgb true"
+    echo "object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615"
+    echo "object /World/Box box 0 0 0.5 1 0 0 0 1 1 1 1 1 1 default - false true false - static true 1 18446744073709551615"
+    for i in $(seq 0 39); do
+      echo "light /World/L$i 0 0 -1 2 type=point position=$((i % 8 - 4)),$((i / 8 - 2)),1.5 shadows=true"
+    done
+  } > lights.rscene
+  run --separate-stderr "$RENDER" lights.rscene --backend cpu -v -o lights.png
+  [ "$status" -eq 0 ]
+  [[ "$stderr" != *RS9004* ]]
+  [[ "$stderr" =~ shadow\ passes\ [0-9.]+\ s,\ drawing ]]
+  [ -s lights.png ]
+}

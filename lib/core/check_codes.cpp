@@ -155,7 +155,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS9001", E, Render, "render", "mesh file that cannot be read (a warning with --allow-missing-assets)"},
     {"RS9002", W, Render, "render", "texture not drawn"},
     {"RS9003", W, Render, "render", "background image (HDR) missing; the sky is drawn instead"},
-    {"RS9004", W, Render, "render", "more than 8 lights; the rest are not drawn"},
+    {"RS9004", W, Render, "render", "more lights than the GL light buffer holds (thousands); the rest are not drawn"},
     {"RS9010", E, Render, "render", "shader build failed"},
     {"RS9011", E, Render, "render", "cannot create the framebuffer"},
     {"RS9012", E, Render, "render", "an OpenGL call failed"},
@@ -170,6 +170,8 @@ constexpr CheckInfo kChecks[] = {
     {"RS9046", E, Render, "render", "malformed --trajectory line (not what rscene-sim --trajectory writes)"},
     {"RS9047", E, Render, "render", "--trajectory names a body, robot or joint the scene does not have"},
     {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
+    // RS905x lights and shadows (RS9050..)
+    {"RS9050", W, Render, "render", "shadow maps reduced to fit the shadow atlas"},
     // RS9055 and on: projected decals, fog, irradiance volumes
     {"RS9055", W, Render, "render", "decal textures or volume records past what this OpenGL holds: those are not drawn"},
     // RS906x reflections: environment light and reflection probes

@@ -21,6 +21,7 @@
 #include "asset/cache.hpp"
 #include "render/gl_effects.hpp"
 #include "render/gl_post.hpp"
+#include "render/gl_lights.hpp"
 #include "render/mesh.hpp"
 #include "render/view.hpp"
 
@@ -107,6 +108,7 @@ struct DataTargets {
 };
 
 class GlRenderer final : public Renderer {
+  friend class LightEffects;
   friend class VolumeEffects;
   friend class ReflectionEffects;
   friend class PostEffects;
@@ -154,7 +156,6 @@ class GlRenderer final : public Renderer {
   void uploadPoints();
   bool buildPrograms();
   void makeVertexArrays();
-  void buildLights();
 
   // ---- drawing (passes.cpp)
   // Chooses and orders each batch's instances for `view` (re-uploading a
@@ -164,7 +165,6 @@ class GlRenderer final : public Renderer {
   // instance data when that changed; `data`: scratch.
   void setOrder(Batch& b, std::vector<std::uint32_t>& order, GLsizei inView, std::vector<float>& data);
   void drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool flat = false);
-  bool renderShadowMap(bool sensorView);
   bool colorPass(const View& view, const Eigen::Matrix4d& viewProj, Image& out);
   bool dataPass(const View& view, const Eigen::Matrix4d& viewProj, ViewImages& out, bool wantDepth,
                 bool wantSegmentation);
@@ -204,8 +204,6 @@ class GlRenderer final : public Renderer {
   std::vector<std::size_t> drawOrder_;  // into batches_: background batches last
   std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
   std::vector<std::vector<InstanceRef>> drawableRefs_;  // per RenderScene::drawables
-  std::vector<RenderLight> lights_;
-  int shadowLight_ = -1;
   GLuint hdrTexture_ = 0;
   GLuint pointVao_ = 0, pointVbo_ = 0;
   std::vector<std::pair<GLint, GLsizei>> pointRanges_;
@@ -216,13 +214,8 @@ class GlRenderer final : public Renderer {
          spreadProg_ = 0;  // main_pass.hpp
   GLuint emptyVao_ = 0;
   bool software_ = false;
-  // Shadow map of the main light: remade when the poses or the kind of
-  // view (sensor: world objects only) changed since it was drawn.
-  GLuint shadowTex_ = 0, shadowFbo_ = 0;
-  int shadowSize_ = 0;
-  Eigen::Matrix4d lightViewProj_ = Eigen::Matrix4d::Identity();
-  std::uint64_t poseVersion_ = 1, shadowVersion_ = 0;
-  bool shadowForSensor_ = false;
+  // Bumped by updatePoses(): shadow maps drawn at an older version are redrawn.
+  std::uint64_t poseVersion_ = 1;
   // Whether anything a sensor does not see casts a shadow: when nothing
   // does, camera and sensor views share one shadow map.
   bool visualCasters_ = false;
@@ -242,6 +235,7 @@ class GlRenderer final : public Renderer {
   std::chrono::steady_clock::time_point postStart_;
   // The lit pass's modules (gl_effects.hpp): freed after ~GlRenderer's body,
   // while the GL context still exists.
+  std::unique_ptr<LightEffects> lights_;
   std::unique_ptr<VolumeEffects> volumes_;
   std::unique_ptr<ReflectionEffects> reflections_;
   std::unique_ptr<PostEffects> post_;  // after the lit pass (gl_post.hpp)

@@ -17,10 +17,6 @@ namespace rscene::render::detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kShadowSize = 2048;
-// llvmpipe pays for every shadow texel it rasterises; 1024 keeps the same
-// shadows at CPU-backend thumbnail sizes.
-constexpr int kSoftwareShadowSize = 1024;
 
 GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
 void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
@@ -166,74 +162,6 @@ void GlRenderer::drawBatches(GLuint prog, bool blendPass, bool shadowPass, bool 
   glBindVertexArray(0);
 }
 
-// Shadow map of the main light, fitted to the scene's bounds; drawn from
-// what the current view may draw (selectInstances ran for it).
-bool GlRenderer::renderShadowMap(bool sensorView) {
-  if (shadowLight_ < 0) return true;
-  sensorView = sensorView && visualCasters_;
-  if (shadowTex_ && shadowVersion_ == poseVersion_ && shadowForSensor_ == sensorView) return true;
-  if (!shadowTex_) {
-    shadowSize_ = software_ ? kSoftwareShadowSize : kShadowSize;
-    glGenTextures(1, &shadowTex_);
-    ownedTextures_.push_back(shadowTex_);
-    glBindTexture(GL_TEXTURE_2D, shadowTex_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize_, shadowSize_, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                 nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    glGenFramebuffers(1, &shadowFbo_);
-    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex_, 0);
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
-  }
-  Eigen::AlignedBox3d box = scene_.bounds;
-  if (box.isEmpty()) box = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
-  Eigen::Vector3d fwd = lights_[std::size_t(shadowLight_)].direction.normalized();
-  // Cover where the shadows land too: each corner carried along the light
-  // down to the lowest point (the ground), at most 50 m away.
-  if (fwd.z() < -0.05) {
-    double floor = std::min(box.min().z(), 0.0);
-    Eigen::AlignedBox3d withShadows = box;
-    for (int i = 0; i < 8; ++i) {
-      Eigen::Vector3d p = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
-      withShadows.extend(p + fwd * std::min((p.z() - floor) / -fwd.z(), 50.0));
-    }
-    box = withShadows;
-  }
-  Eigen::Vector3d c = box.center();
-  double r = std::max(0.5 * box.diagonal().norm(), 0.5) * 1.1;
-  Camera lc;
-  Eigen::Vector3d upHint = std::abs(fwd.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d left = upHint.cross(fwd).normalized();
-  Eigen::Matrix3d rot;
-  rot.col(0) = fwd, rot.col(1) = left, rot.col(2) = fwd.cross(left);
-  lc.world.orientation = Eigen::Quaterniond(rot);
-  lc.world.position = c - fwd * 2 * r;
-  lc.projection = "orthographic";
-  lc.orthoScale = 2 * r;
-  lc.nearPlane = 0.01;
-  lc.farPlane = 4 * r;
-  lightViewProj_ = projectionMatrix(lc, 1.0) * viewMatrix(lc);
-  glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo_);
-  glViewport(0, 0, shadowSize_, shadowSize_);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_CULL_FACE);
-  glUseProgram(shadowProg_);
-  setMat(shadowProg_, "uViewProj", lightViewProj_);
-  drawBatches(shadowProg_, false, true);
-  shadowVersion_ = poseVersion_;
-  shadowForSensor_ = sensorView;
-  return true;
-}
-
 bool GlRenderer::colorTargets(int w, int h, int samples) {
   ColorTargets& t = color_;
   if (t.fbo[0] && t.width == w && t.height == h && t.samples == samples) return true;
@@ -318,10 +246,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
   if (!reflections_->prepare(view)) return false;
-  auto shadowStart = Clock::now();
-  renderShadowMap(view.sensor);
-  glFinish();
-  timings_.shadowSeconds += std::chrono::duration<double>(Clock::now() - shadowStart).count();
+  if (!lights_->prepare(view, viewProj)) return false;
 
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
@@ -344,28 +269,9 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   GLuint surface = surfaceProg_;
   glUseProgram(surface);
   setMat(surface, "uViewProj", viewProj);
-  setMat(surface, "uLightViewProj", lightViewProj_);
   setVec3(surface, "uCameraPos", camera.world.position.cast<float>());
-  glUniform1i(loc(surface, "uLightCount"), int(lights_.size()));
-  for (std::size_t i = 0; i < lights_.size(); ++i) {
-    const RenderLight& l = lights_[i];
-    std::string idx = "[" + std::to_string(i) + "]";
-    Eigen::Vector3f p = l.position.cast<float>(), d = l.direction.normalized().cast<float>();
-    constexpr float kDeg = 3.14159265f / 180;
-    glUniform4f(loc(surface, ("uLightPos" + idx).c_str()), p.x(), p.y(), p.z(), float(int(l.type)));
-    glUniform4f(loc(surface, ("uLightDir" + idx).c_str()), d.x(), d.y(), d.z(), std::cos(l.coneDegrees * kDeg));
-    glUniform4f(loc(surface, ("uLightColor" + idx).c_str()), l.color.x(), l.color.y(), l.color.z(),
-                std::cos(std::min(l.innerConeDegrees, l.coneDegrees - 0.01f) * kDeg));
-    float areaGain = l.type == LightType::Area ? std::max(l.areaSize.x() * l.areaSize.y(), 0.f) : 1.f;
-    glUniform4f(loc(surface, ("uLightAtt" + idx).c_str()), l.attenuation.x() / std::max(areaGain, 1e-3f),
-                l.attenuation.y() / std::max(areaGain, 1e-3f), l.attenuation.z() / std::max(areaGain, 1e-3f), l.range);
-  }
-  glUniform1i(loc(surface, "uShadowLight"), shadowLight_);
-  glUniform1f(loc(surface, "uShadowTexel"), 1.0f / float(std::max(shadowSize_, 1)));
-  glUniform1i(loc(surface, "uShadowMap"), 0);
-  glUniform1i(loc(surface, "uAlbedo"), 1);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, shadowTex_);
+  glUniform1i(loc(surface, "uAlbedo"), units::kAlbedo);
+  lights_->bind(surface, view, viewProj);
   volumes_->bind(surface, view);
   reflections_->bind(surface, view);
   // The layers: MSAA after a depth pre-pass on GPUs (the lit shader then

@@ -159,7 +159,7 @@ void prepareEffects(const Document& doc, const Scene& s, RenderScene& out) {
     e.shadowStrength = float(std::clamp(rs.shadowStrength, 0.0, 1.0));
     e.shadowPcfRadius = nonNegative(rs.shadowPcfRadius);
   }
-  if (env.shadowMapSize > 0) e.shadowResolution = int(std::min<std::int64_t>(env.shadowMapSize, 16384));
+  if (env.shadowMapSize > 0) e.shadowMapSize = int(std::min<std::int64_t>(env.shadowMapSize, 16384));
   e.shadowedLightBudget = int(std::clamp<std::int64_t>(env.shadowedLightBudget, 0, 1 << 20));
   e.msaaSamples = int(std::clamp<std::int64_t>(rs.msaaSamples, 0, 64));
 }

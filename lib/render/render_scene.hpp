@@ -214,6 +214,7 @@ struct Look {
   float shadowBias = 0.0008f, shadowStrength = 0.85f, shadowPcfRadius = 1.25f;
   bool customShadows = false;  // rayrai_render custom=true: its shadow fields override each light's
   int shadowedLightBudget = 0;
+  int shadowMapSize = 0;       // environment shadowMapSize: the largest map side (0: no cap)
   int msaaSamples = 4;         // viewerMsaaSamples
   std::string preset;          // rayrai_render preset: fast | balanced | high | ultra
 };

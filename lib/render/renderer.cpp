@@ -22,7 +22,6 @@ namespace detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kMaxLights = 8;
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -128,7 +127,6 @@ GlRenderer::~GlRenderer() {
     glDeleteTextures(1, &jitter_.ids);
     glDeleteRenderbuffers(1, &jitter_.idDepth);
   }
-  if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
   glDeleteFramebuffers(3, color_.fbo);
   glDeleteRenderbuffers(1, &color_.msaaColor);
   GLuint colorTex[3] = {color_.resolved, color_.final, color_.msaaDepth};
@@ -574,29 +572,6 @@ void GlRenderer::makeVertexArrays() {
   }
 }
 
-void GlRenderer::buildLights() {
-  lights_ = scene_.lights;
-  if (lights_.empty()) {  // a scene without lights is lit by the sun of its sky
-    RenderLight sun;
-    sun.direction = -scene_.environment.sunDirection;
-    sun.color = Eigen::Vector3f(1.0f, 0.96f, 0.9f) * 3.0f;
-    sun.shadows = true;
-    lights_.push_back(sun);
-  }
-  if (lights_.size() > std::size_t(kMaxLights)) {
-    diag(Severity::Warning, "RS9004", 0,
-         std::to_string(lights_.size()) + " lights; only the first " + std::to_string(kMaxLights) + " are drawn");
-    lights_.resize(kMaxLights);
-  }
-  if (!scene_.environment.shadows) return;
-  for (int pass = 0; pass < 2 && shadowLight_ < 0; ++pass)
-    for (std::size_t i = 0; i < lights_.size(); ++i)
-      if (lights_[i].type == LightType::Directional && (pass == 1 || lights_[i].shadows)) {
-        shadowLight_ = int(i);
-        break;
-      }
-}
-
 bool GlRenderer::upload() {
   software_ = softwareGl();
   if (!buildPrograms()) return false;
@@ -611,7 +586,8 @@ bool GlRenderer::upload() {
   for (int background = 0; background < 2; ++background)
     for (std::size_t i = 0; i < batches_.size(); ++i)
       if (batches_[i].background == bool(background)) drawOrder_.push_back(i);
-  buildLights();
+  lights_ = std::make_unique<LightEffects>(*this);
+  if (!lights_->upload()) return false;
   glGenVertexArrays(1, &emptyVao_);
   volumes_ = std::make_unique<VolumeEffects>(*this);
   reflections_ = std::make_unique<ReflectionEffects>(*this);

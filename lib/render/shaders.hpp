@@ -13,7 +13,8 @@
 namespace rscene::render::shaders {
 
 extern const char* const kSurfaceVertex;    // instanced meshes (lit + shadow-depth passes)
-extern const char* const kDepthFragment;    // shadow map pass
+extern const char* const kDepthFragment;    // shadow maps and the depth pre-pass
+extern const char* const kShadowMapVertex;  // shadow maps: positions of instanced meshes (shader_lights.cpp)
 extern const char* const kPointVertex;
 extern const char* const kPointFragment;
 extern const char* const kDataVertex;       // segmentation + linear depth (instanced meshes)
