@@ -30,38 +30,9 @@ constexpr int kMaxAtlas[2] = {8192, 4096};
 // perspective map would spend most of its texels on the cone's rim.
 constexpr double kWideSpotDegrees = 60;
 
-GLuint compileShader(GLenum type, const char* source, std::string& log) {
-  GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char buf[1024];
-    glGetShaderInfoLog(s, sizeof buf, nullptr, buf);
-    log += buf;
-  }
-  return s;
-}
-
 // The shadow maps' program: positions only, no fragment work.
 GLuint depthProgram(std::string& log) {
-  GLuint p = glCreateProgram();
-  GLuint v = compileShader(GL_VERTEX_SHADER, shaders::kShadowMapVertex, log);
-  GLuint f = compileShader(GL_FRAGMENT_SHADER, shaders::kDepthFragment, log);
-  glAttachShader(p, v);
-  glAttachShader(p, f);
-  glLinkProgram(p);
-  glDeleteShader(v);
-  glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (ok) return p;
-  char buf[1024];
-  glGetProgramInfoLog(p, sizeof buf, nullptr, buf);
-  log += buf;
-  glDeleteProgram(p);
-  return 0;
+  return GlRenderer::linkProgram(shaders::kShadowMapVertex, shaders::kDepthFragment, log);
 }
 
 // What "strongest" means for environment shadowedLightBudget.
