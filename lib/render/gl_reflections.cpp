@@ -300,6 +300,10 @@ bool ReflectionEffects::upload() {
 
 bool ReflectionEffects::prepare(const View& view) {
   if (capturing_ || captured_ || !probeArrays_ || r_.scene_.probes.empty()) return true;
+  // The shadow maps fitted to the view, drawn once: the faces reuse them
+  // (what lies outside the view's fit is lit in the probe; at 64-128
+  // texels a face that matters little).
+  if (!r_.lights_->prepare(view, viewProjection(view))) return false;
   captured_ = capturing_ = true;
   bool ok = captureProbes();
   capturing_ = false;
