@@ -320,7 +320,10 @@ bool ReflectionEffects::captureProbes() {
   probeSize_ = 0;
   probeSamples_ = 1;
   for (std::size_t i = 0; i < probeCount_; ++i) {
-    probeSize_ = std::max(probeSize_, std::min(probes[i].prefilteredResolution, cap));
+    // Prefiltered at most at the captured size: more texels than the
+    // capture has add no detail (the gallery's 64-texel capture was
+    // prefiltered at 128: four times the GGX samples for an upsampling).
+    probeSize_ = std::max(probeSize_, std::min({probes[i].prefilteredResolution, probes[i].cubemapSize, cap}));
     levels = std::max(levels, probes[i].prefilteredMipLevels);
     probeSamples_ = std::max(probeSamples_, probes[i].prefilteredSamples);
   }

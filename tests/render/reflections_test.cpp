@@ -363,3 +363,21 @@ TEST(Reflections, ProbeCaptureReusesTheViewsShadowMaps) {
   EXPECT_GT(drawn[0], 0u);
   EXPECT_EQ(drawn[1], drawn[0]);
 }
+
+// A probe is prefiltered at most at its captured size: a 64-texel capture
+// asked to prefilter at 256 draws as one asked at 64 (the extra texels
+// would only upsample it, at several times the GGX samples).
+TEST(Reflections, PrefilterStopsAtTheCapturedSize) {
+  std::string body = room("red", "green", "blue", "white") + sphere("/World/Chrome", 0.5, 0, 1.5, 0.6, "chrome");
+  auto atProbeSize = build(skyScene(1, body + probe(false)));
+  std::string larger = probe(false);
+  larger.replace(larger.find("prefilteredResolution=64"), 24, "prefilteredResolution=256");
+  auto asked256 = build(skyScene(1, body + larger));
+  ASSERT_EQ(asked256->scene.probes.size(), 1u);
+  EXPECT_EQ(asked256->scene.probes[0].prefilteredResolution, 256);
+  View v = view({-2.6, 0, 1.5}, {1, 0, 0});
+  std::vector<Image> a = draw(atProbeSize->scene, {v}), b = draw(asked256->scene, {v});
+  if (a.empty()) GTEST_SKIP() << "no EGL context";
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(a[0].rgba, b[0].rgba);
+}
