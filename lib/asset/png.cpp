@@ -56,7 +56,9 @@ std::string encodeRows(int width, int height, int bitDepth, int colorType, std::
     return {};
   }
   png_set_write_fn(png, &out, appendBytes, noFlush);
-  png_set_compression_level(png, 6);
+  // Level 3: on a 1280x720 render 0.03 s against level 6's 0.08 s, for
+  // files ~17% larger (rscene-render's whole frame is under a second).
+  png_set_compression_level(png, 3);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bitDepth, colorType,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);

@@ -78,6 +78,9 @@ class ReflectionEffects {
   // scene into its own targets): false with an error diagnostic.
   bool prepare(const View& view);
   void bind(GLuint program, const View& view);
+  // Within a probe's capture: its faces draw the lit layers only (the
+  // view's shadow maps, no post-processing, no read-back).
+  bool capturing() const { return capturing_; }
 
   static constexpr int kMaxProbes = 8;  // the surface program's uniform arrays
 

@@ -308,6 +308,7 @@ void LightEffects::drawMap(const ShadowView& v, const Eigen::Vector2i& origin, i
   glViewport(origin.x(), origin.y(), size, size);
   glScissor(origin.x(), origin.y(), size, size);
   glClear(GL_DEPTH_BUFFER_BIT);
+  ++r_.timings_.shadowMapsDrawn;
   if (v.empty) return;
   // Casters between the light and an orthographic box's near face are
   // flattened onto it instead of clipped away.

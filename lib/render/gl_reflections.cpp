@@ -300,6 +300,10 @@ bool ReflectionEffects::upload() {
 
 bool ReflectionEffects::prepare(const View& view) {
   if (capturing_ || captured_ || !probeArrays_ || r_.scene_.probes.empty()) return true;
+  // The shadow maps fitted to the view, drawn once: the faces reuse them
+  // (what lies outside the view's fit is lit in the probe; at 64-128
+  // texels a face that matters little).
+  if (!r_.lights_->prepare(view, viewProjection(view))) return false;
   captured_ = capturing_ = true;
   bool ok = captureProbes();
   capturing_ = false;
@@ -316,7 +320,10 @@ bool ReflectionEffects::captureProbes() {
   probeSize_ = 0;
   probeSamples_ = 1;
   for (std::size_t i = 0; i < probeCount_; ++i) {
-    probeSize_ = std::max(probeSize_, std::min(probes[i].prefilteredResolution, cap));
+    // Prefiltered at most at the captured size: more texels than the
+    // capture has add no detail (the gallery's 64-texel capture was
+    // prefiltered at 128: four times the GGX samples for an upsampling).
+    probeSize_ = std::max(probeSize_, std::min({probes[i].prefilteredResolution, probes[i].cubemapSize, cap}));
     levels = std::max(levels, probes[i].prefilteredMipLevels);
     probeSamples_ = std::max(probeSamples_, probes[i].prefilteredSamples);
   }

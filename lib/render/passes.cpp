@@ -246,7 +246,11 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   int w = camera.width, h = camera.height;
   glVertexAttrib4f(3, 1, 1, 1, 1);  // vertex color of meshes that have none
   if (!reflections_->prepare(view)) return false;
-  if (!lights_->prepare(view, viewProj)) return false;
+  // A probe's faces use the shadow maps the capture fitted to the view
+  // (ReflectionEffects::prepare): refitting them to each face cost more
+  // than the capture's own drawing.
+  const bool capture = reflections_->capturing();
+  if (!capture && !lights_->prepare(view, viewProj)) return false;
 
   // Main pass: linear HDR, coverage in alpha, multisampled.
   GLint maxSamples = 1;
@@ -294,6 +298,7 @@ bool GlRenderer::colorPass(const View& view, const Eigen::Matrix4d& viewProj, Im
   glBindFramebuffer(GL_READ_FRAMEBUFFER, color_.fbo[0]);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, color_.fbo[1]);
   glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  if (capture) return glOk();  // the capture reads the resolved HDR image
   if (!post_->run(view, viewProj)) return false;
 
   out.width = w;

@@ -53,6 +53,9 @@ struct RenderTimings {
   // also those no sample sees), summed over views.
   std::uint64_t jitteredViews = 0;
   std::uint64_t occludedInstances = 0;
+  // Shadow map views drawn (a cube light's six faces count six): how often
+  // the maps were redrawn for views that moved them.
+  std::uint64_t shadowMapsDrawn = 0;
 };
 
 // Renders; false (with an error diagnostic naming the record's line) when

@@ -340,3 +340,44 @@ TEST(Reflections, BoxProjectionMovesTheReflection) {
   EXPECT_GT(withBox, 50);  // the green wall is reflected either way
   EXPECT_GT(without, withBox + withBox / 5) << without << " against " << withBox;
 }
+
+// A probe's capture draws its six faces with the shadow maps fitted to the
+// view it is captured for: the maps are drawn once, as without the probe
+// (refitting them to each face cost more than the capture's drawing).
+TEST(Reflections, ProbeCaptureReusesTheViewsShadowMaps) {
+  std::string body = "light /World/Sun -0.4 0.3 -1 3 type=directional shadows=true\n" +
+                     box("/World/Floor", 0, 0, -0.05, 6.2, 6.2, 0.1, "white") +
+                     sphere("/World/Chrome", 0.5, 0, 1.5, 0.6, "chrome");
+  auto withProbe = build(skyScene(1, body + probe(false))), without = build(skyScene(1, body));
+  if (!context()) GTEST_SKIP() << "no EGL context";
+  View v = view({-2.6, 0, 1.5}, {1, 0, 0});
+  std::uint64_t drawn[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    Diagnostics d;
+    auto r = Renderer::create(k ? withProbe->scene : without->scene, RenderOptions{}, d);
+    ASSERT_TRUE(r) << (d.empty() ? "" : d.front().message);
+    ViewImages im;
+    ASSERT_TRUE(r->render(v, im, d)) << (d.empty() ? "" : d.back().message);
+    drawn[k] = r->timings().shadowMapsDrawn;
+  }
+  EXPECT_GT(drawn[0], 0u);
+  EXPECT_EQ(drawn[1], drawn[0]);
+}
+
+// A probe is prefiltered at most at its captured size: a 64-texel capture
+// asked to prefilter at 256 draws as one asked at 64 (the extra texels
+// would only upsample it, at several times the GGX samples).
+TEST(Reflections, PrefilterStopsAtTheCapturedSize) {
+  std::string body = room("red", "green", "blue", "white") + sphere("/World/Chrome", 0.5, 0, 1.5, 0.6, "chrome");
+  auto atProbeSize = build(skyScene(1, body + probe(false)));
+  std::string larger = probe(false);
+  larger.replace(larger.find("prefilteredResolution=64"), 24, "prefilteredResolution=256");
+  auto asked256 = build(skyScene(1, body + larger));
+  ASSERT_EQ(asked256->scene.probes.size(), 1u);
+  EXPECT_EQ(asked256->scene.probes[0].prefilteredResolution, 256);
+  View v = view({-2.6, 0, 1.5}, {1, 0, 0});
+  std::vector<Image> a = draw(atProbeSize->scene, {v}), b = draw(asked256->scene, {v});
+  if (a.empty()) GTEST_SKIP() << "no EGL context";
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(a[0].rgba, b[0].rgba);
+}
