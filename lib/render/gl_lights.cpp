@@ -477,3 +477,23 @@ void LightEffects::bind(GLuint program, const View& view, const Eigen::Matrix4d&
 }
 
 }  // namespace rscene::render::detail
+
+namespace rscene::render::detail {
+
+void LightEffects::configure(const RenderScene& scene, std::string& source) {
+  int directional = 0;
+  bool local = false;
+  for (const RenderLight& l : scene.lights) {
+    if (l.type == LightType::Directional)
+      ++directional;
+    else
+      local = true;
+  }
+  std::string defines;
+  if (local) defines += "#define RSCENE_LOCAL_LIGHTS\n";
+  if (directional > kHeadLights) defines += "#define RSCENE_MANY_SUNS\n";
+  std::size_t afterVersion = source.find('\n');  // #version comes first
+  source.insert(afterVersion == std::string::npos ? source.size() : afterVersion + 1, defines);
+}
+
+}  // namespace rscene::render::detail

@@ -33,6 +33,11 @@ class LightEffects {
   ~LightEffects();
   LightEffects(const LightEffects&) = delete;
   LightEffects& operator=(const LightEffects&) = delete;
+  // Switches on, in the surface program's source, the light code the scene
+  // needs: the tile lists only with a point, spot or area light, the
+  // buffer loop only past kHeadLights directional lights (llvmpipe pays
+  // for compiled code at every fragment, taken or not).
+  static void configure(const RenderScene& scene, std::string& fragmentSource);
   // The lights, which of them cast shadows and at what resolution, the
   // atlas and the buffers: false with an error diagnostic.
   bool upload();

@@ -519,6 +519,7 @@ bool GlRenderer::buildPrograms() {
   std::string log;
   std::string surface = shaders::surfaceFragment(!scene_.probes.empty()), post = shaders::postFragment();
   VolumeEffects::configure(scene_, surface);
+  LightEffects::configure(scene_, surface);
   VolumeEffects::configure(scene_, post);
   surfaceProg_ = program(shaders::kSurfaceVertex, surface.c_str(), log);
   shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);

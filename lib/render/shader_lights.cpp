@@ -209,7 +209,10 @@ vec3 directLight(Surface s) {
   float nv = max(dot(s.N, s.V), 1e-4);
   vec3 color = vec3(0.0);
   for (int i = 0; i < uHeadCount; ++i) color += sunLight(i, s, f0, diffuse, a2, rough, nv);
+#ifdef RSCENE_MANY_SUNS
   for (int i = uHeadCount; i < uDirectionalCount; ++i) color += lightFrom(i, s, f0, diffuse, a2, rough, nv, true);
+#endif
+#ifdef RSCENE_LOCAL_LIGHTS
   if (!uHasLocalLights) return color;
   ivec2 tile = min(ivec2(gl_FragCoord.xy) / uTileSize, ivec2(uTilesX - 1, uTilesY - 1));
   int cell = tile.y * uTilesX + tile.x;
@@ -219,6 +222,7 @@ vec3 directLight(Surface s) {
     color += lightFrom(texelFetch(uLightGrid, offset + k).r, s, f0, diffuse, a2, rough, nv, false);
   for (int k = plain; k < count; ++k)
     color += lightFrom(texelFetch(uLightGrid, offset + k).r, s, f0, diffuse, a2, rough, nv, true);
+#endif
   return color;
 }
 )";
