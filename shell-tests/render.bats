@@ -608,3 +608,18 @@ SCENE
   [[ "$stderr" =~ shadow\ passes\ [0-9.]+\ s,\ drawing ]]
   [ -s lights.png ]
 }
+
+@test "thousands of decals or shadowed lights stay bounded: the nearest 1024 decals, the 64 strongest shadows, each said once" {
+  {
+    echo "raisim_engine_scene 1"
+    echo "camera /Cam -6 0 3 0.9732 0 0.2298 0 45 0.05 100 160 90 rgb true"
+    echo "object /Floor ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615"
+    for i in $(seq 1 1100); do echo "projected_decal /D$i 3 3 0 1 0 0 0 1 1 1 halfExtents=0.01,0.01,0.1 color=0,0,1,1"; done
+    for i in $(seq 1 70); do echo "light /L$i 0 0 -1 0.1 type=spot position=$((i % 10)),$((i / 10)),3 shadows=true"; done
+  } > many.rscene
+  run -0 --separate-stderr timeout 60 "$RENDER" many.rscene --backend cpu -o many.png
+  [[ "$stderr" == *"1100 decals in view: the 1024 nearest the camera are drawn [RS9055]"* ]]
+  [[ "$stderr" == *"70 lights cast shadows; the 64 strongest do, the others light without shadow [RS9050]"* ]]
+  [ "$(grep -c RS9055 <<<"$stderr")" -eq 1 ]
+  is_png many.png
+}

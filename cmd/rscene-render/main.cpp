@@ -186,7 +186,8 @@ int main(int argc, char** argv) {
                  "Largest image, width x height, before anything is drawn (default 16777216 = 4096x4096)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 28));
   app.add_option("--max-instances", opt.limits.maxInstances,
-                 "Most instanced_visual instances drawn in all, after maxRenderedInstances (default 1000000)")
+                 "Most instances drawn in all: instanced_visual instances, terrain foliage and granular particles, "
+                 "after maxRenderedInstances (default 1000000)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 32));
   app.add_option("--max-texture-pixels", opt.maxTexturePixels,
                  "Largest texture or HDR background decoded; a larger one is not drawn (default 67108864)")
@@ -212,7 +213,8 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   app.add_flag("--allow-missing-assets", opt.allowMissing,
-               "Draw a magenta placeholder box for a missing mesh or texture and warn, instead of failing");
+               "Warn instead of failing on a missing asset: a missing mesh is drawn as a magenta box, a missing "
+               "texture left out");
   app.add_option("--reference", opt.baseline.reference,
                  "Compare with baseline PNG FILE; exit 1 above --threshold; a missing FILE is written")
       ->type_name("FILE");

@@ -171,9 +171,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS9047", E, Render, "render", "--trajectory names a body, robot or joint the scene does not have"},
     {"RS9048", E, Render, "render", "outputPath a scene may not write to (absolute, or with '..'), or two views writing one file"},
     // RS905x lights and shadows (RS9050..)
-    {"RS9050", W, Render, "render", "shadow maps reduced to fit the shadow atlas"},
+    {"RS9050", W, Render, "render", "more than 64 lights cast shadows (the strongest do), or shadow maps reduced to fit the shadow atlas"},
     // RS9055 and on: projected decals, fog, irradiance volumes
-    {"RS9055", W, Render, "render", "decal textures or volume records past what this OpenGL holds: those are not drawn"},
+    {"RS9055", W, Render, "render", "more than 1024 decals, fog spheres or irradiance volumes of one kind in view (the nearest are drawn), or decal textures past what this OpenGL holds"},
     // RS906x reflections: environment light and reflection probes
     {"RS9060", W, Render, "render", "reflection probes not drawn: the OpenGL has no cube map arrays"},
     {"RS9061", W, Render, "render", "more than 8 reflection probes; the rest are not drawn"},

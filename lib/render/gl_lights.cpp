@@ -35,6 +35,9 @@ GLuint depthProgram(std::string& log) {
   return GlRenderer::linkProgram(shaders::kShadowMapVertex, shaders::kDepthFragment, log);
 }
 
+// Most lights that cast shadows (the strongest; RS9050 says so).
+constexpr std::size_t kMaxCasters = 64;
+
 // What "strongest" means for environment shadowedLightBudget.
 float strengthOf(const RenderLight& l) { return l.color.cwiseAbs().maxCoeff(); }
 
@@ -133,10 +136,18 @@ void LightEffects::chooseCasters() {
     float strength = env.customShadows ? env.shadowStrength : l.shadowStrength;
     if (l.shadows && strength > 0 && reach_[i] > 0 && strengthOf(l) > 0) chosen.push_back(i);
   }
-  if (env.shadowedLightBudget > 0 && chosen.size() > std::size_t(env.shadowedLightBudget)) {
+  // At most kMaxCasters whatever the budget: each caster is a shadow pass
+  // (six for a cube), and thousands made the upload quadratic in time.
+  std::size_t budget = env.shadowedLightBudget > 0 ? std::size_t(env.shadowedLightBudget) : kMaxCasters;
+  budget = std::min(budget, kMaxCasters);
+  if (chosen.size() > budget) {
+    if (budget == kMaxCasters && (env.shadowedLightBudget <= 0 || std::size_t(env.shadowedLightBudget) > kMaxCasters))
+      r_.diag(Severity::Warning, "RS9050", 0,
+              std::to_string(chosen.size()) + " lights cast shadows; the " + std::to_string(kMaxCasters) +
+                  " strongest do, the others light without shadow");
     std::stable_sort(chosen.begin(), chosen.end(),
                      [&](std::size_t a, std::size_t b) { return strengthOf(lights_[a]) > strengthOf(lights_[b]); });
-    chosen.resize(std::size_t(env.shadowedLightBudget));
+    chosen.resize(budget);
     std::sort(chosen.begin(), chosen.end());
   }
   const int sw = r_.software_ ? 1 : 0;

@@ -12,6 +12,10 @@
 #include "render/mipmap.hpp"
 
 namespace rscene::render::detail {
+
+// Most records of one kind (decals, irradiance volumes, fog spheres) a view
+// draws: the nearest to the eye (RS9055 names how many were left out).
+constexpr std::size_t kMaxInView = 1024;
 namespace {
 
 constexpr int kDecalTexels = 8, kIrradianceTexels = 5, kFogTexels = 3;
@@ -207,17 +211,44 @@ void VolumeEffects::bind(GLuint program, const View& view) {
   Eigen::Vector3d eye = view.camera.world.position;
   data_.clear();
   decals_ = irradiance_ = fogs_ = 0;
-  // Only what may touch a visible surface: the records inside the frustum.
-  for (std::size_t i = 0; i < scene.decals.size(); ++i) {
-    const RenderDecal& d = scene.decals[i];
-    float alpha = d.color.w();
-    if (d.fadeLength > 0) {
-      double distance = (d.world.translation() - eye).norm();
-      alpha *= 1 - std::clamp(float(distance - d.fadeBegin) / d.fadeLength, 0.f, 1.f);
+  // Only what may touch a visible surface: the records inside the frustum,
+  // at most kMaxInView of each kind, the nearest to the eye (every fragment
+  // loops over the list: tens of thousands would cost minutes, and the
+  // renderer's buffers have limits of their own).
+  std::vector<std::pair<double, std::size_t>> chosen;
+  auto choose = [&](const char* kind, std::size_t count, auto&& inView, auto&& distance) {
+    chosen.clear();
+    for (std::size_t i = 0; i < count; ++i)
+      if (inView(i)) chosen.emplace_back(distance(i), i);
+    if (chosen.size() > kMaxInView) {
+      std::nth_element(chosen.begin(), chosen.begin() + kMaxInView, chosen.end());
+      if (!warnedOverflow_)
+        r_.diag(Severity::Warning, "RS9055", 0,
+                std::to_string(chosen.size()) + " " + kind + " in view: the " + std::to_string(kMaxInView) +
+                    " nearest the camera are drawn");
+      warnedOverflow_ = true;
+      chosen.resize(kMaxInView);
     }
-    if (!(alpha > 0) || !boxInFrustum(viewProj, d.bounds)) continue;
+    std::sort(chosen.begin(), chosen.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  };
+  std::vector<float> decalAlpha(scene.decals.size(), 0.f);
+  choose(
+      "decals", scene.decals.size(),
+      [&](std::size_t i) {
+        const RenderDecal& d = scene.decals[i];
+        float alpha = d.color.w();
+        if (d.fadeLength > 0) {
+          double distance = (d.world.translation() - eye).norm();
+          alpha *= 1 - std::clamp(float(distance - d.fadeBegin) / d.fadeLength, 0.f, 1.f);
+        }
+        decalAlpha[i] = alpha;
+        return alpha > 0 && boxInFrustum(viewProj, d.bounds);
+      },
+      [&](std::size_t i) { return scene.decals[i].bounds.exteriorDistance(eye); });
+  for (auto [distance, i] : chosen) {
+    const RenderDecal& d = scene.decals[i];
     putRows(data_, d.world);
-    put(data_, linear(Eigen::Vector3f(d.color.head<3>())), alpha);
+    put(data_, linear(Eigen::Vector3f(d.color.head<3>())), decalAlpha[i]);
     const auto& layers = decalLayers_[i];
     put(data_, layers[0], layers[1], layers[2], layers[3]);
     put(data_, d.uvScale.x(), d.uvScale.y(), d.uvOffset.x(), d.uvOffset.y());
@@ -226,8 +257,12 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     ++decals_;
   }
   irradianceBase_ = int(data_.size() / 4);
-  for (const RenderIrradiance& v : scene.irradianceVolumes) {
-    if (!boxInFrustum(viewProj, v.bounds)) continue;
+  choose(
+      "irradiance volumes", scene.irradianceVolumes.size(),
+      [&](std::size_t i) { return boxInFrustum(viewProj, scene.irradianceVolumes[i].bounds); },
+      [&](std::size_t i) { return scene.irradianceVolumes[i].bounds.exteriorDistance(eye); });
+  for (auto [distance, i] : chosen) {
+    const RenderIrradiance& v = scene.irradianceVolumes[i];
     putRows(data_, v.world);
     put(data_, v.color, v.edgeFade);
     Eigen::Vector3f half = v.world.linear().colwise().norm().transpose().cast<float>();
@@ -235,9 +270,15 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     ++irradiance_;
   }
   fogBase_ = int(data_.size() / 4);
-  for (const RenderFog& f : scene.fogs) {
-    Eigen::AlignedBox3d box(f.center.array() - f.radius, f.center.array() + f.radius);
-    if (!boxInFrustum(viewProj, box)) continue;
+  auto fogBox = [&](std::size_t i) {
+    const RenderFog& f = scene.fogs[i];
+    return Eigen::AlignedBox3d(f.center.array() - f.radius, f.center.array() + f.radius);
+  };
+  choose(
+      "fog spheres", scene.fogs.size(), [&](std::size_t i) { return boxInFrustum(viewProj, fogBox(i)); },
+      [&](std::size_t i) { return fogBox(i).exteriorDistance(eye); });
+  for (auto [distance, i] : chosen) {
+    const RenderFog& f = scene.fogs[i];
     Eigen::Vector3d fromCentre = eye - f.center;
     put(data_, fromCentre.cast<float>(), float(fromCentre.squaredNorm() - double(f.radius) * f.radius));
     put(data_, f.color, f.density);

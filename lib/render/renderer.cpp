@@ -59,6 +59,10 @@ GLuint program(const char* vs, const char* fs, std::string& log) {
   return p;
 }
 
+// The color of a missing mesh's stand-in (--allow-missing-assets): magenta,
+// which cannot be mistaken for content.
+const Eigen::Vector4f kPlaceholderColor(1.0f, 0.0f, 1.0f, 1.0f);
+
 // Mesa's CPU rasterisers (llvmpipe, softpipe): some work is cheaper done here.
 bool softwareGl() {
   const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -342,7 +346,7 @@ InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bo
 }
 
 bool GlRenderer::uploadDrawables() {
-  const Eigen::Vector4f placeholderColor(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: cannot be mistaken for content
+  const Eigen::Vector4f placeholderColor = kPlaceholderColor;
   auto pbrOf = [](const RenderMaterial& m, float checker) {
     return Eigen::Vector4f(m.metallic, m.roughness, checker, 0);
   };
@@ -442,11 +446,13 @@ void GlRenderer::uploadTerrains() {
 bool GlRenderer::uploadInstanced() {
   for (const Instanced& b : scene_.instanced) {
     std::shared_ptr<GpuMesh> mesh;
+    bool placeholder = false;
     if (b.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(b.meshPath, b.line, b.meshColumn, {}, failed);
       if (failed) return false;
       mesh = parts ? parts->front().mesh : primitive(Shape::Box);
+      placeholder = !parts;  // --allow-missing-assets: a magenta box, as for objects
     } else {
       // Round shapes as finely as the instance that looks largest needs:
       // 20,000 sand grains of 48 slices each would be 46 M triangles.
@@ -462,8 +468,10 @@ bool GlRenderer::uploadInstanced() {
     // Visuals only, never drawn by sensor views, unless worldObject
     // (granular particles).
     for (std::size_t i = 0; i < b.worlds.size(); ++i)
-      add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i], b.colors[i],
-          Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0), Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i],
+      add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i],
+          placeholder ? kPlaceholderColor : b.colors[i],
+          placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
+          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i],
           b.worldObject);
   }
   return true;

@@ -184,6 +184,14 @@ void applyDecals(inout Surface s) {
     if (fades.y > 0.0) fade *= smoothstep(fades.y, 1.0, dot(geometric, normalize(az)) * 0.5 + 0.5);
     if (fade <= 0.0) continue;
     vec2 uv = vec2(q.x * 0.5 + 0.5, 0.5 - q.y * 0.5) * uvst.xy + uvst.zw;
+#if defined(RSCENE_DECAL_ALBEDO) || defined(RSCENE_DECAL_EMISSION) || defined(RSCENE_DECAL_NORMAL) || defined(RSCENE_DECAL_ORM)
+    // One untiled image (the default uvScale and uvOffset): kept half a texel
+    // inside, so that filtering does not wrap the opposite edge in.
+    if (uvst == vec4(1.0, 1.0, 0.0, 0.0)) {
+      vec2 inset = 0.5 / vec2(textureSize(uDecalTextures, 0).xy);
+      uv = clamp(uv, inset, 1.0 - inset);
+    }
+#endif
     vec2 gx = vec2(dot(ax, dPdx), -dot(ay, dPdx)) * 0.5 * uvst.xy;
     vec2 gy = vec2(dot(ax, dPdy), -dot(ay, dPdy)) * 0.5 * uvst.xy;
     vec4 albedo = color;

@@ -288,3 +288,25 @@ TEST(Render, JpegAlbedoTextureIsDrawn) {
   EXPECT_GT(c[0], 3 * c[1]);
   EXPECT_GT(c[0], 3 * c[2]);
 }
+
+namespace {
+
+TEST(Render, AnInstancedVisualsMissingMeshIsAMagentaPlaceholder) {
+  // --allow-missing-assets: the instances of a mesh that is not there are
+  // drawn as magenta boxes, as an object's are, not as plain boxes of the
+  // record's color that would pass for real geometry.
+  RenderOptions o;
+  o.width = o.height = 200;
+  o.allowMissingAssets = true;
+  Result r = renderText(std::string(kCameraIdentity) +
+                            "instanced_visual /World/I mesh meshPath=nothere.gltf colorA=0.5,0.5,0.5,1 "
+                            "instances=5,0,0,1,0,0,0,1,1,1\n",
+                        kPlainBlack, o);
+  ASSERT_TRUE(r.ok);
+  const std::uint8_t* c = r.image.pixel(100, 100);
+  EXPECT_GT(c[0], 200);
+  EXPECT_LT(c[1], 60);
+  EXPECT_GT(c[2], 200);
+}
+
+}  // namespace
