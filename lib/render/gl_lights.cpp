@@ -11,6 +11,7 @@
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/shaders.hpp"
+#include "render/gl_uniforms.hpp"
 
 namespace rscene::render::detail {
 namespace {
@@ -32,7 +33,7 @@ constexpr double kWideSpotDegrees = 60;
 
 // The shadow maps' program: positions only, no fragment work.
 GLuint depthProgram(std::string& log) {
-  return GlRenderer::linkProgram(shaders::kShadowMapVertex, shaders::kDepthFragment, log);
+  return linkProgram(shaders::kShadowMapVertex, shaders::kDepthFragment, log);
 }
 
 // Most lights that cast shadows (the strongest; RS9050 says so).
@@ -41,10 +42,6 @@ constexpr std::size_t kMaxCasters = 64;
 // What "strongest" means for environment shadowedLightBudget.
 float strengthOf(const RenderLight& l) { return l.color.cwiseAbs().maxCoeff(); }
 
-void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
-  Eigen::Matrix4f f = m.cast<float>();
-  glUniformMatrix4fv(glGetUniformLocation(p, name), 1, GL_FALSE, f.data());
-}
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/shaders.hpp"
+#include "render/gl_uniforms.hpp"
 
 namespace rscene::render::detail {
 namespace {
@@ -22,12 +23,6 @@ constexpr float kAoRadius = 0.5f, kAoIntensity = 1.0f, kAoMaxScreen = 0.1f;
 // bright area is at most about bloomIntensity x (16 - bloomThreshold).
 constexpr float kBloomSourceClamp = 16.0f;
 
-GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
-void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
-  Eigen::Matrix4f f = m.cast<float>();
-  glUniformMatrix4fv(loc(p, name), 1, GL_FALSE, f.data());
-}
-void setVec3(GLuint p, const char* name, const Eigen::Vector3f& v) { glUniform3f(loc(p, name), v.x(), v.y(), v.z()); }
 void bindTexture(GLuint p, const char* name, int unit, GLuint texture) {
   glActiveTexture(GLenum(GL_TEXTURE0 + unit));
   glBindTexture(GL_TEXTURE_2D, texture);

@@ -19,6 +19,7 @@
 #include "render/gl_renderer.hpp"
 #include "render/reflection_shaders.hpp"
 #include "render/shaders.hpp"
+#include "render/gl_uniforms.hpp"
 
 namespace rscene::render::detail {
 namespace {
@@ -73,8 +74,6 @@ GLuint cubeTexture(int size, int levels, int layers = 0) {
     glTexParameteri(target, wrap, GL_CLAMP_TO_EDGE);
   return t;
 }
-
-GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
 
 // The irradiance harmonics of a cube's level whose side is at most kShSide.
 IrradianceSh cubeIrradiance(GLuint cube, int size) {
@@ -134,8 +133,8 @@ ReflectionEffects::~ReflectionEffects() {
 
 bool ReflectionEffects::buildPrograms() {
   std::string log;
-  backgroundProg_ = GlRenderer::linkProgram(shaders::kPostVertex, shaders::backgroundFaceFragment().c_str(), log);
-  prefilterProg_ = GlRenderer::linkProgram(shaders::kPostVertex, shaders::prefilterFragment().c_str(), log);
+  backgroundProg_ = linkProgram(shaders::kPostVertex, shaders::backgroundFaceFragment().c_str(), log);
+  prefilterProg_ = linkProgram(shaders::kPostVertex, shaders::prefilterFragment().c_str(), log);
   if (backgroundProg_ && prefilterProg_) return true;
   r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
   return false;

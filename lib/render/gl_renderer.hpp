@@ -125,8 +125,6 @@ class GlRenderer final : public Renderer {
   bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) override;
   RenderTimings timings() const override { return timings_; }
   void addUploadSeconds(double s) { timings_.uploadSeconds += s; }
-  // Compiles and links a program; 0 with the compiler's log appended.
-  static GLuint linkProgram(const char* vertex, const char* fragment, std::string& log);
 
  private:
   // ---- upload (renderer.cpp)

@@ -2,17 +2,10 @@
 // of one view into the bound framebuffer, and the jittered single-sample
 // passes a software rasteriser draws instead of MSAA on deep scenes.
 #include "render/gl_renderer.hpp"
+#include "render/gl_uniforms.hpp"
 #include "render/main_pass.hpp"
 
 namespace rscene::render::detail {
-namespace {
-
-void setMatrix(GLuint p, const char* name, const Eigen::Matrix4d& m) {
-  Eigen::Matrix4f f = m.cast<float>();
-  glUniformMatrix4fv(glGetUniformLocation(p, name), 1, GL_FALSE, f.data());
-}
-
-}  // namespace
 
 void GlRenderer::drawLayers(const View& view, const Eigen::Matrix4d& viewProj, bool prepass) {
   glDisable(GL_BLEND);
@@ -24,7 +17,7 @@ void GlRenderer::drawLayers(const View& view, const Eigen::Matrix4d& viewProj, b
     // Depth only, culling as the lit pass will (a back face it would cull
     // must not hide what is behind it).
     glUseProgram(prepassProg_);
-    setMatrix(prepassProg_, "uViewProj", viewProj);
+    setMat(prepassProg_, "uViewProj", viewProj);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     for (std::size_t i : drawOrder_) {
       const Batch& b = batches_[i];
@@ -50,7 +43,7 @@ void GlRenderer::drawLayers(const View& view, const Eigen::Matrix4d& viewProj, b
   }
   GLuint surface = surfaceProg_;
   glUseProgram(surface);
-  setMatrix(surface, "uViewProj", viewProj);
+  setMat(surface, "uViewProj", viewProj);
   drawBatches(surface, false, false);
   if (prepass) glDisable(GL_STENCIL_TEST);  // else the caller's stencil test holds for every layer
   glDepthMask(GL_TRUE);
@@ -58,7 +51,7 @@ void GlRenderer::drawLayers(const View& view, const Eigen::Matrix4d& viewProj, b
   if (pointVao_ && !view.sensor) {  // point clouds are visuals: no sensor sees them
     glUseProgram(pointProg_);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    setMatrix(pointProg_, "uViewProj", viewProj);
+    setMat(pointProg_, "uViewProj", viewProj);
     glBindVertexArray(pointVao_);
     for (std::size_t i = 0; i < pointRanges_.size(); ++i) {
       glUniform1f(glGetUniformLocation(pointProg_, "uPointSize"), pointSizes_[i]);
@@ -171,7 +164,7 @@ bool GlRenderer::markEdges(const View& view, const Eigen::Matrix4d& viewProj, in
   glDisable(GL_BLEND);
   glCullFace(GL_BACK);
   glUseProgram(idProg_);
-  setMatrix(idProg_, "uViewProj", viewProj);
+  setMat(idProg_, "uViewProj", viewProj);
   GLuint first = 0;
   std::vector<std::pair<std::size_t, GLuint>> firstIds;  // opaque batch, its first instance's id - 1
   for (int blended = 0; blended < 2; ++blended) {

@@ -12,18 +12,13 @@
 #include "render/gl_renderer.hpp"
 #include "render/main_pass.hpp"
 #include "render/occlusion.hpp"
+#include "render/gl_uniforms.hpp"
 
 namespace rscene::render::detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-GLint loc(GLuint p, const char* name) { return glGetUniformLocation(p, name); }
-void setMat(GLuint p, const char* name, const Eigen::Matrix4d& m) {
-  Eigen::Matrix4f f = m.cast<float>();
-  glUniformMatrix4fv(loc(p, name), 1, GL_FALSE, f.data());
-}
-void setVec3(GLuint p, const char* name, const Eigen::Vector3f& v) { glUniform3f(loc(p, name), v.x(), v.y(), v.z()); }
 
 // GL rows are bottom-up; images are top-down.
 template <typename T>

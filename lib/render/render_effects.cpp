@@ -17,13 +17,6 @@ std::uint32_t lineOf(const Document& doc, int recordIndex) {
                                                                             : 0;
 }
 
-Eigen::Affine3d affineOf(const Pose& p) {
-  Eigen::Affine3d m = Eigen::Affine3d::Identity();
-  m.linear() = p.orientation.normalized().toRotationMatrix();
-  m.translation() = p.position;
-  return m;
-}
-
 float nonNegative(double v) { return std::isfinite(v) ? float(std::max(v, 0.0)) : 0.f; }
 
 // A color as written (display, gamma 2.2) in linear light, as the shaders
@@ -36,13 +29,12 @@ Eigen::Vector3f linear(const Eigen::Vector3d& c) {
 
 // Unit cube [-1, 1]^3 -> world of a box record: pose x scale x halfExtents.
 Eigen::Affine3d boxWorld(const Pose& pose, const Eigen::Vector3d& scale, const Eigen::Vector3d& halfExtents) {
-  return affineOf(pose) * Eigen::Scaling(Eigen::Vector3d(scale.cwiseProduct(halfExtents).cwiseAbs()));
+  return Eigen::Translation3d(pose.position) * pose.orientation.normalized() *
+         Eigen::Scaling(Eigen::Vector3d(scale.cwiseProduct(halfExtents).cwiseAbs()));
 }
 
 Eigen::AlignedBox3d cubeBounds(const Eigen::Affine3d& world) {
-  Eigen::AlignedBox3d b;
-  for (int i = 0; i < 8; ++i) b.extend(world * Eigen::Vector3d(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
-  return b;
+  return transformBox(world, Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1)));
 }
 
 }  // namespace

@@ -88,10 +88,6 @@ GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
   return program(vertex, fragment, log);
 }
 
-GLuint GlRenderer::linkProgram(const char* vertex, const char* fragment, std::string& log) {
-  return program(vertex, fragment, log);
-}
-
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
     : scene_(scene),

@@ -47,13 +47,6 @@ bool forBodies(std::string_view tag) {
 
 Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
 
-Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
-  Pose p;
-  p.position = r.vec3(pos);
-  p.orientation = toQuat(r.quat(rot));
-  return p;
-}
-
 class Builder {
  public:
   Builder(const Document& doc, const SceneOptions& opt, Scene& scene, Diagnostics& diags)

@@ -9,18 +9,6 @@
 namespace rscene {
 namespace {
 
-Eigen::Quaterniond quatOf(const RecordReader& r, std::string_view name) {
-  Eigen::Vector4d q = r.quat(name);
-  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-}
-
-Pose poseOf(const RecordReader& r) {
-  Pose p;
-  p.position = r.vec3("position");
-  p.orientation = quatOf(r, "orientation");
-  return p;
-}
-
 Eigen::Vector2d vec2(const RecordReader& r, std::string_view name, const Eigen::Vector2d& fallback) {
   std::vector<double> xs;
   if (!r.numbers(name, xs) || xs.size() < 2) return fallback;
@@ -37,10 +25,18 @@ void identity(const Document& doc, const RecordReader& r, int idx, T& out) {
 
 }  // namespace
 
+Pose readPose(const RecordReader& r, std::string_view pos, std::string_view rot) {
+  Pose p;
+  p.position = r.vec3(pos);
+  Eigen::Vector4d q = r.quat(rot);  // w, x, y, z
+  p.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  return p;
+}
+
 Decal readDecal(const Document& doc, const RecordReader& r, int idx, const AssetPath& asset) {
   Decal d;
   identity(doc, r, idx, d);
-  d.local = poseOf(r);
+  d.local = readPose(r, "position", "orientation");
   d.scale = r.vec3("scale", Eigen::Vector3d::Ones());
   d.halfExtents = r.vec3("halfExtents");
   d.color = r.color("color");
@@ -82,7 +78,7 @@ LocalFog readLocalFog(const Document& doc, const RecordReader& r, int idx) {
 IrradianceVolume readIrradianceVolume(const Document& doc, const RecordReader& r, int idx) {
   IrradianceVolume v;
   identity(doc, r, idx, v);
-  v.local = poseOf(r);
+  v.local = readPose(r, "position", "orientation");
   v.scale = r.vec3("scale", Eigen::Vector3d::Ones());
   v.halfExtents = r.vec3("halfExtents");
   v.color = r.color("color");
@@ -155,7 +151,7 @@ Deformable readDeformable(const Document& doc, const RecordReader& r, int idx, c
   d.kind = r.name("kind");
   d.meshPath = asset(r.str("meshPath"));
   d.meshToken = r.positionalToken("meshPath");
-  d.local = poseOf(r);
+  d.local = readPose(r, "position", "orientation");
   d.scale = r.vec3("scale", Eigen::Vector3d::Ones());
   // The named uniform `scale=` (the positional scale shares its name, so
   // the reader finds that one first): multiplies it.
@@ -197,7 +193,7 @@ Granular readGranular(const Document& doc, const RecordReader& r, int idx) {
   Granular g;
   identity(doc, r, idx, g);
   g.kind = r.name("kind");
-  g.local = poseOf(r);
+  g.local = readPose(r, "position", "orientation");
   g.scale = r.vec3("scale", Eigen::Vector3d::Ones());
   std::vector<double> xs;
   if (r.numbers("positions", xs)) {
