@@ -72,7 +72,7 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 @test "--trajectory-format csv has a header and one row per body and sample" {
   run -0 "$SIM" --steps 4 --trajectory t.csv --every 2 --trajectory-format csv sim_drop.rscene
-  [ "$(head -1 t.csv)" = "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz" ]
+  [ "$(head -1 t.csv)" = "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,points" ]
   [ "$(wc -l < t.csv)" -eq 7 ]
   run -2 "$SIM" --trajectory-format xml sim_drop.rscene
 }
@@ -107,9 +107,9 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
   [ "${stderr_lines[0]}" = "nan.rscene:2:13: error: invalid number 'nan' for gravity [RS2002]" ]
 }
 
-@test "records it cannot simulate are kept and named in one warning" {
+@test "a sensor and an empty granular bed are kept as written, with no warning" {
   run -0 --separate-stderr "$SIM" --steps 1 sim_unsupported.rscene
-  [ "$stderr" = "sim_unsupported.rscene: warning: not simulated, kept unchanged: granular (1) [RS7010]" ]
+  [ "$stderr" = "" ]
   grep -q '^sensor /World/Imu imu /World/Ball 0 0 0 1 0 0 0$' <<<"$output"
   grep -q '^granular /World/Sand sand' <<<"$output"
 }
@@ -510,9 +510,9 @@ qof() {
 
 @test "robots: the trajectory has the base and the joints by name (CSV columns q.NAME, u.NAME; JSON Lines objects)" {
   run -0 --separate-stderr "$SIM" --steps 3 --trajectory t.csv --trajectory-format csv --pd-gains 100,2 "$ROOT/examples/robot_cell.rscene"
-  head -1 t.csv | grep -q '^time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.LF_HAA,q.LF_HFE,q.LF_KFE,.*,q.RH_KFE,u.LF_HAA,.*,u.RH_KFE$'
-  [ "$(head -1 t.csv | tr ',' '\n' | wc -l)" -eq $((15 + 24)) ]
-  grep -q '^0,/World/Robot,0,0,0.3882,1,0,0,0,0,0,0,0,0,0,0,0.6,-1.2,0,0.6,-1.2,0,-0.6,1.2,0,-0.6,1.2,0,0,0,0,0,0,0,0,0,0,0,0$' t.csv
+  head -1 t.csv | grep -q '^time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.LF_HAA,q.LF_HFE,q.LF_KFE,.*,q.RH_KFE,u.LF_HAA,.*,u.RH_KFE,points$'
+  [ "$(head -1 t.csv | tr ',' '\n' | wc -l)" -eq $((15 + 24 + 1)) ]
+  grep -q '^0,/World/Robot,0,0,0.3882,1,0,0,0,0,0,0,0,0,0,0,0.6,-1.2,0,0.6,-1.2,0,-0.6,1.2,0,-0.6,1.2,0,0,0,0,0,0,0,0,0,0,0,0,$' t.csv
   grep -q '^0,/World/Cart,.*,,,,$' t.csv  # a body row leaves the joint columns empty
   [ "$(grep -c '/World/Robot' t.csv)" -eq 4 ]
   run -0 --separate-stderr "$SIM" --steps 1 --trajectory t.jsonl "$ROOT/examples/robot_cell.rscene"

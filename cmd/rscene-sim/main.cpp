@@ -151,7 +151,7 @@ int run(const Options& opt) {
     // of the trajectory and sensor files: the run then cancels them.
     cli::InterruptibleScope interruptible;
     if (!healthy() || !record()) return false;
-    if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates());
+    if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates(), world->particleStates());
     bool progress = isatty(2);
     Clock::time_point lastProgress = Clock::now();
     while (world->steps() < total && !gInterrupted) {
@@ -160,7 +160,7 @@ int run(const Options& opt) {
       contacts += world->contactCount();
       std::uint64_t n = world->steps();
       if (traj && n % static_cast<std::uint64_t>(opt.every) == 0) {
-        lines.append(buffer, world->time(), world->states(), world->robotStates());
+        lines.append(buffer, world->time(), world->states(), world->robotStates(), world->particleStates());
         if (buffer.size() >= kChunk) traj->write(buffer), buffer.clear();
       }
       if (opt.untilRest && world->atRest()) {

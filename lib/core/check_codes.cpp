@@ -148,6 +148,10 @@ constexpr CheckInfo kChecks[] = {
     {"RS7072", W, Scene, VSR, "lidar lidarVerticalFov of 0 with more than one channel (every ring scans the same plane)"},
     {"RS7073", W, Scene, VSR, "sensor segmentation=true on a kind that draws no image (lidar, imu, force_torque): not used"},
     {"RS7074", E, Scene, VSR, "camera orthoScale not finite and positive (at most 1e12) under an orthographic projection"},
+    // RS708x deformable and granular records in rscene-sim (lib/sim/particle_systems.hpp)
+    {"RS7080", E, Sim, "sim", "deformable mesh that is not a usable OBJ surface (unreadable, not OBJ, a face index past its vertices, no triangles)"},
+    {"RS7081", E, Sim, "sim", "deformable record that cannot be simulated (a pinned vertex that is not one of the mesh's, a value out of range)"},
+    {"RS7082", E, Sim, "sim", "granular record that cannot be simulated (more particles than maxParticles, radii that do not match positions, a value out of range)"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

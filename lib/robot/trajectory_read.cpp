@@ -267,7 +267,9 @@ bool TrajectoryReader::parseCsvHeader(const std::string& text, Diagnostics& d) {
                       "' (rscene-sim --trajectory-format csv writes time,path,px,...,wz)");
   for (std::size_t i = kCsvBodyCount; i < fields.size(); ++i) {
     const std::string& name = fields[i].text;
-    if (name.rfind("q.", 0) == 0 && name.size() > 2)
+    if (name == "points" && i + 1 == fields.size())  // particles of deformables and granular media (last)
+      csvPoints_ = true;
+    else if (name.rfind("q.", 0) == 0 && name.size() > 2)
       csvJoints_.push_back(name.substr(2));
     else if (name.rfind("u.", 0) == 0 && name.size() > 2)
       csvJoints_.emplace_back();
@@ -281,7 +283,7 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
   std::vector<CsvField> f;
   std::uint32_t bad = 0;
   if (!splitCsv(text, f, bad)) return fail(d, bad, "malformed CSV field (unclosed quote)");
-  std::size_t want = kCsvBodyCount + csvJoints_.size();
+  std::size_t want = kCsvBodyCount + csvJoints_.size() + (csvPoints_ ? 1 : 0);
   if (f.size() != want)
     return fail(d, f.size() > want ? f[want].column : static_cast<std::uint32_t>(text.size() + 1),
                 std::to_string(f.size()) + " fields where the header has " + std::to_string(want));

@@ -77,6 +77,7 @@ class TrajectoryReader {
   bool parseCsv(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
   bool fail(Diagnostics& d, std::uint32_t column, std::string message);
 
+  bool csvPoints_ = false;  // the CSV header ends with a points column
   std::istream& in_;
   std::string file_;
   TrajectoryLimits limits_;

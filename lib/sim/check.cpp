@@ -19,15 +19,13 @@ std::optional<Diagnostic> unsupportedWarning(const Scene& scene) {
   std::set<std::string> seen;
   // Scene records with physics this simulator does not model; purely
   // visual ones (decals, probes, fog volumes ...) are not worth a warning.
-  auto physical = [](const std::string& tag) { return tag == "deformable" || tag == "granular" || tag == "sensor"; };
+  auto physical = [](const std::string& tag) { return tag == "sensor"; };
   for (const SkippedRecord& s : scene.skipped) {
     if (!physical(s.tag) || !seen.insert(s.tag).second) continue;
     std::size_t n = 0;
     for (const SkippedRecord& t : scene.skipped) n += t.tag == s.tag;
     list += (list.empty() ? "" : ", ") + s.tag + " (" + std::to_string(n) + ")";
   }
-  for (auto [tag, n] : {std::pair{"deformable", scene.deformables.size()}, std::pair{"granular", scene.granulars.size()}})
-    if (n) list += (list.empty() ? "" : ", ") + std::string(tag) + " (" + std::to_string(n) + ")";
   if (list.empty()) return std::nullopt;
   Diagnostic d;
   d.severity = Severity::Warning;

@@ -89,12 +89,12 @@ std::string Trajectory::header() const {
     h += ',';
     csvField(h, c);
   }
-  return h + '\n';
+  return h + ",points\n";
 }
 
 void Trajectory::append(std::string& out, double time, const std::vector<BodyState>& bodies,
-                        const std::vector<RobotState>& robots) const {
-  const std::string empty(columns_.size(), ',');
+                        const std::vector<RobotState>& robots, const std::vector<ParticleState>& particles) const {
+  const std::string empty(columns_.size() + 1, ',');  // the joint columns and points
   for (const BodyState& b : bodies) {
     poseLine(out, format_, time, b.path, b.position, b.orientation, b.linearVelocity, b.angularVelocity);
     out += format_ == TrajectoryFormat::Csv ? empty + '\n' : "}\n";
@@ -116,7 +116,7 @@ void Trajectory::append(std::string& out, double time, const std::vector<BodySta
         out += ',';
         if (c) number(out, *c);
       }
-      out += '\n';
+      out += ",\n";
       continue;
     }
     auto object = [&](const char* name, const std::vector<int>& cols, const Eigen::VectorXd& v, int first) {
@@ -133,6 +133,30 @@ void Trajectory::append(std::string& out, double time, const std::vector<BodySta
     object("jointPositions", qColumns_[k], r.q, q0);
     object("jointVelocities", uColumns_[k], r.u, u0);
     out += "}\n";
+  }
+  for (const ParticleState& p : particles) {
+    const bool csv = format_ == TrajectoryFormat::Csv;
+    if (csv) {
+      number(out, time);
+      out += ',';
+      csvField(out, p.path);
+      out += std::string(13 + columns_.size() + 1, ',');
+    } else {
+      out += "{\"time\":";
+      number(out, time);
+      out += ",\"path\":" + nlohmann::json(p.path).dump() + ",\"points\":[";
+    }
+    for (std::size_t i = 0; i < p.points->size(); ++i) {
+      const Eigen::Vector3d& x = (*p.points)[i];
+      if (i) out += csv ? ';' : ',';
+      if (!csv) out += '[';
+      for (int k = 0; k < 3; ++k) {
+        if (k) out += csv ? ' ' : ',';
+        number(out, x[k]);
+      }
+      if (!csv) out += ']';
+    }
+    out += csv ? "\n" : "]}\n";
   }
 }
 

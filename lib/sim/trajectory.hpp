@@ -9,6 +9,11 @@
 // "q.NAME" per coordinate and "u.NAME" per velocity entry, after the body
 // columns, for the joints of every robot (a joint name shared by two
 // robots is one column); a row leaves the columns not its own empty.
+//
+// A deformable's or granular record's line: time, path and its particles'
+// world positions (a deformable's OBJ vertices first, in file order): in
+// JSON Lines "points":[[x,y,z],...]; in CSV the last column, "points",
+// holds "x y z;x y z;..." and the pose and joint columns stay empty.
 #pragma once
 #include <string>
 #include <vector>
@@ -28,7 +33,7 @@ class Trajectory {
   // One line per body, then one per robot, at simulated time `time`;
   // numbers shortest round-trip.
   void append(std::string& out, double time, const std::vector<BodyState>& bodies,
-              const std::vector<RobotState>& robots) const;
+              const std::vector<RobotState>& robots, const std::vector<ParticleState>& particles = {}) const;
 
  private:
   TrajectoryFormat format_;

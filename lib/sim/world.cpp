@@ -21,6 +21,8 @@
 #include "core/text.hpp"
 #include "scene/reader.hpp"
 #include "sim/bt_eigen.hpp"
+#include "sim/bullet_surfaces.hpp"
+#include "sim/particle_systems.hpp"
 #include "sim/robot_sim.hpp"
 #include "sim/wire.hpp"
 
@@ -204,6 +206,8 @@ struct World::Impl {
   std::vector<Spring> springs;
   std::vector<std::unique_ptr<SimRobot>> robots;
   std::vector<std::unique_ptr<MultiBodyRope>> robotWires;
+  ParticleSystems particles;                 // deformables and granular media
+  std::unique_ptr<BulletSurfaces> surfaces;  // what their particles touch (null when there are none)
   struct {
     int recordIndex = -1;
     const char* field = "";
@@ -732,11 +736,34 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.constraints.emplace_back(c);
     w.world->addConstraint(c, true);
   }
+  if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
+  if (!w.particles.empty()) {
+    SurfaceFilter filter;
+    Impl* wp = &w;
+    filter.collides = [wp](const btCollisionObject& o, std::uint64_t group, std::uint64_t mask) {
+      if (o.getUserIndex() < 0 || static_cast<std::size_t>(o.getUserIndex()) >= wp->info.size()) return false;
+      const BodyInfo& b = wp->info[static_cast<std::size_t>(o.getUserIndex())];
+      return (b.group & mask) != 0 && (group & b.mask) != 0;
+    };
+    filter.friction = [wp](const btCollisionObject& o, const std::string& material) {
+      auto it = wp->materialIndex.find(material);
+      int x = material.empty() || it == wp->materialIndex.end() ? -1 : it->second, y = o.getUserIndex2();
+      if (x >= 0 && y >= 0)
+        if (auto p = wp->pairs.pairs.find({std::min(x, y), std::max(x, y)}); p != wp->pairs.pairs.end())
+          return p->second.friction;
+      return wp->pairs.friction;
+    };
+    w.surfaces = std::make_unique<BulletSurfaces>(*w.world, std::move(filter));
+  }
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 
 void World::step() {
   Impl& w = *impl_;
+  if (w.surfaces) {  // particles first, against the bodies where they are; their reactions act in this step
+    w.particles.step(w.dt, eig(w.world->getGravity()), *w.surfaces);
+    w.surfaces->applyForces();
+  }
   for (const Spring& s : w.springs) s.apply();
   for (auto& r : w.robots) r->applyJointForces(w.dt);
   gCalculateCombinedFrictionCallback = combinedFriction;
@@ -776,6 +803,7 @@ int World::contactCount() const { return impl_->contacts; }
 bool World::atRest() const {
   for (const Simulated& s : impl_->simulated)
     if (s.dynamic && !s.departed && s.body->isActive()) return false;
+  if (!impl_->particles.atRest(impl_->sleepLinear)) return false;
   if (impl_->robots.empty()) return true;
   for (const RobotState& r : robotStates()) {
     for (const Eigen::Vector3d& v : r.bodyLinearVelocities)
@@ -866,6 +894,15 @@ std::optional<NonFinite> World::nonFinite() const {
     bad.step = w.stepCount;
     bad.time = time();
     bad.what = what;
+    return bad;
+  }
+  if (auto p = w.particles.nonFinite()) {
+    NonFinite bad;
+    bad.recordIndex = p->first;
+    bad.path = p->second;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = "particle position or velocity";
     return bad;
   }
   return std::nullopt;
@@ -1028,7 +1065,10 @@ void World::writeBack(Document& doc) const {
     }
   }
   for (const RobotState& r : robotStates()) writeRobot(doc, r);
+  impl_->particles.writeBack(doc);
 }
+
+std::vector<ParticleState> World::particleStates() const { return impl_->particles.states(); }
 
 void World::writeRobot(Document& doc, const RobotState& state) {
   const robot::RobotInstance& in = *state.instance;

@@ -25,6 +25,9 @@
 //                    an articulated system is on its body localIndexA/B
 //   articulated      one Featherstone btMultiBody per record
 //                    (robot_sim.hpp, robot_layout.hpp), in the same world
+//   deformable,      particle systems of our own beside Bullet, stepped
+//   granular         first each step; their particles meet Bullet's bodies
+//                    through BulletSurfaces (particle_systems.hpp)
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -42,6 +45,7 @@
 #include "core/document.hpp"
 #include "robot/instance.hpp"
 #include "scene/scene.hpp"
+#include "sim/particle_systems.hpp"
 
 class btCollisionObject;
 class btCollisionWorld;
@@ -150,7 +154,8 @@ struct NonFinite {
   std::uint64_t step = 0;
   double time = 0;
   std::string what;  // "position", "orientation", "linear velocity", "angular velocity",
-                     // "generalized coordinate", "generalized velocity"
+                     // "generalized coordinate", "generalized velocity",
+                     // "particle position or velocity"
   // A robot whose state is finite but diverged: a joint speed at Bullet's
   // cap (kMaxJointSpeed), or its base farther than kMaxLength.  Stiff
   // springs or gains for the time step; nothing it writes would be physics.
@@ -200,6 +205,8 @@ class World {
   std::vector<BodyState> states() const;  // in record order
   std::vector<RobotState> robotStates() const;  // in Scene::articulated order
   int robotCount() const;
+  // Particles of every deformable and granular record now (valid until the next step).
+  std::vector<ParticleState> particleStates() const;
   const std::vector<Departure>& departures() const;  // in the order they happened
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.

@@ -1,0 +1,55 @@
+// SurfaceQuery over a Bullet world: the particles of deformables and
+// granular media meet every collision object the world holds (the ground
+// plane, terrain heightfields, boxes, spheres, cylinders, capsules, convex
+// hulls, static triangle meshes, compounds and robot link colliders).
+// Contacts with a dynamic rigid body or a robot link carry a body handle;
+// their reaction forces are summed and applied to Bullet before its step
+// (btRigidBody::applyForce, btMultiBody::addLinkForce/addLinkTorque), and
+// the body is woken.  Bullet's types appear only here and in world.cpp.
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "sim/surface_query.hpp"
+
+class btCollisionObject;
+class btCollisionWorld;
+
+namespace rscene::sim {
+
+struct SurfaceFilter {
+  // Whether a particle system of (group, mask) collides with `object`
+  // (the world's 64-bit group/mask test, and not a body that left the world).
+  std::function<bool(const btCollisionObject& object, std::uint64_t group, std::uint64_t mask)> collides;
+  // The friction between `object` and a particle system of `contactMaterial`
+  // (the scene's contact_material pair, else the solver's default friction).
+  std::function<double(const btCollisionObject& object, const std::string& contactMaterial)> friction;
+};
+
+class BulletSurfaces : public SurfaceQuery {
+ public:
+  BulletSurfaces(btCollisionWorld& world, SurfaceFilter filter);
+  ~BulletSurfaces() override;
+  BulletSurfaces(const BulletSurfaces&) = delete;
+  BulletSurfaces& operator=(const BulletSurfaces&) = delete;
+
+  void prepare(const Eigen::AlignedBox3d& region, std::uint64_t group, std::uint64_t mask,
+               const std::string& contactMaterial) override;
+  void contacts(const Eigen::Vector3d& centre, double radius, double margin,
+                std::vector<SurfaceContact>& out) const override;
+  Eigen::Vector3d velocity(int body, const Eigen::Vector3d& point) const override;
+  // `force` is the force's average over the coming world step (a solver
+  // that substeps adds each substep's force times its share of the step).
+  void addForce(int body, const Eigen::Vector3d& point, const Eigen::Vector3d& force) override;
+
+  // Applies the summed forces to Bullet's bodies and clears them: once per
+  // world step, after the particle systems stepped and before Bullet does.
+  void applyForces();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rscene::sim

@@ -1,0 +1,117 @@
+#include "sim/particle_systems.hpp"
+
+#include <cmath>
+
+#include "core/text.hpp"
+#include "scene/reader.hpp"
+
+namespace rscene::sim {
+namespace {
+
+// An error at the record's key when the scene has a document, else a
+// diagnostic naming the record's path.
+void report(const Document* doc, int recordIndex, const std::string& field, const char* code,
+            const std::string& message, Diagnostics& diagnostics) {
+  if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
+    RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics).error(field, code, message);
+    return;
+  }
+  Diagnostic d;
+  d.severity = Severity::Error;
+  d.code = code;
+  d.message = message;
+  diagnostics.push_back(std::move(d));
+}
+
+}  // namespace
+
+bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::AssetCache& assets,
+                             Diagnostics& diagnostics) {
+  bool ok = true;
+  for (const Deformable& d : scene.deformables) {
+    asset::ObjSurface surface;
+    std::string error, field;
+    if (!asset::loadObjSurface(assets.fileSystem(), d.meshPath, surface, &error)) {
+      report(doc, d.recordIndex, "meshPath", particle_code::kDeformableMesh,
+             "deformable '" + d.path + "': mesh " + d.meshPath + ": " + error, diagnostics);
+      ok = false;
+      continue;
+    }
+    std::unique_ptr<DeformableBody> body = DeformableBody::create(d, surface, error, field);
+    if (!body) {
+      report(doc, d.recordIndex, field, particle_code::kDeformable, "deformable '" + d.path + "': " + error,
+             diagnostics);
+      ok = false;
+      continue;
+    }
+    deformables_.push_back({d.recordIndex, d.path, std::move(body)});
+  }
+  for (const Granular& g : scene.granulars) {
+    std::string error, field;
+    std::unique_ptr<GranularBody> body = GranularBody::create(g, error, field);
+    if (!body) {
+      report(doc, g.recordIndex, field, particle_code::kGranular, error, diagnostics);
+      ok = false;
+      continue;
+    }
+    granulars_.push_back({g.recordIndex, g.path, g.world, std::move(body)});
+  }
+  return ok;
+}
+
+void ParticleSystems::step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) {
+  for (DeformableEntry& d : deformables_) d.body->step(dt, gravity, surfaces);
+  for (GranularEntry& g : granulars_) g.body->step(dt, gravity, surfaces);
+}
+
+bool ParticleSystems::atRest(double speed) const {
+  for (const DeformableEntry& d : deformables_)
+    if (!(d.body->maxSpeed() < speed)) return false;
+  for (const GranularEntry& g : granulars_)
+    if (!(g.body->maxSpeed() < speed)) return false;
+  return true;
+}
+
+std::vector<ParticleState> ParticleSystems::states() const {
+  std::vector<ParticleState> out;
+  out.reserve(deformables_.size() + granulars_.size());
+  for (const DeformableEntry& d : deformables_) out.push_back({d.recordIndex, d.path, false, &d.body->positions()});
+  for (const GranularEntry& g : granulars_) out.push_back({g.recordIndex, g.path, true, &g.body->positions()});
+  return out;
+}
+
+std::optional<std::pair<int, std::string>> ParticleSystems::nonFinite() const {
+  for (const DeformableEntry& d : deformables_)
+    if (!d.body->finite()) return std::pair{d.recordIndex, d.path};
+  for (const GranularEntry& g : granulars_)
+    if (!g.body->finite()) return std::pair{g.recordIndex, g.path};
+  return std::nullopt;
+}
+
+void ParticleSystems::writeBack(Document& doc) const {
+  std::string positions, radii;
+  for (const GranularEntry& g : granulars_) {
+    positions.clear();
+    radii.clear();
+    const Pose toRecord = g.frame.inverse();
+    const std::vector<Eigen::Vector3d>& p = g.body->positions();
+    const std::vector<double>& r = g.body->radii();
+    if (p.empty()) continue;  // an empty bed stays as written
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      Eigen::Vector3d local = (toRecord * Pose{p[i], Eigen::Quaterniond::Identity()}).position;
+      if (i) {
+        positions += ';';
+        radii += ',';
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (k) positions += ',';
+        appendNumber(positions, local[k] == 0 ? 0.0 : local[k]);  // no "-0"
+      }
+      appendNumber(radii, r[i]);
+    }
+    doc.setKey(static_cast<std::size_t>(g.recordIndex), "positions", positions);
+    doc.setKey(static_cast<std::size_t>(g.recordIndex), "radii", radii);
+  }
+}
+
+}  // namespace rscene::sim

@@ -1,0 +1,75 @@
+// The deformable and granular records of a scene, simulated beside the
+// rigid world (World owns one): built from the scene, stepped once per
+// world step before Bullet (their contact reactions are forces on Bullet's
+// bodies for that step), reported per step (trajectory, rest, finiteness)
+// and written back (granular records get explicit positions and radii).
+#pragma once
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "asset/cache.hpp"
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "scene/scene.hpp"
+#include "sim/deformable_body.hpp"
+#include "sim/granular_body.hpp"
+#include "sim/surface_query.hpp"
+
+namespace rscene::sim {
+
+namespace particle_code {
+inline constexpr const char* kDeformableMesh = "RS7080";  // a deformable's mesh is not a usable OBJ surface
+inline constexpr const char* kDeformable = "RS7081";      // a deformable record that cannot be simulated
+inline constexpr const char* kGranular = "RS7082";        // a granular record that cannot be simulated
+// Codes 7083 to 7085 are the deformable solver's own, 7086 to 7089 the granular solver's.
+}  // namespace particle_code
+
+// The particles of one record now, for the trajectory and the renderer.
+struct ParticleState {
+  int recordIndex = -1;
+  std::string path;
+  bool granular = false;                               // else deformable
+  const std::vector<Eigen::Vector3d>* points = nullptr;  // world; valid until the next step
+};
+
+class ParticleSystems {
+ public:
+  // Builds a body per deformable and granular record (visible or not:
+  // they are physics); a deformable's mesh is read through `assets`'s file
+  // system.  False after adding an error at the record (and key) at fault.
+  bool create(const Scene& scene, const Document* doc, asset::AssetCache& assets, Diagnostics& diagnostics);
+  bool empty() const { return deformables_.empty() && granulars_.empty(); }
+
+  // One world step of every system.
+  void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces);
+  // Every particle slower than `speed` (m/s): the systems are at rest.
+  bool atRest(double speed) const;
+  std::vector<ParticleState> states() const;  // deformables in record order, then granulars
+  // The first system whose particles are no longer finite: its record and path.
+  std::optional<std::pair<int, std::string>> nonFinite() const;
+  // Granular records get `positions` and `radii` (in the record's frame):
+  // RaiSim reads explicit positions in place of the box fill, so the
+  // settled bed loads as it was left.  Deformables keep their record (the
+  // format stores no deformed state).
+  void writeBack(Document& doc) const;
+
+ private:
+  struct DeformableEntry {
+    int recordIndex = -1;
+    std::string path;
+    std::unique_ptr<DeformableBody> body;
+  };
+  struct GranularEntry {
+    int recordIndex = -1;
+    std::string path;
+    Pose frame;  // the record's world frame: written-back positions are in it
+    std::unique_ptr<GranularBody> body;
+  };
+  std::vector<DeformableEntry> deformables_;
+  std::vector<GranularEntry> granulars_;
+};
+
+}  // namespace rscene::sim
