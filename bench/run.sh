@@ -207,4 +207,11 @@ bash "$(dirname "${BASH_SOURCE[0]}")/robot/run.sh" "$BIN" || status=1
 # One LiDAR scan of the warehouse (issue 12); skips itself without ../shared.
 echo
 bash "$(dirname "${BASH_SOURCE[0]}")/lidar/run.sh" "$BIN" || status=1
+# Deformables and granular media (issue 14): bench/soft/*.sh, each timing
+# one particle scene with rscene-sim.
+for soft in "$(dirname "${BASH_SOURCE[0]}")"/soft/*.sh; do
+  [[ -f $soft ]] || continue
+  echo
+  bash "$soft" "$BIN" || status=1
+done
 exit $status
