@@ -1,5 +1,6 @@
 #include "sim/particle_systems.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include "core/text.hpp"
@@ -60,8 +61,17 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
 }
 
 void ParticleSystems::step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) {
+  auto start = std::chrono::steady_clock::now();
   for (DeformableEntry& d : deformables_) d.body->step(dt, gravity, surfaces);
   for (GranularEntry& g : granulars_) g.body->step(dt, gravity, surfaces);
+  stepSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::size_t ParticleSystems::particles() const {
+  std::size_t n = 0;
+  for (const DeformableEntry& d : deformables_) n += d.body->positions().size();
+  for (const GranularEntry& g : granulars_) n += g.body->positions().size();
+  return n;
 }
 
 bool ParticleSystems::atRest(double speed) const {

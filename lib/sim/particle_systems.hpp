@@ -42,6 +42,11 @@ class ParticleSystems {
   // system.  False after adding an error at the record (and key) at fault.
   bool create(const Scene& scene, const Document* doc, asset::AssetCache& assets, Diagnostics& diagnostics);
   bool empty() const { return deformables_.empty() && granulars_.empty(); }
+  std::size_t systems() const { return deformables_.size() + granulars_.size(); }
+  std::size_t particles() const;  // of every system
+  // Seconds spent in step() so far (steady clock), for rscene-sim --report:
+  // where a run's time goes, particles or Bullet.
+  double stepSeconds() const { return stepSeconds_; }
 
   // One world step of every system.
   void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces);
@@ -70,6 +75,7 @@ class ParticleSystems {
   };
   std::vector<DeformableEntry> deformables_;
   std::vector<GranularEntry> granulars_;
+  double stepSeconds_ = 0;
 };
 
 }  // namespace rscene::sim

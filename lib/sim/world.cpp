@@ -1069,6 +1069,7 @@ void World::writeBack(Document& doc) const {
 }
 
 std::vector<ParticleState> World::particleStates() const { return impl_->particles.states(); }
+const ParticleSystems& World::particleSystems() const { return impl_->particles; }
 
 void World::writeRobot(Document& doc, const RobotState& state) {
   const robot::RobotInstance& in = *state.instance;

@@ -207,6 +207,7 @@ class World {
   int robotCount() const;
   // Particles of every deformable and granular record now (valid until the next step).
   std::vector<ParticleState> particleStates() const;
+  const ParticleSystems& particleSystems() const;  // counts and time spent (rscene-sim --report)
   const std::vector<Departure>& departures() const;  // in the order they happened
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
