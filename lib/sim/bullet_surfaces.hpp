@@ -4,8 +4,13 @@
 // hulls, static triangle meshes, compounds and robot link colliders).
 // Contacts with a dynamic rigid body or a robot link carry a body handle;
 // their reaction forces are summed and applied to Bullet before its step
-// (btRigidBody::applyForce, btMultiBody::addLinkForce/addLinkTorque), and
-// the body is woken.  Bullet's types appear only here and in world.cpp.
+// (btRigidBody::applyCentralForce/applyTorque, btMultiBody::addLinkForce/
+// addLinkTorque), and the body is woken.  A kinematic body has a handle
+// too, so that velocity() gives its motion, but takes no force; static
+// bodies (and a fixed robot base) are -1.  Handles are made in the world's
+// object order when this is built and stay valid for the world's life; a
+// body that left the world is no candidate and takes no more force.
+// Bullet's types appear only here, in surface_shapes.* and in world.cpp.
 #pragma once
 #include <functional>
 #include <memory>
@@ -44,8 +49,12 @@ class BulletSurfaces : public SurfaceQuery {
   void addForce(int body, const Eigen::Vector3d& point, const Eigen::Vector3d& force) override;
 
   // Applies the summed forces to Bullet's bodies and clears them: once per
-  // world step, after the particle systems stepped and before Bullet does.
-  void applyForces();
+  // world step of `dt` seconds, after the particle systems stepped and
+  // before Bullet does.  A sleeping rigid body wakes only when its force
+  // or torque would change its velocity within the step by more than its
+  // sleeping thresholds (below them the push is dropped, as Bullet would
+  // let the body sleep through it).
+  void applyForces(double dt);
 
  private:
   struct Impl;

@@ -762,7 +762,7 @@ void World::step() {
   Impl& w = *impl_;
   if (w.surfaces) {  // particles first, against the bodies where they are; their reactions act in this step
     w.particles.step(w.dt, eig(w.world->getGravity()), *w.surfaces);
-    w.surfaces->applyForces();
+    w.surfaces->applyForces(w.dt);
   }
   for (const Spring& s : w.springs) s.apply();
   for (auto& r : w.robots) r->applyJointForces(w.dt);
@@ -999,6 +999,7 @@ std::optional<Pose> World::robotLinkPose(const std::string& pathOrId, int link) 
 }
 
 const btCollisionWorld& World::collisionWorld() const { return *impl_->world; }
+BulletSurfaces* World::particleSurfaces() { return impl_->surfaces.get(); }
 
 std::vector<const btCollisionObject*> World::rayTargets() const {
   std::vector<const btCollisionObject*> out;

@@ -49,6 +49,7 @@
 
 class btCollisionObject;
 class btCollisionWorld;
+namespace rscene::sim { class BulletSurfaces; }
 
 namespace rscene::sim {
 
@@ -247,6 +248,10 @@ class World {
   std::vector<const btCollisionObject*> rayTargets() const;
   const btCollisionObject* collisionObject(const std::string& pathOrId) const;
   const btCollisionObject* robotCollisionObject(const std::string& pathOrId, int link) const;
+  // The rigid world as the particle systems see it (with the scene's
+  // collision filter and contact materials); nullptr when the scene has no
+  // deformable or granular record.  For tests of the queries.
+  BulletSurfaces* particleSurfaces();
 
   // Writes the current poses of dynamic and kinematic bodies into `doc`
   // (positional position and orientation tokens, shortest round-trip),
