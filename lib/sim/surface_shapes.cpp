@@ -214,9 +214,11 @@ void concaveContacts(const btConcaveShape& shape, bool heightField, const btVect
   scratch.erase(std::remove_if(scratch.begin(), scratch.end(),
                                [&](const TriangleHit& h) { return !(h.contact.distance <= reach); }),
                 scratch.end());
-  std::stable_sort(scratch.begin(), scratch.end(), [](const TriangleHit& x, const TriangleHit& y) {
-    return x.contact.distance < y.contact.distance;
-  });
+  // Insertion sort: a handful of triangles, stable, and no allocation
+  // (std::stable_sort takes a buffer per call).
+  for (std::size_t i = 1; i < scratch.size(); ++i)
+    for (std::size_t j = i; j > 0 && scratch[j].contact.distance < scratch[j - 1].contact.distance; --j)
+      std::swap(scratch[j], scratch[j - 1]);
   // A closest point on an edge or corner that also lies on a nearer
   // triangle is no local minimum of the distance over the surface (that
   // nearer triangle has a closer point): the same surface seen twice.

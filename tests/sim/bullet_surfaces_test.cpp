@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/loader.hpp"
 #include "robot/load.hpp"
@@ -485,4 +486,84 @@ TEST(BulletSurfaces, SameQueriesSameResultsInTheSameOrder) {
       EXPECT_EQ(a[i].body, x->body);
     }
   }
+}
+
+TEST(BulletSurfaces, ScaledAndShiftedHeightField) {
+  // Heights z = 0.25 x + 0.5 (relative to the centre) over x in [-2, 2]
+  // (3 samples: 2 m apart, Bullet's local scaling 2) and y in [-1, 1]
+  // (5 samples, 0.5 apart), centred at (10, -3, 2): the field's box is
+  // not centred on its record's centre (Bullet's origin shift).
+  auto r = make("gravity 0 0 0\nterrain_region /World/T 3 5 4 2 10 -3 2 "
+                "heights=0,0.5,1,0,0.5,1,0,0.5,1,0,0.5,1,0,0.5,1\n");
+  BulletSurfaces& s = *r->surfaces;
+  const Vector3d n = Vector3d(-0.25, 0, 1).normalized();
+  const Vector3d foot(10 + 1.3, -3 + 0.2, 2 + 0.5 + 0.25 * 1.3);
+  auto c = probe(s, foot + 0.04 * n, 0.1);
+  ASSERT_EQ(c.size(), 1u);
+  expectContact(c[0], foot, n, 0.06);
+  c = probe(s, foot - 0.2 * n, 0.1);
+  ASSERT_EQ(c.size(), 1u);
+  expectContact(c[0], foot, n, 0.3);
+}
+
+TEST(BulletSurfaces, AGrooveInAMeshGivesOneContactPerSide) {
+  // Two faces meeting at 90 degrees along the y axis (a V of slopes +-1):
+  // a probe low in the groove touches both.
+  fs::path dir = fs::path(testing::TempDir()) / "bullet_surfaces_groove";
+  fs::create_directories(dir);
+  fs::path obj = dir / "groove.obj";
+  {
+    std::ofstream f(obj);
+    f << "v -1 -1 1\nv 0 -1 0\nv 1 -1 1\nv -1 1 1\nv 0 1 0\nv 1 1 1\n"
+         "f 1 2 5\nf 1 5 4\nf 2 3 6\nf 2 6 5\n";
+  }
+  auto r = make("gravity 0 0 0\n" +
+                object("/World/V", "mesh", {0, 0, 0}, "1 0 0 0", "1 1 1", 0.5, 1, 0, "static", obj.string()));
+  const double h = std::sqrt(0.5);
+  auto c = probe(*r->surfaces, {0, 0.3, 0.1 / h}, 0.12);  // 0.1 from each face
+  ASSERT_EQ(c.size(), 2u);
+  for (const SurfaceContact& x : c) {
+    EXPECT_NEAR(x.depth, 0.02, 1e-12);
+    EXPECT_NEAR(std::abs(x.normal.x()), h, 1e-12);
+    EXPECT_NEAR(x.normal.z(), h, 1e-12);
+  }
+  EXPECT_NEAR(c[0].normal.x() + c[1].normal.x(), 0, 1e-12);  // one per side
+}
+
+TEST(BulletSurfaces, HostileValuesGiveNothingRatherThanGarbage) {
+  auto r = make("gravity 0 0 0\n" + object("/World/Ground", "ground", {0, 0, 0}) +
+                object("/World/Box", "box", {0, 0, 0.5}, "1 0 0 0", "1 1 1", 0.5, 1, 1, "dynamic"));
+  BulletSurfaces& s = *r->surfaces;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  std::vector<SurfaceContact> out;
+  // A region with NaN or infinite corners considers every body.
+  s.prepare(Eigen::AlignedBox3d(Vector3d(nan, 0, 0), Vector3d(1, 1, inf)), 1, kAllBits, "");
+  s.contacts({0, 0, 1.05}, 0.1, 0, out);
+  EXPECT_EQ(out.size(), 1u);
+  out.clear();
+  s.contacts({nan, 0, 1}, 0.1, 0, out);
+  s.contacts({0, 0, 1}, nan, 0, out);
+  s.contacts({0, 0, 1}, -1, 0, out);  // a negative reach touches nothing
+  s.contacts({0, 0, 1}, 0.1, -inf, out);
+  EXPECT_TRUE(out.empty());
+  // A huge probe meets both, finitely.
+  s.contacts({0, 0, 1}, 1e300, 0, out);
+  ASSERT_EQ(out.size(), 2u);
+  for (const SurfaceContact& x : out) EXPECT_TRUE(x.point.allFinite() && x.normal.allFinite());
+  // An empty region (a system with no particles) prepares nothing.
+  s.prepare(Eigen::AlignedBox3d(), 1, kAllBits, "");
+  out.clear();
+  s.contacts({0, 0, 1.05}, 0.1, 0, out);
+  EXPECT_TRUE(out.empty());
+  // Non-finite forces, and handles that are no body's, are dropped.
+  s.prepare(Eigen::AlignedBox3d(Vector3d(-1, -1, -1), Vector3d(2, 2, 2)), 1, kAllBits, "");
+  s.contacts({0, 0, 1.05}, 0.1, 0, out);
+  ASSERT_EQ(out.size(), 1u);
+  s.addForce(out[0].body, {0, 0, 1}, {nan, 0, 0});
+  s.addForce(out[0].body, {inf, 0, 1}, {1, 0, 0});
+  s.addForce(12345, {0, 0, 1}, {1, 0, 0});
+  s.addForce(-7, {0, 0, 1}, {1, 0, 0});
+  EXPECT_EQ(s.velocity(12345, {0, 0, 0}), Vector3d::Zero());
+  r->world->step();
+  EXPECT_EQ(state(*r->world, "/World/Box").linearVelocity, Vector3d::Zero());
 }
