@@ -197,9 +197,11 @@ void BulletSurfaces::prepare(const Eigen::AlignedBox3d& region, std::uint64_t gr
   bool bounded = region.min().allFinite() && region.max().allFinite();
   btVector3 lo = bounded ? bt(region.min()) : btVector3(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
   btVector3 hi = bounded ? bt(region.max()) : btVector3(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
-  // Static objects from the broadphase (their boxes there are exact: they
-  // do not move).  Moving ones from their handles: the broadphase's boxes
-  // lag a step behind them (Bullet updates them before it integrates).
+  // Bodies at rest (static or asleep) from the broadphase: their boxes
+  // there are where they are.  Moving ones from their handles, each box
+  // tested: the broadphase's lag a step behind them (Bullet updates them
+  // before it integrates).
+  auto moving = [](const Handle& h) { return !h.rigid || h.rigid->isActive(); };
   Gather gather;
   gather.out = &s.candidates;
   if (bounded) {
@@ -209,10 +211,13 @@ void BulletSurfaces::prepare(const Eigen::AlignedBox3d& region, std::uint64_t gr
     for (int i = 0; i < all.size(); ++i) s.candidates.push_back(all[i]);
   }
   s.candidates.erase(std::remove_if(s.candidates.begin(), s.candidates.end(),
-                                    [&](btCollisionObject* o) { return s.handleFor(o) >= 0; }),
+                                    [&](btCollisionObject* o) {
+                                      int h = s.handleFor(o);
+                                      return h >= 0 && moving(s.handles[static_cast<std::size_t>(h)]);
+                                    }),
                      s.candidates.end());
   for (const Handle& h : s.handles)
-    if (h.object->getBroadphaseHandle()) s.candidates.push_back(h.object);  // still in the world
+    if (h.object->getBroadphaseHandle() && moving(h)) s.candidates.push_back(h.object);  // still in the world
   std::sort(s.candidates.begin(), s.candidates.end(),
             [](const btCollisionObject* a, const btCollisionObject* b) { return a->getWorldArrayIndex() < b->getWorldArrayIndex(); });
   s.candidates.erase(std::unique(s.candidates.begin(), s.candidates.end()), s.candidates.end());

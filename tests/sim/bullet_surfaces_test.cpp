@@ -567,3 +567,19 @@ TEST(BulletSurfaces, HostileValuesGiveNothingRatherThanGarbage) {
   r->world->step();
   EXPECT_EQ(state(*r->world, "/World/Box").linearVelocity, Vector3d::Zero());
 }
+
+TEST(BulletSurfaces, AFastBodyIsMetWhereItIsNotWhereTheBroadphaseLastSawIt) {
+  // 100 m/s with dt 0.01: 1 m a step, far past the broadphase's padding
+  // (Bullet updates its boxes before it integrates a step).
+  auto r = make("time_step 0.01\ngravity 0 0 0\n" +
+                object("/World/Box", "box", {0, 0, 5}, "1 0 0 0", "1 1 1", 0.5, 1, 1, "dynamic"));
+  ASSERT_TRUE(r->world->setLinearVelocity("/World/Box", {100, 0, 0}));
+  r->world->step();
+  Vector3d at = state(*r->world, "/World/Box").position;
+  ASSERT_NEAR(at.x(), 1, 1e-12);
+  auto c = probe(*r->surfaces, at + Vector3d(0, 0, 0.55), 0.1);
+  ASSERT_EQ(c.size(), 1u);
+  expectContact(c[0], at + Vector3d(0, 0, 0.5), Vector3d::UnitZ(), 0.05);
+  EXPECT_NEAR((r->surfaces->velocity(c[0].body, c[0].point) - Vector3d(100, 0, 0)).norm(), 0, 1e-12);
+  EXPECT_TRUE(probe(*r->surfaces, Vector3d(0, 0, 5.55), 0.1).empty());  // not where it was
+}
