@@ -1,6 +1,7 @@
 // What a contacts() query costs: a bed of 20,000 grains (radius 1 cm, in
-// contact) on the ground plane, on a static box and on a static triangle
-// mesh of 8,192 triangles, each queried in turn as a granular substep does.
+// contact) on the ground plane, on a static box, on a convex hull and on
+// a static mesh of 8,192 triangles, each queried in turn as a granular
+// substep does.
 // Prints ns per query (figures are measured, not asserted: the machine's
 // load moves them); asserts that every grain found its one contact.
 #include <gtest/gtest.h>
@@ -79,6 +80,11 @@ TEST(SurfacesCost, GroundBoxAndMeshBeds) {
                               "false true false - static true 1 18446744073709551615\n");
   measure("a static box", "object /World/Slab box 0 0 -0.5 1 0 0 0 6 4 1 0.5 1 0 default engine_default false true "
                           "false - static true 1 18446744073709551615\n");
+  // A kinematic mesh object is a convex hull (GJK/EPA per query): the
+  // unit cube scaled to 4 m, its top at z = 0.
+  measure("a convex hull (GJK)", "object /World/Hull mesh 0 0 -2 1 0 0 0 4 4 4 0.5 1 1 default engine_default false "
+                                 "true false " + std::string(RSCENE_TEST_DATA) + "/render_assets/crate.obj"
+                                 " kinematic true 1 18446744073709551615\n");
   measure("a static mesh of 8,192 triangles", "object /World/Mesh mesh 0 0 0 1 0 0 0 1 1 1 0.5 1 0 default "
                                               "engine_default false true false " + meshFile() +
                                               " static true 1 18446744073709551615\n");
