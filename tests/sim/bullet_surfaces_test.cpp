@@ -583,3 +583,17 @@ TEST(BulletSurfaces, AFastBodyIsMetWhereItIsNotWhereTheBroadphaseLastSawIt) {
   EXPECT_NEAR((r->surfaces->velocity(c[0].body, c[0].point) - Vector3d(100, 0, 0)).norm(), 0, 1e-12);
   EXPECT_TRUE(probe(*r->surfaces, Vector3d(0, 0, 5.55), 0.1).empty());  // not where it was
 }
+
+TEST(BulletSurfaces, NonCollidableBodiesAreNoSurfaces) {
+  // collidable=false: an object is visual only (no body); a robot's
+  // colliders get group 0, which meets nothing.
+  std::string urdf = std::string(RSCENE_SOURCE_DIR) + "/examples/robots/quadruped/quadruped.urdf";
+  std::string objectOff = object("/World/Box", "box", {3, 0, 1}, "1 0 0 0", "1 1 1", 0.5, 1, 1, "static");
+  objectOff.replace(objectOff.find(" static true "), 13, " static false ");
+  auto r = make("gravity 0 0 0\narticulated_resource res Robot " + urdf +
+                    "\narticulated /World/Robot res 0 0 1 1 0 0 0 true false "
+                    "generalizedCoordinate=0,0,1,1,0,0,0,0,0.6,-1.2,0,0.6,-1.2,0,-0.6,1.2,0,-0.6,1.2\n" + objectOff,
+                true);
+  EXPECT_TRUE(probe(*r->surfaces, {0, 0, 1.11}, 0.1).empty());  // the robot's base
+  EXPECT_TRUE(probe(*r->surfaces, {3, 0, 1.55}, 0.1).empty());  // the box
+}
