@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_map>
 
 #include "sim/bt_eigen.hpp"
@@ -31,6 +32,7 @@ struct Part {
   btVector3 lo, hi;  // world box
   btVector3 dims;    // box half extents; x: radius, y: half length (cylinder, capsule); plane: world normal
   double planeConstant = 0;
+  const HullPlanes* hull = nullptr;  // a convex hull's faces (Kind::Convex)
   int axis = 2;
   int body = -1;
   double friction = 0;
@@ -90,6 +92,7 @@ struct BulletSurfaces::Impl {
   std::vector<Part> parts;
   std::vector<btCollisionObject*> candidates;
   std::uint64_t stamp = 0;
+  std::map<const btCollisionShape*, HullPlanes> hulls;  // per shape, made on first sight; looked up, never iterated
 
   // The object's handle, made on first sight; -1 for a static one.
   int handleFor(btCollisionObject* o) {
@@ -167,6 +170,15 @@ struct BulletSurfaces::Impl {
       case TERRAIN_SHAPE_PROXYTYPE:
         p.kind = Kind::HeightField;
         break;
+      case CONVEX_HULL_SHAPE_PROXYTYPE: {
+        p.kind = Kind::Convex;
+        auto it = hulls.find(shape);
+        if (it == hulls.end())
+          it = hulls.emplace(shape, hullPlanes(*static_cast<const btConvexHullShape*>(shape))).first;
+        p.hull = &it->second;
+        p.dims.setX(shape->getMargin());
+        break;
+      }
       default:
         if (shape->isConvex()) p.kind = Kind::Convex;
         else if (shape->isConcave()) p.kind = Kind::Concave;
@@ -271,6 +283,7 @@ void BulletSurfaces::contacts(const Eigen::Vector3d& centre, double radius, doub
       case Kind::Cylinder: l = cylinderContact(p.axis, p.dims.x(), p.dims.y(), lc); break;
       case Kind::Capsule: l = capsuleContact(p.axis, p.dims.x(), p.dims.y(), lc); break;
       case Kind::Convex:
+        if (p.hull && hullFaceContact(*p.hull, p.dims.x(), lc, l)) break;
         if (!convexContact(*static_cast<const btConvexShape*>(p.shape), lc, std::max(radius, 1e-6), l)) continue;
         break;
       case Kind::Concave:

@@ -1,6 +1,7 @@
 #include "sim/surface_shapes.hpp"
 
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
@@ -8,6 +9,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <LinearMath/btConvexHullComputer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +182,60 @@ bool convexContact(const btConvexShape& shape, const btVector3& c, double probe,
   // Bullet's normal points from B (the shape) toward A (the probe), and
   // its point lies on B; the distance is between the two surfaces.
   out = {result.m_pointInWorld, result.m_normalOnBInWorld.normalized(), result.m_distance + probe};
+  return true;
+}
+
+HullPlanes hullPlanes(const btConvexHullShape& shape) {
+  HullPlanes out;
+  std::vector<btVector3> points;
+  points.reserve(static_cast<std::size_t>(shape.getNumPoints()));
+  for (int i = 0; i < shape.getNumPoints(); ++i) points.push_back(shape.getScaledPoint(i));
+  if (points.size() < 4) return out;  // flat or empty: GJK for all of it
+  btConvexHullComputer hull;
+  hull.compute(&points[0].x(), sizeof(btVector3), static_cast<int>(points.size()), 0, 0);
+  btVector3 centroid(0, 0, 0);
+  for (int i = 0; i < hull.vertices.size(); ++i) centroid += hull.vertices[i];
+  if (hull.vertices.size() > 0) centroid /= static_cast<double>(hull.vertices.size());
+  for (int f = 0; f < hull.faces.size(); ++f) {
+    const btConvexHullComputer::Edge* e = &hull.edges[hull.faces[f]];
+    const btVector3& a = hull.vertices[e->getSourceVertex()];
+    const btVector3& b = hull.vertices[e->getNextEdgeOfFace()->getSourceVertex()];
+    const btVector3& c = hull.vertices[e->getNextEdgeOfFace()->getNextEdgeOfFace()->getSourceVertex()];
+    btVector3 n = (b - a).cross(c - a);
+    double len = n.length();
+    if (!(len > 0)) continue;
+    n /= len;
+    if (n.dot(centroid - a) > 0) n = -n;  // outward
+    out.normals.push_back(n);
+    out.offsets.push_back(n.dot(a));
+  }
+  return out;
+}
+
+bool hullFaceContact(const HullPlanes& hull, double margin, const btVector3& c, LocalContact& out) {
+  std::size_t n = hull.normals.size();
+  if (n < 4) return false;
+  std::size_t best = 0, positive = 0;
+  double bestDistance = -BT_LARGE_FLOAT;
+  for (std::size_t i = 0; i < n; ++i) {
+    double d = hull.normals[i].dot(c) - hull.offsets[i];
+    if (d > 0) ++positive;
+    if (d > bestDistance) {
+      bestDistance = d;
+      best = i;
+    }
+  }
+  if (positive > 1) return false;  // off an edge or a corner
+  const btVector3& normal = hull.normals[best];
+  btVector3 foot = c - normal * bestDistance;
+  if (positive == 1) {  // over face `best`: its foot must lie on the face
+    double tolerance = 1e-12 * (1 + foot.length());
+    for (std::size_t i = 0; i < n; ++i)
+      if (i != best && hull.normals[i].dot(foot) - hull.offsets[i] > tolerance) return false;
+  }
+  // Inside, the nearest face's plane is the nearest boundary (the hull is
+  // convex); the margin grows every face outward by itself.
+  out = {foot + normal * margin, normal, bestDistance - margin};
   return true;
 }
 

@@ -7,14 +7,16 @@
 // pushed out through the nearest face.  Triangle meshes are two-sided
 // surfaces, as Bullet collides them: a centre is pushed back to the side it
 // is on.  Primitives are closed-form (a plane costs one dot product);
-// convex hulls go through Bullet's GJK/EPA with a sphere probe; meshes and
-// height fields visit only the triangles under the probe's box.
+// convex hulls by their face planes, and near their edges and corners (or
+// any other convex shape) through Bullet's GJK/EPA with a sphere probe;
+// meshes and height fields visit only the triangles under the probe's box.
 #pragma once
 #include <LinearMath/btVector3.h>
 
 #include <vector>
 
 class btConcaveShape;
+class btConvexHullShape;
 class btConvexShape;
 
 namespace rscene::sim {
@@ -39,6 +41,19 @@ LocalContact capsuleContact(int axis, double radius, double halfLength, const bt
 // Any convex shape (with its collision margin) by GJK/EPA against a sphere
 // of radius `probe` (> 0) at c; false when GJK gives no answer.
 bool convexContact(const btConvexShape& shape, const btVector3& c, double probe, LocalContact& out);
+
+// A convex hull's face planes (outward unit normals, n . x = offset on the
+// face), computed once per shape: most queries near a hull are answered
+// from them in closed form, GJK only where they cannot be.
+struct HullPlanes {
+  std::vector<btVector3> normals;
+  std::vector<double> offsets;
+};
+HullPlanes hullPlanes(const btConvexHullShape& shape);
+// The contact with the hull grown by its collision margin, when the
+// centre is inside it or over the inside of one face; false (out
+// untouched) near an edge or a corner, where convexContact answers.
+bool hullFaceContact(const HullPlanes& hull, double margin, const btVector3& c, LocalContact& out);
 
 // Contacts of the centre with a concave shape (triangle mesh, scaled
 // mesh, height field) within `reach` of it: one per local minimum of the

@@ -218,6 +218,16 @@ TEST(BulletSurfaces, ConvexHullOfACubeMesh) {
   c = probe(s, {0.3, 0, 5.1}, 0.2);  // inside, 0.201 from the +x face
   ASSERT_EQ(c.size(), 1u);
   expectContact(c[0], {0.501, 0, 5.1}, Vector3d::UnitX(), 0.2 + 0.201, 1e-6);
+  // Off the +x +z edge by (0.03, 0.04): 0.05 from the edge, the margin
+  // rounding it (GJK/EPA here; the faces' planes answer the cases above).
+  c = probe(s, {0.53, 0.2, 5.54}, 0.1);
+  ASSERT_EQ(c.size(), 1u);
+  expectContact(c[0], Vector3d(0.5, 0.2, 5.5) + 0.001 * Vector3d(0.6, 0, 0.8), {0.6, 0, 0.8}, 0.1 - 0.049, 1e-6);
+  // Off a corner.
+  c = probe(s, {-0.54, -0.54, 4.46}, 0.1);
+  ASSERT_EQ(c.size(), 1u);
+  const Vector3d out = Vector3d(-1, -1, -1).normalized();
+  expectContact(c[0], Vector3d(-0.5, -0.5, 4.5) + 0.001 * out, out, 0.1 - (0.04 * std::sqrt(3.0) - 0.001), 1e-6);
 }
 
 TEST(BulletSurfaces, StaticTriangleMeshPlaneGivesOneContactPerTouch) {

@@ -80,9 +80,9 @@ TEST(SurfacesCost, GroundBoxAndMeshBeds) {
                               "false true false - static true 1 18446744073709551615\n");
   measure("a static box", "object /World/Slab box 0 0 -0.5 1 0 0 0 6 4 1 0.5 1 0 default engine_default false true "
                           "false - static true 1 18446744073709551615\n");
-  // A kinematic mesh object is a convex hull (GJK/EPA per query): the
-  // unit cube scaled to 4 m, its top at z = 0.
-  measure("a convex hull (GJK)", "object /World/Hull mesh 0 0 -2 1 0 0 0 4 4 4 0.5 1 1 default engine_default false "
+  // A kinematic mesh object is a convex hull (its face planes over a
+  // face, GJK/EPA near an edge): the unit cube scaled to 4 m, top at z = 0.
+  measure("a convex hull", "object /World/Hull mesh 0 0 -2 1 0 0 0 4 4 4 0.5 1 1 default engine_default false "
                                  "true false " + std::string(RSCENE_TEST_DATA) + "/render_assets/crate.obj"
                                  " kinematic true 1 18446744073709551615\n");
   measure("a static mesh of 8,192 triangles", "object /World/Mesh mesh 0 0 0 1 0 0 0 1 1 1 0.5 1 0 default "
