@@ -10,9 +10,11 @@
 // pair that survives a rebuild is carried over by a linear merge of the
 // two sorted lists (no hash-map iteration anywhere).  Memory is O(grains +
 // pairs) whatever the spread of the grains: the grid is a sorted array of
-// occupied cells, not a dense box.
+// occupied cells when the grains are spread far apart, a dense box of
+// at most 4 cells per grain when they fill it.
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -32,9 +34,15 @@ class GranularPairs {
   std::vector<GranularHistory> history;  // the pair's springs
 
  private:
-  std::vector<std::uint64_t> keys_;       // sorted cell keys, parallel to order_
+  void denseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double reach,
+                       std::array<std::uint64_t, 3> dims);
+  void sparseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double reach);
+  void emit(std::uint32_t a);
+
+  std::vector<std::uint64_t> keys_;       // sorted cell keys, parallel to order_ (sparse grid)
   std::vector<std::uint32_t> order_;      // grains sorted by (cell key, index)
   std::vector<std::uint64_t> keyOf_;      // cell key per grain
+  std::vector<std::uint32_t> cellStart_, cursor_;  // dense grid: grains of cell c at order_[start[c], start[c+1])
   std::vector<std::uint32_t> candidates_; // scratch
   std::vector<std::uint32_t> newI_, newJ_;
   std::vector<GranularHistory> newHistory_;
