@@ -58,8 +58,11 @@ class GranularDem final : public GranularBody {
 
   void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) override {
     if (x_.empty() || !(dt > 0)) return;
+    // create() chose substeps_ for the scene's time step; a caller stepping
+    // longer steps gets what stability needs for them (the same rule).
     int n = substeps_;
-    if (dt > n * maxSubstep_) n = static_cast<int>(std::min<double>(kMaxSubsteps, std::ceil(dt / maxSubstep_)));
+    const double needed = std::ceil(dt / maxSubstep_ - 1e-9);
+    if (needed > n) n = static_cast<int>(std::min<double>(kMaxSubsteps, needed));
     stats_.substepsPerStep = n;
     const double h = dt / n;
     for (int s = 0; s < n; ++s) substep(h, h / dt, gravity, surfaces);
@@ -108,13 +111,14 @@ class GranularDem final : public GranularBody {
     GranularContact c;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
       const std::uint32_t a = pairs_.i[k], b = pairs_.j[k];
-      Eigen::Vector3d d = x_[a] - x_[b];
-      const double dist = d.norm();
-      c.depth = r_[a] + r_[b] - dist;
-      if (c.depth < -m_.cohesionMaxDistance) {
+      const Eigen::Vector3d d = x_[a] - x_[b];
+      const double dist2 = d.squaredNorm(), range = r_[a] + r_[b] + m_.cohesionMaxDistance;
+      if (dist2 > range * range) {  // most listed pairs, the skin's: no square root for them
         pairs_.history[k] = {};
         continue;
       }
+      const double dist = std::sqrt(dist2);
+      c.depth = r_[a] + r_[b] - dist;
       c.n = dist > 0 ? Eigen::Vector3d(d / dist) : Eigen::Vector3d::UnitZ();
       c.ra = r_[a];
       c.rb = r_[b];
