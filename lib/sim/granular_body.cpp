@@ -15,6 +15,8 @@ namespace {
 // Coordinates past this are hostile, not a scene (and would lose every
 // digit of a grain's radius).
 constexpr double kMaxCoordinate = 1e9;
+// Largest over smallest radius of one record (polydisperse sand spans 2 to 5).
+constexpr double kMaxRadiusRatio = 10;
 
 std::string number(double v) {  // three significant digits: a message, not data
   char buf[32];
@@ -98,6 +100,15 @@ std::unique_ptr<GranularBody> GranularBody::create(const Granular& g, double wor
   if (!particles.radii.empty()) {
     double rMin = INFINITY, rMax = 0;
     for (double r : particles.radii) rMin = std::min(rMin, r), rMax = std::max(rMax, r);
+    // The neighbour grid's cells are sized by the largest grain: past this
+    // ratio a cell holds thousands of the smallest and the search turns
+    // quadratic (a hang, for a bed of a million).
+    if (rMax > kMaxRadiusRatio * rMin) {
+      findings.push_back({true, "RS7088", radiusKey,
+                          "granular " + g.path + ": radii from " + number(rMin) + " to " + number(rMax) +
+                              " m span more than a factor of " + number(kMaxRadiusRatio)});
+      return nullptr;
+    }
     std::size_t a = 0, b = 0;
     if (deepOverlap(particles.positions, particles.radii, rMax, a, b)) {
       findings.push_back({true, "RS7089", g.positions.empty() ? "spacing" : "positions",

@@ -414,6 +414,9 @@ TEST(Granular, HostileRecordsAreRefusedAtTheirKey) {
   EXPECT_EQ(f.field, "velocity");
   f = one([](Granular& g) { g.positions = {{0, 0, NAN}}; });
   EXPECT_EQ(f.field, "positions");
+  f = one([](Granular& g) { g.positions = {{0, 0, 1}, {1, 0, 1}}, g.radii = {0.001, 0.02}; });
+  EXPECT_STREQ(f.code, "RS7088");  // a span the neighbour grid cannot serve
+  EXPECT_EQ(f.field, "radii");
   f = one([](Granular& g) { g.positions = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}; });  // one point
   EXPECT_STREQ(f.code, "RS7089");
   f = one([](Granular& g) { g.normalStiffness = 1e12; });  // would need millions of substeps
