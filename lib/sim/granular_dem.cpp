@@ -67,7 +67,8 @@ class GranularDem final : public GranularBody {
     const double h = dt / n;
     for (int s = 0; s < n; ++s) substep(h, h / dt, gravity, surfaces);
     finite_ = true;
-    for (std::size_t i = 0; i < x_.size() && finite_; ++i) finite_ = x_[i].allFinite() && v_[i].allFinite() && w_[i].allFinite();
+    for (std::size_t i = 0; i < x_.size() && finite_; ++i)
+      finite_ = x_[i].allFinite() && v_[i].allFinite() && w_[i].allFinite();
   }
 
   const std::vector<Eigen::Vector3d>& positions() const override { return x_; }
