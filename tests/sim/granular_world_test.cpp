@@ -3,6 +3,7 @@
 // same particles, refused or warned about at the record's key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/loader.hpp"
