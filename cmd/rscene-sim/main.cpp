@@ -225,6 +225,20 @@ int run(const Options& opt) {
                         {"lidarScans", recorder ? recorder->scans() : 0},
                         {"lidarScanTime", recorder ? recorder->scanSeconds() : 0.0},
                         {"atRest", rested || world->atRest()}};
+    // Where the granular solvers' time went (rscene-sim(1), Granular media).
+    sim::GranularStats gs = world->particleSystems().granularStats();
+    double granularTime = gs.neighbourSeconds + gs.contactSeconds + gs.surfaceSeconds + gs.integrateSeconds;
+    r["granular"] = {{"substepsPerStep", gs.substepsPerStep},
+                     {"particleSubsteps", gs.particleSubsteps},
+                     {"particleSubstepsPerSecond", granularTime > 0 ? gs.particleSubsteps / granularTime : 0.0},
+                     {"neighbourTime", gs.neighbourSeconds},
+                     {"neighbourBuilds", gs.neighbourBuilds},
+                     {"contactTime", gs.contactSeconds},
+                     {"surfaceTime", gs.surfaceSeconds},
+                     {"integrationTime", gs.integrateSeconds},
+                     {"contacts", gs.contacts},
+                     {"surfaceContacts", gs.surfaceContacts},
+                     {"maxPenetration", gs.maxPenetration}};
     std::cerr << r.dump() << '\n';
   }
   return cli::kSuccess;

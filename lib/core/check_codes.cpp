@@ -152,6 +152,10 @@ constexpr CheckInfo kChecks[] = {
     {"RS7080", E, Sim, "sim", "deformable mesh that is not a usable OBJ surface (unreadable, not OBJ, a face index past its vertices, no triangles)"},
     {"RS7081", E, Sim, "sim", "deformable record that cannot be simulated (a pinned vertex that is not one of the mesh's, a value out of range)"},
     {"RS7082", E, Sim, "sim", "granular record that cannot be simulated (more particles than maxParticles, radii that do not match positions, a value out of range)"},
+    {"RS7086", W, Sim, "sim", "granular substeps raised for stability (the time step is past 0.6 of the critical step of the contact law for the lightest grain); the message says what it costs"},
+    {"RS7087", E, Sim, "sim", "granular record whose stability needs more than 1000 substeps per world step (lower normalStiffness or normalDamping, raise radius or density, or shorten time_step)"},
+    {"RS7088", E, Sim, "sim", "granular value out of range (a radius, density or stiffness that is not positive and finite, a negative damping, friction or cohesion, radii spanning more than a factor of 10, an unknown normalContactModel, substeps outside 1 to 1000)"},
+    {"RS7089", E, Sim, "sim", "granular particles that start overlapping by more than half their radii (a box fill with spacing below the radius, positions written at one point)"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},

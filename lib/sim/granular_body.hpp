@@ -18,25 +18,51 @@
 
 namespace rscene::sim {
 
+// What create() found: an error refuses the record, a warning does not.
+struct GranularFinding {
+  bool error = true;
+  const char* code = "";  // RS7082, RS7086 ... RS7089 (particle_systems.hpp)
+  std::string field;      // the record's key at fault, "" for the record
+  std::string message;
+};
+
+// Where a granular body's time went, for rscene-sim --report.
+struct GranularStats {
+  int substepsPerStep = 0;            // what stability asked for (>= the record's substeps)
+  std::uint64_t particleSubsteps = 0; // dynamic and fixed particles times substeps, so far
+  std::uint64_t neighbourBuilds = 0;  // pair-list rebuilds (grid + sort + history merge)
+  std::size_t pairs = 0;              // candidate pairs in the list now
+  std::size_t contacts = 0;           // touching pairs at the last substep
+  std::size_t surfaceContacts = 0;    // grain-surface contacts at the last substep
+  double neighbourSeconds = 0, contactSeconds = 0, surfaceSeconds = 0, integrateSeconds = 0;
+  double maxPenetration = 0;          // deepest overlap at the last substep, m
+};
+
 class GranularBody {
  public:
   // Most particles one granular record may have whatever its maxParticles.
   static constexpr std::uint64_t kMaxParticles = 2'000'000;
+  // Most substeps per world step stability may ask for; past it the record
+  // is refused (RS7087) naming the keys that would make it affordable.
+  static constexpr int kMaxSubsteps = 1000;
 
   // Builds the particles (explicit positions/radii, else the box fill of
   // granularParticles(), refused past maxParticles before allocating),
-  // placed by the record's world pose.  nullptr with `error` (and the key
-  // at fault in `errorField`, "" for the record) when it cannot be simulated.
-  static std::unique_ptr<GranularBody> create(const Granular& record, std::string& error, std::string& errorField);
+  // placed by the record's world pose, and chooses the substeps a world
+  // step of `worldTimeStep` needs.  nullptr when a finding is an error.
+  static std::unique_ptr<GranularBody> create(const Granular& record, double worldTimeStep,
+                                              std::vector<GranularFinding>& findings);
   virtual ~GranularBody() = default;
 
   virtual void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) = 0;
 
   virtual const std::vector<Eigen::Vector3d>& positions() const = 0;  // world
+  virtual const std::vector<Eigen::Vector3d>& velocities() const = 0; // world
   virtual const std::vector<double>& radii() const = 0;
   virtual double totalMass() const = 0;
   virtual double maxSpeed() const = 0;
   virtual bool finite() const = 0;
+  virtual const GranularStats& stats() const = 0;
 };
 
 }  // namespace rscene::sim

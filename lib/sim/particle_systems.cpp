@@ -1,5 +1,6 @@
 #include "sim/particle_systems.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -12,13 +13,13 @@ namespace {
 // An error at the record's key when the scene has a document, else a
 // diagnostic naming the record's path.
 void report(const Document* doc, int recordIndex, const std::string& field, const char* code,
-            const std::string& message, Diagnostics& diagnostics) {
+            const std::string& message, Diagnostics& diagnostics, Severity severity = Severity::Error) {
   if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
-    RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics).error(field, code, message);
+    RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics).error(field, code, message, {}, severity);
     return;
   }
   Diagnostic d;
-  d.severity = Severity::Error;
+  d.severity = severity;
   d.code = code;
   d.message = message;
   diagnostics.push_back(std::move(d));
@@ -48,10 +49,11 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
     deformables_.push_back({d.recordIndex, d.path, std::move(body)});
   }
   for (const Granular& g : scene.granulars) {
-    std::string error, field;
-    std::unique_ptr<GranularBody> body = GranularBody::create(g, error, field);
+    std::vector<GranularFinding> findings;
+    std::unique_ptr<GranularBody> body = GranularBody::create(g, scene.timeStep, findings);
+    for (const GranularFinding& f : findings)
+      report(doc, g.recordIndex, f.field, f.code, f.message, diagnostics, f.error ? Severity::Error : Severity::Warning);
     if (!body) {
-      report(doc, g.recordIndex, field, particle_code::kGranular, error, diagnostics);
       ok = false;
       continue;
     }
@@ -65,6 +67,25 @@ void ParticleSystems::step(double dt, const Eigen::Vector3d& gravity, SurfaceQue
   for (DeformableEntry& d : deformables_) d.body->step(dt, gravity, surfaces);
   for (GranularEntry& g : granulars_) g.body->step(dt, gravity, surfaces);
   stepSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+GranularStats ParticleSystems::granularStats() const {
+  GranularStats sum;
+  for (const GranularEntry& g : granulars_) {
+    const GranularStats& s = g.body->stats();
+    sum.substepsPerStep = std::max(sum.substepsPerStep, s.substepsPerStep);
+    sum.particleSubsteps += s.particleSubsteps;
+    sum.neighbourBuilds += s.neighbourBuilds;
+    sum.pairs += s.pairs;
+    sum.contacts += s.contacts;
+    sum.surfaceContacts += s.surfaceContacts;
+    sum.neighbourSeconds += s.neighbourSeconds;
+    sum.contactSeconds += s.contactSeconds;
+    sum.surfaceSeconds += s.surfaceSeconds;
+    sum.integrateSeconds += s.integrateSeconds;
+    sum.maxPenetration = std::max(sum.maxPenetration, s.maxPenetration);
+  }
+  return sum;
 }
 
 std::size_t ParticleSystems::particles() const {

@@ -24,7 +24,10 @@ namespace particle_code {
 inline constexpr const char* kDeformableMesh = "RS7080";  // a deformable's mesh is not a usable OBJ surface
 inline constexpr const char* kDeformable = "RS7081";      // a deformable record that cannot be simulated
 inline constexpr const char* kGranular = "RS7082";        // a granular record that cannot be simulated
-// Codes 7083 to 7085 are the deformable solver's own, 7086 to 7089 the granular solver's.
+// Codes 7083 to 7085 are the deformable solver's own, 7086 to 7089 the granular solver's
+// (granular_body.cpp): 7086 substeps raised for stability (warning), 7087 stability needs
+// more than GranularBody::kMaxSubsteps, 7088 a value out of range, 7089 grains overlapping
+// by more than half their radii at the start.
 }  // namespace particle_code
 
 // The particles of one record now, for the trajectory and the renderer.
@@ -47,6 +50,9 @@ class ParticleSystems {
   // Seconds spent in step() so far (steady clock), for rscene-sim --report:
   // where a run's time goes, particles or Bullet.
   double stepSeconds() const { return stepSeconds_; }
+  // The granular solvers' counters and timings, summed (the largest
+  // substepsPerStep and maxPenetration).
+  GranularStats granularStats() const;
 
   // One world step of every system.
   void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces);
