@@ -99,12 +99,6 @@ std::unique_ptr<XpbdDeformable> hangingCloth(int n, double compliance, int itera
   return build(d, gridObj(n, 1));
 }
 
-double lowest(const std::vector<Eigen::Vector3d>& p) {
-  double z = INFINITY;
-  for (const auto& x : p) z = std::min(z, x.z());
-  return z;
-}
-
 }  // namespace
 
 TEST(Deformable, ClothPinnedAtTwoCornersSagsByItsStiffnessAndStaysAtRest) {

@@ -38,7 +38,9 @@ inline Deformable defaultRecord(const std::string& kind = "cloth") {
 }
 
 // An n x n vertex grid of side `size` in the plane z = 0, centred on the
-// origin, vertex (i, j) at index j * n + i; two triangles a cell.
+// origin, vertex (i, j) at index j * n + i; two triangles a cell, their
+// diagonals alternating from cell to cell (one diagonal everywhere would
+// let the cloth fold along it only).
 inline std::string gridObj(int n, double size) {
   std::string s;
   char buf[96];
@@ -50,7 +52,10 @@ inline std::string gridObj(int n, double size) {
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
       int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;  // OBJ is one-based
-      std::snprintf(buf, sizeof buf, "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+      if ((i + j) % 2)
+        std::snprintf(buf, sizeof buf, "f %d %d %d\nf %d %d %d\n", a, b, d, a, d, c);
+      else
+        std::snprintf(buf, sizeof buf, "f %d %d %d\nf %d %d %d\n", a, b, c, b, d, c);
       s += buf;
     }
   return s;
@@ -94,6 +99,12 @@ inline Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& p) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& x : p) c += x;
   return c / static_cast<double>(p.size());
+}
+
+inline double lowest(const std::vector<Eigen::Vector3d>& p) {
+  double z = INFINITY;
+  for (const auto& x : p) z = std::min(z, x.z());
+  return z;
 }
 
 }  // namespace rscene::sim::test
