@@ -73,7 +73,7 @@ PY
   printf 'v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n' > cube.obj
   printf 'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n' >> cube.obj
   sed -i 's/ cloth cloth.obj/ fem cube.obj/; s/^deformable.*/& particleSpacing=0.001/' cloth.rscene
-  # 2e9 grid points: counted column by column, refused before one is made.
+  # 8e9 grid points: counted column by column, refused before one is made.
   run -2 --separate-stderr timeout 20 "$SIM" --steps 1 cloth.rscene
   [ "${stderr%%$'\n'*}" = "cloth.rscene:6:206: error: deformable '/World/Cloth': a fill at this spacing makes more than 1000000 particles [RS7081]" ]
 }
