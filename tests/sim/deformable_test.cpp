@@ -72,6 +72,42 @@ TEST(Deformable, ChainStretchesByItsComplianceTimesTheWeightBelow) {
   EXPECT_LT(body.maxSpeed(), 1e-6);
 }
 
+TEST(Deformable, ChainStretchIsTheSameWithSubsteps) {
+  // XPBD scales the compliance by the substep (alpha / h^2): four substeps
+  // of a quarter step reach the same equilibrium as one step.
+  DeformableModel m = chain(5, 0.1, 0.2, 1e-3, 100);
+  m.substeps = 4;
+  XpbdDeformable body(std::move(m));
+  AnalyticSurfaces none;
+  run(body, none, 10);
+  const auto& x = body.positions();
+  for (int k = 1; k <= 5; ++k) {
+    double expected = 1e-3 * (5 - k + 1) * 0.2 * 9.81;
+    EXPECT_NEAR((x[k - 1] - x[k]).norm() - 0.1, expected, 1e-3 * expected) << "link " << k;  // as above
+  }
+}
+
+TEST(Deformable, DampingRemovesItsFractionPerWorldStepWhateverTheSubsteps) {
+  for (int substeps : {1, 5}) {
+    DeformableModel m;
+    m.positions = {Eigen::Vector3d::Zero()};
+    m.inverseMass = {1};
+    m.particleMass = 1;
+    m.surfaceCount = 1;
+    m.substeps = substeps;
+    m.damping = 0.1;
+    m.collidable = false;
+    XpbdDeformable body(std::move(m));
+    AnalyticSurfaces none;
+    body.step(0.01, {0, 0, -9.81}, none);  // some speed, then none added
+    for (int i = 0; i < 3; ++i) {
+      const double before = body.maxSpeed();
+      body.step(0.01, Eigen::Vector3d::Zero(), none);
+      EXPECT_NEAR(body.maxSpeed(), 0.9 * before, 1e-15) << substeps << " substeps";  // round-off of the root
+    }
+  }
+}
+
 TEST(Deformable, PbdIsStifferThanItsComplianceWithManyIterations) {
   // PBD restarts the multiplier every iteration: its stiffness grows with
   // the iterations, the legacy behaviour XPBD removes.
