@@ -1,0 +1,224 @@
+#include "sim/deformable_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "sim/deformable_body.hpp"
+#include "sim/deformable_fill.hpp"
+
+namespace rscene::sim {
+namespace {
+
+// Strut reach in particle spacings: past the grid's diagonal (sqrt 3), so
+// each fill particle is tied to its 26 neighbours, short of the next shell (2).
+constexpr double kStrutReach = 1.75;
+constexpr double kMaxCoordinate = 1e12;  // m, as for every other body
+
+struct Fail {
+  std::string& error;
+  std::string& field;
+  bool operator()(const std::string& f, std::string message) const {
+    field = f;
+    error = std::move(message);
+    return false;
+  }
+};
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+// XPBD compliance from a compliance key, or 1/stiffness when it is
+// negative; -1 when neither applies (bending off).
+double compliance(double c, double stiffness) {
+  if (c >= 0) return c;
+  return stiffness > 0 ? 1 / stiffness : -1;
+}
+
+// One triangle edge: its vertices (sorted), the triangle and the vertex
+// opposite; the edge in the triangle's own cyclic order (c -> d).
+struct EdgeUse {
+  std::uint32_t lo, hi, tri, opposite, c, d;
+  bool operator<(const EdgeUse& o) const { return std::tie(lo, hi, tri) < std::tie(o.lo, o.hi, o.tri); }
+};
+
+double triangleArea(const DeformableModel& m, const std::array<std::uint32_t, 3>& t) {
+  const auto& p = m.positions;
+  return 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+}
+
+}  // namespace
+
+bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface, DeformableModel& m,
+                          std::string& error, std::string& field) {
+  Fail fail{error, field};
+  const bool cloth = r.kind == "cloth", massSpring = r.kind == "mass_spring", fem = r.kind == "fem";
+  if (!cloth && !massSpring && !fem) return fail("kind", "kind '" + r.kind + "' is not one of cloth, mass_spring, fem");
+  if (r.solverMode != "xpbd" && r.solverMode != "pbd")
+    return fail("solverMode", "solverMode '" + r.solverMode + "' is not one of xpbd, pbd");
+  if (r.particleMode != "skinned" && r.particleMode != "surface" && r.particleMode != "filled")
+    return fail("particleMode", "particleMode '" + r.particleMode + "' is not one of skinned, surface, filled");
+  if (!(r.totalMass > 0 && r.totalMass <= 1e12))
+    return fail("totalMass", "totalMass " + num(r.totalMass) + " is not in (0, 1e12] kg");
+  auto finite = [&](const char* key, double x, double lo, double hi) {
+    if (x >= lo && x <= hi) return true;
+    fail(key, std::string(key) + " " + num(x) + " is not in [" + num(lo) + ", " + num(hi) + "]");
+    return false;
+  };
+  const double big = 1e30;
+  if (!finite("distanceCompliance", r.distanceCompliance, -big, big) ||
+      !finite("distanceStiffness", r.distanceStiffness, -big, big) ||
+      !finite("bendCompliance", r.bendCompliance, -big, big) || !finite("bendStiffness", r.bendStiffness, -big, big) ||
+      !finite("youngsModulus", r.youngsModulus, 0, big) || !finite("thickness", r.thickness, 0, 1e6) ||
+      !finite("damping", r.damping, 0, 1) || !finite("collisionRadius", r.collisionRadius, 0, 1e6) ||
+      !finite("particleSpacing", r.particleSpacing, 0, 1e6))
+    return false;
+  // Validated as RaiSim does, not used: no volumetric Poisson model.
+  if (!(r.poissonRatio > -1 && r.poissonRatio < 0.5))
+    return fail("poissonRatio", "poissonRatio " + num(r.poissonRatio) + " is not in (-1, 0.5)");
+  if (r.distanceCompliance < 0 && !(r.distanceStiffness > 0))
+    return fail("distanceStiffness", "distanceCompliance is negative (use 1/distanceStiffness) but distanceStiffness " +
+                                         num(r.distanceStiffness) + " is not positive");
+  if (r.youngsModulus > 0 && !(r.thickness > 0))
+    return fail("thickness", "youngsModulus > 0 derives each edge's area from thickness, which is 0");
+  if (r.iterations < 0 || r.iterations > 10000)
+    return fail("iterations", "iterations " + std::to_string(r.iterations) + " is not in [0, 10000]");
+  if (r.substeps < 1 || r.substeps > 1000)
+    return fail("substeps", "substeps " + std::to_string(r.substeps) + " is not in [1, 1000]");
+  if (!r.scale.allFinite() || r.scale.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    return fail("scale", "scale is not finite");
+  if (!r.world.position.allFinite() || !r.world.orientation.coeffs().allFinite())
+    return fail("position", "the record's pose is not finite");
+
+  const bool filled = r.particleMode == "filled" || (fem && r.particleMode == "skinned");
+  const bool struts = fem || filled;  // fill particles are held by struts alone
+  if ((filled || struts) && !(r.particleSpacing > 0))
+    return fail("particleSpacing", "particleSpacing must be positive for a filled or fem body");
+
+  // Particles: the OBJ's vertices in file order, scaled, then the fill;
+  // in the record's frame until the end.
+  const std::size_t nv = surface.vertices.size();
+  m.positions.clear();
+  m.positions.reserve(nv);
+  for (const auto& v : surface.vertices) {
+    Eigen::Vector3d p = Eigen::Vector3d(v[0], v[1], v[2]).cwiseProduct(r.scale);
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return fail("meshPath", "vertex " + std::to_string(m.positions.size()) + " is beyond 1e12 m once scaled");
+    m.positions.push_back(p);
+  }
+  m.surfaceCount = nv;
+  if (nv > DeformableBody::kMaxParticles)
+    return fail("meshPath", "the mesh has more than " + std::to_string(DeformableBody::kMaxParticles) + " vertices");
+  for (std::int64_t pin : r.pinnedVertices)
+    if (pin < 0 || static_cast<std::uint64_t>(pin) >= nv)
+      return fail("pinnedVertices", "pinnedVertices " + std::to_string(pin) + " is not a vertex of " + r.meshPath +
+                                        " (it has " + std::to_string(nv) + ")");
+  if (filled) {
+    std::string why;
+    if (!closedSurface(surface.triangles, why))
+      return fail("meshPath", "a filled body needs a closed mesh: " + why);
+    const std::vector<Eigen::Vector3d> shell = m.positions;  // the fill appends to m.positions
+    if (!fillClosedSurface(shell, surface.triangles, r.particleSpacing, DeformableBody::kMaxParticles, m.positions,
+                           why))
+      return fail("particleSpacing", why);
+  }
+
+  // Every unique triangle edge once, with the triangles using it.
+  std::vector<EdgeUse> uses;
+  uses.reserve(surface.triangles.size() * 3);
+  for (std::uint32_t t = 0; t < surface.triangles.size(); ++t) {
+    const auto& tr = surface.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t c = tr[k], d = tr[(k + 1) % 3], o = tr[(k + 2) % 3];
+      uses.push_back({std::min(c, d), std::max(c, d), t, o, c, d});
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+
+  const double distanceAlpha = compliance(r.distanceCompliance, r.distanceStiffness);
+  const double bendAlpha = compliance(r.bendCompliance, r.bendStiffness);
+  auto edgeAlpha = [&](double length, double area) {
+    if (!(r.youngsModulus > 0)) return distanceAlpha;
+    // RaiSim: alpha = L / (E A).
+    return area > 0 ? length / (r.youngsModulus * area) : 0.0;
+  };
+  m.distances.clear();
+  m.bends.clear();
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    double adjacentArea = 0;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi)
+      adjacentArea += triangleArea(m, surface.triangles[uses[j++].tri]);
+    const EdgeUse& e = uses[i];
+    double length = (m.positions[e.lo] - m.positions[e.hi]).norm();
+    // The edge's cross-section: thickness times the width that carries
+    // it, a third of each adjacent triangle's area over the edge's length;
+    // an edge of no area (degenerate triangles) takes a square of side thickness.
+    double area = length > 0 ? r.thickness * adjacentArea / 3 / length : 0;
+    if (!(area > 0)) area = r.thickness * r.thickness;
+    m.distances.push_back({e.lo, e.hi, length, edgeAlpha(length, area)});
+    if (j - i == 2 && bendAlpha >= 0) {
+      const EdgeUse& f = uses[i + 1];
+      if (massSpring) {  // a flexion spring between the two opposite vertices
+        double l = (m.positions[e.opposite] - m.positions[f.opposite]).norm();
+        m.distances.push_back({e.opposite, f.opposite, l, bendAlpha});
+      } else if (e.opposite != f.opposite) {
+        BendConstraint b{e.opposite, f.opposite, e.c, e.d, 0, bendAlpha};
+        b.restAngle = dihedralAngle(m.positions[b.a], m.positions[b.b], m.positions[b.c], m.positions[b.d]);
+        m.bends.push_back(b);
+      }
+    }
+    if (m.distances.size() + m.bends.size() > kMaxDeformableConstraints)
+      return fail("meshPath", "more than " + std::to_string(kMaxDeformableConstraints) + " constraints");
+    i = j;
+  }
+
+  if (struts) {  // RaiSim's internal struts: pairs within kStrutReach spacings that no edge joins yet
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    std::string why;
+    if (!pairsWithinRadius(m.positions, kStrutReach * r.particleSpacing, kMaxDeformableConstraints, pairs, why))
+      return fail("particleSpacing", why);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const auto& d : m.distances) edges.emplace_back(std::min(d.a, d.b), std::max(d.a, d.b));
+    std::sort(edges.begin(), edges.end());
+    const double area = r.particleSpacing * r.particleSpacing;  // the grid cell's face
+    for (const auto& [a, b] : pairs) {
+      if (std::binary_search(edges.begin(), edges.end(), std::pair{a, b})) continue;
+      double length = (m.positions[a] - m.positions[b]).norm();
+      m.distances.push_back({a, b, length, edgeAlpha(length, area)});
+      if (m.distances.size() + m.bends.size() > kMaxDeformableConstraints)
+        return fail("particleSpacing", "more than " + std::to_string(kMaxDeformableConstraints) + " constraints");
+    }
+  }
+
+  const double work = static_cast<double>(m.distances.size() + m.bends.size() + m.positions.size()) *
+                      static_cast<double>(r.iterations) * static_cast<double>(r.substeps);
+  if (work > kMaxDeformableWorkPerStep)
+    return fail("iterations", "iterations x substeps x (constraints + particles) is " + num(work) +
+                                  " a step (at most " + num(kMaxDeformableWorkPerStep) + ")");
+
+  for (Eigen::Vector3d& p : m.positions) {
+    p = r.world.position + r.world.orientation * p;
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return fail("position", "a particle is beyond 1e12 m once placed");
+  }
+  const std::size_t n = m.positions.size();
+  m.particleMass = r.totalMass / static_cast<double>(n);
+  m.inverseMass.assign(n, 1 / m.particleMass);
+  for (std::int64_t pin : r.pinnedVertices) m.inverseMass[static_cast<std::size_t>(pin)] = 0;
+  m.iterations = static_cast<int>(r.iterations);
+  m.substeps = static_cast<int>(r.substeps);
+  m.xpbd = r.solverMode == "xpbd";
+  m.damping = r.damping;
+  m.collisionRadius = r.collisionRadius;
+  m.collidable = r.collidable;
+  m.collisionGroup = r.collisionGroup;
+  m.collisionMask = r.collisionMask;
+  m.contactMaterial = r.contactMaterial;
+  return true;
+}
+
+}  // namespace rscene::sim
