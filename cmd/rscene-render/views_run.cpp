@@ -147,6 +147,9 @@ class ViewsRun {
         render::poseScene(p_.renderScene, {&poses.objects, &poses.compounds, &poses.robotLinks, &particles});
         renderer->updatePoses();
         render::poseViews(views_, p_.scene, p_.renderScene, sensors_, rest_, poses);
+        std::vector<Camera> cameras;
+        for (const View& v : views_) cameras.push_back(v.camera);
+        renderer->setParticleViews(cameras);
       }
       if (!drawFrame(*renderer, writer, written, time)) {
         writer.finish();

@@ -122,6 +122,7 @@ class GlRenderer final : public Renderer {
 
   bool upload();  // create(): false with an error diagnostic
   void updatePoses() override;
+  void setParticleViews(const std::vector<Camera>& cameras) override;
   bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) override;
   RenderTimings timings() const override { return timings_; }
   void addUploadSeconds(double s) { timings_.uploadSeconds += s; }
@@ -156,6 +157,8 @@ class GlRenderer final : public Renderer {
   void uploadPoints();
   bool buildPrograms();
   void makeVertexArrays();
+  // Points the batch's vertex array at its mesh's vertex and index buffers.
+  void bindMesh(Batch& b);
 
   // ---- drawing (passes.cpp)
   // Chooses and orders each batch's instances for `view` (re-uploading a
@@ -212,6 +215,7 @@ class GlRenderer final : public Renderer {
   // batches trajectory frames move (others: empty), and the version uploaded.
   std::vector<std::vector<InstanceRef>> instancedRefs_;
   std::vector<std::uint64_t> instancedVersions_;
+  std::vector<std::size_t> particleBatches_;  // batches holding granular particles, ascending
   std::vector<float> vertexScratch_;
   GLuint hdrTexture_ = 0;
   GLuint pointVao_ = 0, pointVbo_ = 0;

@@ -490,6 +490,8 @@ bool GlRenderer::uploadInstanced() {
                           placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
                           Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject);
       if (refs) refs->push_back(r);
+      if (refs && std::find(particleBatches_.begin(), particleBatches_.end(), r.batch) == particleBatches_.end())
+        particleBatches_.insert(std::upper_bound(particleBatches_.begin(), particleBatches_.end(), r.batch), r.batch);
     }
   }
   return true;
@@ -568,17 +570,22 @@ bool GlRenderer::buildPrograms() {
 
 // One vertex array per batch; its instance buffer is filled by the first
 // view that draws it (passes.cpp, selectInstances).
+void GlRenderer::bindMesh(Batch& b) {
+  glBindVertexArray(b.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, b.mesh->vbo);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(6 * sizeof(float)));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.mesh->ebo);
+}
+
 void GlRenderer::makeVertexArrays() {
   for (Batch& b : batches_) {
     glGenVertexArrays(1, &b.vao);
-    glBindVertexArray(b.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, b.mesh->vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(6 * sizeof(float)));
+    bindMesh(b);
     if (b.mesh->colorVbo) {
       glBindBuffer(GL_ARRAY_BUFFER, b.mesh->colorVbo);
       glEnableVertexAttribArray(3);
@@ -621,6 +628,23 @@ bool GlRenderer::upload() {
   if (!volumes_->upload() || !reflections_->upload()) return false;
   post_ = std::make_unique<PostEffects>(*this);  // builds its programs when a view first needs them
   return glOk();
+}
+
+void GlRenderer::setParticleViews(const std::vector<Camera>& cameras) {
+  lodCameras_ = cameras;
+  for (std::size_t bi : particleBatches_) {
+    Batch& b = batches_[bi];
+    int segments = 8;
+    for (const Instance& in : b.instances) {
+      segments = std::max(segments, segmentsFor(in.bounds));
+      if (segments >= 48) break;
+    }
+    std::shared_ptr<GpuMesh> mesh = primitive(Shape::Sphere, 0, 0, segments);
+    if (mesh == b.mesh) continue;
+    b.mesh = mesh;
+    bindMesh(b);
+    glBindVertexArray(0);
+  }
 }
 
 void GlRenderer::updatePoses() {
