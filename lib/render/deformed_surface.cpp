@@ -59,8 +59,9 @@ bool poseParticles(RenderScene& scene, const robot::ParticlePositions& particles
     int index = scene.deformableSurfaces[i];
     if (!r.given || index < 0) continue;
     DeformedSurface& s = scene.surfaces[std::size_t(index)];
-    if (r.version == s.framesVersion || r.points.size() != s.positions.size()) continue;
-    for (std::size_t k = 0; k < r.points.size(); ++k) s.positions[k] = r.points[k].cast<float>();
+    // The OBJ's vertices come first; fill particles (fem) after them are not drawn.
+    if (r.version == s.framesVersion || r.points.size() < s.positions.size()) continue;
+    for (std::size_t k = 0; k < s.positions.size(); ++k) s.positions[k] = r.points[k].cast<float>();
     s.framesVersion = r.version;
     ++s.version;
     Drawable& d = scene.drawables[s.drawable];
@@ -106,6 +107,8 @@ robot::TrajectoryLimits trajectoryLimits(const RenderScene& scene) {
       if (n < 0) return {};  // a record not drawn: its lines' length is unknown
       most = std::max(most, n);
     }
+  for (const DeformedSurface& s : scene.surfaces)
+    if (s.mayFill) return {};  // fill particles (fem) past the surface: how many is the solver's
   return robot::TrajectoryLimits::forPoints(std::size_t(most));
 }
 

@@ -28,8 +28,10 @@ MeshData surfaceMesh(const DeformedSurface& surface);
 void surfaceVertices(const DeformedSurface& surface, std::vector<float>& out);
 
 // Applies what frames gave to the drawn surfaces and granular batches
-// (those whose ParticlePositions version moved and whose count matches),
-// updating their bounds and versions.  True when something moved.
+// (those whose ParticlePositions version moved and that gave a granular
+// record's count, or at least a deformable's OBJ vertices: the points past
+// them fill a volume and are not drawn), updating their bounds and
+// versions.  True when something moved.
 bool poseParticles(RenderScene& scene, const robot::ParticlePositions& particles);
 
 }  // namespace rscene::render

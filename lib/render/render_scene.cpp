@@ -649,6 +649,7 @@ class Preparer {
       return false;
     Affine3d world = affine(src.world) * Eigen::Scaling(src.scale);
     DeformedSurface surface = surfaceFromObj(obj, world);
+    surface.mayFill = src.kind != "cloth" && src.kind != "mass_spring";
     Drawable d;
     d.shape = Shape::Mesh;
     d.meshPath = src.meshPath;

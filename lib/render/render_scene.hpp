@@ -117,6 +117,9 @@ struct DeformedSurface {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::uint64_t version = 0;                           // bumped by poseScene() when positions change
   std::uint64_t framesVersion = 0;                     // the ParticlePositions version last applied
+  // A volume (fem) the simulator may fill with particles past the OBJ's
+  // vertices: trajectory lines then hold more points than are drawn.
+  bool mayFill = false;
 };
 
 // A wire drawn as a cylinder of `width` between two attachment points:
@@ -356,12 +359,14 @@ struct BodyPoseView {
 };
 void poseScene(RenderScene& scene, const BodyPoseView& poses);
 
-// How many points a trajectory line must give per deformable and granular
-// record, as drawn (robot::TrajectoryPoser): -1 for what is not drawn.
+// How many points a trajectory line must give per deformable (at least its
+// OBJ's vertices) and granular record, as drawn (robot::TrajectoryPoser):
+// -1 for what is not drawn.
 robot::ParticleCounts particleCounts(const RenderScene& scene);
 // Reader limits for a trajectory of this scene: lines as long as its
 // largest drawn particle record needs (TrajectoryLimits::forPoints), the
-// defaults when a record's count is unknown.
+// defaults when a record's count is unknown (not drawn, or a volume the
+// simulator may fill).
 robot::TrajectoryLimits trajectoryLimits(const RenderScene& scene);
 
 // The world-space bounds of `local` carried by `m` (its eight corners).

@@ -613,7 +613,9 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
       const auto index = static_cast<std::size_t>(t.index);
       const std::vector<std::int64_t>& counts = deformable ? counts_.deformables : counts_.granulars;
       std::int64_t want = index < counts.size() ? counts[index] : -1;
-      if (want >= 0 && e.points.size() != static_cast<std::uint64_t>(want))
+      // A deformable's fill particles (fem) follow its OBJ's vertices.
+      if (want >= 0 && (deformable ? e.points.size() < static_cast<std::uint64_t>(want)
+                                   : e.points.size() != static_cast<std::uint64_t>(want)))
         return error(e, e.pointsColumn,
                      "'" + e.path + "' has " + std::to_string(want) +
                          (deformable ? " vertices (its OBJ's v lines)" : " particles") + ", the line gives " +

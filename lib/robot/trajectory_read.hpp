@@ -116,7 +116,9 @@ class TrajectoryReader {
 
 // How many particles each deformable (its OBJ's vertices) and granular
 // record has, indexed like Scene::deformables and Scene::granulars; -1 (or
-// a record past the list): unknown, any count is taken.
+// a record past the list): unknown, any count is taken.  A deformable's
+// line gives its OBJ's vertices first, then any particles filling its
+// volume (fem): its count is a minimum; a granular record's is exact.
 struct ParticleCounts {
   std::vector<std::int64_t> deformables, granulars;
 };
@@ -150,8 +152,8 @@ class TrajectoryPoser {
   // deformable or granular record of the scene, a joint its robot does not
   // have, a movable joint of the robot that the line leaves out (rscene-sim
   // writes every one), points for a body or a pose for a particle record,
-  // or a point count other than the record's is an error naming it (RS9047
-  // at the line in `file`), and false.
+  // or a point count other than the record's (fewer than a deformable's)
+  // is an error naming it (RS9047 at the line in `file`), and false.
   bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics,
              ParticlePositions* particles = nullptr) const;
 

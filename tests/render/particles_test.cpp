@@ -72,14 +72,14 @@ class Particles : public ::testing::Test {
 
   // Camera at the origin looking along +x (200 x 200, 60 degrees); a red
   // cloth at x = 5; two grains of radius 0.2 whose frame is at (5, 1.5, 1).
-  bool build(const std::string& mesh = "cloth.obj") {
+  bool build(const std::string& mesh = "cloth.obj", const std::string& kind = "cloth") {
     LoadResult loaded = parse(
         "raisim_engine_scene 1\n"
         "environment 0 0 0 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color colorMode=linear\n"
         "material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red\n"
         "camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 200 200 rgb true id=cam\n"
         "light /World/Sun 1 0.4 -0.4 3 type=directional\n"
-        "deformable /World/Cloth cloth " + mesh + " 5 0 0 1 0 0 0 1 1 1 material=red\n"
+        "deformable /World/Cloth " + kind + " " + mesh + " 5 0 0 1 0 0 0 1 1 1 material=red\n"
         "granular /World/Sand particles 5 1.5 1 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=0.4,0.8,0.4 radius=0.2 spacing=0.4\n");
     EXPECT_TRUE(loaded.ok());
     doc_ = std::move(loaded.document);
@@ -231,6 +231,28 @@ TEST_F(Particles, TrajectoryFramesMoveTheClothAndTheGrains) {
     return hi - lo;
   };
   EXPECT_GT(spread(frames[0], 1.5, 0), 3 * std::max(spread(frames[1], -1.5, -1), 1));
+}
+
+TEST_F(Particles, AFemVolumesFillParticlesAreNotDrawn) {
+  ASSERT_TRUE(build("cloth.obj", "fem"));
+  ASSERT_EQ(render_.surfaces.size(), 1u);
+  EXPECT_TRUE(render_.surfaces[0].mayFill);
+  EXPECT_FALSE(render_.drawables[render_.surfaces[0].drawable].doubleSided);  // a closed volume
+  // How many fill particles the solver makes is its own: lines of any length up to the defaults.
+  EXPECT_EQ(trajectoryLimits(render_).maxPoints, robot::TrajectoryLimits{}.maxPoints);
+  robot::ParticlePositions particles;
+  particles.deformables.resize(1);
+  particles.deformables[0].given = true;
+  particles.deformables[0].version = 1;
+  for (int k = 0; k < 12; ++k) particles.deformables[0].points.emplace_back(k, 0, 1);
+  std::uint64_t before = render_.surfaces[0].version;
+  poseScene(render_, {nullptr, nullptr, nullptr, &particles});
+  const DeformedSurface& s = render_.surfaces[0];
+  EXPECT_EQ(s.version, before + 1);
+  ASSERT_EQ(s.positions.size(), 9u);  // the surface's 9 vertices, the 3 fill particles left out
+  EXPECT_EQ(s.positions[8], Eigen::Vector3f(8, 0, 1));
+  EXPECT_TRUE(render_.drawables[s.drawable].bounds.contains(Eigen::Vector3d(8, 0, 1)));
+  EXPECT_FALSE(render_.drawables[s.drawable].bounds.contains(Eigen::Vector3d(11, 0, 1)));
 }
 
 TEST_F(Particles, AFrameWithTheWrongCountIsRefusedAtItsLine) {

@@ -206,6 +206,19 @@ TEST(TrajectoryPoserPoints, ParticleLinesMoveTheirRecordsAndKeepTheRest) {
   EXPECT_EQ(particles.deformables[0].points[0], Eigen::Vector3d(0, 0, 1));
 }
 
+TEST(TrajectoryPoserPoints, ADeformablesFillParticlesFollowItsVertices) {
+  // A volume (fem) filled with particles: its OBJ's vertices first, then
+  // the fill; the line holds more points than the surface has vertices.
+  ParticleScene s;
+  TrajectoryPoser poser(s.scene, s.models, ParticleCounts{{2, -1}, {1}});
+  Read r = readAll(pointsLine(0, "/cloth", "[[0,0,1],[1,0,1],[0.5,0,0.5]]"));
+  BodyPoses poses = restPoses(s.scene, s.models);
+  ParticlePositions particles;
+  Diagnostics d;
+  ASSERT_TRUE(poser.apply(r.frames[0], "t.jsonl", poses, d, &particles));
+  EXPECT_EQ(particles.deformables[0].points.size(), 3u);
+}
+
 TEST(TrajectoryPoserPoints, WrongCountsAndKindsAreErrorsNamingTheRecord) {
   ParticleScene s;
   TrajectoryPoser poser(s.scene, s.models, ParticleCounts{{2, -1}, {1}});
@@ -219,12 +232,15 @@ TEST(TrajectoryPoserPoints, WrongCountsAndKindsAreErrorsNamingTheRecord) {
     EXPECT_EQ(particles.deformables.size() + particles.granulars.size(), 0u);  // nothing moved
     return d;
   };
-  std::string three = pointsLine(0, "/cloth", "[[0,0,1],[1,0,1],[2,0,1]]");
-  Diagnostics d = applyLine(three);
+  std::string one = pointsLine(0, "/cloth", "[[0,0,1]]");
+  Diagnostics d = applyLine(one);
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].code, code::kTrajectoryTarget);
-  EXPECT_EQ(d[0].column, static_cast<std::uint32_t>(three.find("\"points\"") + 1));
-  EXPECT_EQ(d[0].message, "'/cloth' has 2 vertices (its OBJ's v lines), the line gives 3 points");
+  EXPECT_EQ(d[0].column, static_cast<std::uint32_t>(one.find("\"points\"") + 1));
+  EXPECT_EQ(d[0].message, "'/cloth' has 2 vertices (its OBJ's v lines), the line gives 1 points");
+  d = applyLine(pointsLine(0, "/sand", "[[0,0,1],[0,0,2]]"));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].message, "'/sand' has 1 particles, the line gives 2 points");
   d = applyLine(pointsLine(0, "/sand", "[]"));
   ASSERT_EQ(d.size(), 1u);
   EXPECT_EQ(d[0].message, "'/sand' has 1 particles, the line gives 0 points");
