@@ -134,7 +134,6 @@ std::uint32_t elementColumn(const std::string& line, const char* key, std::size_
 struct PointSink {
   std::size_t max = 0;
   std::vector<Eigen::Vector3d> points;
-  bool seen = false;
   std::size_t badIndex = 0;  // with `bad`: which element, from 0
   std::string bad;           // why the parse stopped at a point; empty: it did not
 };
@@ -178,10 +177,8 @@ JsonLine parseJsonLine(const std::string& text, PointSink& sink) {
   auto callback = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     if (event == E::object_start || event == E::array_start) {
-      if (event == E::array_start && nesting.size() == 1 && nesting[0] == 'o' && topKey == "points") {
+      if (event == E::array_start && nesting.size() == 1 && nesting[0] == 'o' && topKey == "points")
         pointsDepth = 2;
-        sink.seen = true;
-      }
       nesting.push_back(event == E::object_start ? 'o' : 'a');
     }
     if (event == E::object_end || event == E::array_end) {
