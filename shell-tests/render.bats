@@ -623,3 +623,52 @@ SCENE
   [ "$(grep -c RS9055 <<<"$stderr")" -eq 1 ]
   is_png many.png
 }
+
+# Issue 14: deformables and granular beds along a simulation.  A cloth
+# (an 8 x 8 OBJ grid, pinned at two corners) and a granular bed of 32
+# grains: rscene-sim --trajectory, then rscene-render draws every frame.
+particle_scene() {
+  awk 'BEGIN { n = 8
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++) printf "v %g %g 0\n", i / (n - 1) - 0.5, j / (n - 1) - 0.5
+    for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) { a = j * n + i + 1; printf "f %d %d %d %d\n", a, a + 1, a + n + 1, a + n } }' > cloth.obj
+  cat > p.rscene <<SCENE
+raisim_engine_scene 1
+camera /World/Cam -4 0 2 0.9659 0 0.2588 0 60 0.05 100 160 120 rgb true id=cam
+light /World/Sun 0.2 0.1 -1 3 type=directional
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615
+deformable /World/Cloth cloth cloth.obj 0 0.8 1.5 1 0 0 0 1 1 1 pinnedVertices=0,7 totalMass=0.2
+granular /World/Sand particles 0 -1 0 1 0 0 0 1 1 1 boxMax=0.4,0.4,0.2 radius=0.05 spacing=0.1
+SCENE
+}
+
+@test "particles: rscene-sim --trajectory of a cloth and a granular bed, then rscene-render --trajectory: one image per frame" {
+  [ -x "$BIN/rscene-sim" ] || skip "rscene-sim not built in $BIN"
+  particle_scene
+  run -0 "$BIN/rscene-sim" p.rscene --duration 0.05 --every 4 --trajectory t.jsonl -o /dev/null
+  run -0 "$BIN/rscene-sim" p.rscene --duration 0.05 --every 4 --trajectory t.csv --trajectory-format csv -o /dev/null
+  frames=$(grep -c '"path":"/World/Sand","points":\[\[' t.jsonl)
+  [ "$frames" -ge 2 ]
+  [ "$(grep -c '"path":"/World/Cloth","points":\[\[' t.jsonl)" -eq "$frames" ]
+  run -0 --separate-stderr "$RENDER" p.rscene --trajectory t.jsonl -o 'j/{frame}.png'
+  [ "$(ls j | wc -l)" -eq "$frames" ]
+  is_png j/000000.png
+  is_png "j/$(printf %06d $((frames - 1))).png"
+  # The CSV trajectory (points column) draws the same frames.
+  run -0 --separate-stderr "$RENDER" p.rscene --trajectory t.csv -o 'c/{frame}.png'
+  [ "$(ls c | wc -l)" -eq "$frames" ]
+  cmp j/000001.png c/000001.png
+}
+
+@test "particles: a frame with a point too few or a malformed point stops at its line and column" {
+  particle_scene
+  echo '{"time":0,"path":"/World/Cloth","points":[[0,0,1]]}' > few.jsonl
+  run -2 --separate-stderr "$RENDER" p.rscene --trajectory few.jsonl -o 'f/{frame}.png'
+  [ "$stderr" = "few.jsonl:1:33: error: '/World/Cloth' has 64 vertices (its OBJ's v lines), the line gives 1 points [RS9047]" ]
+  [ -z "$(ls f 2>/dev/null)" ]  # no image written
+  printf '%s\n' '{"time":0,"path":"/World/Sand","points":[[0,0,1],[0,nan,1]]}' > nan.jsonl
+  run -2 --separate-stderr "$RENDER" p.rscene --trajectory nan.jsonl -o 'f/{frame}.png'
+  [[ "$stderr" == "nan.jsonl:1:"*": error: malformed JSON"*"[RS9046]"* ]]
+  printf '%s\n' 'time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,points' '0,/World/Sand,,,,,,,,,,,,,,0 0 1;0 1' > two.csv
+  run -2 --separate-stderr "$RENDER" p.rscene --trajectory two.csv -o 'f/{frame}.png'
+  [ "$stderr" = "two.csv:2:34: error: point 1 '0 1' is not three numbers 'x y z' [RS9046]" ]
+}

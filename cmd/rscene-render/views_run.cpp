@@ -96,7 +96,9 @@ class ViewsRun {
         cli::error("--trajectory -: standard input is a directory");  // reads would only say "empty"
         return cli::kTrouble;
       }
-      reader.emplace(trajectoryStream ? *trajectoryStream : std::cin, trajectoryName);
+      // Lines as long as the scene's largest particle record needs.
+      reader.emplace(trajectoryStream ? *trajectoryStream : std::cin, trajectoryName,
+                     render::trajectoryLimits(p_.renderScene));
     }
 
     // After the trajectory opened: a folder of -o is made only for a run that can start.
@@ -119,8 +121,9 @@ class ViewsRun {
     ImageWriter writer(std::min(cores - 1, 8u), render::segmentationLegendJson(p_.renderScene));
     auto tRun = Clock::now();
 
-    robot::TrajectoryPoser poser(p_.scene, p_.renderScene.robotModels);
+    robot::TrajectoryPoser poser(p_.scene, p_.renderScene.robotModels, render::particleCounts(p_.renderScene));
     robot::BodyPoses poses = rest_;
+    robot::ParticlePositions particles;
     robot::TrajectoryFrame frame;
     std::uint64_t written = 0;
     bool progress = !opt_.verbose && isatty(2);
@@ -137,13 +140,16 @@ class ViewsRun {
         }
         if (frame.index % opt_.every != 0) continue;
         time = frame.time;
-        if (!poser.apply(frame, trajectoryName, poses, diags)) {
+        if (!poser.apply(frame, trajectoryName, poses, diags, &particles)) {
           print(diags);
           return cli::kTrouble;
         }
-        render::poseScene(p_.renderScene, {&poses.objects, &poses.compounds, &poses.robotLinks});
+        render::poseScene(p_.renderScene, {&poses.objects, &poses.compounds, &poses.robotLinks, &particles});
         renderer->updatePoses();
         render::poseViews(views_, p_.scene, p_.renderScene, sensors_, rest_, poses);
+        std::vector<Camera> cameras;
+        for (const View& v : views_) cameras.push_back(v.camera);
+        renderer->setParticleViews(cameras);
       }
       if (!drawFrame(*renderer, writer, written, time)) {
         writer.finish();

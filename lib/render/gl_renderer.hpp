@@ -122,6 +122,7 @@ class GlRenderer final : public Renderer {
 
   bool upload();  // create(): false with an error diagnostic
   void updatePoses() override;
+  void setParticleViews(const std::vector<Camera>& cameras) override;
   bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) override;
   RenderTimings timings() const override { return timings_; }
   void addUploadSeconds(double s) { timings_.uploadSeconds += s; }
@@ -133,7 +134,9 @@ class GlRenderer final : public Renderer {
             const std::string& file = {});
   bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
                     const char* code = "RS9001");
-  std::shared_ptr<GpuMesh> uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr);
+  // `usage` GL_DYNAMIC_DRAW for a deformable's surface, rewritten per frame.
+  std::shared_ptr<GpuMesh> uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr,
+                                      GLenum usage = GL_STATIC_DRAW);
   std::shared_ptr<GpuMesh> primitive(Shape s, double capsuleR = 0, double capsuleH = 0, int segments = 48);
   int segmentsFor(const Eigen::AlignedBox3d& box) const;
   GLuint texture(const Image& image);
@@ -154,6 +157,8 @@ class GlRenderer final : public Renderer {
   void uploadPoints();
   bool buildPrograms();
   void makeVertexArrays();
+  // Points the batch's vertex array at its mesh's vertex and index buffers.
+  void bindMesh(Batch& b);
 
   // ---- drawing (passes.cpp)
   // Chooses and orders each batch's instances for `view` (re-uploading a
@@ -202,6 +207,16 @@ class GlRenderer final : public Renderer {
   std::vector<std::size_t> drawOrder_;  // into batches_: background batches last
   std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
   std::vector<std::vector<InstanceRef>> drawableRefs_;  // per RenderScene::drawables
+  // Per RenderScene::surfaces: its vertex buffer and the version uploaded
+  // (updatePoses() rewrites the vertices when the surface's moved on).
+  std::vector<std::shared_ptr<GpuMesh>> surfaceMeshes_;
+  std::vector<std::uint64_t> surfaceVersions_;
+  // Per RenderScene::instanced: where each instance went, for the granular
+  // batches trajectory frames move (others: empty), and the version uploaded.
+  std::vector<std::vector<InstanceRef>> instancedRefs_;
+  std::vector<std::uint64_t> instancedVersions_;
+  std::vector<std::size_t> particleBatches_;  // batches holding granular particles, ascending
+  std::vector<float> vertexScratch_;
   GLuint hdrTexture_ = 0;
   GLuint pointVao_ = 0, pointVbo_ = 0;
   std::vector<std::pair<GLint, GLsizei>> pointRanges_;

@@ -4,9 +4,13 @@
 #include "scene/reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <unordered_map>
 
+#include "asset/obj_surface.hpp"
+#include "render/deformed_surface.hpp"
 #include "render/render_bodies.hpp"
 #include "render/render_foliage.hpp"
 #include "render/robot_drawables.hpp"
@@ -87,8 +91,10 @@ class Preparer {
     for (const InstancedVisual& v : s_.instancedVisuals) instanced(v);
     for (const PointCloud& p : s_.pointClouds) points(p);
     robots();
-    for (const Deformable& d : s_.deformables) deformable(d);
-    for (const Granular& g : s_.granulars) granular(g);
+    out_.deformableSurfaces.assign(s_.deformables.size(), -1);
+    out_.granularBatches.assign(s_.granulars.size(), -1);
+    for (std::size_t i = 0; i < s_.deformables.size(); ++i) deformable(s_.deformables[i], i);
+    for (std::size_t i = 0; i < s_.granulars.size(); ++i) granular(s_.granulars[i], i);
     for (const Wire& w : s_.wires) wire(w);  // after robots(): an end may be a robot's link
     for (const SkippedRecord& r : s_.skipped) ++out_.skipped[r.tag];
   }
@@ -605,12 +611,16 @@ class Preparer {
     return box;
   }
 
-  // deformable: its mesh at rest (the format stores no deformed state and
-  // nothing simulates it yet), at its pose and scale, in its material.  A
-  // missing mesh is the renderer's RS5001 (a placeholder box of the
-  // record's scale with --allow-missing-assets).
-  void deformable(const Deformable& src) {
+  // deformable: its mesh at rest (the format stores no deformed state), at
+  // its pose and scale, in its material.  An OBJ is drawn from its surface
+  // in file order (deformed_surface.hpp): the vertices rscene-sim moves, so
+  // trajectory frames can replace them.  Any other mesh, or an OBJ that is
+  // no usable surface, goes through assimp as other meshes do; a missing
+  // mesh is then the renderer's RS5001 (a placeholder box of the record's
+  // scale with --allow-missing-assets).
+  void deformable(const Deformable& src, std::size_t index) {
     if (!src.visible || src.hiddenByGroup) return;
+    if (objSurface(src, index)) return;
     Drawable d;
     d.shape = Shape::Mesh;
     d.meshPath = src.meshPath;
@@ -626,10 +636,45 @@ class Preparer {
     addDrawable(std::move(d), meshBounds(src.meshPath));
   }
 
+  // The OBJ surface of a deformable, when its mesh is one that reads.
+  bool objSurface(const Deformable& src, std::size_t index) {
+    std::string ext = std::filesystem::path(src.meshPath).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    asset::ObjSurface obj;
+    // Regular files only (a FIFO would block the read): anything else is
+    // the assimp path's to report.
+    const FileSystem& fs = assets().fileSystem();
+    if (ext != ".obj" || fs.stat(src.meshPath).kind != FileKind::Regular ||
+        !asset::loadObjSurface(fs, src.meshPath, obj, nullptr))
+      return false;
+    Affine3d world = affine(src.world) * Eigen::Scaling(src.scale);
+    DeformedSurface surface = surfaceFromObj(obj, world);
+    surface.mayFill = src.kind != "cloth" && src.kind != "mass_spring";
+    Drawable d;
+    d.shape = Shape::Mesh;
+    d.meshPath = src.meshPath;
+    d.line = lineOf(src.recordIndex);
+    d.meshColumn = columnOf(src.recordIndex, "meshPath");
+    d.material = materialIndex(src.material);
+    d.segment = segment("deformable", src.recordIndex, src.path, src.id, "", -1);
+    d.worldObject = true;
+    // A sheet of cloth is seen from both sides; a mirroring scale turns a
+    // closed surface's winding inside out.
+    d.doubleSided = src.kind == "cloth" || world.linear().determinant() < 0;
+    d.surface = int(out_.surfaces.size());
+    surface.drawable = out_.drawables.size();
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3f& p : surface.positions) box.extend(p.cast<double>());
+    out_.deformableSurfaces[index] = d.surface;
+    out_.surfaces.push_back(std::move(surface));
+    addDrawable(std::move(d), box);
+    return true;
+  }
+
   // granular: its particles (box fill or explicit) as spheres of their
   // radii in the record's frame, sand-colored: materialId names the
   // particles' contact material, not a look.
-  void granular(const Granular& g) {
+  void granular(const Granular& g, std::size_t index) {
     if (!g.visible || g.hiddenByGroup) return;
     std::uint64_t left = limits_.maxInstances - std::min(instancesDrawn_, limits_.maxInstances);
     std::vector<Vector3d> positions;
@@ -665,14 +710,17 @@ class Preparer {
     b.worlds.reserve(positions.size());
     b.colors.assign(positions.size(), sand);
     b.instanceBounds.reserve(positions.size());
+    b.radii.reserve(positions.size());
     for (std::size_t i = 0; i < positions.size(); ++i) {
       double r = std::isfinite(radii[i]) ? std::max(radii[i], 0.0) : 0.0;
+      b.radii.push_back(r);
       Affine3d m = frame * Eigen::Translation3d(positions[i]) * Eigen::Scaling(r);
       b.worlds.push_back(m);
       b.instanceBounds.push_back(transformBox(m, unitShapeBounds(Shape::Sphere)));
       b.bounds.extend(b.instanceBounds.back());
     }
     out_.bounds.extend(b.bounds);
+    out_.granularBatches[index] = int(out_.instanced.size());
     out_.instanced.push_back(std::move(b));
   }
 
@@ -924,6 +972,7 @@ void poseScene(RenderScene& scene, const BodyPoseView& poses) {
     d.world = wireTransform(w.a, w.b, w.width);
     d.bounds = transformBox(d.world, d.localBounds);
   }
+  if (poses.particles) poseParticles(scene, *poses.particles);
   Eigen::AlignedBox3d bounds;
   for (Drawable& d : scene.drawables) {
     Pose body;

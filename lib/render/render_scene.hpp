@@ -21,6 +21,7 @@
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "robot/model.hpp"
+#include "robot/trajectory_read.hpp"
 #include "scene/scene.hpp"
 
 namespace rscene::render {
@@ -98,6 +99,27 @@ struct Drawable {
   // A wire's line (index into RenderScene::wires): its transform spans two
   // bodies, so poseScene() recomputes it from both ends.
   int wire = -1;
+  // A deformable's surface (index into RenderScene::surfaces): its vertices
+  // are world positions (`world` stays the identity) that trajectory frames
+  // replace.
+  int surface = -1;
+};
+
+// A deformable drawn from its OBJ surface in file order (asset/obj_surface:
+// the particles rscene-sim moves are those vertices, the triangles its
+// constraints run along): world positions (at rest the record's pose and
+// scale applied; along a trajectory a frame's points) and the OBJ's
+// triangles.  The renderer recomputes area-weighted vertex normals (so the
+// mesh shades smoothly) and re-uploads the vertices when `version` moves.
+struct DeformedSurface {
+  std::size_t drawable = 0;                            // index into RenderScene::drawables
+  std::vector<Eigen::Vector3f> positions;              // world
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::uint64_t version = 0;                           // bumped by poseScene() when positions change
+  std::uint64_t framesVersion = 0;                     // the ParticlePositions version last applied
+  // A volume (fem) the simulator may fill with particles past the OBJ's
+  // vertices: trajectory lines then hold more points than are drawn.
+  bool mayFill = false;
 };
 
 // A wire drawn as a cylinder of `width` between two attachment points:
@@ -168,6 +190,11 @@ struct Instanced {
   // scattered; otherwise the record's own count).
   std::string kind = "instanced_visual";
   std::uint64_t generated = 0;
+  // A granular record's particles (one instance each, in the record's
+  // order): their radii, kept while trajectory frames move the centres;
+  // `version` bumped by poseScene() when they move.
+  std::vector<double> radii;
+  std::uint64_t version = 0, framesVersion = 0;
 };
 
 struct PointBatch {
@@ -284,6 +311,11 @@ struct RenderScene {
   std::vector<RenderIrradiance> irradianceVolumes;
   std::vector<RenderProbe> probes;
   std::vector<WireSpan> wires;
+  std::vector<DeformedSurface> surfaces;
+  // What draws each record of Scene::deformables (an index into surfaces)
+  // and Scene::granulars (into instanced); -1: not drawn so (hidden, not an
+  // OBJ surface): trajectory frames then move nothing of it.
+  std::vector<int> deformableSurfaces, granularBatches;
   Look environment;
   std::size_t robots = 0;              // articulated systems drawn
   // Every articulated system's model, indexed like Scene::articulated
@@ -320,8 +352,22 @@ struct BodyPoseView {
   const std::vector<Pose>* objects = nullptr;
   const std::vector<Pose>* compounds = nullptr;
   const std::vector<std::vector<Pose>>* robotLinks = nullptr;
+  // Deformable vertices and granular centres (world) of the records a
+  // frame gave; a count other than what is drawn moves nothing (the
+  // poser's particleCounts() refuses it first).
+  const robot::ParticlePositions* particles = nullptr;
 };
 void poseScene(RenderScene& scene, const BodyPoseView& poses);
+
+// How many points a trajectory line must give per deformable (at least its
+// OBJ's vertices) and granular record, as drawn (robot::TrajectoryPoser):
+// -1 for what is not drawn.
+robot::ParticleCounts particleCounts(const RenderScene& scene);
+// Reader limits for a trajectory of this scene: lines as long as its
+// largest drawn particle record needs (TrajectoryLimits::forPoints), the
+// defaults when a record's count is unknown (not drawn, or a volume the
+// simulator may fill).
+robot::TrajectoryLimits trajectoryLimits(const RenderScene& scene);
 
 // The world-space bounds of `local` carried by `m` (its eight corners).
 Eigen::AlignedBox3d transformBox(const Eigen::Affine3d& m, const Eigen::AlignedBox3d& local);

@@ -11,6 +11,7 @@
 
 #include "core/assets.hpp"
 #include "render/camera.hpp"
+#include "render/deformed_surface.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/main_pass.hpp"
 #include "render/mesh.hpp"
@@ -162,11 +163,12 @@ bool GlRenderer::regularFile(const std::string& path) const {
   return assets_.fileSystem().stat(path).kind == FileKind::Regular;
 }
 
-std::shared_ptr<GpuMesh> GlRenderer::uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors) {
+std::shared_ptr<GpuMesh> GlRenderer::uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors,
+                                                GLenum usage) {
   auto g = std::make_shared<GpuMesh>();
   glGenBuffers(1, &g->vbo);
   glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.vertices.size() * sizeof(float)), m.vertices.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.vertices.size() * sizeof(float)), m.vertices.data(), usage);
   glGenBuffers(1, &g->ebo);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)), m.indices.data(),
@@ -347,6 +349,8 @@ bool GlRenderer::uploadDrawables() {
     return Eigen::Vector4f(m.metallic, m.roughness, checker, 0);
   };
   drawableRefs_.assign(scene_.drawables.size(), {});
+  surfaceMeshes_.assign(scene_.surfaces.size(), nullptr);
+  surfaceVersions_.assign(scene_.surfaces.size(), 0);
   for (std::size_t di = 0; di < scene_.drawables.size(); ++di) {
     const Drawable& d = scene_.drawables[di];
     std::vector<InstanceRef>& refs = drawableRefs_[di];
@@ -369,6 +373,16 @@ bool GlRenderer::uploadDrawables() {
     // reverses the triangles' winding: such a drawable culls no faces (its
     // normals, carried by the inverse transpose, still point outwards).
     bool twoSided = mat.doubleSided || d.doubleSided || d.world.linear().determinant() < 0;
+    if (d.surface >= 0 && std::size_t(d.surface) < scene_.surfaces.size()) {  // a deformable's OBJ surface
+      const DeformedSurface& s = scene_.surfaces[std::size_t(d.surface)];
+      std::shared_ptr<GpuMesh> mesh = uploadMesh(surfaceMesh(s), nullptr, GL_DYNAMIC_DRAW);
+      surfaceMeshes_[std::size_t(d.surface)] = mesh;
+      surfaceVersions_[std::size_t(d.surface)] = s.version;
+      GLuint tex = 0;
+      if (!materialTexture(mat, tex)) return false;
+      put(mesh, tex, mat.blend, twoSided, id, mat.color, pbrOf(mat, 0));
+      continue;
+    }
     if (d.shape == Shape::Mesh) {
       bool failed = false;
       const std::vector<TexturedPart>* parts = meshFile(d.meshPath, d.line, d.meshColumn, d.file, failed);
@@ -440,7 +454,13 @@ void GlRenderer::uploadTerrains() {
 }
 
 bool GlRenderer::uploadInstanced() {
-  for (const Instanced& b : scene_.instanced) {
+  instancedRefs_.assign(scene_.instanced.size(), {});
+  instancedVersions_.assign(scene_.instanced.size(), 0);
+  for (std::size_t bi = 0; bi < scene_.instanced.size(); ++bi) {
+    const Instanced& b = scene_.instanced[bi];
+    // Granular particles move along a trajectory: keep where each went.
+    std::vector<InstanceRef>* refs = b.radii.empty() ? nullptr : &instancedRefs_[bi];
+    instancedVersions_[bi] = b.version;
     std::shared_ptr<GpuMesh> mesh;
     bool placeholder = false;
     if (b.shape == Shape::Mesh) {
@@ -463,12 +483,16 @@ bool GlRenderer::uploadInstanced() {
     const RenderMaterial& mat = scene_.materials[std::size_t(b.material)];
     // Visuals only, never drawn by sensor views, unless worldObject
     // (granular particles).
-    for (std::size_t i = 0; i < b.worlds.size(); ++i)
-      add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i],
-          placeholder ? kPlaceholderColor : b.colors[i],
-          placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
-          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i],
-          b.worldObject);
+    if (refs) refs->reserve(b.worlds.size());
+    for (std::size_t i = 0; i < b.worlds.size(); ++i) {
+      InstanceRef r = add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i],
+                          placeholder ? kPlaceholderColor : b.colors[i],
+                          placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
+                          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject);
+      if (refs) refs->push_back(r);
+      if (refs && std::find(particleBatches_.begin(), particleBatches_.end(), r.batch) == particleBatches_.end())
+        particleBatches_.insert(std::upper_bound(particleBatches_.begin(), particleBatches_.end(), r.batch), r.batch);
+    }
   }
   return true;
 }
@@ -546,17 +570,22 @@ bool GlRenderer::buildPrograms() {
 
 // One vertex array per batch; its instance buffer is filled by the first
 // view that draws it (passes.cpp, selectInstances).
+void GlRenderer::bindMesh(Batch& b) {
+  glBindVertexArray(b.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, b.mesh->vbo);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(6 * sizeof(float)));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.mesh->ebo);
+}
+
 void GlRenderer::makeVertexArrays() {
   for (Batch& b : batches_) {
     glGenVertexArrays(1, &b.vao);
-    glBindVertexArray(b.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, b.mesh->vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 8 * sizeof(float), reinterpret_cast<void*>(6 * sizeof(float)));
+    bindMesh(b);
     if (b.mesh->colorVbo) {
       glBindBuffer(GL_ARRAY_BUFFER, b.mesh->colorVbo);
       glEnableVertexAttribArray(3);
@@ -601,10 +630,50 @@ bool GlRenderer::upload() {
   return glOk();
 }
 
+void GlRenderer::setParticleViews(const std::vector<Camera>& cameras) {
+  lodCameras_ = cameras;
+  for (std::size_t bi : particleBatches_) {
+    Batch& b = batches_[bi];
+    int segments = 8;
+    for (const Instance& in : b.instances) {
+      segments = std::max(segments, segmentsFor(in.bounds));
+      if (segments >= 48) break;
+    }
+    std::shared_ptr<GpuMesh> mesh = primitive(Shape::Sphere, 0, 0, segments);
+    if (mesh == b.mesh) continue;
+    b.mesh = mesh;
+    bindMesh(b);
+    glBindVertexArray(0);
+  }
+}
+
 void GlRenderer::updatePoses() {
+  // Deformed surfaces whose vertices a frame replaced: new positions and
+  // normals into the same buffer (the batches' vertex arrays keep it).
+  for (std::size_t i = 0; i < surfaceMeshes_.size() && i < scene_.surfaces.size(); ++i) {
+    const DeformedSurface& s = scene_.surfaces[i];
+    if (!surfaceMeshes_[i] || s.version == surfaceVersions_[i]) continue;
+    surfaceVertices(s, vertexScratch_);
+    glBindBuffer(GL_ARRAY_BUFFER, surfaceMeshes_[i]->vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertexScratch_.size() * sizeof(float)), vertexScratch_.data());
+    surfaceVersions_[i] = s.version;
+  }
+  // Granular particles a frame moved.
+  for (std::size_t bi = 0; bi < instancedRefs_.size() && bi < scene_.instanced.size(); ++bi) {
+    const Instanced& src = scene_.instanced[bi];
+    if (instancedRefs_[bi].size() != src.worlds.size() || src.version == instancedVersions_[bi]) continue;
+    for (std::size_t k = 0; k < src.worlds.size(); ++k) {
+      const InstanceRef& r = instancedRefs_[bi][k];
+      Batch& b = batches_[r.batch];
+      writeMatrix(b.instances[r.slot].data, src.worlds[k]);
+      b.instances[r.slot].bounds = src.instanceBounds[k];
+      b.dirty = true;
+    }
+    instancedVersions_[bi] = src.version;
+  }
   for (std::size_t di = 0; di < drawableRefs_.size() && di < scene_.drawables.size(); ++di) {
     const Drawable& d = scene_.drawables[di];
-    if (d.attachment.kind == Mount::Kind::World) continue;
+    if (d.attachment.kind == Mount::Kind::World && d.surface < 0) continue;
     for (const InstanceRef& r : drawableRefs_[di]) {
       Batch& b = batches_[r.batch];
       Instance& in = b.instances[r.slot];

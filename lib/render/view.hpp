@@ -95,6 +95,11 @@ class Renderer {
   // The scene's drawables moved (poseScene()): same drawables, new
   // Drawable::world and bounds.
   virtual void updatePoses() = 0;
+  // The views the next frames draw (their poses now): granular particles,
+  // which a trajectory moves anywhere, are re-tessellated for them as
+  // createRenderer() tessellates round shapes at rest (a 20,000-grain bed
+  // at 48 segments is 46 M triangles).  Other shapes keep theirs.
+  virtual void setParticleViews(const std::vector<Camera>& cameras) = 0;
   // Renders the passes of `view` at view.camera.width x height.
   virtual bool render(const View& view, ViewImages& out, Diagnostics& diagnostics) = 0;
   virtual RenderTimings timings() const = 0;  // upload (create) and drawing so far

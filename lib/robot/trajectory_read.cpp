@@ -94,6 +94,51 @@ std::string parseErrorReason(const std::string& what) {
   return at == std::string::npos ? "malformed JSON" : "malformed JSON: " + what.substr(at + 27);
 }
 
+// The column of element `index` (from 0) of the array that is the value of
+// the top-level key `key` (for messages about one point of "points"); the
+// key's column when it cannot be told.
+std::uint32_t elementColumn(const std::string& line, const char* key, std::size_t index) {
+  std::uint32_t keyAt = nthKeyColumn(line, key, 0);
+  std::size_t i = line.find('[', keyAt);
+  if (i == std::string::npos) return keyAt;
+  int depth = 0;
+  std::size_t element = 0;
+  bool atStart = true;  // the next non-blank byte opens an element
+  for (++i; i < line.size(); ++i) {
+    char c = line[i];
+    if (c == ' ' || c == '\t') continue;
+    if (atStart && depth == 0) {
+      if (c == ']') break;
+      if (element == index) return static_cast<std::uint32_t>(i + 1);
+      atStart = false;
+    }
+    if (c == '"') {  // a string: skip it, escapes included
+      for (++i; i < line.size() && line[i] != '"'; ++i)
+        if (line[i] == '\\') ++i;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if (c == ']' || c == '}') {
+      if (depth-- == 0) break;
+    } else if (c == ',' && depth == 0) {
+      ++element;
+      atStart = true;
+    }
+  }
+  return keyAt;
+}
+
+// The top-level "points" array of a particle line, gathered while it is
+// parsed: each [x,y,z] becomes a point and leaves the JSON tree at once,
+// so a line of many points costs 24 bytes each, and counting stops (an
+// exception out of the parse) at the first bad point or past `max`.
+struct PointSink {
+  std::size_t max = 0;
+  std::vector<Eigen::Vector3d> points;
+  std::size_t badIndex = 0;  // with `bad`: which element, from 0
+  std::string bad;           // why the parse stopped at a point; empty: it did not
+};
+struct StopAtPoint {};
+
 // A parse that records the first key an object repeats: nlohmann keeps
 // one of the values silently, which would hide a file's mistake.
 struct JsonLine {
@@ -104,12 +149,52 @@ struct JsonLine {
   std::string error;
 };
 
-JsonLine parseJsonLine(const std::string& text) {
+JsonLine parseJsonLine(const std::string& text, PointSink& sink) {
   JsonLine out;
   std::vector<std::vector<std::string>> open;  // keys of each object being read
   std::map<std::string, int> seen;              // key name -> times read so far, any object
+  std::vector<char> nesting;                    // 'o' object, 'a' array, outermost first
+  std::string topKey;                           // the key of the outermost object being read
+  std::size_t pointsDepth = 0;                  // nesting size inside the "points" array; 0: not in it
+  // One element of "points" ended: keep it as a point, never in the tree.
+  auto point = [&](const nlohmann::json& v) {
+    std::size_t index = sink.points.size();
+    auto stop = [&](std::string why) {
+      sink.badIndex = index;
+      sink.bad = std::move(why);
+      throw StopAtPoint{};
+    };
+    if (index >= sink.max)
+      stop("more than " + std::to_string(sink.max) + " points (the scene's largest deformable or granular record has " +
+           std::to_string(sink.max) + ")");
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      stop("point " + std::to_string(index) + " is not an [x,y,z] triple of numbers");
+    Eigen::Vector3d p(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+    if (!finiteBounded(p.x()) || !finiteBounded(p.y()) || !finiteBounded(p.z()))
+      stop("point " + std::to_string(index) + " out of range (|value| at most 1e12)");
+    sink.points.push_back(p);
+  };
   auto callback = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
+    if (event == E::object_start || event == E::array_start) {
+      if (event == E::array_start && nesting.size() == 1 && nesting[0] == 'o' && topKey == "points")
+        pointsDepth = 2;
+      nesting.push_back(event == E::object_start ? 'o' : 'a');
+    }
+    if (event == E::object_end || event == E::array_end) {
+      if (!nesting.empty()) nesting.pop_back();
+      if (pointsDepth && nesting.size() == pointsDepth) {  // an element of "points" closed
+        point(parsed);
+        if (event == E::object_end && !open.empty()) open.pop_back();
+        return false;
+      }
+      if (pointsDepth && nesting.size() < pointsDepth) pointsDepth = 0;  // "points" itself closed
+    }
+    if (event == E::value && pointsDepth && nesting.size() == pointsDepth) {  // a bare number in "points"
+      point(parsed);
+      return false;
+    }
+    if (event == E::key && nesting.size() == 1 && parsed.is_string()) topKey = parsed.get<std::string>();
     if (event == E::object_start) open.emplace_back();
     if (event == E::object_end && !open.empty()) open.pop_back();
     if (event == E::key && parsed.is_string() && !open.empty()) {
@@ -126,6 +211,8 @@ JsonLine parseJsonLine(const std::string& text) {
   };
   try {
     out.value = nlohmann::json::parse(text, callback, true);
+  } catch (const StopAtPoint&) {
+    // sink.bad says why; the caller reports it at the point.
   } catch (const nlohmann::json::parse_error& e) {
     out.errorByte = e.byte == 0 ? 1 : e.byte;
     out.error = parseErrorReason(e.what());
@@ -147,6 +234,13 @@ JsonLine parseJsonLine(const std::string& text) {
 }
 
 }  // namespace
+
+TrajectoryLimits TrajectoryLimits::forPoints(std::size_t points) {
+  TrajectoryLimits l;
+  l.maxPoints = points;
+  l.maxLineBytes = (std::size_t{1} << 20) + kBytesPerPoint * std::min<std::size_t>(points, std::size_t{1} << 40);
+  return l;
+}
 
 TrajectoryReader::TrajectoryReader(std::istream& in, std::string file, TrajectoryLimits limits)
     : in_(in), file_(std::move(file)), limits_(limits) {}
@@ -201,7 +295,10 @@ bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
 }
 
 bool TrajectoryReader::parseJson(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
-  JsonLine parsed = parseJsonLine(text);
+  PointSink sink;
+  sink.max = limits_.maxPoints;
+  JsonLine parsed = parseJsonLine(text, sink);
+  if (!sink.bad.empty()) return fail(d, elementColumn(text, "points", sink.badIndex), sink.bad);
   if (parsed.errorByte)
     return fail(d, static_cast<std::uint32_t>(std::min<std::size_t>(parsed.errorByte, text.size() + 1)),
                 parsed.error + " (rscene-sim --trajectory writes one JSON object per line)");
@@ -235,6 +332,17 @@ bool TrajectoryReader::parseJson(const std::string& text, double& time, Trajecto
   // At the path's value: the opening quote after "path":.
   std::size_t value = text.find('"', text.find(':', keyColumn(text, "path") + 5));
   e.pathColumn = value == std::string::npos ? 1 : static_cast<std::uint32_t>(value + 1);
+  if (auto pts = j.find("points"); pts != j.end()) {
+    e.pointsColumn = nthKeyColumn(text, "points", 0);
+    if (!pts->is_array()) return fail(d, e.pointsColumn, "points is not an array of [x,y,z] triples");
+    for (const char* pose : {"position", "quaternion", "jointPositions"})
+      if (j.contains(pose))
+        return fail(d, keyColumn(text, pose),
+                    std::string("a line with points is a deformable's or granular record's: it has no ") + pose);
+    e.particles = true;
+    e.points = std::move(sink.points);
+    return true;
+  }
   double pos[3], quat[4];
   if (!vec("position", pos, 3) || !vec("quaternion", quat, 4)) return false;
   Eigen::Quaterniond q(quat[0], quat[1], quat[2], quat[3]);
@@ -287,6 +395,23 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
   if (f.size() != want)
     return fail(d, f.size() > want ? f[want].column : static_cast<std::uint32_t>(text.size() + 1),
                 std::to_string(f.size()) + " fields where the header has " + std::to_string(want));
+  // A particle row: time, path and points, every pose and joint cell empty.
+  if (csvPoints_ && f[2].text.empty()) {
+    for (std::size_t i = 2; i + 1 < f.size(); ++i)
+      if (!f[i].text.empty())
+        return fail(d, f[i].column, "a row with points has no pose or joint values (px is empty)");
+    std::optional<double> t = parseNumber(f[0].text);
+    if (!t || !finiteBounded(*t)) return fail(d, f[0].column, "time '" + f[0].text + "' is not a number in range");
+    time = *t;
+    e.path = f[1].text;
+    e.pathColumn = f[1].column;
+    e.particles = true;
+    // A quoted cell's text starts one byte after its column.
+    const CsvField& cell = f.back();
+    std::uint32_t start = cell.column + (cell.column <= text.size() && text[cell.column - 1] == '"' ? 1 : 0);
+    e.pointsColumn = cell.column;
+    return parseCsvPoints(cell.text, start, e.points, d);
+  }
   double v[kCsvBodyCount];
   for (std::size_t i = 0; i < kCsvBodyCount; ++i) {
     if (i == 1) continue;
@@ -298,6 +423,7 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
   time = v[0];
   e.path = f[1].text;
   e.pathColumn = f[1].column;
+  if (csvPoints_ && !f.back().text.empty()) return fail(d, f.back().column, "a body's or robot's row has no points");
   Eigen::Quaterniond q(v[5], v[6], v[7], v[8]);
   if (q.norm() < 1e-12) return fail(d, f[5].column, "quaternion of zero length");
   e.pose = {{v[2], v[3], v[4]}, q.normalized()};
@@ -310,6 +436,48 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
     e.joints.push_back({csvJoints_[k], *n, cell.column});
   }
   return true;
+}
+
+// "x y z;x y z;...": each point three numbers split by blanks, points by
+// ';' (an empty cell: no points).  `column` is where `cell` starts.
+bool TrajectoryReader::parseCsvPoints(const std::string& cell, std::uint32_t column, std::vector<Eigen::Vector3d>& out,
+                                      Diagnostics& d) {
+  out.clear();
+  if (cell.empty()) return true;
+  std::size_t begin = 0;
+  for (std::size_t index = 0;; ++index) {
+    std::size_t end = cell.find(';', begin);
+    if (end == std::string::npos) end = cell.size();
+    auto at = static_cast<std::uint32_t>(column + begin);
+    if (index >= limits_.maxPoints)
+      return fail(d, at,
+                  "more than " + std::to_string(limits_.maxPoints) +
+                      " points (the scene's largest deformable or granular record has " +
+                      std::to_string(limits_.maxPoints) + ")");
+    double xyz[3];
+    int n = 0;
+    std::size_t i = begin;
+    while (i < end) {
+      while (i < end && (cell[i] == ' ' || cell[i] == '\t')) ++i;
+      if (i == end) break;
+      std::size_t j = i;
+      while (j < end && cell[j] != ' ' && cell[j] != '\t') ++j;
+      std::optional<double> v = n < 3 ? parseNumber(std::string_view(cell).substr(i, j - i)) : std::nullopt;
+      if (!v)
+        return fail(d, at, "point " + std::to_string(index) + " '" + cell.substr(begin, end - begin) +
+                               "' is not three numbers 'x y z'");
+      if (!finiteBounded(*v))
+        return fail(d, at, "point " + std::to_string(index) + " out of range (|value| at most 1e12)");
+      xyz[n++] = *v;
+      i = j;
+    }
+    if (n != 3)
+      return fail(d, at, "point " + std::to_string(index) + " '" + cell.substr(begin, end - begin) +
+                             "' is not three numbers 'x y z'");
+    out.emplace_back(xyz[0], xyz[1], xyz[2]);
+    if (end == cell.size()) return true;
+    begin = end + 1;
+  }
 }
 
 bool TrajectoryReader::parseLine(const std::string& text, double& time, TrajectoryEntry& e, Diagnostics& d) {
@@ -383,7 +551,14 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
   return true;
 }
 
-TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models) {
+TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models,
+                                 ParticleCounts counts)
+    : counts_(std::move(counts)), deformables_(scene.deformables.size()), granulars_(scene.granulars.size()) {
+  for (std::size_t i = 0; i < scene.deformables.size(); ++i)
+    targets_.emplace(scene.deformables[i].path,
+                     Target{Mount::Kind::World, static_cast<int>(i), Particles::Deformable});
+  for (std::size_t i = 0; i < scene.granulars.size(); ++i)
+    targets_.emplace(scene.granulars[i].path, Target{Mount::Kind::World, static_cast<int>(i), Particles::Granular});
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     targets_.emplace(scene.objects[i].path, Target{Mount::Kind::Object, static_cast<int>(i)});
   for (std::size_t i = 0; i < scene.compounds.size(); ++i)
@@ -404,7 +579,7 @@ TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shar
 }
 
 bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses,
-                            Diagnostics& d) const {
+                            Diagnostics& d, ParticlePositions* particles) const {
   auto error = [&](const TrajectoryEntry& e, std::uint32_t column, std::string message) {
     Diagnostic x;
     x.code = code::kTrajectoryTarget;
@@ -418,8 +593,40 @@ bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& fil
   for (const TrajectoryEntry& e : frame.entries) {
     auto it = targets_.find(e.path);
     if (it == targets_.end())
-      return error(e, e.pathColumn, "'" + e.path + "' is no object, compound or articulated system of the scene");
+      return error(e, e.pathColumn,
+                   "'" + e.path +
+                       (e.particles ? "' is no deformable or granular record of the scene"
+                                    : "' is no object, compound or articulated system of the scene"));
     const Target& t = it->second;
+    if (t.particles != Particles::None || e.particles) {
+      const bool deformable = t.particles == Particles::Deformable;
+      if (t.particles == Particles::None)
+        return error(e, e.pointsColumn,
+                     "'" + e.path + "' is a body or robot, not a deformable or granular record: it has no points");
+      if (!e.particles)
+        return error(e, e.pathColumn,
+                     "'" + e.path + "' is a " + (deformable ? "deformable" : "granular") +
+                         " record: its line gives points, not a pose");
+      const auto index = static_cast<std::size_t>(t.index);
+      const std::vector<std::int64_t>& counts = deformable ? counts_.deformables : counts_.granulars;
+      std::int64_t want = index < counts.size() ? counts[index] : -1;
+      // A deformable's fill particles (fem) follow its OBJ's vertices.
+      if (want >= 0 && (deformable ? e.points.size() < static_cast<std::uint64_t>(want)
+                                   : e.points.size() != static_cast<std::uint64_t>(want)))
+        return error(e, e.pointsColumn,
+                     "'" + e.path + "' has " + std::to_string(want) +
+                         (deformable ? " vertices (its OBJ's v lines)" : " particles") + ", the line gives " +
+                         std::to_string(e.points.size()) + " points");
+      if (particles) {
+        std::vector<ParticlePositions::Record>& list = deformable ? particles->deformables : particles->granulars;
+        if (list.size() < (deformable ? deformables_ : granulars_)) list.resize(deformable ? deformables_ : granulars_);
+        ParticlePositions::Record& r = list[index];
+        r.given = true;
+        ++r.version;
+        r.points = e.points;
+      }
+      continue;
+    }
     auto set = [&](std::vector<Pose>& list) {
       if (static_cast<std::size_t>(t.index) < list.size()) list[static_cast<std::size_t>(t.index)] = e.pose;
     };

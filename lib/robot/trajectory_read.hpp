@@ -28,7 +28,8 @@ inline constexpr const char* kTrajectorySyntax = "RS9046";  // malformed traject
 inline constexpr const char* kTrajectoryTarget = "RS9047";  // body or joint the scene does not have
 }  // namespace code
 
-// One line: a body's pose, or a robot's base pose and joint positions.
+// One line: a body's pose, or a robot's base pose and joint positions, or
+// a deformable's or granular record's particle positions.
 struct TrajectoryEntry {
   struct Joint {
     std::string name;  // coordinate name (robot::coordinateNames): a joint, or NAME_qw.. of a spherical one
@@ -39,6 +40,12 @@ struct TrajectoryEntry {
   Pose pose;  // world; the quaternion normalised
   std::vector<Joint> joints;
   std::uint32_t line = 0, pathColumn = 0;
+  // A particle line (JSON "points", CSV points column with the pose cells
+  // empty): world positions, a deformable's OBJ vertices in file order or
+  // a granular record's particles; `pose` and `joints` are then unused.
+  bool particles = false;
+  std::vector<Eigen::Vector3d> points;
+  std::uint32_t pointsColumn = 0;
 };
 
 struct TrajectoryFrame {
@@ -48,11 +55,24 @@ struct TrajectoryFrame {
 };
 
 struct TrajectoryLimits {
-  // A longer line is an error: what rscene-sim writes for a robot of 1000
-  // joints is about 60 KB.
-  std::size_t maxLineBytes = std::size_t{1} << 20;
+  // rscene-sim writes a particle at most kBytesPerPoint bytes wide (three
+  // shortest round-trip numbers of up to 24 characters, brackets, commas).
+  static constexpr std::size_t kBytesPerPoint = 80;
+  // A longer line is an error.  What rscene-sim writes for a robot of 1000
+  // joints is about 60 KB, for a granular bed of 20,000 particles about
+  // 1.2 MB (1.6 MB at the widest numbers); 64 MiB holds 800,000 particles
+  // at the widest.  forPoints() fits it to a scene instead.
+  std::size_t maxLineBytes = std::size_t{64} << 20;
   // Lines of one frame: rscene-sim writes one per body and robot.
   std::size_t maxEntriesPerFrame = std::size_t{1} << 18;
+  // Points on one line (a line with more is an error before they are all
+  // held: 24 bytes each).
+  std::size_t maxPoints = 1'000'000;
+
+  // Limits for a scene whose largest deformable or granular record has
+  // `points` particles: lines of 1 MiB plus kBytesPerPoint per point, at
+  // most `points` points (a 20,000-grain bed: 2.6 MB lines).
+  static TrajectoryLimits forPoints(std::size_t points);
 };
 
 enum class TrajectoryFileFormat { Unknown, Jsonl, Csv };
@@ -75,6 +95,8 @@ class TrajectoryReader {
   bool parseJson(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
   bool parseCsvHeader(const std::string& text, Diagnostics& d);
   bool parseCsv(const std::string& text, double& time, TrajectoryEntry& entry, Diagnostics& d);
+  bool parseCsvPoints(const std::string& cell, std::uint32_t column, std::vector<Eigen::Vector3d>& out,
+                      Diagnostics& d);
   bool fail(Diagnostics& d, std::uint32_t column, std::string message);
 
   bool csvPoints_ = false;  // the CSV header ends with a points column
@@ -92,25 +114,55 @@ class TrajectoryReader {
   double lastTime_ = 0;
 };
 
+// How many particles each deformable (its OBJ's vertices) and granular
+// record has, indexed like Scene::deformables and Scene::granulars; -1 (or
+// a record past the list): unknown, any count is taken.  A deformable's
+// line gives its OBJ's vertices first, then any particles filling its
+// volume (fem): its count is a minimum; a granular record's is exact.
+struct ParticleCounts {
+  std::vector<std::int64_t> deformables, granulars;
+};
+
+// The particle positions frames gave so far (world), indexed like
+// Scene::deformables and Scene::granulars; `given` false: no frame named
+// the record yet (it stays at rest).  `version` counts the frames that
+// moved it, so a renderer re-uploads only what changed.
+struct ParticlePositions {
+  struct Record {
+    bool given = false;
+    std::uint64_t version = 0;
+    std::vector<Eigen::Vector3d> points;
+  };
+  std::vector<Record> deformables, granulars;
+};
+
 // Turns frames into the scene's body poses: bodies by path (objects and
 // compounds), robots by the path of their articulated record, their joints
-// by name through forward kinematics (robot::linkPoses).
+// by name through forward kinematics (robot::linkPoses); and deformable and
+// granular records' particle lines into ParticlePositions.
 class TrajectoryPoser {
  public:
   // `models` indexed like Scene::articulated (null: not loaded; its lines
-  // then move nothing).
-  TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models);
+  // then move nothing).  `counts`: what a particle line must give.
+  TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models,
+                  ParticleCounts counts = {});
   // Moves the bodies the frame names in `poses` (start from restPoses();
-  // what a frame leaves out stays where it was).  A path that is no body
-  // or robot of the scene, a joint its robot does not have, or a movable
-  // joint of the robot that the line leaves out (rscene-sim writes every
-  // one) is an error naming it (RS9047 at the line in `file`), and false.
-  bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics) const;
+  // what a frame leaves out stays where it was) and, when `particles` is
+  // given, the particle records it names.  A path that is no body, robot,
+  // deformable or granular record of the scene, a joint its robot does not
+  // have, a movable joint of the robot that the line leaves out (rscene-sim
+  // writes every one), points for a body or a pose for a particle record,
+  // or a point count other than the record's (fewer than a deformable's)
+  // is an error naming it (RS9047 at the line in `file`), and false.
+  bool apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses, Diagnostics& diagnostics,
+             ParticlePositions* particles = nullptr) const;
 
  private:
+  enum class Particles { None, Deformable, Granular };
   struct Target {
     Mount::Kind kind = Mount::Kind::World;
     int index = -1;
+    Particles particles = Particles::None;  // a deformable's or granular record's path (index into its list)
   };
   struct Robot {
     std::shared_ptr<const Model> model;
@@ -120,6 +172,8 @@ class TrajectoryPoser {
   };
   std::unordered_map<std::string, Target> targets_;
   std::vector<Robot> robots_;
+  ParticleCounts counts_;
+  std::size_t deformables_ = 0, granulars_ = 0;
 };
 
 }  // namespace rscene::robot

@@ -48,9 +48,12 @@ done
 mkdir -p "$BUILD/fuzz-corpus-trajectory"
 printf '%s\n' '{"time":0,"path":"/box","position":[0,0,1],"quaternion":[1,0,0,0],"linearVelocity":[0,0,0],"angularVelocity":[0,0,0]}' \
   '{"time":0,"path":"/arm","position":[0,0,1],"quaternion":[1,0,0,0],"jointPositions":{"j1_qw":1,"j1_qx":0,"j1_qy":0,"j1_qz":0}}' \
-  '{"time":0.5,"path":"/box","position":[0,0,0.9],"quaternion":[1,0,0,0]}' > "$BUILD/fuzz-corpus-trajectory/seed.jsonl"
-printf '%s\n' 'time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.j1_qw,u.j1_wx' '0,/box,0,0,1,1,0,0,0,0,0,0,0,0,0,,' \
-  '0,"/arm",0,0,1,1,0,0,0,0,0,0,0,0,0,1,0' '0.5,/box,0,0,0.9,1,0,0,0,0,0,0,0,0,0,,' > "$BUILD/fuzz-corpus-trajectory/seed.csv"
+  '{"time":0.5,"path":"/box","position":[0,0,0.9],"quaternion":[1,0,0,0]}' \
+  '{"time":0.5,"path":"/cloth","points":[[0,0,1],[1,0,1],[0,1,1],[1,1,1]]}' \
+  '{"time":0.5,"path":"/sand","points":[[0,0,0.1],[0.2,0,0.1]]}' > "$BUILD/fuzz-corpus-trajectory/seed.jsonl"
+printf '%s\n' 'time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.j1_qw,u.j1_wx,points' '0,/box,0,0,1,1,0,0,0,0,0,0,0,0,0,,,' \
+  '0,"/arm",0,0,1,1,0,0,0,0,0,0,0,0,0,1,0,' '0.5,/box,0,0,0.9,1,0,0,0,0,0,0,0,0,0,,,' \
+  '0.5,/cloth,,,,,,,,,,,,,,,,0 0 1;1 0 1;0 1 1;1 1 1' '0.5,/sand,,,,,,,,,,,,,,,,0 0 0.1' > "$BUILD/fuzz-corpus-trajectory/seed.csv"
 URDF_DICT=$BUILD/fuzz-urdf.dict
 printf '%s\n' '"<link name=\"a\">"' '"</link>"' '"<joint name=\"j\" type=\"spherical\">"' '"type=\"floating\""' \
   '"<parent link=\"world\"/>"' '"<child link=\"a\"/>"' '"<origin xyz=\"0 0 1\" rpy=\"0 1 0\"/>"' \
