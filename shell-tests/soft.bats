@@ -64,6 +64,24 @@ keyof() { awk -v p="$1" -v k="$2=" '$2 == p { for (i = 3; i <= NF; i++) if (inde
   [ "$output" = "no issues in 1 file" ]
 }
 
+@test "the cloth OBJ is what examples/soft_bodies/make_cloth.sh writes: 24x24 vertices, 2 triangles a cell" {
+  sh "$ROOT/examples/soft_bodies/make_cloth.sh" 24 > cloth.obj
+  cmp cloth.obj "$ROOT/examples/soft_bodies/cloth_24.obj"
+  [ "$(grep -c '^v ' cloth.obj)" -eq $CLOTH_VERTICES ]
+  [ "$(grep -c '^f ' cloth.obj)" -eq $((23 * 23 * 2)) ]
+  # the corners the example pins, as its comment says
+  [ "$(grep '^v ' cloth.obj | sed -n '1p;24p' | tr '\n' ' ')" = "v -0.5 -0.5 0 v 0.5 -0.5 0 " ]
+}
+
+@test "make demo copies the cloth OBJ next to soft_bodies.rscene (it runs without ../shared)" {
+  mkdir nobin
+  # with no tools built every step is skipped: only the copying runs
+  run -0 env RSCENE_BIN="$PWD/nobin" RSCENE_DEMO_OUT="$PWD/out" sh "$ROOT/scripts/demo.sh"
+  cmp out/soft_bodies/cloth_24.obj "$ROOT/examples/soft_bodies/cloth_24.obj"
+  [ -x "$BIN/rscene-validate" ] || skip "rscene-validate not built"
+  run -0 "$BIN/rscene-validate" --check-files out/soft_bodies.rscene
+}
+
 @test "the example simulates 2 s with no message but the report" {
   [ "$(cat "$RUN/run.rc")" -eq 0 ]
   [ "$(wc -l < "$RUN/run.err")" -eq 1 ]
