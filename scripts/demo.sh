@@ -14,6 +14,7 @@ mkdir -p "$OUT"
 cp "$ROOT"/examples/*.rscene "$OUT"/
 cp -R "$ROOT"/examples/robots "$OUT"/  # robot files the scenes name
 cp -R "$ROOT"/examples/gallery "$OUT"/  # the gallery's mesh and texture
+cp -R "$ROOT"/examples/soft_bodies "$OUT"/  # the cloth OBJ of soft_bodies.rscene
 cd "$OUT"
 
 # step TOOL TITLE 'COMMAND' : runs the shell COMMAND (with $BIN first on
@@ -49,6 +50,10 @@ step rscene-sim "a robot held standing by PD for 2 s (robot_cell: our quadruped,
 step rscene-diff "what the robot's joints did, by joint name" 'rscene-diff robot_cell.rscene robot_cell.settled.rscene | head -20'
 step rscene-sim "the robot's LiDAR (PCD point clouds) and IMU (CSV) while it stands" \
   'rscene-sim --duration 1 --pd-gains 100,2 --sensors sensors -o /dev/null robot_cell.rscene && ls sensors sensors/World+Robot+Lidar | head -8 && head -3 sensors/World+Robot+Imu.csv'
+step rscene-sim "soft bodies and granular media for 2 s: a pinned curtain, a cloth over a sphere, a ball dropped in 2916 grains (points per trajectory line)" \
+  'rscene-sim --duration 2 --every 100 --report --trajectory soft_bodies.jsonl -o soft_bodies.settled.rscene soft_bodies.rscene && jq -c "select(has(\"points\")) | [.time, .path, (.points | length)]" soft_bodies.jsonl | tail -3'
+step rscene-diff "what the simulation wrote back: the ball moved, the sand got explicit positions and radii (the cloths keep their record)" \
+  'rscene-diff --stat soft_bodies.rscene soft_bodies.settled.rscene'
 step rscene-render "every camera of robot_cell: the overview, the head camera's rgb, depth (16-bit PNG + .npy) and segmentation (+ legend)" \
   'rscene-render --all-cameras -o "views/{name}.{kind}.png" robot_cell.rscene && ls views'
 step rscene-render "the head camera along the simulated trajectory (one image per saved frame)" \
