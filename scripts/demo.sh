@@ -54,6 +54,8 @@ step rscene-sim "soft bodies and granular media for 2 s: a pinned curtain, a clo
   'rscene-sim --duration 2 --every 100 --report --trajectory soft_bodies.jsonl -o soft_bodies.settled.rscene soft_bodies.rscene && jq -c "select(has(\"points\")) | [.time, .path, (.points | length)]" soft_bodies.jsonl | tail -3'
 step rscene-diff "what the simulation wrote back: the ball moved, the sand got explicit positions and radii (the cloths keep their record)" \
   'rscene-diff --stat soft_bodies.rscene soft_bodies.settled.rscene'
+step rscene-render "the soft bodies along their trajectory, a frame every 0.5 s: the cloths deformed, the grains and the ball moving" \
+  'rscene-render --width 640 --height 360 --trajectory soft_bodies.jsonl --every 5 -o "frames/soft.{kind}.{frame}.png" soft_bodies.rscene && ls frames | grep "^soft\." && echo "a video: ffmpeg -framerate 2 -i frames/soft.rgb.%06d.png -pix_fmt yuv420p soft.mp4"'
 step rscene-render "every camera of robot_cell: the overview, the head camera's rgb, depth (16-bit PNG + .npy) and segmentation (+ legend)" \
   'rscene-render --all-cameras -o "views/{name}.{kind}.png" robot_cell.rscene && ls views'
 step rscene-render "the head camera along the simulated trajectory (one image per saved frame)" \

@@ -95,7 +95,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7007", E, Sim, "sim", "mesh file that cannot be read or has no triangles"},
     {"RS7008", E, Scene, VSR, "time_step not positive"},
     {"RS7009", E, Scene, VSR, "compound child that is a plane (ground or half_space)"},
-    {"RS7010", W, Sim, "sim", "records kept but not simulated (deformable, granular, sensor)"},
+    {"RS7010", W, Sim, "sim", "records kept but not simulated (sensor records of kinds rscene-sim does not model)"},
     {"RS7011", W, Scene, VSR, "wire to a node the simulator does not model, skipped"},
     {"RS7012", W, Sim, "sim", "dynamic body left the world (fell far below the static geometry or out of the broadphase bounds); no longer simulated"},
     {"RS7020", E, Scene, VSR, "dynamic mass below the smallest normal double or above 1e15 kg (Bullet would take it for immovable)"},
