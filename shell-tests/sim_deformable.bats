@@ -54,6 +54,14 @@ PY
   [ "${stderr%%$'\n'*}" = "cloth.rscene:6:208: error: deformable '/World/Cloth': pinnedVertices 99 is not a vertex of cloth.obj (it has 81) [RS7081]" ]
 }
 
+@test "a pinned vertex that is no whole number (2.7, 1e30, -3) is an error at pinnedVertices" {
+  for v in 2.7 1e30 -3; do
+    scene "pinnedVertices=0,$v"
+    run -2 --separate-stderr "$SIM" --steps 1 cloth.rscene
+    [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:208: error: deformable '/World/Cloth': pinnedVertices holds a value that is not a vertex index (a whole number from 0 to 80) [RS7081]" ]]
+  done
+}
+
 @test "a negative totalMass is an error at totalMass" {
   bash "$ROOT/bench/soft/cloth_gen.sh" . 9
   sed -i 's/totalMass=0.5/totalMass=-1/' cloth.rscene

@@ -164,7 +164,14 @@ Deformable readDeformable(const Document& doc, const RecordReader& r, int idx, c
   }
   std::vector<double> pins;
   if (r.numbers("pinnedVertices", pins))
-    for (double p : pins) d.pinnedVertices.push_back(static_cast<std::int64_t>(p));
+    for (double p : pins) {
+      // Only whole numbers a vertex index can be; anything else (2.7, 1e30,
+      // NaN) becomes -1, which no mesh has, so the simulator refuses it at
+      // this key instead of reading it as another vertex (or, for 1e30,
+      // converting out of range).
+      bool index = p == std::floor(p) && p >= 0 && p < 9007199254740992.0;
+      d.pinnedVertices.push_back(index ? static_cast<std::int64_t>(p) : -1);
+    }
   d.totalMass = r.number("totalMass");
   d.distanceCompliance = r.number("distanceCompliance");
   d.distanceStiffness = r.number("distanceStiffness");

@@ -113,7 +113,10 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
   if (nv > DeformableBody::kMaxParticles)
     return fail("meshPath", "the mesh has more than " + std::to_string(DeformableBody::kMaxParticles) + " vertices");
   for (std::int64_t pin : r.pinnedVertices)
-    if (pin < 0 || static_cast<std::uint64_t>(pin) >= nv)
+    if (pin < 0)  // the scene reader's mark for a value that is no whole number from 0
+      return fail("pinnedVertices", "pinnedVertices holds a value that is not a vertex index (a whole number from 0 to " +
+                                        std::to_string(nv - 1) + ")");
+    else if (static_cast<std::uint64_t>(pin) >= nv)
       return fail("pinnedVertices", "pinnedVertices " + std::to_string(pin) + " is not a vertex of " + r.meshPath +
                                         " (it has " + std::to_string(nv) + ")");
   if (filled) {
