@@ -62,6 +62,12 @@ PY
   done
 }
 
+@test "a collisionRadius larger than the body is an error at collisionRadius" {
+  scene "collisionRadius=100"
+  run -2 --separate-stderr "$SIM" --steps 1 cloth.rscene
+  [[ "${stderr%%$'\n'*}" == *"error: deformable '/World/Cloth': collisionRadius 100 m is larger than the body itself"*"[RS7081]" ]]
+}
+
 @test "a negative totalMass is an error at totalMass" {
   bash "$ROOT/bench/soft/cloth_gen.sh" . 9
   sed -i 's/totalMass=0.5/totalMass=-1/' cloth.rscene

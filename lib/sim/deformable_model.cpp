@@ -1,3 +1,4 @@
+#include <Eigen/Geometry>
 #include "sim/deformable_model.hpp"
 
 #include <algorithm>
@@ -207,6 +208,19 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
     p = r.world.position + r.world.orientation * p;
     if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate)
       return fail("position", "a particle is beyond 1e12 m once placed");
+  }
+  // A proxy sphere larger than the whole body is no contact model: every
+  // particle starts deep inside the ground or its neighbours' surfaces and
+  // is pushed out at once (collisionRadius=100 threw a 1 m cloth 9 km up).
+  if (r.collidable && !m.positions.empty()) {
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : m.positions) box.extend(p);
+    const double size = box.diagonal().norm();
+    if (r.collisionRadius > std::max(size, 1e-9))
+      return fail("collisionRadius", "collisionRadius " + num(r.collisionRadius) +
+                                         " m is larger than the body itself (" + num(size) +
+                                         " m across): each particle's contact sphere should cover about the "
+                                         "distance to its neighbours");
   }
   const std::size_t n = m.positions.size();
   m.particleMass = r.totalMass / static_cast<double>(n);

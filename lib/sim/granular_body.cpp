@@ -123,7 +123,7 @@ std::unique_ptr<GranularBody> GranularBody::create(const Granular& g, double wor
     const double needed = g.fixed ? 1 : std::ceil(worldTimeStep / maxSubstep - 1e-9);
     const std::string why = "time_step " + seconds(worldTimeStep) + " against a stable substep of at most " +
                             seconds(maxSubstep) + " (0.6 of the critical step of normalStiffness, normalDamping, "
-                            "tangentialStiffness and tangentialDamping for the lightest grain, radius " +
+                            "tangentialStiffness, tangentialDamping and cohesionStiffness for the lightest grain, radius " +
                             number(rMin) + " m)";
     if (!(needed <= kMaxSubsteps)) {
       findings.push_back({true, "RS7087", "normalStiffness",

@@ -60,7 +60,12 @@ double granularMaxSubstep(const GranularMaterial& m, double minMass) {
   // would (translation 1/m plus rotation r^2 / (2/5 m r^2)).
   double normal = critical(kNormal, m.cn, pairMass);
   double tangential = critical(3.5 * m.kt, 3.5 * m.ct, pairMass);
-  return kStableFraction * std::min(normal, tangential);
+  // Cohesion is an undamped spring of cohesionStiffness across the gap: as
+  // stiff a mode as the normal one when kc is as large (a bed at the edge of
+  // stability without it gains energy and flies apart with it).
+  double cohesion = m.cohesionStiffness > 0 && m.cohesionMaxDistance > 0 ? critical(m.cohesionStiffness, 0, pairMass)
+                                                                         : INFINITY;
+  return kStableFraction * std::min({normal, tangential, cohesion});
 }
 
 }  // namespace rscene::sim
