@@ -1,3 +1,4 @@
+#include <cstdio>
 #include "core/text.hpp"
 
 #include <algorithm>
@@ -340,6 +341,12 @@ std::vector<std::string> parseStringList(std::string_view raw) {
     }
   }
   return out;
+}
+
+std::string roundedNumber(double v, int digits) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
 }
 
 std::string numberText(double v) {

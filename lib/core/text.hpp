@@ -44,6 +44,9 @@ std::vector<std::string> parseStringList(std::string_view raw);
 // Shortest text that reads back as `v` (std::to_chars).
 void appendNumber(std::string& out, double v);
 std::string numberText(double v);  // the same, as a string (for messages)
+// `v` to `digits` significant digits (printf's %g): a figure in a message
+// where the full round-trip spelling would only be noise.
+std::string roundedNumber(double v, int digits);
 void appendInteger(std::string& out, std::int64_t v);
 
 // n times `step` as a person would write it: the exact product of n and

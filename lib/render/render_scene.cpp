@@ -620,7 +620,6 @@ class Preparer {
   // scale with --allow-missing-assets).
   void deformable(const Deformable& src, std::size_t index) {
     if (!src.visible || src.hiddenByGroup) return;
-    if (objSurface(src, index)) return;
     Drawable d;
     d.shape = Shape::Mesh;
     d.meshPath = src.meshPath;
@@ -629,15 +628,17 @@ class Preparer {
     d.material = materialIndex(src.material);
     d.segment = segment("deformable", src.recordIndex, src.path, src.id, "", -1);
     d.worldObject = true;  // a body of the world, as sensors see it
+    d.world = affine(src.world) * Eigen::Scaling(src.scale);
     // A sheet of cloth is seen from both sides; a closed volume's back
     // faces are hidden anyway.
     d.doubleSided = src.kind == "cloth";
-    d.world = affine(src.world) * Eigen::Scaling(src.scale);
+    if (objSurface(src, index, d)) return;
     addDrawable(std::move(d), meshBounds(src.meshPath));
   }
 
-  // The OBJ surface of a deformable, when its mesh is one that reads.
-  bool objSurface(const Deformable& src, std::size_t index) {
+  // Draws `d` from the OBJ surface of a deformable, when its mesh is one
+  // that reads; false (and `d` untouched) otherwise.
+  bool objSurface(const Deformable& src, std::size_t index, Drawable& d) {
     std::string ext = std::filesystem::path(src.meshPath).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     asset::ObjSurface obj;
@@ -647,20 +648,12 @@ class Preparer {
     if (ext != ".obj" || fs.stat(src.meshPath).kind != FileKind::Regular ||
         !asset::loadObjSurface(fs, src.meshPath, obj, nullptr))
       return false;
-    Affine3d world = affine(src.world) * Eigen::Scaling(src.scale);
-    DeformedSurface surface = surfaceFromObj(obj, world);
+    DeformedSurface surface = surfaceFromObj(obj, d.world);
     surface.mayFill = src.kind != "cloth" && src.kind != "mass_spring";
-    Drawable d;
-    d.shape = Shape::Mesh;
-    d.meshPath = src.meshPath;
-    d.line = lineOf(src.recordIndex);
-    d.meshColumn = columnOf(src.recordIndex, "meshPath");
-    d.material = materialIndex(src.material);
-    d.segment = segment("deformable", src.recordIndex, src.path, src.id, "", -1);
-    d.worldObject = true;
-    // A sheet of cloth is seen from both sides; a mirroring scale turns a
-    // closed surface's winding inside out.
-    d.doubleSided = src.kind == "cloth" || world.linear().determinant() < 0;
+    // Its positions are world positions (trajectory frames replace them),
+    // and a mirroring scale turns a closed surface's winding inside out.
+    d.doubleSided = d.doubleSided || d.world.linear().determinant() < 0;
+    d.world = Eigen::Affine3d::Identity();
     d.surface = int(out_.surfaces.size());
     surface.drawable = out_.drawables.size();
     Eigen::AlignedBox3d box;

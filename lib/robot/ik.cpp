@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/suggest.hpp"
+#include "core/text.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::robot {
@@ -33,11 +34,7 @@ Eigen::Quaterniond expRotation(const Eigen::Vector3d& v) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle));
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string number(double v) { return roundedNumber(v, 3); }
 
 // The stacked error of every target at one q, with what it costs.
 struct Evaluation {

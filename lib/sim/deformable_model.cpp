@@ -1,10 +1,12 @@
-#include <Eigen/Geometry>
 #include "sim/deformable_model.hpp"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 
+#include "core/text.hpp"
 #include "sim/deformable_body.hpp"
 #include "sim/deformable_fill.hpp"
 
@@ -26,11 +28,7 @@ struct Fail {
   }
 };
 
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
+std::string num(double x) { return roundedNumber(x, 6); }
 
 // XPBD compliance from a compliance key, or 1/stiffness when it is
 // negative; -1 when neither applies (bending off).

@@ -3,9 +3,9 @@
 #include "sim/granular_body.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include "core/text.hpp"
 #include "sim/granular_dem.hpp"
 #include "sim/granular_pairs.hpp"
 
@@ -18,11 +18,7 @@ constexpr double kMaxCoordinate = 1e9;
 // Largest over smallest radius of one record (polydisperse sand spans 2 to 5).
 constexpr double kMaxRadiusRatio = 10;
 
-std::string number(double v) {  // three significant digits: a message, not data
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string number(double v) { return roundedNumber(v, 3); }  // a message, not data
 std::string seconds(double s) { return number(s) + " s"; }
 
 bool finiteVector(const Eigen::Vector3d& v, double limit) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= limit; }

@@ -7,25 +7,13 @@
 #include <sstream>
 
 #include "robot/trajectory_read.hpp"
+#include "trajectory_read_util.hpp"
 
 namespace rscene::robot {
 namespace {
 
-struct Read {
-  std::vector<TrajectoryFrame> frames;
-  Diagnostics diags;
-  bool failed = false;
-};
-
-Read readAll(const std::string& text, TrajectoryLimits limits = {}) {
-  std::istringstream in(text);
-  TrajectoryReader r(in, "t.jsonl", limits);
-  Read out;
-  TrajectoryFrame f;
-  while (r.next(f, out.diags)) out.frames.push_back(f);
-  out.failed = r.failed();
-  return out;
-}
+using test::Read;
+using test::readAll;
 
 void expectError(const Read& r, std::uint32_t line, std::uint32_t column, const std::string& words) {
   ASSERT_TRUE(r.failed);

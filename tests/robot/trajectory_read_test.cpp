@@ -2,6 +2,7 @@
 // grouped by time in both formats, every malformed line refused at its
 // line and column, and frames turned into body and link poses.
 #include "robot/trajectory_read.hpp"
+#include "trajectory_read_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,21 +11,8 @@
 namespace rscene::robot {
 namespace {
 
-struct Read {
-  std::vector<TrajectoryFrame> frames;
-  Diagnostics diags;
-  bool failed = false;
-};
-
-Read readAll(const std::string& text, TrajectoryLimits limits = {}) {
-  std::istringstream in(text);
-  TrajectoryReader r(in, "t.jsonl", limits);
-  Read out;
-  TrajectoryFrame f;
-  while (r.next(f, out.diags)) out.frames.push_back(f);
-  out.failed = r.failed();
-  return out;
-}
+using test::Read;
+using test::readAll;
 
 std::string jsonLine(double t, const std::string& path, double x, const std::string& extra = "") {
   std::ostringstream s;

@@ -17,6 +17,7 @@
 #include "sim/bullet_surfaces.hpp"
 #include "sim/robot_layout.hpp"
 #include "sim/world.hpp"
+#include "sim/world_test_scene.hpp"
 
 using namespace rscene;
 using namespace rscene::sim;
@@ -29,31 +30,18 @@ constexpr const char* kAll = "18446744073709551615";
 constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
 const std::string kGrain = "granular /World/Grain particles 0 0 0 1 0 0 0 1 1 1 positions=0,0,90 radii=0.01\n";
 
-struct Run {
-  Document doc;
-  Scene scene;
-  Diagnostics diags;
-  std::vector<robot::RobotInstance> robots;
-  std::unique_ptr<World> world;
+struct Run : test::WorldRun {
   BulletSurfaces* surfaces = nullptr;
 };
 
-std::string firstMessage(const Diagnostics& d) { return d.empty() ? "" : d[0].message; }
+using test::firstMessage;
 
 std::unique_ptr<Run> make(const std::string& body, bool withRobots = false) {
+  test::WorldRunOptions options;
+  options.robots = withRobots;
+  options.checkPhysics = true;
   auto r = std::make_unique<Run>();
-  LoadResult loaded = parse("raisim_engine_scene 1\n" + body + kGrain);
-  EXPECT_TRUE(loaded.ok()) << firstMessage(loaded.diagnostics);
-  r->doc = std::move(loaded.document);
-  EXPECT_TRUE(buildScene(r->doc, {}, r->scene, r->diags)) << firstMessage(r->diags);
-  EXPECT_TRUE(checkPhysics(r->doc, r->scene, r->diags)) << firstMessage(r->diags);
-  WorldOptions wo;
-  wo.document = &r->doc;
-  if (withRobots) {
-    EXPECT_TRUE(makeRobots(r->doc, r->scene, r->robots, r->diags)) << firstMessage(r->diags);
-    wo.robots = &r->robots;
-  }
-  r->world = World::create(r->scene, r->diags, wo);
+  test::buildWorld(*r, body + kGrain, options);
   EXPECT_TRUE(r->world) << firstMessage(r->diags);
   if (r->world) r->surfaces = r->world->particleSurfaces();
   EXPECT_TRUE(r->surfaces);

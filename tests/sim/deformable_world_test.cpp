@@ -10,38 +10,21 @@
 #include "scene/scene.hpp"
 #include "sim/deformable_test_util.hpp"
 #include "sim/world.hpp"
+#include "sim/world_test_scene.hpp"
 
 using namespace rscene;
 using namespace rscene::sim;
 
 namespace {
 
-struct Run {
-  Document doc;
-  Scene scene;
-  Diagnostics diags;
-  std::unique_ptr<World> world;
-};
+using test::kGround;
 
-std::unique_ptr<Run> make(const std::string& body, asset::AssetCache& assets) {
-  auto r = std::make_unique<Run>();
-  LoadResult loaded = parse("raisim_engine_scene 1\ntime_step 0.005\n" + body);
-  EXPECT_TRUE(loaded.ok());
-  r->doc = std::move(loaded.document);
-  SceneOptions so;
-  so.baseDir = "/s";
-  so.exists = [&assets](const std::string& p) { return assets.fileSystem().exists(p); };
-  EXPECT_TRUE(buildScene(r->doc, so, r->scene, r->diags));
-  WorldOptions wo;
-  wo.assets = &assets;
-  wo.document = &r->doc;
-  r->world = World::create(r->scene, r->diags, wo);
-  return r;
+std::unique_ptr<test::WorldRun> make(const std::string& body, asset::AssetCache& assets) {
+  test::WorldRunOptions options;
+  options.assets = &assets;
+  options.baseDir = "/s";
+  return test::buildWorld("time_step 0.005\n" + body, options);
 }
-
-const std::string kGround =
-    "object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static "
-    "true 1 18446744073709551615\n";
 
 // The Bullet queries were an interim placeholder (no contacts) until the
 // surfaces work landed: the contact assertion waits for them.

@@ -10,35 +10,20 @@
 #include "core/writer.hpp"
 #include "scene/scene.hpp"
 #include "sim/world.hpp"
+#include "sim/world_test_scene.hpp"
 
 using namespace rscene;
 using namespace rscene::sim;
 
 namespace {
 
-struct Run {
-  Document doc;
-  Scene scene;
-  Diagnostics diags;
-  std::unique_ptr<World> world;
-};
+using test::kGround;
 
-std::unique_ptr<Run> make(const std::string& body, bool expectWorld = true) {
-  auto r = std::make_unique<Run>();
-  LoadResult loaded = parse("raisim_engine_scene 1\n" + body);
-  EXPECT_TRUE(loaded.ok()) << (loaded.diagnostics.empty() ? "" : loaded.diagnostics[0].message);
-  r->doc = std::move(loaded.document);
-  EXPECT_TRUE(buildScene(r->doc, {}, r->scene, r->diags));
-  WorldOptions options;
-  options.document = &r->doc;
-  r->world = World::create(r->scene, r->diags, options);
-  EXPECT_EQ(r->world != nullptr, expectWorld) << (r->diags.empty() ? "" : r->diags[0].message);
+std::unique_ptr<test::WorldRun> make(const std::string& body, bool expectWorld = true) {
+  std::unique_ptr<test::WorldRun> r = test::buildWorld(body);
+  EXPECT_EQ(r->world != nullptr, expectWorld) << test::firstMessage(r->diags);
   return r;
 }
-
-const std::string kGround =
-    "object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine_default false true false - static "
-    "true 1 18446744073709551615\n";
 
 // RaiSim's GranularMedia.rst example material, linear law, a box fill.
 std::string bed(const std::string& pose, const std::string& extra = "") {

@@ -12,6 +12,7 @@
 #include "sim/bullet_surfaces.hpp"
 #include "sim/robot_layout.hpp"
 #include "sim/world.hpp"
+#include "sim/world_test_scene.hpp"
 
 using namespace rscene;
 using namespace rscene::sim;
@@ -25,28 +26,11 @@ const std::string kBox =
     "18446744073709551615\n";
 const std::string kGrain = "granular /World/Grain particles 0 0 0 1 0 0 0 1 1 1 positions=0,0,90 radii=0.01\n";
 
-struct Run {
-  Document doc;
-  Scene scene;
-  Diagnostics diags;
-  std::vector<robot::RobotInstance> robots;
-  std::unique_ptr<World> world;
-};
-
-std::unique_ptr<Run> make(const std::string& body, bool withRobots = false) {
-  auto r = std::make_unique<Run>();
-  LoadResult loaded = parse("raisim_engine_scene 1\ntime_step 0.01\ngravity 0 0 0\n" + body);
-  EXPECT_TRUE(loaded.ok());
-  r->doc = std::move(loaded.document);
-  EXPECT_TRUE(buildScene(r->doc, {}, r->scene, r->diags));
-  WorldOptions wo;
-  wo.document = &r->doc;
-  if (withRobots) {
-    EXPECT_TRUE(makeRobots(r->doc, r->scene, r->robots, r->diags));
-    wo.robots = &r->robots;
-  }
-  r->world = World::create(r->scene, r->diags, wo);
-  EXPECT_TRUE(r->world) << (r->diags.empty() ? "" : r->diags[0].message);
+std::unique_ptr<test::WorldRun> make(const std::string& body, bool withRobots = false) {
+  test::WorldRunOptions options;
+  options.robots = withRobots;
+  std::unique_ptr<test::WorldRun> r = test::buildWorld("time_step 0.01\ngravity 0 0 0\n" + body, options);
+  EXPECT_TRUE(r->world) << test::firstMessage(r->diags);
   return r;
 }
 
