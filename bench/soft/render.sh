@@ -24,7 +24,7 @@ head='raisim_engine_scene 1
 camera /World/Cam -4 0 3 0.9239 0 0.3827 0 60 0.05 100 1280 720 rgb true id=cam
 light /World/Sun 0.2 0.1 -1 3 type=directional
 object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615'
-printf '%s\n%s\n' "$head" "granular /World/Sand particles -1 -1 0 1 0 0 0 1 1 1 boxMax=2,2,0.32 radius=0.02 spacing=0.04 maxParticles=20000" > bed.rscene
+printf '%s\n%s\n' "$head" "granular /World/Sand particles -1 -1 0 1 0 0 0 1 1 1 boxMax=2,2,0.32 radius=0.02 spacing=0.04 maxParticles=20000 density=1600 normalStiffness=5e4 normalDamping=25 tangentialStiffness=2.5e4 tangentialDamping=6 friction=0.8 rollingFriction=0.02 normalContactModel=linear substeps=5" > bed.rscene
 printf '%s\n%s\n' "$head" "deformable /World/Cloth cloth cloth64.obj 0 0 1 1 0 0 0 1 1 1 pinnedVertices=0,63 totalMass=0.5" > cloth.rscene
 
 echo "deformables and granular beds in rscene-render (1280x720, llvmpipe):"
