@@ -57,6 +57,7 @@ enum class CheckLayer {
   Scene,   // lib/scene: scene/check.hpp, called by validate, sim and render
   Sim,     // lib/sim: what only building the Bullet world finds
   Json,    // lib/core's JSON reader (rscene-from-json)
+  Xml,     // lib/xml: RaiSim world XML both ways (rscene-from-xml, rscene-to-xml)
   Render,  // lib/render: what only drawing finds
   Robot,   // lib/robot: reading a URDF or MJCF model, and what the model says of a record
 };

@@ -14,7 +14,8 @@ namespace {
 constexpr Severity E = Severity::Error;
 constexpr Severity W = Severity::Warning;
 constexpr CheckLayer Core = CheckLayer::Core, Scene = CheckLayer::Scene, Sim = CheckLayer::Sim,
-                     Json = CheckLayer::Json, Render = CheckLayer::Render, Robot = CheckLayer::Robot;
+                     Json = CheckLayer::Json, Render = CheckLayer::Render, Robot = CheckLayer::Robot,
+                     Xml = CheckLayer::Xml;
 // Who reports a code: the validator alone, or also sim and render, whose
 // scene model (lib/scene/reader.cpp) reads values with the validator's codes.
 // The loader's codes (RS1001-RS1010) stop every tool that reads a scene.
@@ -159,6 +160,11 @@ constexpr CheckInfo kChecks[] = {
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
+    // RS81xx RaiSim world XML: RS8101-RS8109 reading and expanding (rscene-from-xml),
+    // RS8110-RS8129 mapping elements to records, RS8130-RS8139 export (rscene-to-xml)
+    {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
+    {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
+    {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},
     // RS9xxx rendering (rscene-render)
     {"RS9001", E, Render, "render", "mesh file that cannot be read (a warning with --allow-missing-assets)"},
     {"RS9002", W, Render, "render", "texture not drawn"},
