@@ -616,3 +616,23 @@ URDF
   run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene nope.rscene
   [ "${stderr_lines[0]}" = "nope.rscene:3:28: error: robot file 'nope.urdf' does not exist [RS5001]" ]
 }
+
+@test "a dynamic object's custom inertia changes how it tumbles; a zero moment is refused by sim and validate alike (RS7090)" {
+  # A box dropped on an edge (tilted 30 degrees about x) tips over at a rate
+  # set by its inertia: ten times the shape's Ixx lands it at another angle.
+  base='object /World/Box box 0 0 0.6 0.9659258 0.2588190 0 0 0.5 0.5 0.5 0 0 1 default - false true false - dynamic true 1 18446744073709551615'
+  { head -4 sim_drop.rscene; echo "$base"; } > shape.rscene
+  { head -4 sim_drop.rscene; echo "$base customInertia=true inertiaDiagonal=0.4,0.4,0.4"; } > custom.rscene
+  { head -4 sim_drop.rscene; echo "$base customInertia=true inertiaDiagonal=0.041666666666666664,0.041666666666666664,0.041666666666666664"; } > same.rscene
+  pose() { "$SIM" --steps 300 "$1" | awk '$2 == "/World/Box" { print $4, $5, $6, $7, $8, $9, $10 }'; }
+  shape=$(pose shape.rscene)
+  [ -n "$shape" ]
+  [ "$(pose custom.rscene)" != "$shape" ]
+  # The shape's own inertia (m (y^2 + z^2) / 12 for a 0.5 m cube of 1 kg) written out: the same motion.
+  [ "$(pose same.rscene)" = "$shape" ]
+  { head -4 sim_drop.rscene; echo "$base customInertia=true inertiaDiagonal=0.4,0,0.4"; } > zero.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 zero.rscene
+  [[ ${stderr_lines[0]} == "zero.rscene:5:"*": error: inertia diagonal of body '/World/Box' has 0, which cannot be simulated [RS7090]" ]]
+  run -1 "$BIN/rscene-validate" zero.rscene
+  [[ $output == *"[RS7090]"* ]]
+}

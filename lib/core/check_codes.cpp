@@ -157,11 +157,13 @@ constexpr CheckInfo kChecks[] = {
     {"RS7087", E, Sim, "sim", "granular record whose stability needs more than 1000 substeps per world step (lower normalStiffness or normalDamping, raise radius or density, or shorten time_step)"},
     {"RS7088", E, Sim, "sim", "granular value out of range (a radius, density or stiffness that is not positive and finite, a negative damping, friction or cohesion, radii spanning more than a factor of 10, an unknown normalContactModel, substeps outside 1 to 1000)"},
     {"RS7089", E, Sim, "sim", "granular particles that start overlapping by more than half their radii (a box fill with spacing below the radius, positions written at one point)"},
+    // RS709x the scene model's bodies, continued (scene/limits.hpp)
+    {"RS7090", E, Scene, VSR, "custom inertia diagonal (customInertia=true on a dynamic object, inertiaDiagonal of a dynamic compound) not positive and finite or above 1e15 kg m^2"},
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
-    // RS81xx RaiSim world XML: RS8101-RS8109 reading and expanding (rscene-from-xml),
-    // RS8110-RS8129 mapping elements to records, RS8130-RS8139 export (rscene-to-xml)
+    // RS81xx RaiSim world XML: RS810x reading and expanding (rscene-from-xml),
+    // RS811x-RS812x mapping elements to records, RS813x export (rscene-to-xml)
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
     {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
     {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},

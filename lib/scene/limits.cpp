@@ -40,6 +40,19 @@ bool badMass(double mass) { return mass > 0 && !(mass >= DBL_MIN && mass <= kMax
 
 const std::string kMassHint = "a dynamic mass must lie between 2.2250738585072014e-308 and " + number(kMaxMass) + " kg";
 
+// RS7090 at inertiaDiagonal when a moment is not a normal positive double
+// up to kMaxInertia (0 or a denormal has an infinite inverse).
+void checkInertia(const RecordReader& r, const Eigen::Vector3d& d, const std::string& what) {
+  for (int i = 0; i < 3; ++i)
+    if (!(d[i] >= DBL_MIN && d[i] <= kMaxInertia)) {
+      r.error("inertiaDiagonal", scene_code::kBadInertia,
+              "inertia diagonal of " + what + " has " + number(d[i]) + ", which cannot be simulated",
+              "each principal moment must lie between 2.2250738585072014e-308 and " + number(kMaxInertia) +
+                  " kg m^2");
+      return;
+    }
+}
+
 bool tooLarge(double v) { return !(std::abs(v) <= kMaxLength); }
 bool tooLarge(const Eigen::Vector3d& v) { return !(v.lpNorm<Eigen::Infinity>() <= kMaxLength); }
 
@@ -147,6 +160,7 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
     if (o.bodyMode == BodyMode::Dynamic && badMass(o.mass))
       r.error("mass", scene_code::kBadMassValue, "dynamic body '" + o.path + "' has mass " + number(o.mass) +
                                                      ", which cannot be simulated", kMassHint);
+    if (o.bodyMode == BodyMode::Dynamic && o.hasInertia) checkInertia(r, o.inertiaDiagonal, "body '" + o.path + "'");
     checkLength(r, "scale", o.scale, "scale of body '" + o.path + "'");
     checkLength(r, "radius", o.radius, "radius of body '" + o.path + "'");
     checkLength(r, "height", o.height, "height of body '" + o.path + "'");
@@ -165,6 +179,8 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
     if (c.bodyMode == BodyMode::Dynamic && badMass(c.mass))
       r.error("mass", scene_code::kBadMassValue, "dynamic compound '" + c.path + "' has mass " + number(c.mass) +
                                                      ", which cannot be simulated", kMassHint);
+    if (c.bodyMode == BodyMode::Dynamic && c.hasInertia)
+      checkInertia(r, c.inertiaDiagonal, "compound '" + c.path + "'");
     auto [problem, field] = poseProblem(c.local);
     if (!problem.empty()) r.error(field, scene_code::kBadPose, "compound '" + c.path + "': " + problem);
     checkLength(r, "scale", c.scale, "scale of compound '" + c.path + "'");

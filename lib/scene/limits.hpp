@@ -16,6 +16,8 @@
 //           restitution) negative or above kMaxCoefficient, or solver
 //           iterations outside 0..kMaxSolverIterations;
 //   RS7028  a camera width or height outside 0..kMaxCameraSide;
+//   RS7090  a dynamic body's custom inertia diagonal that is not positive
+//           and finite or above kMaxInertia (Bullet inverts each moment);
 //   RS4011  (lib/core's code, in its words) a wire with a negative length.
 // checkScene() runs these, so validate, sim and render agree on them.
 #pragma once
@@ -37,6 +39,9 @@ inline constexpr double kMaxTimeStep = 1;
 // 1 m box of 8e15 kg falls through the ground; 1e15 kg rests on it at every
 // size from 1 cm to 1 km.
 inline constexpr double kMaxMass = 1e15;
+// Largest principal moment of a custom inertia (kg m^2): like kMaxMass,
+// Bullet inverts it, and a larger one makes the body's rotation immovable.
+inline constexpr double kMaxInertia = 1e15;
 // Largest length, coordinate or acceleration (m, m/s^2): at 1e12 m a double
 // resolves 0.2 mm, and products of two such values (inertia, energy)
 // stay far from overflow.

@@ -432,6 +432,8 @@ class Builder {
     o.collisionMeshPath = collision.empty() ? o.meshPath : asset(collision);
     o.collisionMode = r.has("collisionMode") ? r.name("collisionMode")
                                              : r.name("meshCollision");
+    o.hasInertia = r.flag("customInertia", false) && r.has("inertiaDiagonal");
+    o.inertiaDiagonal = r.vec3("inertiaDiagonal", Eigen::Vector3d::Zero());  // unused unless hasInertia
     parentOf_[idx] = o.parentId;
     s_.objects.push_back(std::move(o));
   }
@@ -462,8 +464,8 @@ class Builder {
   // bodiesOnly: whether an object certainly passes checkScene(), so that
   // building it can be skipped: visual-only by its written #21 or #22, or
   // a primitive other than a mesh whose mass, scale, radius and height are
-  // all positive numbers, whatever its mode.  Anything less plain is built
-  // and checked in full.
+  // all positive numbers, whatever its mode, and no inertiaDiagonal.
+  // Anything less plain is built and checked in full.
   bool plainBody(const Record& rec) {
     const Layout* layout = rec.kind->layoutFor(rec.positionalCount);
     if (!layout) return false;
@@ -494,6 +496,7 @@ class Builder {
       if (!slots.empty() && slots.size() - poseStart != 7) slots.clear();
     }
     if (slots.empty()) return false;
+    if (doc_.find(rec, "inertiaDiagonal")) return false;  // a custom inertia is checked (RS7090)
     if (slots[7] >= 0) {
       std::string_view mode = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[7]));
       if (mode == "visual_only" || mode == "visualonly" || mode == "visual") return true;

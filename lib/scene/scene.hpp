@@ -59,6 +59,7 @@ inline constexpr const char* kTinyTimeStep = "RS7022";  // positive time_step no
 inline constexpr const char* kHugeValue = "RS7026";     // size, wire attachment or length, gravity beyond kMaxLength
 inline constexpr const char* kBadCoefficient = "RS7027";  // coefficient or solver iterations out of range
 inline constexpr const char* kBadCameraSize = "RS7028";   // camera width or height outside 0..16384
+inline constexpr const char* kBadInertia = "RS7090";      // custom inertia diagonal not positive, finite, within kMaxInertia
 // Codes shared with lib/core's validator (same condition, same code).
 inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
 inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist
@@ -339,6 +340,11 @@ struct Object {
   std::string meshPath;           // resolved render mesh (renderMeshPath= overrides #20)
   std::string collisionMeshPath;  // resolved collision mesh (collisionMeshPath= or the render mesh)
   std::string collisionMode{};  // convex_hull | original_mesh | convexify
+  // customInertia=true with an inertiaDiagonal: the principal moments (kg m^2,
+  // body frame) rscene-sim gives a dynamic body instead of its shape's.  A
+  // flag without a diagonal keeps the shape's inertia.
+  bool hasInertia{};
+  Eigen::Vector3d inertiaDiagonal = Eigen::Vector3d::Zero();
   // Positional token of position.x in the record (orientation w follows at +3),
   // for writing poses back.
   int positionToken = -1;

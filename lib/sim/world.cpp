@@ -597,9 +597,11 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       btCollisionShape* shape = w.primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
                                             o.collisionMeshPath, o.meshScale(), convex, error);
       if (!shape) return fail(o.path, error, scene_code::kBadMesh, o.recordIndex, "meshPath");
-      btVector3 inertia(0, 0, 0);
+      // customInertia: the record's principal moments (checked by RS7090),
+      // as RaiSim's <inertia> sets them; else the shape's.
       double mass = o.effectiveMass();
-      body = w.addBody(shape, bt(o.world), o.bodyMode, mass, inertia, false, fi, o.contactMaterial, sv);
+      body = w.addBody(shape, bt(o.world), o.bodyMode, mass, bt(o.inertiaDiagonal), o.hasInertia, fi,
+                       o.contactMaterial, sv);
       if (o.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
     }
     w.registerBody(o, body);

@@ -69,6 +69,10 @@ std::vector<Case> cases() {
       {"RS7009", H + K + child("ground", ""), H + K + child("box", "")},
       {"RS7020", H + object("box", "1 1 1", "0.5", "4.9e-324"), H + object("box", "1 1 1", "0.5", "1e-3")},
       {"RS7022", H + "time_step 1e-12\n", H + "time_step 1e-9\n"},
+      {"RS7090", H + object("box", "1 1 1", "0.5", "1", "dynamic", "customInertia=true inertiaDiagonal=0.1,0,0.1"),
+       H + object("box", "1 1 1", "0.5", "1", "dynamic", "customInertia=true inertiaDiagonal=0.1,1e15,0.1")},
+      {"RS7090", H + "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true inertiaDiagonal=1,1,-1\n" + child("box", ""),
+       H + "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true inertiaDiagonal=1,1,1\n" + child("box", "")},
       // Issue 10: validate refuses what would make rscene-sim stop with RS7024.
       {"RS7020", H + object("box", "1 1 1", "0.5", "1e300"), H + object("box", "1 1 1", "0.5", "1e15")},
       {"RS7022", H + "time_step 1e300\n", H + "time_step 1\n"},
