@@ -167,6 +167,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
     {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
     {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},
+    {"RS8131", W, Xml, "to-xml", "articulated system whose robot file cannot be read: exported with its urdf_path and the state as written"},
     // RS9xxx rendering (rscene-render)
     {"RS9001", E, Render, "render", "mesh file that cannot be read (a warning with --allow-missing-assets)"},
     {"RS9002", W, Render, "render", "texture not drawn"},
