@@ -15,6 +15,7 @@ cp "$ROOT"/examples/*.rscene "$OUT"/
 cp -R "$ROOT"/examples/robots "$OUT"/  # robot files the scenes name
 cp -R "$ROOT"/examples/gallery "$OUT"/  # the gallery's mesh and texture
 cp -R "$ROOT"/examples/soft_bodies "$OUT"/  # the cloth OBJ of soft_bodies.rscene
+cp -R "$ROOT"/examples/xml "$OUT"/  # the hand-written RaiSim world and the file it includes
 cd "$OUT"
 
 # step TOOL TITLE 'COMMAND' : runs the shell COMMAND (with $BIN first on
@@ -64,5 +65,14 @@ step rscene-render "the gallery: every visual record kind, lights of every type 
   'rscene-render -v -o gallery.png gallery.rscene'
 step rscene-render "thumbnails (CPU, headless EGL)" \
   'for f in *.rscene; do rscene-render --width 480 --height 300 --allow-missing-assets -o "${f%.rscene}.png" "$f" || exit $?; done; ls *.png'
+
+# Editor to training and back (README "Training with RaiSim").
+step rscene-to-xml "the editor's scene for training: robot_cell as a RaiSim world XML (raisim::World world(path))" \
+  'rscene-to-xml robot_cell.rscene -o robot_cell.xml && grep -E "<(timeStep|articulatedSystem|compound|wire) " robot_cell.xml'
+step rscene-from-xml "a hand-written templated RaiSim world as a scene: 12 balls on a spiral, a cart, walls from an include" \
+  'rscene-from-xml xml/arena.xml --param ball_count=12 -o arena.rscene && grep -c "^object /World/ball_" arena.rscene'
+[ ! -x "$BIN/rscene-from-xml" ] ||
+  step rscene-sim "the imported world simulated 2 s" \
+    'rscene-sim --duration 2 --report -o arena.settled.rscene arena.rscene'
 
 printf '\nresults: %s\n' "$OUT"

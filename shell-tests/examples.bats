@@ -46,3 +46,30 @@ robot_files() {
   [ -f out/gallery/textures/warning.png ]
   run -0 "${RSCENE_BIN:-$ROOT/build/bin}/rscene-validate" --check-files out/gallery.rscene
 }
+
+@test "the demo's editor-to-training steps: robot_cell exports, examples/xml/arena.xml imports with its include and simulates" {
+  bin=${RSCENE_BIN:-$ROOT/build/bin}
+  mkdir nobin
+  run -0 env RSCENE_BIN="$PWD/nobin" RSCENE_DEMO_OUT="$PWD/out" sh "$ROOT/scripts/demo.sh"
+  # The world and the file it includes are copied beside the scenes.
+  [ -f out/xml/arena.xml ] && [ -f out/xml/walls.xml ]
+  grep -q '<include file="\[THIS_DIR\]/walls.xml"/>' out/xml/arena.xml
+  [ -x "$bin/rscene-to-xml" ] && [ -x "$bin/rscene-from-xml" ] || skip "rscene-to-xml/rscene-from-xml not built"
+  cd out
+  run -0 "$bin/rscene-to-xml" -q robot_cell.rscene -o robot_cell.xml
+  grep -q '<articulatedSystem name="/World/Robot" urdf_path="\[THIS_DIR\]/robots/quadruped/quadruped.urdf"' robot_cell.xml
+  run -0 "$bin/rscene-from-xml" -q xml/arena.xml --param ball_count=12 -o arena.rscene
+  [ "$(grep -c '^object /World/ball_[0-9]* sphere ' arena.rscene)" = 12 ]
+  [ "$(grep -c '^object /World/wall_[a-z]* box ' arena.rscene)" = 4 ]
+  [ "$(grep -c '^compound_child /World/cart ' arena.rscene)" = 5 ]
+  [ "$(grep -c '^contact_material ' arena.rscene)" = 3 ]
+  # Ball 11: (cos(8.8) 3.75, sin(8.8) 3.75, 3.8); the default is 8 balls.
+  awk '$2 == "/World/ball_11" { x = cos(8.8) * 3.75; y = sin(8.8) * 3.75
+    if ((d = $4 - x) > 1e-12 || d < -1e-12 || (d = $5 - y) > 1e-12 || d < -1e-12 || $6 != 3.8) { print $4, $5, $6; exit 1 } }' arena.rscene
+  run -0 "$bin/rscene-from-xml" -q xml/arena.xml
+  [ "$(grep -c '^object /World/ball_' <<<"$output")" = 8 ]
+  # The include's parameter default, and an override.
+  run -0 "$bin/rscene-from-xml" -q xml/arena.xml --param wall_height=1
+  grep -q '^object /World/wall_north box 0 4.5 0.5 ' <<<"$output"
+  run -0 "$bin/rscene-sim" --duration 2 -o arena.settled.rscene arena.rscene
+}

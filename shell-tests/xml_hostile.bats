@@ -1,0 +1,136 @@
+#!/usr/bin/env bats
+# Hostile world XML through rscene-from-xml (issue 15): entity expansion,
+# deep nesting, huge loops, include cycles.  Each one must end in bounded
+# time (timeout 10) and memory (ulimit -v 1 GiB) with exit 2, an error
+# naming the file and line, and no output: -o leaves no file, and an
+# existing -o file is left as it was.
+
+BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+FROM="$BIN/rscene-from-xml"
+
+bats_require_minimum_version 1.5.0
+
+setup() {
+  [ -x "$FROM" ] || skip "rscene-from-xml not built in $BIN"
+  mkdir "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w"
+}
+
+# Runs from-xml on $1 (with -o out.rscene, which must not appear) and
+# again with -o keep.rscene, which must keep its bytes; sets $stderr of
+# the first run.  Fails unless both exit 2 within 10 s under 1 GiB.
+refused() {
+  local file=$1
+  shift
+  rm -f out.rscene
+  run -2 --separate-stderr bash -c 'ulimit -v 1048576; exec timeout 10 "$@"' _ "$FROM" "$file" "$@" -o out.rscene
+  [ ! -e out.rscene ] || { echo "-o out.rscene was written"; return 1; }
+  [ -z "$(ls -A | grep -v -e '\.xml$' -e '^keep\.rscene$')" ] || { ls -A; echo "a file was left behind"; return 1; }
+  local first=$stderr
+  echo 'raisim_engine_scene 1' >keep.rscene
+  run -2 --separate-stderr bash -c 'ulimit -v 1048576; exec timeout 10 "$@"' _ "$FROM" "$file" "$@" -o keep.rscene
+  [ "$(cat keep.rscene)" = 'raisim_engine_scene 1' ] || { echo "keep.rscene was changed"; return 1; }
+  stderr=$first
+}
+
+@test "billion laughs: a DOCTYPE declaring entities is refused at its line, nothing expanded" {
+  awk 'BEGIN {
+    print "<?xml version=\"1.0\"?>"; print "<!DOCTYPE raisim ["; print " <!ENTITY lol \"lol\">"
+    for (i = 1; i <= 9; ++i) {
+      prev = i == 1 ? "lol" : "lol" (i - 1); s = ""
+      for (k = 0; k < 10; ++k) s = s "&" prev ";"
+      print " <!ENTITY lol" i " \"" s "\">"
+    }
+    print "]>"; print "<raisim version=\"1.0\"><objects>"
+    print "<sphere name=\"&lol9;\" mass=\"1\"><dim radius=\"1\"/><state pos=\"0 0 1\"/></sphere>"
+    print "</objects></raisim>" }' >laughs.xml
+  refused laughs.xml
+  [[ ${stderr} =~ laughs\.xml:[0-9]+:[0-9]+:\ error:\ .*[Ee]ntit.*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+  [ "$(wc -l <<<"$stderr")" -lt 20 ]
+}
+
+@test "an undeclared entity (&lol;) is an error too, not text" {
+  printf '<raisim version="1.0"><objects>\n<sphere name="a&lol;" mass="1"><dim radius="1"/><state pos="0 0 1"/></sphere>\n</objects></raisim>\n' >undeclared.xml
+  refused undeclared.xml
+  [[ ${stderr} =~ undeclared\.xml:2:[0-9]+:\ error:\ .*lol.*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+}
+
+@test "10^5-deep nesting is refused at the first element past the depth limit" {
+  awk 'BEGIN {
+    print "<raisim version=\"1.0\">"; print "<objects>"
+    for (i = 0; i < 100000; ++i) print "<compound>"
+    for (i = 0; i < 100000; ++i) print "</compound>"
+    print "</objects>"; print "</raisim>" }' >deep.xml
+  refused deep.xml
+  [[ ${stderr} =~ deep\.xml:[0-9]+:[0-9]+:\ error:\ .*(deep|depth|nest).*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+  line=$(sed -n 's/^deep\.xml:\([0-9]*\):.*/\1/p' <<<"$stderr" | head -1)
+  # Refused where the nesting passes the limit (64 after expansion; tinyxml2's own is 500), not at the end.
+  [ "$line" -gt 3 ] && [ "$line" -lt 1000 ]
+}
+
+@test "an array of 10^9 iterations is refused before it runs, at the array's line" {
+  cat >loop.xml <<'EOF'
+<raisim version="1.0">
+  <objects>
+    <array idx="@@i" start="0" end="1000000000" increment="1">
+      <sphere name="s@@i" mass="1"><dim radius="0.1"/><state pos="0 0 {@@i}"/></sphere>
+    </array>
+  </objects>
+</raisim>
+EOF
+  refused loop.xml
+  [[ ${stderr} =~ loop\.xml:3:[0-9]+:\ error:\ .*array.*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+  # A parameter can make it so too: the same with end="@@n" and --param n=1000000000.
+  sed 's/end="1000000000"/end="@@n"/' loop.xml >param.xml
+  refused param.xml --param n=1000000000
+  [[ ${stderr} =~ param\.xml:3:[0-9]+:\ error: ]] || { echo "$stderr"; false; }
+}
+
+@test "nested arrays of 1000 x 1000 x 1000 iterations are refused: the limit counts all iterations" {
+  cat >nested.xml <<'EOF'
+<raisim version="1.0">
+  <objects>
+    <array idx="@@i" start="0" end="1000" increment="1">
+      <array idx="@@j" start="0" end="1000" increment="1">
+        <array idx="@@k" start="0" end="1000" increment="1">
+          <sphere name="s@@i_@@j_@@k" mass="1"><dim radius="0.1"/><state pos="@@i @@j @@k"/></sphere>
+        </array>
+      </array>
+    </array>
+  </objects>
+</raisim>
+EOF
+  refused nested.xml
+  [[ ${stderr} =~ nested\.xml:[3-5]:[0-9]+:\ error:\ .*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+}
+
+@test "an include cycle (a -> b -> a) is refused naming the include's file and line" {
+  cat >a.xml <<'EOF'
+<raisim version="1.0">
+  <include file="[THIS_DIR]/b.xml"/>
+  <objects/>
+</raisim>
+EOF
+  cat >b.xml <<'EOF'
+<raisim version="1.0">
+  <gravity value="0 0 -9.81"/>
+  <include file="[THIS_DIR]/a.xml"/>
+</raisim>
+EOF
+  refused a.xml
+  [[ ${stderr} =~ b\.xml:3:[0-9]+:\ error:\ .*(cycle|itself|again).*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+  # A file that includes itself: the same.
+  printf '<raisim version="1.0">\n<include file="self.xml"/>\n</raisim>\n' >self.xml
+  refused self.xml
+  [[ ${stderr} =~ self\.xml:2:[0-9]+:\ error: ]] || { echo "$stderr"; false; }
+}
+
+@test "an expression nested 10^5 parentheses deep is refused, not a stack overflow" {
+  {
+    printf '<raisim version="1.0"><objects>\n<sphere name="s" mass="1"><dim radius="{'
+    awk 'BEGIN { for (i = 0; i < 100000; ++i) printf "("; printf "1"; for (i = 0; i < 100000; ++i) printf ")" }'
+    printf '}"/><state pos="0 0 1"/></sphere>\n</objects></raisim>\n'
+  } >parens.xml
+  refused parens.xml
+  [[ ${stderr} =~ parens\.xml:2:[0-9]+:\ error:\ .*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
+}
