@@ -1,0 +1,250 @@
+// Single bodies (sphere, capsule, cylinder, box, mesh), ground and compound
+// as object / compound / compound_child records (rscene-from-xml(1), the
+// mapping table).
+#include "xml/from_xml_context.hpp"
+
+namespace rscene::xml::detail {
+namespace {
+
+constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
+
+std::size_t errorCount(const Context& ctx) {
+  std::size_t n = 0;
+  for (const Diagnostic& d : ctx.result.diagnostics) n += d.severity == Severity::Error;
+  return n;
+}
+
+// What every single body and the compound share.
+struct Common {
+  std::string path, label;
+  std::string material = "default";
+  std::string mode = "dynamic";
+  std::optional<double> mass;
+  std::uint64_t group = 1, mask = kAllBits;
+  Vec3 pos{0, 0, 0};
+  Quat quat{1, 0, 0, 0};
+  std::optional<Vec3> inertia;  // diagonal
+  std::optional<Vec3> com;
+};
+
+// <state pos quat lin_vel ang_vel>: the pose; a velocity has no field.
+void readState(Context& ctx, const Element& owner, const std::string& label, Vec3& pos, Quat& quat) {
+  const Element* state = owner.child("state");
+  if (!state) return;
+  ctx.checkAttributes(*state, label + " <state>", {"pos", "quat", "lin_vel", "linVel", "ang_vel", "angVel"});
+  if (auto p = ctx.vec<3>(*state, state->attribute("pos"))) pos = *p;
+  if (auto q = ctx.vec<4>(*state, state->attribute("quat"))) quat = *q;
+  for (auto [name, alias] : {std::pair{"lin_vel", "linVel"}, std::pair{"ang_vel", "angVel"}})
+    if (auto v = ctx.vec<3>(*state, state->attribute(name, alias)); v && (*v != Vec3{0, 0, 0}))
+      ctx.lost(label + ": " + name);
+}
+
+// <inertia xx xy xz yy yz zz>: the diagonal; off-diagonal terms have no field.
+void readInertia(Context& ctx, const Element& owner, const std::string& label, std::optional<Vec3>& out) {
+  const Element* in = owner.child("inertia");
+  if (!in) return;
+  ctx.checkAttributes(*in, label + " <inertia>", {"xx", "xy", "xz", "yy", "yz", "zz"});
+  Vec3 d{};
+  bool ok = true;
+  const char* diagonal[] = {"xx", "yy", "zz"};
+  for (int i = 0; i < 3; ++i) {
+    const Attribute* a = ctx.require(*in, diagonal[i]);
+    auto v = ctx.number(*in, a);
+    if (!v) {
+      ok = false;
+      continue;
+    }
+    d[static_cast<std::size_t>(i)] = *v;
+  }
+  for (const char* off : {"xy", "xz", "yz"})
+    if (auto v = ctx.number(*in, in->attribute(off)); v && *v != 0) ctx.lost(label + ": inertia " + off);
+  if (ok) out = d;
+}
+
+bool readCommon(Context& ctx, const Element& e, Common& c) {
+  std::size_t before = errorCount(ctx);
+  c.path = ctx.takePath(e);
+  c.label = labelOf(e);
+  if (const Attribute* m = e.attribute("material"); m && !m->value.empty()) c.material = m->value;
+  if (const Attribute* t = e.attribute("body_type", "bodyType")) {
+    if (t->value == "dynamic" || t->value == "kinematic" || t->value == "static")
+      c.mode = t->value;
+    else
+      ctx.error(code::kBadValue, e, *t, "'" + t->value + "' is not dynamic, kinematic or static");
+  }
+  c.mass = ctx.number(e, e.attribute("mass"));
+  if (auto g = ctx.group(e, e.attribute("collision_group", "collisionGroup"))) c.group = *g;
+  if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
+  c.com = ctx.vec<3>(e, e.attribute("com"));
+  readState(ctx, e, c.label, c.pos, c.quat);
+  readInertia(ctx, e, c.label, c.inertia);
+  // RaiSim needs a mass for a body that moves; validate refuses a dynamic
+  // one without a positive mass.
+  if (!c.mass && c.mode == "dynamic" && errorCount(ctx) == before)
+    ctx.error(code::kMissing, e, "'mass' is required for a dynamic body");
+  return errorCount(ctx) == before;
+}
+
+// object PATH PRIMITIVE pos quat scale radius height mass contactMaterial
+// material visualOnly visible locked meshPath bodyMode collidable group mask
+Line objectLine(const Common& c, std::string_view primitive, const Vec3& scale, double radius, double height,
+                const std::string& meshPath) {
+  Line l("object");
+  l.text(c.path).raw(primitive).nums(c.pos).nums(c.quat).nums(scale).num(radius).num(height);
+  l.num(c.mass.value_or(0)).text(c.material).text("").raw("false").raw("true").raw("false").text(meshPath);
+  l.raw(c.mode).raw("true").u64(c.group).u64(c.mask);
+  return l;
+}
+
+}  // namespace
+
+void convertSingleBody(Context& ctx, const Element& e) {
+  const bool mesh = e.name == "mesh";
+  ctx.checkAttributes(e, labelOf(e),
+                      mesh ? std::initializer_list<std::string_view>{"name", "mass", "material", "body_type", "bodyType",
+                                                                     "collision_group", "collisionGroup",
+                                                                     "collision_mask", "collisionMask", "com",
+                                                                     "file_name", "fileName", "scale"}
+                           : std::initializer_list<std::string_view>{"name", "mass", "material", "body_type", "bodyType",
+                                                                     "collision_group", "collisionGroup",
+                                                                     "collision_mask", "collisionMask", "com"},
+                      {"appearance"});
+  ctx.checkChildren(e, labelOf(e), {"dim", "state", "inertia"});
+  Common c;
+  bool ok = readCommon(ctx, e, c);
+  Vec3 scale{1, 1, 1};
+  double radius = 0, height = 0;
+  std::string meshPath;
+  if (mesh) {
+    const Attribute* file = ctx.require(e, "file_name", "fileName");
+    if (file) meshPath = ctx.assetPath(file->value);
+    if (auto s = ctx.vec<3>(e, e.attribute("scale"))) scale = *s;
+    if (!c.com) c.com = Vec3{0, 0, 0};  // RaiSim's mesh always has one
+    ok = ok && file;
+  } else {
+    const Element* dim = ctx.requireChild(e, "dim");
+    if (!dim) return;
+    std::size_t before = errorCount(ctx);
+    if (e.name == "box") {
+      ctx.checkAttributes(*dim, c.label + " <dim>", {"x", "y", "z"});
+      for (int i = 0; i < 3; ++i) {
+        const char* axis[] = {"x", "y", "z"};
+        if (auto v = ctx.number(*dim, ctx.require(*dim, axis[i]))) scale[static_cast<std::size_t>(i)] = *v;
+      }
+    } else {
+      bool tall = e.name != "sphere";
+      ctx.checkAttributes(*dim, c.label + " <dim>",
+                          tall ? std::initializer_list<std::string_view>{"radius", "height"}
+                               : std::initializer_list<std::string_view>{"radius"});
+      if (auto r = ctx.number(*dim, ctx.require(*dim, "radius"))) radius = *r;
+      if (tall)
+        if (auto h = ctx.number(*dim, ctx.require(*dim, "height"))) height = *h;
+    }
+    ok = ok && errorCount(ctx) == before;
+  }
+  if (!ok) return;
+  Line l = objectLine(c, e.name, scale, radius, height, meshPath);
+  if (c.inertia) l.key("customInertia", "true").keyNums("inertiaDiagonal", *c.inertia);
+  if (c.com) l.keyNums("centerOfMass", *c.com);
+  ctx.add(l);
+  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+}
+
+void convertGround(Context& ctx, const Element& e) {
+  ctx.checkAttributes(e, labelOf(e),
+                      {"name", "height", "material", "collision_mask", "collisionMask", "collision_group",
+                       "collisionGroup"},
+                      {"appearance"});
+  ctx.checkChildren(e, labelOf(e), {});
+  std::size_t before = errorCount(ctx);
+  Common c;
+  c.path = ctx.takePath(e);
+  c.mode = "static";
+  c.mass = 0;
+  if (const Attribute* m = e.attribute("material"); m && !m->value.empty()) c.material = m->value;
+  if (auto h = ctx.number(e, e.attribute("height"))) c.pos[2] = *h;
+  if (auto g = ctx.group(e, e.attribute("collision_group", "collisionGroup"))) c.group = *g;
+  if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
+  if (errorCount(ctx) != before) return;
+  // 10 x 10 is only the drawn plane's size: a ground is a half-space.
+  ctx.add(objectLine(c, "ground", Vec3{10, 10, 1}, 0, 0, ""));
+  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+}
+
+namespace {
+
+// One <children> entry: sphere, capsule, cylinder or box with dim, state
+// pos quat and material.
+bool compoundChild(Context& ctx, const std::string& compound, const std::string& label, const Element& e,
+                   std::string& out) {
+  // One label for all children, so the not-converted line says "name" once.
+  std::string childLabel = label + " <children>";
+  ctx.checkAttributes(e, childLabel, {"material"}, {"name", "mass", "appearance", "body_type", "bodyType"});
+  ctx.checkChildren(e, childLabel, {"dim", "state"}, {"inertia"});
+  std::size_t before = errorCount(ctx);
+  Vec3 pos{0, 0, 0};
+  Quat quat{1, 0, 0, 0};
+  readState(ctx, e, childLabel, pos, quat);
+  const Element* dim = ctx.requireChild(e, "dim");
+  if (!dim) return false;
+  Line l("compound_child");
+  l.text(compound).raw(e.name).nums(pos).nums(quat).nums(Vec3{1, 1, 1});
+  if (e.name == "box") {
+    ctx.checkAttributes(*dim, childLabel + " <dim>", {"x", "y", "z"});
+    Vec3 size{};
+    const char* axis[] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i)
+      if (auto v = ctx.number(*dim, ctx.require(*dim, axis[i]))) size[static_cast<std::size_t>(i)] = *v;
+    l.keyNums("size", size);
+  } else {
+    bool tall = e.name != "sphere";
+    ctx.checkAttributes(*dim, childLabel + " <dim>",
+                        tall ? std::initializer_list<std::string_view>{"radius", "height"}
+                             : std::initializer_list<std::string_view>{"radius"});
+    if (auto r = ctx.number(*dim, ctx.require(*dim, "radius"))) l.keyNum("radius", *r);
+    if (tall)
+      if (auto h = ctx.number(*dim, ctx.require(*dim, "height"))) l.keyNum("height", *h);
+  }
+  const Attribute* m = e.attribute("material");
+  l.keyText("contactMaterial", m && !m->value.empty() ? m->value : "default");
+  if (errorCount(ctx) != before) return false;
+  out += l.str() + '\n';
+  return true;
+}
+
+}  // namespace
+
+void convertCompound(Context& ctx, const Element& e) {
+  ctx.checkAttributes(e, labelOf(e),
+                      {"name", "mass", "material", "body_type", "bodyType", "collision_group", "collisionGroup",
+                       "collision_mask", "collisionMask", "com"},
+                      {"appearance"});
+  ctx.checkChildren(e, labelOf(e), {"children", "state", "inertia"});
+  Common c;
+  bool ok = readCommon(ctx, e, c);
+  const Element* children = ctx.requireChild(e, "children");
+  if (!children) return;
+  std::string childLines;
+  for (const Element& child : children->children) {
+    if (child.name == "sphere" || child.name == "capsule" || child.name == "cylinder" || child.name == "box") {
+      ok = compoundChild(ctx, c.path, c.label, child, childLines) && ok;
+    } else {
+      ctx.result.diagnostics.push_back(elementDiagnostic(Severity::Warning, code::kNotConverted, child,
+                                                         "not a compound child (sphere, capsule, cylinder, box)"));
+      ctx.lost(c.label + ": <" + child.name + ">");
+    }
+  }
+  if (!ok) return;
+  // compound PATH pos quat scale mass bodyMode visible collidable
+  Line l("compound");
+  l.text(c.path).nums(c.pos).nums(c.quat).nums(Vec3{1, 1, 1}).num(c.mass.value_or(0)).raw(c.mode);
+  l.raw("true").raw("true").keyNums("centerOfMass", c.com.value_or(Vec3{0, 0, 0}));
+  if (c.inertia) l.keyNums("inertiaDiagonal", *c.inertia);
+  l.key("collisionGroup", std::to_string(c.group)).key("collisionMask", std::to_string(c.mask));
+  l.keyText("contactMaterial", c.material);
+  ctx.add(l);
+  ctx.records += childLines;
+  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+}
+
+}  // namespace rscene::xml::detail
