@@ -19,6 +19,10 @@ namespace {
 
 constexpr const char* kCannotWrite = "RS8130";
 constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
+// rscene wires resist stretch only.  The spelling is the mapping
+// (rscene-from-xml reads it); RaiSim's own exporter writes "stretch_only"
+// for the same type, which a later change may adopt in both directions.
+constexpr const char* kStretchResistantOnly = "STRETCH_RESISTANT_ONLY";
 
 class Exporter {
  public:
@@ -143,7 +147,7 @@ class Exporter {
       if (o.collisionGroup != 1) losses.push_back("object " + o.path + ": collisionGroup");
       return g;
     }
-    const std::string tag = o.primitive == "mesh" ? "mesh" : o.primitive;
+    const std::string& tag = o.primitive;  // sphere, box, capsule, cylinder, mesh: RaiSim's element names
     OutElement e(tag);
     e.text("name", o.path).number("mass", o.mass).text("material", materialName(o.contactMaterial));
     e.text("body_type", bodyModeName(o.bodyMode));
@@ -268,7 +272,7 @@ class Exporter {
     e.text("name", w.path).text("type", w.kind).number("length", w.length);
     if (w.kind == "compliant") e.number("stiffness", w.stiffness);
     else if (w.stiffness != 1000) losses.push_back("wire " + w.path + ": stiffness");  // used by compliant wires only
-    e.text("stretch_type", "STRETCH_RESISTANT_ONLY");
+    e.text("stretch_type", kStretchResistantOnly);
     if (w.damping != 0) losses.push_back("wire " + w.path + ": damping");
     if (w.compliance != 0) losses.push_back("wire " + w.path + ": compliance");
     e.add(OutElement("object1").text("name", body(w.bodyA)).integer("local_index", w.localIndexA).vec3("pos", w.localPositionA));

@@ -370,6 +370,21 @@ TEST(ToXml, ArticulatedJointOrderIsUndoneIntoRaisimsOrder) {
             "0 0 0.5 1 0 0 0 1 2 3 4");
 }
 
+TEST(ToXml, CorpusAnymalGetsItsModelsSizes) {
+  std::string urdf = std::string(RSCENE_SHARED_DIR) + "/corpus/robots/anymal_c/urdf/anymal.urdf";
+  if (!std::filesystem::exists(urdf)) GTEST_SKIP() << "no ../shared corpus";
+  Exported e = exportScene(H + "articulated_resource a A " + urdf +
+                           "\narticulated /World/A a 0 0 0.6 1 0 0 0 true true scale=2,2,2\n");
+  ASSERT_TRUE(e.result.ok());
+  Parsed p;
+  parseXml(e.result.xml, p);
+  const auto* state = p.body("articulatedSystem", "/World/A")->FirstChildElement("state");
+  // A floating base (7) and twelve revolute joints; velocities 6 + 12.
+  EXPECT_EQ(attr(state, "qpos"), "0 0 0.6 1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0");
+  EXPECT_EQ(attr(state, "qvel"), "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0");
+  EXPECT_EQ(joined(e.result.notExported), "articulated /World/A: scale");
+}
+
 TEST(ToXml, FixedBaseAwayFromTheOriginIsListed) {
   std::string res = "articulated_resource arm_res Arm " + kTwoLink + "\n";
   Exported at = exportScene(H + res + "articulated /World/Arm arm_res 0 0 0 1 0 0 0 true true\n");
