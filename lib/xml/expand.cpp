@@ -144,11 +144,13 @@ bool Expander::expandElement(const Element& raw, Element& out, Context context, 
       ok = false;
       continue;
     }
-    bytes_ += value.value.size();
+    // What the attribute holds in memory, so that many empty attributes
+    // count as well as a few long values.
+    bytes_ += sizeof(Attribute) + value.name.size() + value.value.size() + value.where.file.size();
     if (bytes_ > limits_.maxExpandedBytes) {
       fail(attributeDiagnostic(Severity::Error, code::kXmlLimit, raw, a,
                                "the expansion makes more than " + std::to_string(limits_.maxExpandedBytes) +
-                                   " bytes of attribute values, the limit"));
+                                   " bytes of attributes, the limit"));
       stop_ = true;
       return false;
     }

@@ -288,7 +288,8 @@ LoadResult load(std::string_view text, const SourceFile& file, const LoadOptions
                                                  "': a parameter name is letters, digits and '_'"));
       return result;
     }
-    params.setFromCommandLine(name, value);
+    // A --param is written in no file: [THIS_DIR] in it is the top file's.
+    params.setFromCommandLine(name, replaceThisDir(value, file.thisDir));
   }
   WorldReader reader(options, result, params);
   Element raw;

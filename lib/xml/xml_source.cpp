@@ -211,14 +211,6 @@ class Scanner {
   bool stop_ = false;
 };
 
-std::string replaceThisDir(const char* value, const std::string& thisDir) {
-  std::string out = value;
-  static constexpr std::string_view kThisDir = "[THIS_DIR]";
-  for (std::size_t at = out.find(kThisDir); at != std::string::npos; at = out.find(kThisDir, at + thisDir.size()))
-    out.replace(at, kThisDir.size(), thisDir);
-  return out;
-}
-
 std::size_t countElements(const tinyxml2::XMLElement& e) {
   std::size_t n = 1;
   for (const tinyxml2::XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) n += countElements(*c);
@@ -268,6 +260,14 @@ std::string tinyxmlError(const tinyxml2::XMLDocument& doc) {
 }
 
 }  // namespace
+
+std::string replaceThisDir(std::string_view value, const std::string& thisDir) {
+  std::string out(value);
+  static constexpr std::string_view kThisDir = "[THIS_DIR]";
+  for (std::size_t at = out.find(kThisDir); at != std::string::npos; at = out.find(kThisDir, at + thisDir.size()))
+    out.replace(at, kThisDir.size(), thisDir);
+  return out;
+}
 
 bool parseWorldSource(std::string_view text, const std::string& file, const std::string& thisDir, int maxDepth,
                       Element& root, Diagnostics& diagnostics) {

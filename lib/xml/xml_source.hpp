@@ -27,6 +27,9 @@ inline constexpr const char* kXmlExist = "RS8108";    // exist neither true nor 
 inline constexpr const char* kXmlClass = "RS8109";    // object_class that cannot be used
 }  // namespace code
 
+// `value` with every "[THIS_DIR]" replaced by `thisDir`.
+std::string replaceThisDir(std::string_view value, const std::string& thisDir);
+
 // Parses `text` (the file `file`) into `root`.  Every attribute value has
 // "[THIS_DIR]" replaced by `thisDir`.  Elements nested deeper than
 // `maxDepth` are refused while scanning, before tinyxml2 recurses.  False

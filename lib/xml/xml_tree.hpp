@@ -56,8 +56,8 @@ struct LoadLimits {
   int maxIncludeDepth = 16;                   // include chains (cycles are refused outright)
   std::size_t maxExpressionLength = 4096;     // characters inside one {...}
   int maxExpressionDepth = 64;                // nested parentheses and operators
-  std::size_t maxExpandedBytes = 256u << 20;  // attribute values after expansion, in all; also
-                                              // the bytes of all files read (an include read many times)
+  std::size_t maxExpandedBytes = 256u << 20;  // attributes after expansion (names, values, bookkeeping),
+                                              // in all; also the bytes of all files read together
 };
 
 struct LoadOptions {

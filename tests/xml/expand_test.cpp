@@ -51,6 +51,10 @@ TEST(Expand, ParamsDefineAndParamOverrides) {
   r = loadText(xml, {{"r", "0.25"}, {"unused", "7"}});  // an unused --param is fine
   ASSERT_TRUE(r.ok()) << errors(r);
   EXPECT_EQ(objects(r).children[0].children[0].attributes[0].value, "0.25");
+  // [THIS_DIR] in a --param is the top file's directory.
+  r = loadText("<raisim><objects><mesh file_name=\"@@m\"/></objects></raisim>", {{"m", "[THIS_DIR]/a.obj"}});
+  ASSERT_TRUE(r.ok()) << errors(r);
+  EXPECT_EQ(objects(r).children[0].attributes[0].value, "/base/a.obj");
 }
 
 TEST(Expand, UnsetParameterNamesItAndHowToSetIt) {

@@ -153,14 +153,26 @@ TEST(Hostile, ParameterBlowUpsAreBounded) {
   EXPECT_EQ(first(r), "<box> name: parameters refer to parameters more than 32 deep [RS8104]");
 }
 
-TEST(Hostile, TooManyBytesOfValues) {
+TEST(Hostile, TooManyBytesOfAttributes) {
   LoadLimits limits;
-  limits.maxExpandedBytes = 1000;
-  LoadResult r = loadText("<raisim><params><v value=\"" + std::string(100, 'v') +
-                              "\"/></params><objects><array idx=\"@@i\" start=\"0\" end=\"100\" increment=\"1\">"
+  limits.maxExpandedBytes = 100000;
+  LoadResult r = loadText("<raisim><params><v value=\"" + std::string(1000, 'v') +
+                              "\"/></params><objects><array idx=\"@@i\" start=\"0\" end=\"1000\" increment=\"1\">"
                               "<box name=\"@@v\"/></array></objects></raisim>",
                           {}, limits);
-  EXPECT_EQ(first(r), "<box> name: the expansion makes more than 1000 bytes of attribute values, the limit [RS8107]");
+  EXPECT_EQ(first(r), "<box> name: the expansion makes more than 100000 bytes of attributes, the limit [RS8107]");
+  // Empty attributes count too: a thousand of them a thousand times.
+  std::string many;
+  for (int i = 0; i < 1000; ++i) many += " a" + std::to_string(i) + "=\"\"";
+  r = loadText("<raisim><objects><array idx=\"@@i\" start=\"0\" end=\"1000\" increment=\"1\"><box" + many +
+                   "/></array></objects></raisim>",
+               {}, limits);
+  // ... refused within the first box, whose attributes alone pass the limit.
+  EXPECT_EQ(r.diagnostics.size(), 1u);
+  EXPECT_EQ(first(r).rfind("<box> a", 0), 0u) << first(r);
+  EXPECT_NE(first(r).find(": the expansion makes more than 100000 bytes of attributes, the limit [RS8107]"),
+            std::string::npos);
+  EXPECT_EQ(r.diagnostics[0].line, 1u);
 }
 
 TEST(Hostile, ErrorsAreCappedInsteadOfOnePerElement) {
