@@ -128,7 +128,9 @@ TEST(FromXml, BadCollisionGroupIsAnErrorAtItsLine) {
     const Diagnostic* d = find(r, "RS8110");
     ASSERT_NE(d, nullptr) << bad;
     EXPECT_EQ(d->file, "w.xml");
-    EXPECT_EQ(d->line, 3u) << bad;  // the element's line at least (the interim reader has no attribute lines)
+    // The attribute's own line (4) where the reader knows attribute places
+    // (it then knows columns too), else its element's (3).
+    EXPECT_EQ(d->line, d->column ? 4u : 3u) << bad;
     EXPECT_EQ(d->message.rfind("<sphere> collision_mask: '", 0), 0u) << d->message;
     EXPECT_TRUE(r.text.empty());
   }
@@ -367,6 +369,19 @@ TEST(FromXml, RobotErrorsAndUnreadableRobot) {
   EXPECT_NE(gone.text.find("articulated /World/r res_x 0 0 0 1 0 0 0 true true generalizedCoordinate=0,0,1,1,0,0,0"),
             std::string::npos)
       << gone.text;
+  FromXmlResult modules = convert(world("<articulatedSystem name=\"m\" urdfPath=\"/nonexistent/y.urdf\" "
+                                        "resDir=\"/nonexistent\" modules=\" a  b \"/><sphere name=\"s\" mass=\"1\">"
+                                        "<dim radius=\"1\"/></sphere>",
+                                        "<wire type=\"custom\" length=\"1\" stretch_type=\"BOTH\">"
+                                        "<object1 name=\"m\" frame=\"hip\"/><object2 name=\"s\"/></wire>"));
+  ASSERT_TRUE(modules.ok());
+  EXPECT_NE(modules.text.find(" modules=a;b\n"), std::string::npos) << modules.text;
+  EXPECT_NE(modules.text.find("wire /World/wire custom /World/m /World/s 1 localIndexA=0"), std::string::npos)
+      << modules.text;
+  for (const char* lost : {"wire <object1>: frame 'hip' (robot file not read)",
+                           "wire: stretch_type BOTH (rscene wires resist stretch only)"})
+    EXPECT_NE(std::find(modules.notConverted.begin(), modules.notConverted.end(), lost), modules.notConverted.end())
+        << lost;
   FromXmlResult noBody = convert(world("", "<wire type=\"stiff\" length=\"1\"><object1 name=\"a\"/><object2 name=\"b\"/></wire>"));
   ASSERT_NE(find(noBody, "RS8110"), nullptr);
   EXPECT_EQ(find(noBody, "RS8110")->message, "<object1> name: no object named 'a' before this wire");
