@@ -146,6 +146,8 @@ compound_child /World/combo sphere 0.3 0 0 1 0 0 0 1 1 1 radius=0.1 contactMater
 articulated /World/robot res_arm 0 0 2 1 0 0 0 true true collisionMask=5 generalizedCoordinate=0,0,2,1,0,0,0,0.3 generalizedVelocity=0,0,0,0,0,0,0
 wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 localPositionA=0,0,0.2 localPositionB=0,0,0"
   [ "$(cat world.rscene)" = "$expected" ]
+  # The mesh and the robot are found and read from the scene's folder.
+  if [ -x "$VALIDATE" ]; then run -0 "$VALIDATE" --strict --check-files world.rscene; fi
   # The output is canonical: rscene-fmt leaves it as it is.
   if [ -x "$BIN/rscene-fmt" ]; then run -0 "$BIN/rscene-fmt" --check world.rscene; fi
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cmath>
 #include <fstream>
 
 #include "asset/image.hpp"
@@ -128,7 +129,9 @@ TEST(FromXml, BadCollisionGroupIsAnErrorAtItsLine) {
     const Diagnostic* d = find(r, "RS8110");
     ASSERT_NE(d, nullptr) << bad;
     EXPECT_EQ(d->file, "w.xml");
-    EXPECT_EQ(d->line, 3u) << bad;  // the element's line at least (the interim reader has no attribute lines)
+    // The attribute's own line (4) where the reader knows attribute places
+    // (it then knows columns too), else its element's (3).
+    EXPECT_EQ(d->line, d->column ? 4u : 3u) << bad;
     EXPECT_EQ(d->message.rfind("<sphere> collision_mask: '", 0), 0u) << d->message;
     EXPECT_TRUE(r.text.empty());
   }
@@ -367,6 +370,19 @@ TEST(FromXml, RobotErrorsAndUnreadableRobot) {
   EXPECT_NE(gone.text.find("articulated /World/r res_x 0 0 0 1 0 0 0 true true generalizedCoordinate=0,0,1,1,0,0,0"),
             std::string::npos)
       << gone.text;
+  FromXmlResult modules = convert(world("<articulatedSystem name=\"m\" urdfPath=\"/nonexistent/y.urdf\" "
+                                        "resDir=\"/nonexistent\" modules=\" a  b \"/><sphere name=\"s\" mass=\"1\">"
+                                        "<dim radius=\"1\"/></sphere>",
+                                        "<wire type=\"custom\" length=\"1\" stretch_type=\"BOTH\">"
+                                        "<object1 name=\"m\" frame=\"hip\"/><object2 name=\"s\"/></wire>"));
+  ASSERT_TRUE(modules.ok());
+  EXPECT_NE(modules.text.find(" modules=a;b\n"), std::string::npos) << modules.text;
+  EXPECT_NE(modules.text.find("wire /World/wire custom /World/m /World/s 1 localIndexA=0"), std::string::npos)
+      << modules.text;
+  for (const char* lost : {"wire <object1>: frame 'hip' (robot file not read)",
+                           "wire: stretch_type BOTH (rscene wires resist stretch only)"})
+    EXPECT_NE(std::find(modules.notConverted.begin(), modules.notConverted.end(), lost), modules.notConverted.end())
+        << lost;
   FromXmlResult noBody = convert(world("", "<wire type=\"stiff\" length=\"1\"><object1 name=\"a\"/><object2 name=\"b\"/></wire>"));
   ASSERT_NE(find(noBody, "RS8110"), nullptr);
   EXPECT_EQ(find(noBody, "RS8110")->message, "<object1> name: no object named 'a' before this wire");
@@ -382,6 +398,69 @@ TEST(FromXml, OutputLoadsAndIsCanonical) {
   ASSERT_TRUE(loaded.ok());
   // Canonical order: contact_material (resources) before the bodies.
   EXPECT_LT(r.text.find("contact_material"), r.text.find("object /World/ground"));
+}
+
+}  // namespace
+}  // namespace rscene::xml
+
+namespace rscene::xml {
+namespace {
+
+// RaiSim's templated example (xml-examples/spheres.xml) through the front
+// end and the mapping.  Skipped while the front end is the interim plain
+// parser, which leaves <array> and @@ unexpanded.
+class TemplatedExample : public ::testing::Test {
+ protected:
+  FromXmlResult convertSpheres(const std::string& spawnSphere) {
+    fs::path file = fs::path(RSCENE_SHARED_DIR) / "spec/raisim/xml-examples/spheres.xml";
+    if (!fs::exists(file)) {
+      skipped = "no ../shared/spec/raisim/xml-examples";
+      return {};
+    }
+    LoadOptions options;
+    options.params = {{"sphere_count", "20"}, {"spawn_sphere", spawnSphere}, {"spawn_box", "false"},
+                      {"sphere_height_offset", "0.1"}};
+    LoadResult loaded = loadWorld(file.string(), options);
+    const Element* objects = loaded.ok() ? loaded.root->child("objects") : nullptr;
+    if (!objects || objects->child("array")) {
+      skipped = "the XML front end does not expand templates yet (interim lib/xml/load_world.cpp)";
+      return {};
+    }
+    return worldToScene(*loaded.root, {});
+  }
+  std::string skipped;
+};
+
+TEST_F(TemplatedExample, TwentySpheresWhereTheExpressionsSay) {
+  FromXmlResult r = convertSpheres("true");
+  if (!skipped.empty()) GTEST_SKIP() << skipped;
+  ASSERT_TRUE(r.ok());
+  rscene::LoadResult doc = parse(r.text);
+  ASSERT_TRUE(doc.ok());
+  int spheres = 0;
+  for (const Record& rec : doc.document.records) {
+    if (doc.document.tag(rec) != "object") continue;
+    std::string path = nodePath(doc.document, rec);
+    ASSERT_EQ(path.rfind("/World/sphere_array_", 0), 0u) << path;
+    int i = std::stoi(path.substr(20));
+    double x = std::stod(std::string(doc.document.positionalText(rec, 2)));
+    double y = std::stod(std::string(doc.document.positionalText(rec, 3)));
+    double z = std::stod(std::string(doc.document.positionalText(rec, 4)));
+    double radius = std::stod(std::string(doc.document.positionalText(rec, 12)));
+    EXPECT_NEAR(x, std::cos(0.1 * i) * (i * 0.2 + 0.1), 1e-12) << path;
+    EXPECT_NEAR(y, std::sin(0.1 * i) * (i * 0.2 + 0.1), 1e-12) << path;
+    EXPECT_NEAR(z, 0.1 + i * 1.0, 1e-12) << path;
+    EXPECT_NEAR(radius, 0.5 + i * 0.001, 1e-12) << path;
+    ++spheres;
+  }
+  EXPECT_EQ(spheres, 20);
+}
+
+TEST_F(TemplatedExample, ExistFalseRemovesThem) {
+  FromXmlResult r = convertSpheres("false");
+  if (!skipped.empty()) GTEST_SKIP() << skipped;
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.text.find("object "), std::string::npos) << r.text;
 }
 
 }  // namespace
