@@ -37,6 +37,12 @@ TEST(Expand, PlainWorldKeepsElementsAndLocations) {
   EXPECT_EQ(s.attributes[1].where.line, 3u);
   EXPECT_EQ(s.attributes[1].where.column, 23u);  // mass
   EXPECT_EQ(r.files, std::vector<std::string>{"w.xml"});
+  // CRLF and tabs: lines by LF, columns in bytes.
+  r = loadText("<raisim>\r\n\t<objects\tx=\"1\"/>\r\n</raisim>");
+  ASSERT_TRUE(r.ok()) << errors(r);
+  EXPECT_EQ(objects(r).where.line, 2u);
+  EXPECT_EQ(objects(r).where.column, 2u);
+  EXPECT_EQ(objects(r).attributes[0].where.column, 11u);
 }
 
 TEST(Expand, ParamsDefineAndParamOverrides) {
@@ -148,6 +154,8 @@ TEST(Expand, ExistKeepsOrRemoves) {
   EXPECT_EQ(show(objects(r)), "<objects><sphere name=\"a\"/><sphere name=\"c\"/><box name=\"b1\"/><box name=\"b3\"/></objects>");
   r = loadText(xml, {{"on", "no"}});
   EXPECT_EQ(errors(r), "w.xml:2:20: <sphere> exist: 'no' is not true, false, 1 or 0 [RS8108]\n");
+  r = loadText("<raisim exist=\"false\"><objects/></raisim>");
+  EXPECT_EQ(errors(r), "w.xml:1:1: <raisim>: exist removes the whole world [RS8108]\n");
 }
 
 TEST(Expand, IncludesWithThisDirFromASubdirectory) {
@@ -164,6 +172,8 @@ TEST(Expand, IncludesWithThisDirFromASubdirectory) {
   // An element keeps the file it was written in.
   EXPECT_EQ(objects(r).children[0].where.file, kData + "/sub/terrain.xml");
   EXPECT_EQ(objects(r).children[0].where.line, 8u);
+  EXPECT_EQ(objects(r).children[0].where.column, 9u);
+  EXPECT_EQ(objects(r).children[0].attributes[1].where.column, 30u);  // height
   // --param wins over both files' params.
   LoadOptions options;
   options.params = {{"floor_height", "5"}};
