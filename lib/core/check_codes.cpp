@@ -160,8 +160,8 @@ constexpr CheckInfo kChecks[] = {
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
-    // RS81xx RaiSim world XML: RS8101-RS8109 reading and expanding (rscene-from-xml),
-    // RS8110-RS8129 mapping elements to records, RS8130-RS8139 export (rscene-to-xml)
+    // RS81xx RaiSim world XML: RS8101-8109 reading and expanding (rscene-from-xml),
+    // RS8110-8129 mapping elements to records, RS8130-8139 export (rscene-to-xml)
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
     {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
     {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},
