@@ -28,11 +28,12 @@ require_tools() {
 }
 
 # The shell test of a tool: rscene-fmt -> fmt.bats; to-json and from-json
-# share json.bats.
+# share json.bats; other two-word names take an underscore (to_xml.bats).
 bats_file() {
   local short=${1#rscene-}
   case $short in
     to-json | from-json) short=json ;;
+    *-*) short=${short//-/_} ;;  # to-xml -> to_xml.bats
   esac
   echo "$ROOT/shell-tests/$short.bats"
 }
