@@ -162,8 +162,8 @@ constexpr CheckInfo kChecks[] = {
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
-    // RS81xx RaiSim world XML: 8101-8109 reading and expanding (rscene-from-xml),
-    // 8110-8129 mapping elements to records, 8130-8139 export (rscene-to-xml)
+    // RS81xx RaiSim world XML: RS8101-8109 reading and expanding (rscene-from-xml),
+    // RS8110-8129 mapping elements to records, RS8130-8139 export (rscene-to-xml)
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
     {"RS8102", E, Xml, "from-xml", "world XML that declares entities (a DOCTYPE internal subset) or uses an &name; other than XML's five"},
     {"RS8103", E, Xml, "from-xml", "include that cannot be followed: no file attribute, unreadable, a cycle, nested too deep, or out of place"},

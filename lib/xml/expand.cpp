@@ -113,7 +113,8 @@ std::optional<bool> Expander::exists(const Element& element) {
 }
 
 bool Expander::expandWorld(const Element& raw, Element& out) {
-  expandElement(raw, out, Context::Raisim, 1);
+  if (!expandElement(raw, out, Context::Raisim, 1) && !hasErrors(diagnostics_))
+    fail(elementDiagnostic(Severity::Error, code::kXmlExist, raw, "exist removes the whole world"));
   return !hasErrors(diagnostics_);
 }
 

@@ -270,11 +270,12 @@ class Exporter {
     }
     OutElement e("wire");
     e.text("name", w.path).text("type", w.kind).number("length", w.length);
+    // rscene-sim gives a compliant wire a spring (stiffness, damping); a
+    // stiff or custom one is a rope and uses neither, nor does any use
+    // `compliance`.  Only a spring's damping is lost.
     if (w.kind == "compliant") e.number("stiffness", w.stiffness);
-    else if (w.stiffness != 1000) losses.push_back("wire " + w.path + ": stiffness");  // used by compliant wires only
     e.text("stretch_type", kStretchResistantOnly);
-    if (w.damping != 0) losses.push_back("wire " + w.path + ": damping");
-    if (w.compliance != 0) losses.push_back("wire " + w.path + ": compliance");
+    if (w.kind == "compliant" && w.damping != 0) losses.push_back("wire " + w.path + ": damping");
     e.add(OutElement("object1").text("name", body(w.bodyA)).integer("local_index", w.localIndexA).vec3("pos", w.localPositionA));
     e.add(OutElement("object2").text("name", body(w.bodyB)).integer("local_index", w.localIndexB).vec3("pos", w.localPositionB));
     return e;
@@ -297,7 +298,7 @@ ToXmlResult sceneToXml(const Document& doc, const Scene& scene, const ToXmlOptio
   if (std::string problem = root.firstProblem(); !problem.empty()) {
     Diagnostic d;
     d.code = kCannotWrite;
-    d.message = problem + ": a value XML cannot hold (not finite, or a control character)";
+    d.message = problem + ": a value XML cannot hold (not finite, a control character, or not UTF-8)";
     result.diagnostics.push_back(std::move(d));
   }
   listRecordsNotExported(doc, scene, result.notExported);

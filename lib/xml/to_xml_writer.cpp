@@ -55,23 +55,40 @@ std::string OutElement::firstProblem() const {
 
 bool escapeAttribute(std::string_view v, std::string& out) {
   bool ok = true;
-  for (char c : v) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    char c = v[i];
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\t': out += "&#9;"; break;
-      case '\n': out += "&#10;"; break;
-      case '\r': out += "&#13;"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          ok = false;
-          out += '?';
-        } else {
-          out += c;
-        }
+      case '&': out += "&amp;"; continue;
+      case '<': out += "&lt;"; continue;
+      case '>': out += "&gt;"; continue;
+      case '"': out += "&quot;"; continue;
+      case '\t': out += "&#9;"; continue;
+      case '\n': out += "&#10;"; continue;
+      case '\r': out += "&#13;"; continue;
+      default: break;
     }
+    auto u = static_cast<unsigned char>(c);
+    if (u < 0x20) {  // other C0 controls: not even a character reference may name them
+      ok = false;
+      out += '?';
+      continue;
+    }
+    if (u < 0x80) {
+      out += c;
+      continue;
+    }
+    // A document without an encoding declaration is UTF-8: a byte that
+    // starts no valid sequence (a name percent-encoded from Latin-1), or
+    // U+FFFE / U+FFFF, would make it not well-formed.
+    std::size_t n = utf8SequenceLength(v, i);
+    std::string_view seq = v.substr(i, n);
+    if (n == 0 || seq == "\xEF\xBF\xBE" || seq == "\xEF\xBF\xBF") {
+      ok = false;
+      out += '?';
+      continue;
+    }
+    out += seq;
+    i += n - 1;
   }
   return ok;
 }

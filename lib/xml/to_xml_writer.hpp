@@ -39,7 +39,8 @@ struct OutElement {
 
 // `v` as an attribute value: & < > " escaped, tab/LF/CR as character
 // references (so a reader's whitespace normalisation keeps them).  False
-// when `v` holds a character XML 1.0 cannot represent (other C0 controls).
+// when `v` holds what XML 1.0 cannot represent (other C0 controls, bytes
+// that are not UTF-8, U+FFFE, U+FFFF); those are written as '?'.
 bool escapeAttribute(std::string_view v, std::string& out);
 
 // The whole document: XML declaration, then `root` and a final newline.

@@ -37,6 +37,12 @@ TEST(Expand, PlainWorldKeepsElementsAndLocations) {
   EXPECT_EQ(s.attributes[1].where.line, 3u);
   EXPECT_EQ(s.attributes[1].where.column, 23u);  // mass
   EXPECT_EQ(r.files, std::vector<std::string>{"w.xml"});
+  // CRLF and tabs: lines by LF, columns in bytes.
+  r = loadText("<raisim>\r\n\t<objects\tx=\"1\"/>\r\n</raisim>");
+  ASSERT_TRUE(r.ok()) << errors(r);
+  EXPECT_EQ(objects(r).where.line, 2u);
+  EXPECT_EQ(objects(r).where.column, 2u);
+  EXPECT_EQ(objects(r).attributes[0].where.column, 11u);
 }
 
 TEST(Expand, ParamsDefineAndParamOverrides) {
@@ -148,6 +154,8 @@ TEST(Expand, ExistKeepsOrRemoves) {
   EXPECT_EQ(show(objects(r)), "<objects><sphere name=\"a\"/><sphere name=\"c\"/><box name=\"b1\"/><box name=\"b3\"/></objects>");
   r = loadText(xml, {{"on", "no"}});
   EXPECT_EQ(errors(r), "w.xml:2:20: <sphere> exist: 'no' is not true, false, 1 or 0 [RS8108]\n");
+  r = loadText("<raisim exist=\"false\"><objects/></raisim>");
+  EXPECT_EQ(errors(r), "w.xml:1:1: <raisim>: exist removes the whole world [RS8108]\n");
 }
 
 TEST(Expand, IncludesWithThisDirFromASubdirectory) {
@@ -164,6 +172,8 @@ TEST(Expand, IncludesWithThisDirFromASubdirectory) {
   // An element keeps the file it was written in.
   EXPECT_EQ(objects(r).children[0].where.file, kData + "/sub/terrain.xml");
   EXPECT_EQ(objects(r).children[0].where.line, 8u);
+  EXPECT_EQ(objects(r).children[0].where.column, 9u);
+  EXPECT_EQ(objects(r).children[0].attributes[1].where.column, 30u);  // height
   // --param wins over both files' params.
   LoadOptions options;
   options.params = {{"floor_height", "5"}};
@@ -185,7 +195,7 @@ TEST(Expand, IncludeErrors) {
   r = loadText("<raisim><objects><sphere><include file=\"x.xml\"/></sphere></objects></raisim>");
   EXPECT_EQ(errors(r), "w.xml:1:26: <include>: belongs directly under <raisim> or <objects> [RS8103]\n");
   r = loadText("<raisim><include name=\"x.xml\"/></raisim>");
-  EXPECT_EQ(errors(r), "w.xml:1:9: <include>: no file (write <include file=\"...\"/>) [RS8103]\n");
+  EXPECT_EQ(errors(r), "w.xml:1:9: <include>: no file (write <include value=\"...\"/>) [RS8103]\n");
   r = loadText("<raisim><include file=\"x.xml\" exist=\"false\"/></raisim>");  // not read at all
   EXPECT_TRUE(r.ok()) << errors(r);
 }
@@ -336,6 +346,33 @@ TEST(Expand, EveryExampleExpands) {
     LoadResult r = loadWorld(entry.path().string(), options);
     EXPECT_TRUE(r.ok()) << entry.path() << "\n" << errors(r);
   }
+}
+
+}  // namespace
+}  // namespace rscene::xml
+
+namespace rscene::xml {
+namespace {
+
+// RaiSim's own templated world (rsc/xmlScripts/templatedWorld): top-level
+// <include value="..."/> of whole worlds whose objects join the includer's,
+// a parameter that only --param sets.
+TEST(Expand, RaisimTemplatedWorldForm) {
+  std::string top = std::string(RSCENE_TEST_DATA) + "/xml/templated/world.xml";
+  LoadResult r = loadWorld(top, {});
+  ASSERT_FALSE(r.ok());
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_NE(r.diagnostics[0].message.find("@@start_x is not set"), std::string::npos) << r.diagnostics[0].message;
+  LoadOptions options;
+  options.params = {{"start_x", "2"}};
+  r = loadWorld(top, options);
+  ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].message);
+  const Element* objects = r.root->child("objects");
+  ASSERT_NE(objects, nullptr);
+  ASSERT_EQ(objects->children.size(), 2u);
+  EXPECT_EQ(objects->children[0].name, "ground");
+  EXPECT_EQ(objects->children[0].attribute("height")->value, "0.25");
+  EXPECT_EQ(objects->children[1].child("state")->attribute("pos")->value, "2, 0, 1");
 }
 
 }  // namespace

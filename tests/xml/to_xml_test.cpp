@@ -417,7 +417,7 @@ TEST(ToXml, WireEndsAreBodyPaths) {
   Exported e = exportScene(H + object("/World/A", "sphere", "0 0 2", "1 1 1", "0.1", "0", "1", "dynamic", "id=a") +
                            object("/World/B", "sphere", "0 0 1", "1 1 1", "0.1", "0", "1", "dynamic", "id=b") +
                            "wire /World/W compliant a /World/B 1.5 localPositionA=0,0,-0.1 localPositionB=0,0.1,0 "
-                           "stiffness=500\n"
+                           "stiffness=500 damping=2\n"
                            "wire /World/Hook stiff a - 1\n"
                            "wire /World/Off stiff a b 1 enabled=false\n");
   ASSERT_TRUE(e.result.ok());
@@ -430,7 +430,7 @@ TEST(ToXml, WireEndsAreBodyPaths) {
       << e.result.xml;
   EXPECT_FALSE(contains(e.result.xml, "/World/Hook"));
   EXPECT_FALSE(contains(e.result.xml, "/World/Off"));
-  EXPECT_EQ(joined(e.result.notExported), "1 wire not simulated, wire /World/Hook: end in the world");
+  EXPECT_EQ(joined(e.result.notExported), "1 wire not simulated, wire /World/W: damping, wire /World/Hook: end in the world");
 }
 
 TEST(ToXml, VisualOnlyBodiesAreNotExported) {
@@ -483,12 +483,20 @@ TEST(ToXml, EscapesAndRefusesWhatXmlCannotHold) {
   EXPECT_EQ(out, "a&amp;b&lt;c&gt;d&quot;e&#9;f&#10;");
   out.clear();
   EXPECT_FALSE(escapeAttribute(std::string("x\x01y"), out));
+  out.clear();
+  EXPECT_TRUE(escapeAttribute("caf\xC3\xA9 \xE2\x82\xAC", out));  // UTF-8 passes through
+  EXPECT_EQ(out, "caf\xC3\xA9 \xE2\x82\xAC");
+  out.clear();
+  EXPECT_FALSE(escapeAttribute("caf\xE9", out));  // Latin-1: not UTF-8
+  EXPECT_EQ(out, "caf?");
+  out.clear();
+  EXPECT_FALSE(escapeAttribute("\xEF\xBF\xBF", out));
   // A name with a control character (a percent-encoded byte) is refused.
   Exported e = exportScene(H + object("/World/a%01b", "box", "0 0 0", "1 1 1", "0", "0", "1"));
   ASSERT_FALSE(e.result.ok());
   EXPECT_EQ(e.result.diagnostics[0].code, "RS8130");
   EXPECT_EQ(e.result.diagnostics[0].message,
-            "<box> name: a value XML cannot hold (not finite, or a control character)");
+            "<box> name: a value XML cannot hold (not finite, a control character, or not UTF-8)");
   EXPECT_TRUE(e.result.xml.empty());
 }
 
