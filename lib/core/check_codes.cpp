@@ -160,9 +160,17 @@ constexpr CheckInfo kChecks[] = {
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
-    // RS81xx RaiSim world XML: 8101-8109 reading and expanding (rscene-from-xml),
-    // 8110-8129 mapping elements to records, 8130-8139 export (rscene-to-xml)
+    // RS81xx RaiSim world XML: RS8101-RS8109 reading and expanding (rscene-from-xml),
+    // RS811x-RS812x mapping elements to records, RS813x export (rscene-to-xml)
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
+    {"RS8102", E, Xml, "from-xml", "world XML that declares entities (a DOCTYPE internal subset) or uses an &name; other than XML's five"},
+    {"RS8103", E, Xml, "from-xml", "include that cannot be followed: no file attribute, unreadable, a cycle, nested too deep, or out of place"},
+    {"RS8104", E, Xml, "from-xml", "parameter error: @@NAME used but set nowhere, defined from itself, a <params> entry without value"},
+    {"RS8105", E, Xml, "from-xml", "{...} expression that cannot be evaluated: syntax, unknown function, division by zero, log of a non-positive number, non-finite result, too long or deep"},
+    {"RS8106", E, Xml, "from-xml", "array without idx, start, end or increment, with bounds that are not integers, or whose increment never reaches end"},
+    {"RS8107", E, Xml, "from-xml", "template expansion past a limit: elements, loop iterations, nesting depth, bytes of values or of files read"},
+    {"RS8108", E, Xml, "from-xml", "exist value other than true, false, 1 or 0"},
+    {"RS8109", E, Xml, "from-xml", "object_class that cannot be used: no type, defined twice, a built-in name, a wrong object_param, an unknown compound child"},
     {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
     {"RS8111", W, Xml, "from-xml", "element or attribute with no .rscene field (unknown, or not modelled), not converted"},
     {"RS8112", E, Xml, "from-xml", "element without a required child or attribute (a sphere's radius, a mesh's file_name ...)"},

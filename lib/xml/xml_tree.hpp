@@ -56,6 +56,8 @@ struct LoadLimits {
   int maxIncludeDepth = 16;                   // include chains (cycles are refused outright)
   std::size_t maxExpressionLength = 4096;     // characters inside one {...}
   int maxExpressionDepth = 64;                // nested parentheses and operators
+  std::size_t maxExpandedBytes = 256u << 20;  // attributes after expansion (names, values, bookkeeping),
+                                              // in all; also the bytes of all files read together
 };
 
 struct LoadOptions {
@@ -71,7 +73,11 @@ struct LoadResult {
   bool ok() const { return root.has_value() && !hasErrors(diagnostics); }
 };
 
-// Reads and expands the world XML at `path` ([THIS_DIR] = its directory).
+// Reads and expands the world XML at `path`.  [THIS_DIR] in a value
+// becomes the absolute directory of the file the value is written in.
+// The template conventions (include attributes, array end exclusive, the
+// expression grammar) are described in load_world.cpp, expand.hpp and
+// expression.hpp.
 LoadResult loadWorld(const std::string& path, const LoadOptions& options);
 // The same for text already read (standard input): `displayName` names it
 // in messages, `baseDir` is its [THIS_DIR] and where relative includes

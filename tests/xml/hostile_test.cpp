@@ -1,0 +1,261 @@
+// Hostile world XML: entity expansion, deep nesting, huge loops, include
+// cycles and bombs, parameter blow-ups.  Each is refused with a clear
+// error, and the run stays bounded: it returns, in well under a second
+// (the bound asserted is generous, for loaded machines; bench/ measures).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "xml_test_util.hpp"
+
+namespace rscene::xml {
+namespace {
+
+using test::errors;
+using test::loadText;
+
+class Timer {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+constexpr double kBounded = 2.0;  // seconds; each case takes milliseconds
+
+// The first diagnostic as "message [code]".
+std::string first(const LoadResult& r) {
+  return r.diagnostics.empty() ? std::string() : r.diagnostics[0].message + " [" + r.diagnostics[0].code + "]";
+}
+
+TEST(Hostile, BillionLaughsDoctypeIsRefused) {
+  std::string xml = "<?xml version=\"1.0\"?>\n<!DOCTYPE raisim [\n  <!ENTITY lol \"lol\">\n";
+  for (int i = 1; i <= 9; ++i) {
+    xml += "  <!ENTITY lol" + std::to_string(i) + " \"";
+    for (int k = 0; k < 10; ++k) xml += "&lol" + (i == 1 ? std::string() : std::to_string(i - 1)) + ";";
+    xml += "\">\n";
+  }
+  xml += "]>\n<raisim><objects><sphere name=\"&lol9;\"/></objects></raisim>\n";
+  Timer t;
+  LoadResult r = loadText(xml);
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_FALSE(r.ok());
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_EQ(r.diagnostics[0].line, 2u);
+  EXPECT_EQ(r.diagnostics[0].column, 1u);
+  EXPECT_EQ(first(r), "DOCTYPE declares entities: entity declarations are refused (they can expand without bound) [RS8102]");
+}
+
+TEST(Hostile, UnknownEntityIsNeverKeptAsText) {
+  LoadResult r = loadText("<raisim>\n<objects><sphere name=\"a&lol;b\"/></objects></raisim>");
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(errors(r),
+            "w.xml:2:25: &lol; is no XML entity: only &amp; &lt; &gt; &quot; &apos; and &#...; are read "
+            "(DOCTYPE entities are not expanded) [RS8102]\n");
+  // The five predefined entities and numeric references are read.
+  r = loadText("<raisim><objects><sphere name=\"&lt;&amp;&#65;&#x42;&quot;\"/></objects></raisim>");
+  ASSERT_TRUE(r.ok()) << errors(r);
+  EXPECT_EQ(r.root->children[0].children[0].attributes[0].value, "<&AB\"");
+  // In a comment or CDATA '&' is no reference.
+  r = loadText("<raisim><!-- &lol; --><objects/></raisim>");
+  EXPECT_TRUE(r.ok()) << errors(r);
+  // A DOCTYPE without an internal subset declares nothing and is allowed.
+  r = loadText("<!DOCTYPE raisim>\n<raisim/>");
+  EXPECT_TRUE(r.ok()) << errors(r);
+}
+
+TEST(Hostile, DeepNestingIsRefusedQuickly) {
+  const int n = 100000;
+  std::string xml = "<raisim>";
+  for (int i = 0; i < n; ++i) xml += "<a>";
+  for (int i = 0; i < n; ++i) xml += "</a>";
+  xml += "</raisim>";
+  Timer t;
+  LoadResult r = loadText(xml);
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "elements nested deeper than 64 [RS8107]");
+  EXPECT_EQ(r.diagnostics[0].column, 1u + 8 + 3 * 63);  // the 65th element's '<'
+}
+
+TEST(Hostile, LoopOfABillionIsRefusedAtOnce) {
+  Timer t;
+  LoadResult r = loadText(
+      "<raisim><objects>\n<array idx=\"@@i\" start=\"0\" end=\"1000000000\" increment=\"1\"><sphere/></array>"
+      "</objects></raisim>");
+  EXPECT_LT(t.seconds(), 0.5);
+  EXPECT_EQ(errors(r), "w.xml:2:1: <array>: the loops here run more than 1000000 iterations, the limit [RS8107]\n");
+  // Counting down from the top of int64 to the bottom does not overflow.
+  r = loadText(
+      "<raisim><objects><array idx=\"@@i\" start=\"9223372036854775807\" end=\"-9223372036854775808\" "
+      "increment=\"-1\"><sphere/></array></objects></raisim>");
+  EXPECT_EQ(first(r), "<array>: the loops here run more than 1000000 iterations, the limit [RS8107]");
+}
+
+TEST(Hostile, NestedLoopsAreRefusedByTheElementLimitBeforeBuilding) {
+  Timer t;
+  LoadResult r = loadText(
+      "<raisim><objects><array idx=\"@@i\" start=\"0\" end=\"10000\" increment=\"1\">"
+      "<array idx=\"@@j\" start=\"0\" end=\"10000\" increment=\"1\"><sphere name=\"s@@i_@@j\"><dim radius=\"1\"/></sphere>"
+      "</array></array></objects></raisim>");
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<array>: the loops here make more than 1000000 elements, the limit [RS8107]");
+  EXPECT_FALSE(r.root.has_value());
+  // The limit is the caller's: a smaller one refuses a smaller world.
+  LoadLimits limits;
+  limits.maxElements = 50;
+  r = loadText("<raisim><objects><array idx=\"@@i\" start=\"0\" end=\"30\" increment=\"1\"><sphere/></array>"
+               "<array idx=\"@@i\" start=\"0\" end=\"30\" increment=\"1\"><box/></array></objects></raisim>",
+               {}, limits);
+  EXPECT_EQ(first(r), "<array>: the loops here make more than 50 elements, the limit [RS8107]");
+}
+
+TEST(Hostile, ManyEmptyLoopsInsideALongOneAreBounded) {
+  std::string body;
+  for (int i = 0; i < 1000; ++i) body += "<array idx=\"@@j\" start=\"0\" end=\"0\" increment=\"1\"><box/></array>";
+  Timer t;
+  LoadResult r = loadText("<raisim><objects><array idx=\"@@i\" start=\"0\" end=\"100000\" increment=\"1\">" + body +
+                          "</array></objects></raisim>");
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<array>: the loops here run more than 1000000 iterations, the limit [RS8107]");
+}
+
+TEST(Hostile, ParameterBlowUpsAreBounded) {
+  // Each parameter twice the next: 2^30 copies of "xxxxxxxx" if nothing stopped it.
+  auto doubling = [](int levels, const std::string& last) {
+    std::string params;
+    for (int i = 0; i < levels; ++i)
+      params += "<p" + std::to_string(i) + " value=\"@@p" + std::to_string(i + 1) + "@@p" + std::to_string(i + 1) + "\"/>";
+    return params + "<p" + std::to_string(levels) + " value=\"" + last + "\"/>";
+  };
+  std::string params = doubling(30, "xxxxxxxx");
+  LoadLimits limits;
+  limits.maxFileBytes = 1 << 20;
+  Timer t;
+  LoadResult r = loadText("<raisim><params>" + params + "</params><objects><box name=\"@@p0\"/></objects></raisim>",
+                          {}, limits);
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<box> name: value longer than 1048576 bytes after substituting parameters [RS8104]");
+  // With an empty last value it makes no text, only work.
+  params = doubling(30, "");
+  t = Timer();
+  r = loadText("<raisim><params>" + params + "</params><objects><box name=\"@@p0\"/></objects></raisim>");
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<box> name: more than 1048576 parameter substitutions in one value [RS8104]");
+  params = doubling(40, "x");
+  t = Timer();
+  r = loadText("<raisim><params>" + params + "</params><objects><box name=\"@@p0\"/></objects></raisim>");
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<box> name: parameters refer to parameters more than 32 deep [RS8104]");
+}
+
+TEST(Hostile, TooManyBytesOfAttributes) {
+  LoadLimits limits;
+  limits.maxExpandedBytes = 100000;
+  LoadResult r = loadText("<raisim><params><v value=\"" + std::string(1000, 'v') +
+                              "\"/></params><objects><array idx=\"@@i\" start=\"0\" end=\"1000\" increment=\"1\">"
+                              "<box name=\"@@v\"/></array></objects></raisim>",
+                          {}, limits);
+  EXPECT_EQ(first(r), "<box> name: the expansion makes more than 100000 bytes of attributes, the limit [RS8107]");
+  // Empty attributes count too: a thousand of them a thousand times.
+  std::string many;
+  for (int i = 0; i < 1000; ++i) many += " a" + std::to_string(i) + "=\"\"";
+  r = loadText("<raisim><objects><array idx=\"@@i\" start=\"0\" end=\"1000\" increment=\"1\"><box" + many +
+                   "/></array></objects></raisim>",
+               {}, limits);
+  // ... refused within the first box, whose attributes alone pass the limit.
+  EXPECT_EQ(r.diagnostics.size(), 1u);
+  EXPECT_EQ(first(r).rfind("<box> a", 0), 0u) << first(r);
+  EXPECT_NE(first(r).find(": the expansion makes more than 100000 bytes of attributes, the limit [RS8107]"),
+            std::string::npos);
+  EXPECT_EQ(r.diagnostics[0].line, 1u);
+}
+
+TEST(Hostile, ErrorsAreCappedInsteadOfOnePerElement) {
+  std::string many;
+  for (int i = 0; i < 1000; ++i) many += "<box name=\"@@unset\"/>";
+  LoadResult r = loadText("<raisim><objects>" + many + "</objects></raisim>");
+  EXPECT_FALSE(r.ok());
+  EXPECT_LE(r.diagnostics.size(), 20u);
+}
+
+class HostileFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("rscene_xml_hostile_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(HostileFiles, IncludeDiamondBombIsBounded) {
+  // Each level includes the next ten times: 10^12 reads without a bound.
+  for (int i = 0; i < 12; ++i) {
+    std::string xml = "<raisim>";
+    for (int k = 0; k < 10; ++k) xml += "<include file=\"l" + std::to_string(i + 1) + ".xml\"/>";
+    write("l" + std::to_string(i) + ".xml", xml + "</raisim>");
+  }
+  write("l12.xml", "<raisim><objects><sphere/></objects></raisim>");
+  LoadOptions options;
+  options.limits.maxElements = 10000;
+  Timer t;
+  LoadResult r = loadWorld((dir_ / "l0.xml").string(), options);
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(first(r).find("elements together, the limit [RS8107]"), std::string::npos) << errors(r);
+}
+
+TEST_F(HostileFiles, IncludeDepthAndNonRegularFiles) {
+  // A chain of 20 distinct files: deeper than the include limit of 16.
+  for (int i = 0; i < 20; ++i)
+    write("c" + std::to_string(i) + ".xml", "<raisim><include file=\"c" + std::to_string(i + 1) + ".xml\"/></raisim>");
+  write("c20.xml", "<raisim/>");
+  LoadResult r = loadWorld((dir_ / "c0.xml").string(), {});
+  EXPECT_EQ(first(r), "<include> file: includes nested deeper than 16 [RS8103]");
+  std::string dev = write("dev.xml", "<raisim><include file=\"/dev/zero\"/></raisim>");
+  Timer t;
+  r = loadWorld(dev, {});
+  EXPECT_LT(t.seconds(), kBounded);
+  EXPECT_EQ(first(r), "<include> file: cannot read '/dev/zero': not a regular file [RS8103]");
+  r = loadWorld("/dev/zero", {});
+  EXPECT_EQ(first(r), "cannot read: not a regular file [RS8101]");
+}
+
+TEST_F(HostileFiles, FileSizeLimit) {
+  std::string big = write("big.xml", "<raisim>" + std::string(5000, ' ') + "</raisim>");
+  LoadOptions options;
+  options.limits.maxFileBytes = 1000;
+  LoadResult r = loadWorld(big, options);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.diagnostics.at(0).code, "RS8101");
+  EXPECT_NE(r.diagnostics[0].message.find("1000"), std::string::npos) << errors(r);
+}
+
+TEST(Hostile, NotWorldXml) {
+  EXPECT_EQ(errors(loadText("<raisim><objects></raisim>")),
+            "w.xml:1:0: not well-formed XML (mismatched element) [RS8101]\n");
+  EXPECT_EQ(errors(loadText("\n<world/>")), "w.xml:2:1: the top element is <world>, not <raisim> [RS8101]\n");
+  EXPECT_EQ(errors(loadText("")), "w.xml:0:0: not well-formed XML (empty document) [RS8101]\n");
+  EXPECT_EQ(first(loadText("<raisim><objects><params><x value=\"1\"/></params></objects></raisim>")),
+            "<params>: belongs directly under <raisim> [RS8104]");
+  EXPECT_EQ(first(loadText("<raisim><params><x/></params></raisim>")),
+            "<x>: no value (write <x value=\"...\"/>) [RS8104]");
+  EXPECT_EQ(first(loadText("<raisim/>", {{"a b", "1"}})),
+            "--param 'a b': a parameter name is letters, digits and '_' [RS8104]");
+}
+
+}  // namespace
+}  // namespace rscene::xml
