@@ -118,6 +118,11 @@ EOF
   [[ $stderr == *"heightMapUsingTerrainGenerator.xml:20"*"warning: <heightmap>: terrain_properties: rscene does not reproduce RaiSim's terrain generator, the samples are left flat [RS8113]"* ]]
   run -0 --separate-stderr "$FROM" -q "$EXAMPLES/heightMapUsingTerrainGenerator.xml"
   [ -z "$stderr" ]
+  require_templates
+  # 81 boxes named "box" (80 from the array, then one more): one entry.
+  run -0 --separate-stderr "$FROM" "$EXAMPLES/SingleBodies.xml"
+  [[ $stderr == *"SingleBodies.xml:2:1: warning: <raisim>: repeated names made unique: /World/box -> /World/box_2 ... /World/box_81 (80 paths) [RS8113]"* ]]
+  [ "$(grep -c '^object /World/sphere_array_[0-9]* sphere ' <<<"$output")" -eq 80 ]
 }
 
 @test "a world with every element converts to the mapped records and validates clean" {

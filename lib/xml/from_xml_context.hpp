@@ -65,7 +65,8 @@ struct Context {
   FromXmlResult& result;
   std::string records;                         // the record lines, LF-terminated
   std::set<std::string> paths;                 // every record path taken
-  std::vector<std::string> renamed;            // "a -> /World/a_2"
+  // Renames of repeated paths, by the path wanted, in order.
+  std::vector<std::pair<std::string, std::vector<std::string>>> renamed;
   std::map<std::string, std::string> bodies;   // XML name -> record path (first wins)
   // An articulated system wires can name: its record path and its model
   // (nullptr when the robot file did not load).

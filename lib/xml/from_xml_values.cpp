@@ -206,7 +206,11 @@ std::string Context::takePath(const Element& e) {
                                                   : "/World/" + name->value;
   std::string path = want;
   for (int n = 2; paths.count(path); ++n) path = want + "_" + std::to_string(n);
-  if (path != want) renamed.push_back(want + " -> " + path);
+  if (path != want) {
+    auto it = std::find_if(renamed.begin(), renamed.end(), [&](const auto& r) { return r.first == want; });
+    if (it == renamed.end()) it = renamed.insert(renamed.end(), {want, {}});
+    it->second.push_back(path);
+  }
   paths.insert(path);
   return path;
 }

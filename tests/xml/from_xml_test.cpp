@@ -205,7 +205,7 @@ TEST(FromXml, NamesBecomePathsAndRepeatsAreRenamed) {
   const Diagnostic* d = find(r, "RS8113");
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->severity, Severity::Warning);
-  EXPECT_EQ(d->message, "<raisim>: repeated names made unique: /World/box -> /World/box_2, /World/box -> /World/box_3");
+  EXPECT_EQ(d->message, "<raisim>: repeated names made unique: /World/box -> /World/box_2, /World/box_3");
 }
 
 TEST(FromXml, GroundAndMesh) {
