@@ -119,7 +119,6 @@ void convertSingleBody(Context& ctx, const Element& e) {
     const Attribute* file = ctx.require(e, "file_name", "fileName");
     if (file) meshPath = ctx.assetPath(file->value);
     if (auto s = ctx.vec<3>(e, e.attribute("scale"))) scale = *s;
-    if (!c.com) c.com = Vec3{0, 0, 0};  // RaiSim's mesh always has one
     ok = ok && file;
   } else {
     const Element* dim = ctx.requireChild(e, "dim");
@@ -238,7 +237,11 @@ void convertCompound(Context& ctx, const Element& e) {
   // compound PATH pos quat scale mass bodyMode visible collidable
   Line l("compound");
   l.text(c.path).nums(c.pos).nums(c.quat).nums(Vec3{1, 1, 1}).num(c.mass.value_or(0)).raw(c.mode);
-  l.raw("true").raw("true").keyNums("centerOfMass", c.com.value_or(Vec3{0, 0, 0}));
+  l.raw("true").raw("true");
+  // Without `com` the record has no centerOfMass either: rscene-sim then
+  // puts it at the children's volume-weighted centroid, and rscene-to-xml
+  // writes no `com` for such a record, so the two stay inverse.
+  if (c.com) l.keyNums("centerOfMass", *c.com);
   if (c.inertia) l.keyNums("inertiaDiagonal", *c.inertia);
   l.key("collisionGroup", std::to_string(c.group)).key("collisionMask", std::to_string(c.mask));
   l.keyText("contactMaterial", c.material);

@@ -248,6 +248,13 @@ TEST(FromXml, CompoundWithChildren) {
             r.notConverted.end());
 }
 
+TEST(FromXml, CompoundAndMeshWithoutComHaveNoCenterOfMass) {
+  FromXmlResult r = convert(world("<compound name=\"c\" mass=\"1\"><children><box><dim x=\"1\" y=\"1\" z=\"1\"/>"
+                                  "</box></children></compound><mesh name=\"m\" mass=\"1\" file_name=\"/m.obj\"/>"));
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.text.find("centerOfMass"), std::string::npos) << r.text;
+}
+
 TEST(FromXml, HeightmapFromSamples) {
   FromXmlResult r = convert(world("<heightmap name=\"t\" xSample=\"3\" ySample=\"2\" xSize=\"4\" ySize=\"2\" "
                                   "centerX=\"1\" centerY=\"-1\" material=\"dirt\" height=\"0 1 2, 3 4 5\"/>"));
