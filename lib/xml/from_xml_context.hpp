@@ -67,6 +67,9 @@ struct Context {
   std::set<std::string> paths;                 // every record path taken
   // Renames of repeated paths, by the path wanted, in order.
   std::vector<std::pair<std::string, std::vector<std::string>>> renamed;
+  // Per path wanted: its entry in `renamed` and the next suffix to try, so
+  // 10^6 bodies of one name are renamed in linear time.
+  std::map<std::string, std::pair<std::size_t, int>> renames;
   std::map<std::string, std::string> bodies;   // XML name -> record path (first wins)
   // An articulated system wires can name: its record path and its model
   // (nullptr when the robot file did not load).

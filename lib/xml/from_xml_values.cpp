@@ -204,14 +204,13 @@ std::string Context::takePath(const Element& e) {
   std::string want = !name || name->value.empty() ? "/World/" + e.name
                      : name->value.front() == '/' ? name->value
                                                   : "/World/" + name->value;
-  std::string path = want;
-  for (int n = 2; paths.count(path); ++n) path = want + "_" + std::to_string(n);
-  if (path != want) {
-    auto it = std::find_if(renamed.begin(), renamed.end(), [&](const auto& r) { return r.first == want; });
-    if (it == renamed.end()) it = renamed.insert(renamed.end(), {want, {}});
-    it->second.push_back(path);
-  }
-  paths.insert(path);
+  if (paths.insert(want).second) return want;
+  auto [it, first] = renames.try_emplace(want, renamed.size(), 2);
+  if (first) renamed.push_back({want, {}});
+  std::string path;
+  do path = want + "_" + std::to_string(it->second.second++);
+  while (!paths.insert(path).second);
+  renamed[it->second.first].second.push_back(path);
   return path;
 }
 
