@@ -116,7 +116,7 @@ void convertSingleBody(Context& ctx, const Element& e) {
   double radius = 0, height = 0;
   std::string meshPath;
   if (mesh) {
-    const Attribute* file = ctx.require(e, "file_name", "fileName");
+    const Attribute* file = ctx.requirePath(e, "file_name", "fileName");
     if (file) meshPath = ctx.assetPath(file->value);
     if (auto s = ctx.vec<3>(e, e.attribute("scale"))) scale = *s;
     ok = ok && file;

@@ -115,6 +115,8 @@ struct Context {
   std::optional<std::uint64_t> group(const Element& e, const Attribute* a);
   // A required attribute (RS8112 at the element when absent).
   const Attribute* require(const Element& e, std::string_view name, std::string_view alias = {});
+  // A required path: present (RS8112) and not empty (RS8110).
+  const Attribute* requirePath(const Element& e, std::string_view name, std::string_view alias = {});
   const Element* requireChild(const Element& e, std::string_view name, std::string_view alias = {});
 
   // Reports attributes and children outside `known`: those in `lostNames`

@@ -49,7 +49,7 @@ void convertArticulated(Context& ctx, const Element& e) {
                       {"appearance"});
   ctx.checkChildren(e, label, {"state"});
   std::string path = ctx.takePath(e);
-  const Attribute* urdf = ctx.require(e, "urdf_path", "urdfPath");
+  const Attribute* urdf = ctx.requirePath(e, "urdf_path", "urdfPath");
   const Attribute* resDir = e.attribute("res_dir", "resDir");
   const Attribute* modules = e.attribute("modules");
   auto group = ctx.group(e, e.attribute("collision_group", "collisionGroup"));

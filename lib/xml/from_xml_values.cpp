@@ -163,6 +163,15 @@ const Attribute* Context::require(const Element& e, std::string_view name, std::
   return a;
 }
 
+const Attribute* Context::requirePath(const Element& e, std::string_view name, std::string_view alias) {
+  const Attribute* a = require(e, name, alias);
+  if (a && a->value.find_first_not_of(" \t\r\n") == std::string::npos) {
+    error(code::kBadValue, e, *a, "is empty: a file is required");
+    return nullptr;
+  }
+  return a;
+}
+
 const Element* Context::requireChild(const Element& e, std::string_view name, std::string_view alias) {
   const Element* c = e.child(name, alias);
   if (!c) error(code::kMissing, e, "<" + std::string(name) + "> is required");

@@ -173,6 +173,14 @@ TEST(FromXml, MissingRequiredPartsAreErrorsAtTheElement) {
   }
 }
 
+TEST(FromXml, EmptyFilePathsAreErrors) {
+  for (const char* xml : {"<mesh mass=\"1\" file_name=\"\"/>", "<articulatedSystem urdf_path=\" \"/>"}) {
+    FromXmlResult r = convert(world(xml));
+    ASSERT_NE(find(r, "RS8110"), nullptr) << xml;
+    EXPECT_NE(find(r, "RS8110")->message.find(": is empty: a file is required"), std::string::npos);
+  }
+}
+
 TEST(FromXml, UnknownElementsAndAttributesAreWarnedAndListed) {
   FromXmlResult r = convert(world("<sphere name=\"s\" mass=\"1\" colour=\"red\" appearance=\"blue\"><dim radius=\"1\"/>"
                                   "<state pos=\"0 0 1\" lin_vel=\"1 0 0\" ang_vel=\"0 0 0\"/>"
