@@ -146,7 +146,7 @@ void convertSingleBody(Context& ctx, const Element& e) {
   if (c.inertia) l.key("customInertia", "true").keyNums("inertiaDiagonal", *c.inertia);
   if (c.com) l.keyNums("centerOfMass", *c.com);
   ctx.add(l);
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 void convertGround(Context& ctx, const Element& e) {
@@ -167,7 +167,7 @@ void convertGround(Context& ctx, const Element& e) {
   if (errorCount(ctx) != before) return;
   // 10 x 10 is only the drawn plane's size: a ground is a half-space.
   ctx.add(objectLine(c, "ground", Vec3{10, 10, 1}, 0, 0, ""));
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 namespace {
@@ -247,7 +247,7 @@ void convertCompound(Context& ctx, const Element& e) {
   l.keyText("contactMaterial", c.material);
   ctx.add(l);
   ctx.records += childLines;
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 }  // namespace rscene::xml::detail

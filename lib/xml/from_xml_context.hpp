@@ -138,6 +138,11 @@ struct Context {
 
 // "sphere 'ball'" or "sphere" for messages and the not-converted line.
 std::string labelOf(const Element& e);
+// The name a wire uses for a body: its `name`, or its tag when it has none.
+inline std::string xmlName(const Element& e) {
+  const Attribute* name = e.attribute("name");
+  return name ? name->value : e.name;
+}
 
 // Element handlers (from_xml_bodies.cpp, from_xml_terrain.cpp, from_xml_robots.cpp).
 void convertSingleBody(Context& ctx, const Element& e);  // sphere capsule cylinder box mesh

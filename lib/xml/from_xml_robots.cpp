@@ -106,7 +106,7 @@ void convertArticulated(Context& ctx, const Element& e) {
   if (!qpos.empty()) l.keyNums("generalizedCoordinate", qpos.data(), qpos.size());
   if (!qvel.empty()) l.keyNums("generalizedVelocity", qvel.data(), qvel.size());
   ctx.add(l);
-  ctx.robots.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, Context::Robot{path, model});
+  ctx.robots.emplace(xmlName(e), Context::Robot{path, model});
 }
 
 namespace {
