@@ -176,7 +176,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   run -0 bash -c "'$FROM' -q <world.xml"
   [ "$output" = "$(cat expected)" ]
   run -2 --separate-stderr bash -c "printf '<raisim>\n<objects>\n<sphere mass=\"x\"><dim radius=\"1\"/></sphere></objects></raisim>' | '$FROM' --stdin-filename my.xml"
-  [[ $stderr == "my.xml:3"*": error: <sphere> mass: 'x' is not a finite number [RS8110]"* ]]
+  [[ $stderr == "my.xml:3:9: error: <sphere> mass: 'x' is not a finite number [RS8110]"* ]]
   [ -z "$output" ]
 }
 
@@ -184,7 +184,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   printf '<raisim version="1.0">\n<objects>\n<box name="b" mass="1">\n<dim x="1" y="1"/>\n</box>\n</objects>\n</raisim>\n' >bad.xml
   echo original >out.rscene
   run -2 --separate-stderr "$FROM" bad.xml -o out.rscene
-  [[ $stderr == "bad.xml:4"*": error: <dim>: 'z' is required [RS8112]"* ]]
+  [[ $stderr == "bad.xml:4:1: error: <dim>: 'z' is required [RS8112]"* ]]
   [ "$(cat out.rscene)" = original ]
   run -2 --separate-stderr "$FROM" bad.xml -o new.rscene
   [ ! -e new.rscene ]
@@ -221,7 +221,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   [[ $output == *"/World/b sphere "*" dynamic true 12 18446744073709551615"* ]]
   printf '<raisim><objects>\n<sphere mass="1" collision_group="collision[64]"><dim radius="1"/></sphere></objects></raisim>' >g2.xml
   run -2 --separate-stderr "$FROM" g2.xml
-  [[ $stderr == "g2.xml:2"*"error: <sphere> collision_group: 'collision[64]' names a group outside 0..63 (or -1 for all) [RS8110]"* ]]
+  [[ $stderr == "g2.xml:2:18: error: <sphere> collision_group: 'collision[64]' names a group outside 0..63 (or -1 for all) [RS8110]"* ]]
 }
 
 @test "-o writes atomically: a regular file is replaced, a directory refused, a FIFO written through" {

@@ -137,6 +137,21 @@ TEST(FromXml, BadCollisionGroupIsAnErrorAtItsLine) {
   }
 }
 
+TEST(FromXml, ErrorsAtTheAttributeOrElementColumn) {
+  std::string line = "  <sphere name=\"a\" mass=\"x\"><dim/></sphere>";
+  FromXmlResult r = convert(world("\n" + line));
+  const Diagnostic* bad = find(r, "RS8110");
+  const Diagnostic* missing = find(r, "RS8112");
+  ASSERT_NE(bad, nullptr);
+  ASSERT_NE(missing, nullptr);
+  EXPECT_EQ(bad->file, "w.xml");
+  EXPECT_EQ(bad->line, 4u);
+  EXPECT_EQ(bad->column, line.find("mass=") + 1);  // the attribute's name
+  EXPECT_EQ(missing->line, 4u);
+  EXPECT_EQ(missing->column, line.find("<dim") + 1);  // the element's '<'
+  EXPECT_EQ(missing->message, "<dim>: 'radius' is required");
+}
+
 TEST(FromXml, NumbersMustBeFiniteAndVectorsExact) {
   FromXmlResult nan = convert(world("<sphere mass=\"nan\"><dim radius=\"1\"/></sphere>"));
   ASSERT_NE(find(nan, "RS8110"), nullptr);
