@@ -263,3 +263,17 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
     --param sphere_height_offset=0.1 "$EXAMPLES/spheres.xml"
   [[ $output != *"sphere_array"* ]]
 }
+
+@test "includes: the files spliced in convert and validate clean; a cycle is exit 2 naming it" {
+  require_templates
+  run -0 --separate-stderr "$FROM" "$ROOT/tests/data/xml/include_top.xml" -o inc.rscene
+  validates_clean inc.rscene
+  grep -q '^object /World/top_ball sphere ' inc.rscene
+  # The included files use the top file's params: the floor at -2, the rock of 3 kg.
+  grep -q '^object /World/floor ground 0 0 -2 ' inc.rscene
+  grep -q '^object /World/rock mesh 0 0 0 1 0 0 0 1 1 1 0 0 3 default ' inc.rscene
+  [ "$(grep -c '^object ' inc.rscene)" -eq 3 ]
+  run -2 --separate-stderr "$FROM" "$ROOT/tests/data/xml/cycle_a.xml" -o cycle.rscene
+  [[ $stderr == *"include cycle"*"[RS8103]"* ]]
+  [ ! -e cycle.rscene ]
+}
