@@ -118,6 +118,11 @@ EOF
   [[ $stderr == *"heightMapUsingTerrainGenerator.xml:20"*"warning: <heightmap>: terrain_properties: rscene does not reproduce RaiSim's terrain generator, the samples are left flat [RS8113]"* ]]
   run -0 --separate-stderr "$FROM" -q "$EXAMPLES/heightMapUsingTerrainGenerator.xml"
   [ -z "$stderr" ]
+  require_templates
+  # 81 boxes named "box" (80 from the array, then one more): one entry.
+  run -0 --separate-stderr "$FROM" "$EXAMPLES/SingleBodies.xml"
+  [[ $stderr == *"SingleBodies.xml:2:1: warning: <raisim>: repeated names made unique: /World/box -> /World/box_2 ... /World/box_81 (80 paths) [RS8113]"* ]]
+  [ "$(grep -c '^object /World/sphere_array_[0-9]* sphere ' <<<"$output")" -eq 80 ]
 }
 
 @test "a world with every element converts to the mapped records and validates clean" {
@@ -171,7 +176,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   run -0 bash -c "'$FROM' -q <world.xml"
   [ "$output" = "$(cat expected)" ]
   run -2 --separate-stderr bash -c "printf '<raisim>\n<objects>\n<sphere mass=\"x\"><dim radius=\"1\"/></sphere></objects></raisim>' | '$FROM' --stdin-filename my.xml"
-  [[ $stderr == "my.xml:3"*": error: <sphere> mass: 'x' is not a finite number [RS8110]"* ]]
+  [[ $stderr == "my.xml:3:9: error: <sphere> mass: 'x' is not a finite number [RS8110]"* ]]
   [ -z "$output" ]
 }
 
@@ -179,7 +184,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   printf '<raisim version="1.0">\n<objects>\n<box name="b" mass="1">\n<dim x="1" y="1"/>\n</box>\n</objects>\n</raisim>\n' >bad.xml
   echo original >out.rscene
   run -2 --separate-stderr "$FROM" bad.xml -o out.rscene
-  [[ $stderr == "bad.xml:4"*": error: <dim>: 'z' is required [RS8112]"* ]]
+  [[ $stderr == "bad.xml:4:1: error: <dim>: 'z' is required [RS8112]"* ]]
   [ "$(cat out.rscene)" = original ]
   run -2 --separate-stderr "$FROM" bad.xml -o new.rscene
   [ ! -e new.rscene ]
@@ -216,7 +221,7 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   [[ $output == *"/World/b sphere "*" dynamic true 12 18446744073709551615"* ]]
   printf '<raisim><objects>\n<sphere mass="1" collision_group="collision[64]"><dim radius="1"/></sphere></objects></raisim>' >g2.xml
   run -2 --separate-stderr "$FROM" g2.xml
-  [[ $stderr == "g2.xml:2"*"error: <sphere> collision_group: 'collision[64]' names a group outside 0..63 (or -1 for all) [RS8110]"* ]]
+  [[ $stderr == "g2.xml:2:18: error: <sphere> collision_group: 'collision[64]' names a group outside 0..63 (or -1 for all) [RS8110]"* ]]
 }
 
 @test "-o writes atomically: a regular file is replaced, a directory refused, a FIFO written through" {
@@ -257,4 +262,18 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   run -0 "$FROM" -q --param sphere_count=20 --param spawn_sphere=false --param spawn_box=false \
     --param sphere_height_offset=0.1 "$EXAMPLES/spheres.xml"
   [[ $output != *"sphere_array"* ]]
+}
+
+@test "includes: the files spliced in convert and validate clean; a cycle is exit 2 naming it" {
+  require_templates
+  run -0 --separate-stderr "$FROM" "$ROOT/tests/data/xml/include_top.xml" -o inc.rscene
+  validates_clean inc.rscene
+  grep -q '^object /World/top_ball sphere ' inc.rscene
+  # The included files use the top file's params: the floor at -2, the rock of 3 kg.
+  grep -q '^object /World/floor ground 0 0 -2 ' inc.rscene
+  grep -q '^object /World/rock mesh 0 0 0 1 0 0 0 1 1 1 0 0 3 default ' inc.rscene
+  [ "$(grep -c '^object ' inc.rscene)" -eq 3 ]
+  run -2 --separate-stderr "$FROM" "$ROOT/tests/data/xml/cycle_a.xml" -o cycle.rscene
+  [[ $stderr == *"include cycle"*"[RS8103]"* ]]
+  [ ! -e cycle.rscene ]
 }

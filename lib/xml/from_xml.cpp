@@ -147,7 +147,14 @@ FromXmlResult worldToScene(const Element& raisim, const FromXmlOptions& options)
     if (e.name == "wire") detail::convertWire(ctx, e);
   if (!ctx.renamed.empty()) {
     std::string list;
-    for (const std::string& r : ctx.renamed) list += (list.empty() ? "" : ", ") + r;
+    // An array of 80 equally named bodies makes one entry, not 80.
+    for (const auto& [want, paths] : ctx.renamed) {
+      list += (list.empty() ? "" : "; ") + want + " -> " + paths.front();
+      if (paths.size() > 3)
+        list += " ... " + paths.back() + " (" + std::to_string(paths.size()) + " paths)";
+      else
+        for (std::size_t i = 1; i < paths.size(); ++i) list += ", " + paths[i];
+    }
     result.diagnostics.push_back(elementDiagnostic(Severity::Warning, code::kApproximate, raisim,
                                                    "repeated names made unique: " + list));
   }

@@ -116,10 +116,9 @@ void convertSingleBody(Context& ctx, const Element& e) {
   double radius = 0, height = 0;
   std::string meshPath;
   if (mesh) {
-    const Attribute* file = ctx.require(e, "file_name", "fileName");
+    const Attribute* file = ctx.requirePath(e, "file_name", "fileName");
     if (file) meshPath = ctx.assetPath(file->value);
     if (auto s = ctx.vec<3>(e, e.attribute("scale"))) scale = *s;
-    if (!c.com) c.com = Vec3{0, 0, 0};  // RaiSim's mesh always has one
     ok = ok && file;
   } else {
     const Element* dim = ctx.requireChild(e, "dim");
@@ -147,7 +146,7 @@ void convertSingleBody(Context& ctx, const Element& e) {
   if (c.inertia) l.key("customInertia", "true").keyNums("inertiaDiagonal", *c.inertia);
   if (c.com) l.keyNums("centerOfMass", *c.com);
   ctx.add(l);
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 void convertGround(Context& ctx, const Element& e) {
@@ -168,7 +167,7 @@ void convertGround(Context& ctx, const Element& e) {
   if (errorCount(ctx) != before) return;
   // 10 x 10 is only the drawn plane's size: a ground is a half-space.
   ctx.add(objectLine(c, "ground", Vec3{10, 10, 1}, 0, 0, ""));
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 namespace {
@@ -238,13 +237,17 @@ void convertCompound(Context& ctx, const Element& e) {
   // compound PATH pos quat scale mass bodyMode visible collidable
   Line l("compound");
   l.text(c.path).nums(c.pos).nums(c.quat).nums(Vec3{1, 1, 1}).num(c.mass.value_or(0)).raw(c.mode);
-  l.raw("true").raw("true").keyNums("centerOfMass", c.com.value_or(Vec3{0, 0, 0}));
+  l.raw("true").raw("true");
+  // Without `com` the record has no centerOfMass either: rscene-sim then
+  // puts it at the children's volume-weighted centroid, and rscene-to-xml
+  // writes no `com` for such a record, so the two stay inverse.
+  if (c.com) l.keyNums("centerOfMass", *c.com);
   if (c.inertia) l.keyNums("inertiaDiagonal", *c.inertia);
   l.key("collisionGroup", std::to_string(c.group)).key("collisionMask", std::to_string(c.mask));
   l.keyText("contactMaterial", c.material);
   ctx.add(l);
   ctx.records += childLines;
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, c.path);
+  ctx.bodies.emplace(xmlName(e), c.path);
 }
 
 }  // namespace rscene::xml::detail

@@ -65,7 +65,11 @@ struct Context {
   FromXmlResult& result;
   std::string records;                         // the record lines, LF-terminated
   std::set<std::string> paths;                 // every record path taken
-  std::vector<std::string> renamed;            // "a -> /World/a_2"
+  // Renames of repeated paths, by the path wanted, in order.
+  std::vector<std::pair<std::string, std::vector<std::string>>> renamed;
+  // Per path wanted: its entry in `renamed` and the next suffix to try, so
+  // 10^6 bodies of one name are renamed in linear time.
+  std::map<std::string, std::pair<std::size_t, int>> renames;
   std::map<std::string, std::string> bodies;   // XML name -> record path (first wins)
   // An articulated system wires can name: its record path and its model
   // (nullptr when the robot file did not load).
@@ -111,6 +115,8 @@ struct Context {
   std::optional<std::uint64_t> group(const Element& e, const Attribute* a);
   // A required attribute (RS8112 at the element when absent).
   const Attribute* require(const Element& e, std::string_view name, std::string_view alias = {});
+  // A required path: present (RS8112) and not empty (RS8110).
+  const Attribute* requirePath(const Element& e, std::string_view name, std::string_view alias = {});
   const Element* requireChild(const Element& e, std::string_view name, std::string_view alias = {});
 
   // Reports attributes and children outside `known`: those in `lostNames`
@@ -132,6 +138,11 @@ struct Context {
 
 // "sphere 'ball'" or "sphere" for messages and the not-converted line.
 std::string labelOf(const Element& e);
+// The name a wire uses for a body: its `name`, or its tag when it has none.
+inline std::string xmlName(const Element& e) {
+  const Attribute* name = e.attribute("name");
+  return name ? name->value : e.name;
+}
 
 // Element handlers (from_xml_bodies.cpp, from_xml_terrain.cpp, from_xml_robots.cpp).
 void convertSingleBody(Context& ctx, const Element& e);  // sphere capsule cylinder box mesh

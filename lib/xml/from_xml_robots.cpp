@@ -49,7 +49,7 @@ void convertArticulated(Context& ctx, const Element& e) {
                       {"appearance"});
   ctx.checkChildren(e, label, {"state"});
   std::string path = ctx.takePath(e);
-  const Attribute* urdf = ctx.require(e, "urdf_path", "urdfPath");
+  const Attribute* urdf = ctx.requirePath(e, "urdf_path", "urdfPath");
   const Attribute* resDir = e.attribute("res_dir", "resDir");
   const Attribute* modules = e.attribute("modules");
   auto group = ctx.group(e, e.attribute("collision_group", "collisionGroup"));
@@ -106,7 +106,7 @@ void convertArticulated(Context& ctx, const Element& e) {
   if (!qpos.empty()) l.keyNums("generalizedCoordinate", qpos.data(), qpos.size());
   if (!qvel.empty()) l.keyNums("generalizedVelocity", qvel.data(), qvel.size());
   ctx.add(l);
-  ctx.robots.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, Context::Robot{path, model});
+  ctx.robots.emplace(xmlName(e), Context::Robot{path, model});
 }
 
 namespace {

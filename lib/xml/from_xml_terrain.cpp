@@ -215,7 +215,7 @@ void convertHeightmap(Context& ctx, const Element& e) {
   l.text(path).raw(std::to_string(g.xs)).raw(std::to_string(g.ys)).num(g.xSize).num(g.ySize);
   l.nums(Vec3{*cx, *cy, 0});
   ctx.records += l.str() + keys.str() + '\n';
-  ctx.bodies.emplace(e.attribute("name") ? e.attribute("name")->value : e.name, path);
+  ctx.bodies.emplace(xmlName(e), path);
 }
 
 }  // namespace rscene::xml::detail

@@ -163,6 +163,15 @@ const Attribute* Context::require(const Element& e, std::string_view name, std::
   return a;
 }
 
+const Attribute* Context::requirePath(const Element& e, std::string_view name, std::string_view alias) {
+  const Attribute* a = require(e, name, alias);
+  if (a && a->value.find_first_not_of(" \t\r\n") == std::string::npos) {
+    error(code::kBadValue, e, *a, "is empty: a file is required");
+    return nullptr;
+  }
+  return a;
+}
+
 const Element* Context::requireChild(const Element& e, std::string_view name, std::string_view alias) {
   const Element* c = e.child(name, alias);
   if (!c) error(code::kMissing, e, "<" + std::string(name) + "> is required");
@@ -204,10 +213,13 @@ std::string Context::takePath(const Element& e) {
   std::string want = !name || name->value.empty() ? "/World/" + e.name
                      : name->value.front() == '/' ? name->value
                                                   : "/World/" + name->value;
-  std::string path = want;
-  for (int n = 2; paths.count(path); ++n) path = want + "_" + std::to_string(n);
-  if (path != want) renamed.push_back(want + " -> " + path);
-  paths.insert(path);
+  if (paths.insert(want).second) return want;
+  auto [it, first] = renames.try_emplace(want, renamed.size(), 2);
+  if (first) renamed.push_back({want, {}});
+  std::string path;
+  do path = want + "_" + std::to_string(it->second.second++);
+  while (!paths.insert(path).second);
+  renamed[it->second.first].second.push_back(path);
   return path;
 }
 

@@ -137,6 +137,21 @@ TEST(FromXml, BadCollisionGroupIsAnErrorAtItsLine) {
   }
 }
 
+TEST(FromXml, ErrorsAtTheAttributeOrElementColumn) {
+  std::string line = "  <sphere name=\"a\" mass=\"x\"><dim/></sphere>";
+  FromXmlResult r = convert(world("\n" + line));
+  const Diagnostic* bad = find(r, "RS8110");
+  const Diagnostic* missing = find(r, "RS8112");
+  ASSERT_NE(bad, nullptr);
+  ASSERT_NE(missing, nullptr);
+  EXPECT_EQ(bad->file, "w.xml");
+  EXPECT_EQ(bad->line, 4u);
+  EXPECT_EQ(bad->column, line.find("mass=") + 1);  // the attribute's name
+  EXPECT_EQ(missing->line, 4u);
+  EXPECT_EQ(missing->column, line.find("<dim") + 1);  // the element's '<'
+  EXPECT_EQ(missing->message, "<dim>: 'radius' is required");
+}
+
 TEST(FromXml, NumbersMustBeFiniteAndVectorsExact) {
   FromXmlResult nan = convert(world("<sphere mass=\"nan\"><dim radius=\"1\"/></sphere>"));
   ASSERT_NE(find(nan, "RS8110"), nullptr);
@@ -173,6 +188,14 @@ TEST(FromXml, MissingRequiredPartsAreErrorsAtTheElement) {
   }
 }
 
+TEST(FromXml, EmptyFilePathsAreErrors) {
+  for (const char* xml : {"<mesh mass=\"1\" file_name=\"\"/>", "<articulatedSystem urdf_path=\" \"/>"}) {
+    FromXmlResult r = convert(world(xml));
+    ASSERT_NE(find(r, "RS8110"), nullptr) << xml;
+    EXPECT_NE(find(r, "RS8110")->message.find(": is empty: a file is required"), std::string::npos);
+  }
+}
+
 TEST(FromXml, UnknownElementsAndAttributesAreWarnedAndListed) {
   FromXmlResult r = convert(world("<sphere name=\"s\" mass=\"1\" colour=\"red\" appearance=\"blue\"><dim radius=\"1\"/>"
                                   "<state pos=\"0 0 1\" lin_vel=\"1 0 0\" ang_vel=\"0 0 0\"/>"
@@ -205,7 +228,7 @@ TEST(FromXml, NamesBecomePathsAndRepeatsAreRenamed) {
   const Diagnostic* d = find(r, "RS8113");
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(d->severity, Severity::Warning);
-  EXPECT_EQ(d->message, "<raisim>: repeated names made unique: /World/box -> /World/box_2, /World/box -> /World/box_3");
+  EXPECT_EQ(d->message, "<raisim>: repeated names made unique: /World/box -> /World/box_2, /World/box_3");
 }
 
 TEST(FromXml, GroundAndMesh) {
@@ -246,6 +269,13 @@ TEST(FromXml, CompoundWithChildren) {
             "compound_child /World/c capsule 0 0 0 1 0 0 0 1 1 1 radius=0.1 height=0.3 contactMaterial=default\n");
   EXPECT_NE(std::find(r.notConverted.begin(), r.notConverted.end(), "compound 'c' <children>: mass"),
             r.notConverted.end());
+}
+
+TEST(FromXml, CompoundAndMeshWithoutComHaveNoCenterOfMass) {
+  FromXmlResult r = convert(world("<compound name=\"c\" mass=\"1\"><children><box><dim x=\"1\" y=\"1\" z=\"1\"/>"
+                                  "</box></children></compound><mesh name=\"m\" mass=\"1\" file_name=\"/m.obj\"/>"));
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.text.find("centerOfMass"), std::string::npos) << r.text;
 }
 
 TEST(FromXml, HeightmapFromSamples) {
