@@ -152,9 +152,8 @@ physics_fixtures() {
 #    RaiSim's ground has no drawn size (scale 10 10 1), no x, y, tilt or mass;
 #  - orientations normalised (the scene model's reading of 0.966 0 0 0.259);
 #  - the default contact material written out ("default"; a compound
-#    child's is its compound's), an object's centerOfMass of 0,0,0 (where
-#    an object has its body origin) dropped, and a zero generalizedVelocity
-#    (the default) dropped.
+#    child's is its compound's), and a zero generalizedVelocity (the
+#    default) dropped.
 physics_records() {
   "$BIN/rscene-fmt" - | awk '
     function num(v) { return sprintf("%.17g", v) + 0 }
@@ -199,7 +198,6 @@ physics_records() {
         for (i = 1; i <= NF; ++i) {
           if ($i ~ /^(id|parentGroupId)=/) continue
           if ($i ~ /^(unknownKey|instanceLabel|emptyText)=/) continue  # unknown keys of the fmt fixtures: no physics
-          if ($1 == "object" && $i == "centerOfMass=0,0,0") continue
           if ($1 == "articulated" && $i ~ /^generalizedVelocity=(0,)*0$/) continue
           out = out (out == "" ? "" : " ") $i
         }
@@ -244,19 +242,8 @@ with_singletons() {
   done
 }
 
-# A compound or mesh without centerOfMass: rscene-to-xml writes no `com`
-# (RaiSim's compound and mesh always have one), and rscene-from-xml reads
-# the absent com as 0,0,0.  For a compound that moves the centre of mass
-# from the children's volume-weighted centroid (rscene-sim's) to the
-# origin: a known mapping bug, see the test "a compound without
-# centerOfMass"; for a mesh it changes no physics (rscene-sim does not
-# read an object's centerOfMass) but to | from | to is not stable.
-known_compound_com_bug() {
-  [ -n "$1" ] && ! grep -v -e '^~ compound ' -e '^    + centerOfMass: 0,0,0$' <<<"$1" | grep -q .
-}
-
 @test "every physics fixture: to-xml | from-xml gives back its physics records (rscene-diff exits 0)" {
-  n=0 known=""
+  n=0
   while read -r f; do
     [ -f "$ROOT/$f" ] || { echo "fixture $f is gone: update physics_fixtures"; return 1; }
     round_trip "$f"
@@ -265,28 +252,19 @@ known_compound_com_bug() {
     grep -qE '^(object|compound|terrain_region|articulated) ' back.rscene || { echo "$f: no body came back"; return 1; }
     with_singletons orig.rscene back.rscene | "$BIN/rscene-fmt" - >orig_full.rscene
     run "$BIN/rscene-diff" --ignore-editor-state --tolerance 1e-12 --ignore "$IGNORED" orig_full.rscene back.rscene
-    if [ "$status" -ne 0 ]; then
-      known_compound_com_bug "$output" || { echo "$f: the round trip lost or changed physics:"; echo "$output" | head -30; return 1; }
-      known+=" $f"
-    fi
+    [ "$status" -eq 0 ] || { echo "$f: the round trip lost or changed physics:"; echo "$output" | head -30; return 1; }
     # The XML of the round trip is the XML of the original, byte for byte
     # (of its canonical form: to-xml writes bodies in record order, and
     # from-xml writes canonical records).
     (cd "$ROOT/$(dirname "$f")" && "$BIN/rscene-fmt" "$(basename "$f")" | "$TO" -q - --stdin-filename x.rscene) >rt1.xml
     (cd "$ROOT/$(dirname "$f")" && "$TO" -q - --stdin-filename rt.rscene) <rt.rscene >rt2.xml
-    if ! cmp -s rt1.xml rt2.xml; then
-      # The same known bug in the XML: com="0 0 0" on a mesh or compound the original wrote no centerOfMass for.
-      sed -i -E '/^ *<(compound|mesh) /s/ com="0 0 0"//' rt1.xml rt2.xml
-      cmp rt1.xml rt2.xml || { diff rt1.xml rt2.xml | head; echo "$f: to-xml of the round trip differs"; return 1; }
-      [[ $known == *" $f" ]] || known+=" $f"
-    fi
+    cmp rt1.xml rt2.xml || { diff rt1.xml rt2.xml | head; echo "$f: to-xml of the round trip differs"; return 1; }
     n=$((n + 1))
   done < <(physics_fixtures)
   [ "$n" -eq 22 ]
   # robot_cell's solver settings have no XML form: listed, not dropped silently.
   run -0 --separate-stderr bash -c "cd '$ROOT/examples' && '$TO' robot_cell.rscene"
   [[ $stderr == *"solver iterations, solver tolerance, solver sleepingEnabled"* ]]
-  [ -z "$known" ] || skip "known mapping bug (to-xml writes no com for a compound or mesh without centerOfMass, from-xml reads it as 0,0,0) in:$known"
 }
 
 # Compares two rscene-sim CSV trajectories: the same lines and paths, and
@@ -366,10 +344,9 @@ EOF
   "$FROM" -q cart.xml -o rt.rscene
   run trajectories_agree "$PWD/cart.rscene"
   echo "# compound without centerOfMass: $output" >&3
-  if [ "$status" -ne 0 ] && grep -q '^compound /World/T .* centerOfMass=0,0,0' rt.rscene && ! grep -q ' com=' cart.xml; then
-    skip "known mapping bug: rscene-to-xml writes no com for a compound without centerOfMass (rscene-sim: the volume-weighted centroid), rscene-from-xml reads the absent com as 0,0,0; trajectories differ: $output"
-  fi
-  [ "$status" -eq 0 ]
+  # (Before fromxml 9f670c9 from-xml read the absent com as 0,0,0: 3.13 apart after 2 s.)
+  [ "$status" -eq 0 ] || { echo "$output"; return 1; }
+  ! grep -q 'centerOfMass' rt.rscene
 }
 
 @test "same_trajectory fails on a difference above the tolerance and on a missing body" {
