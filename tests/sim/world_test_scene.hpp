@@ -50,7 +50,9 @@ inline void buildWorld(WorldRun& run, const std::string& text, const WorldRunOpt
   if (asset::AssetCache* assets = options.assets)
     so.exists = [assets](const std::string& p) { return assets->fileSystem().exists(p); };
   EXPECT_TRUE(buildScene(r->doc, so, r->scene, r->diags)) << firstMessage(r->diags);
-  if (options.checkPhysics) EXPECT_TRUE(checkPhysics(r->doc, r->scene, r->diags)) << firstMessage(r->diags);
+  if (options.checkPhysics) {
+    EXPECT_TRUE(checkPhysics(r->doc, r->scene, r->diags)) << firstMessage(r->diags);
+  }
   WorldOptions wo;
   wo.assets = options.assets;
   wo.document = &r->doc;
