@@ -36,13 +36,14 @@ teardown() {
 
 # Every way a tool writes a file; those of tools that are not built are
 # left out.  render-reference writes only a missing baseline.
-WAYS="fmt-o to-json from-json sim-o sim-trajectory render-o render-diff"
+WAYS="fmt-o to-json from-json to-xml sim-o sim-trajectory render-o render-diff"
 
 tool_of() {
   case $1 in
     fmt-*) echo rscene-fmt ;;
     to-json) echo rscene-to-json ;;
     from-json) echo rscene-from-json ;;
+    to-xml) echo rscene-to-xml ;;
     sim-*) echo rscene-sim ;;
     render-*) echo rscene-render ;;
   esac
@@ -60,6 +61,7 @@ write_to() {
       "$BIN/rscene-to-json" "$DATA/fmt_messy.rscene" > "$BATS_TEST_TMPDIR/in.json"
       "$BIN/rscene-from-json" -o "$target" "$BATS_TEST_TMPDIR/in.json"
       ;;
+    to-xml) "$BIN/rscene-to-xml" -q -o "$target" "$DATA/sim_drop.rscene" ;;
     sim-o) "$BIN/rscene-sim" --steps 20 -o "$target" "$DATA/sim_drop.rscene" ;;
     sim-trajectory) "$BIN/rscene-sim" --steps 20 --trajectory "$target" "$DATA/sim_drop.rscene" > /dev/null ;;
     render-o) "$BIN/rscene-render" --width 32 --height 24 -o "$target" "$DATA/render_minimal.rscene" ;;

@@ -160,8 +160,8 @@ constexpr CheckInfo kChecks[] = {
     // RS8xxx JSON input (rscene-from-json)
     {"RS8001", E, Json, "from-json", "invalid JSON"},
     {"RS8002", E, Json, "from-json", "valid JSON that is not a scene: wrong type, missing or unknown field"},
-    // RS81xx RaiSim world XML: RS8101-RS8109 reading and expanding (rscene-from-xml),
-    // RS811x-RS812x mapping elements to records, RS813x export (rscene-to-xml)
+    // RS81xx RaiSim world XML: RS8101-8109 reading and expanding (rscene-from-xml),
+    // RS8110-8129 mapping elements to records, RS8130-8139 export (rscene-to-xml)
     {"RS8101", E, Xml, "from-xml", "world XML that cannot be read: not well-formed, not a <raisim> document, or past a size limit"},
     {"RS8102", E, Xml, "from-xml", "world XML that declares entities (a DOCTYPE internal subset) or uses an &name; other than XML's five"},
     {"RS8103", E, Xml, "from-xml", "include that cannot be followed: no file attribute, unreadable, a cycle, nested too deep, or out of place"},
@@ -177,6 +177,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS8113", W, Xml, "from-xml", "converted approximately: a repeated name renamed, a procedural heightmap left flat, a robot file not read"},
     {"RS8114", E, Xml, "from-xml", "heightmap PNG or text file that cannot be read"},
     {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},
+    {"RS8131", W, Xml, "to-xml", "articulated system whose robot file cannot be read: exported with its urdf_path and the state as written"},
     // RS9xxx rendering (rscene-render)
     {"RS9001", E, Render, "render", "mesh file that cannot be read (a warning with --allow-missing-assets)"},
     {"RS9002", W, Render, "render", "texture not drawn"},

@@ -169,11 +169,14 @@ class WorldReader {
         return;
       }
     }
-    const Attribute* named = inc.attribute("file");
+    // RaiSim's own templatedWorld.xml writes <include value="..."/>; file,
+    // path and file_name are read too.
+    const Attribute* named = inc.attribute("value");
+    if (!named) named = inc.attribute("file");
     if (!named) named = inc.attribute("path");
     if (!named) named = inc.attribute("file_name");
     if (!named) {
-      error(elementDiagnostic(Severity::Error, code::kXmlInclude, inc, "no file (write <include file=\"...\"/>)"));
+      error(elementDiagnostic(Severity::Error, code::kXmlInclude, inc, "no file (write <include value=\"...\"/>)"));
       return;
     }
     std::string target, why;

@@ -9,6 +9,7 @@
 #   fuzz_render_scene  rscene-render's scene preparation, without GL
 #   fuzz_urdf       the URDF reader (seeds: tests/data/robots/urdf, examples/robots)
 #   fuzz_trajectory rscene-render --trajectory's reader (seeds: a JSON Lines and a CSV trajectory)
+#   fuzz_xml_world  rscene-from-xml's reading and template expansion (seeds: tests/data/xml, xml-examples)
 # Exit status: 0 when nothing was found, non-zero on a crash, a leak, a
 # timeout or a broken invariant (the inputs are in build-fuzz/fuzz-artifacts/).
 #
@@ -27,7 +28,7 @@ fi
 CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DRSCENE_FUZZ=ON -DRSCENE_BUILD_TOOLS=OFF -DRSCENE_BUILD_TESTS=OFF > "$BUILD.configure.log" 2>&1 ||
   { cat "$BUILD.configure.log" >&2; exit 2; }
-TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene fuzz_urdf fuzz_trajectory})
+TARGETS=(${FUZZ_TARGETS:-fuzz_loader fuzz_from_json fuzz_sim fuzz_render_scene fuzz_urdf fuzz_trajectory fuzz_xml_world})
 cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_seeds
 
 # The working corpora live in the build directory: libFuzzer adds the
@@ -54,6 +55,16 @@ printf '%s\n' '{"time":0,"path":"/box","position":[0,0,1],"quaternion":[1,0,0,0]
 printf '%s\n' 'time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,q.j1_qw,u.j1_wx,points' '0,/box,0,0,1,1,0,0,0,0,0,0,0,0,0,,,' \
   '0,"/arm",0,0,1,1,0,0,0,0,0,0,0,0,0,1,0,' '0.5,/box,0,0,0.9,1,0,0,0,0,0,0,0,0,0,,,' \
   '0.5,/cloth,,,,,,,,,,,,,,,,0 0 1;1 0 1;0 1 1;1 1 1' '0.5,/sand,,,,,,,,,,,,,,,,0 0 0.1' > "$BUILD/fuzz-corpus-trajectory/seed.csv"
+mkdir -p "$BUILD/fuzz-corpus-xml"
+for f in "$ROOT"/tests/data/xml/*.xml "$ROOT"/tests/data/xml/*/*.xml "$ROOT"/../shared/spec/raisim/xml-examples/*.xml; do
+  cp -f "$f" "$BUILD/fuzz-corpus-xml/seed_$(basename "$f")"
+done
+XML_DICT=$BUILD/fuzz-xml.dict
+printf '%s\n' '"<array idx=\"@@i\" start=\"0\" end=\"@@n\" increment=\"1\">"' '"</array>"' \
+  '"<params><n value=\"2\"/></params>"' '"exist=\"@@on\""' '"{1+@@i*0.5}"' '"{sin(1)}"' '"{log(0)}"' \
+  '"<include file=\"x.xml\"/>"' '"<object_class><c type=\"compound\"><children><box object_param=\"1 2 3\" pos=\"0 0 0\"/></children></c></object_class>"' \
+  '"<c name=\"a\"/>"' '"<dimension radius=\"1\"/>"' '"[THIS_DIR]"' '"&lol;"' '"<!DOCTYPE raisim [<!ENTITY a \"b\">]>"' \
+  '"<objects>"' '"</objects>"' > "$XML_DICT"
 URDF_DICT=$BUILD/fuzz-urdf.dict
 printf '%s\n' '"<link name=\"a\">"' '"</link>"' '"<joint name=\"j\" type=\"spherical\">"' '"type=\"floating\""' \
   '"<parent link=\"world\"/>"' '"<child link=\"a\"/>"' '"<origin xyz=\"0 0 1\" rpy=\"0 1 0\"/>"' \
@@ -103,6 +114,7 @@ for target in "${TARGETS[@]}"; do
     fuzz_render_scene) corpus=$BUILD/fuzz-corpus-render dict=$DICT ;;
     fuzz_urdf) corpus=$BUILD/fuzz-corpus-urdf dict=$URDF_DICT ;;
     fuzz_trajectory) corpus=$BUILD/fuzz-corpus-trajectory dict=$JSON_DICT ;;
+    fuzz_xml_world) corpus=$BUILD/fuzz-corpus-xml dict=$XML_DICT ;;
     *) echo "tests/fuzz/run.sh: error: unknown target '$target'" >&2; exit 2 ;;
   esac
   echo "$target: fuzzing for ${SECONDS_TO_RUN}s from $(find "$corpus" -type f | wc -l) inputs, $(wc -l < "$dict") dictionary entries"

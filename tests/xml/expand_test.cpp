@@ -195,7 +195,7 @@ TEST(Expand, IncludeErrors) {
   r = loadText("<raisim><objects><sphere><include file=\"x.xml\"/></sphere></objects></raisim>");
   EXPECT_EQ(errors(r), "w.xml:1:26: <include>: belongs directly under <raisim> or <objects> [RS8103]\n");
   r = loadText("<raisim><include name=\"x.xml\"/></raisim>");
-  EXPECT_EQ(errors(r), "w.xml:1:9: <include>: no file (write <include file=\"...\"/>) [RS8103]\n");
+  EXPECT_EQ(errors(r), "w.xml:1:9: <include>: no file (write <include value=\"...\"/>) [RS8103]\n");
   r = loadText("<raisim><include file=\"x.xml\" exist=\"false\"/></raisim>");  // not read at all
   EXPECT_TRUE(r.ok()) << errors(r);
 }
@@ -346,6 +346,33 @@ TEST(Expand, EveryExampleExpands) {
     LoadResult r = loadWorld(entry.path().string(), options);
     EXPECT_TRUE(r.ok()) << entry.path() << "\n" << errors(r);
   }
+}
+
+}  // namespace
+}  // namespace rscene::xml
+
+namespace rscene::xml {
+namespace {
+
+// RaiSim's own templated world (rsc/xmlScripts/templatedWorld): top-level
+// <include value="..."/> of whole worlds whose objects join the includer's,
+// a parameter that only --param sets.
+TEST(Expand, RaisimTemplatedWorldForm) {
+  std::string top = std::string(RSCENE_TEST_DATA) + "/xml/templated/world.xml";
+  LoadResult r = loadWorld(top, {});
+  ASSERT_FALSE(r.ok());
+  ASSERT_FALSE(r.diagnostics.empty());
+  EXPECT_NE(r.diagnostics[0].message.find("@@start_x is not set"), std::string::npos) << r.diagnostics[0].message;
+  LoadOptions options;
+  options.params = {{"start_x", "2"}};
+  r = loadWorld(top, options);
+  ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].message);
+  const Element* objects = r.root->child("objects");
+  ASSERT_NE(objects, nullptr);
+  ASSERT_EQ(objects->children.size(), 2u);
+  EXPECT_EQ(objects->children[0].name, "ground");
+  EXPECT_EQ(objects->children[0].attribute("height")->value, "0.25");
+  EXPECT_EQ(objects->children[1].child("state")->attribute("pos")->value, "2, 0, 1");
 }
 
 }  // namespace
