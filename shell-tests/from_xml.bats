@@ -277,3 +277,16 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
   [[ $stderr == *"include cycle"*"[RS8103]"* ]]
   [ ! -e cycle.rscene ]
 }
+
+@test "the mapping is rscene-to-xml's inverse: from-xml | to-xml | from-xml reproduces the scene" {
+  [ -x "$BIN/rscene-to-xml" ] || skip "rscene-to-xml not built in $BIN"
+  write_world
+  run -0 "$FROM" -q world.xml -o first.rscene
+  run -0 "$BIN/rscene-to-xml" -q first.rscene -o back.xml
+  run -0 "$FROM" -q back.xml -o second.rscene
+  cmp first.rscene second.rscene
+  # Every kind of the world made the trip.
+  for kind in contact_material articulated_resource terrain_region object compound compound_child articulated wire; do
+    grep -q "^$kind " second.rscene || { echo "no $kind"; return 1; }
+  done
+}
