@@ -214,4 +214,7 @@ for soft in "$(dirname "${BASH_SOURCE[0]}")"/soft/*.sh; do
   echo
   bash "$soft" "$BIN" || status=1
 done
+# RaiSim world XML both ways (issue 15), beside rscene-fmt.
+echo
+bash "$(dirname "${BASH_SOURCE[0]}")/xml/convert.sh" "$BIN" || status=1
 exit $status
