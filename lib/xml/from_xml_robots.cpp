@@ -47,7 +47,9 @@ void convertArticulated(Context& ctx, const Element& e) {
                       {"name", "urdf_path", "urdfPath", "res_dir", "resDir", "modules", "collision_group",
                        "collisionGroup", "collision_mask", "collisionMask"},
                       {"appearance"});
-  ctx.checkChildren(e, label, {"state"});
+  // RaiSim's exporter writes an empty <dim/> in every articulatedSystem.
+  ctx.checkChildren(e, label, {"state", "dim"});
+  if (const Element* dim = e.child("dim")) ctx.checkAttributes(*dim, label + " <dim>", {});
   std::string path = ctx.takePath(e);
   const Attribute* urdf = ctx.requirePath(e, "urdf_path", "urdfPath");
   const Attribute* resDir = e.attribute("res_dir", "resDir");
@@ -132,6 +134,12 @@ int bodyIndexOf(const robot::Model& model, int link, Pose& inBody) {
   return it == c.joints.end() ? 0 : static_cast<int>(it - c.joints.begin()) + 1;
 }
 
+bool stretchOnly(std::string_view v) {
+  std::string lower;
+  for (char c : v) lower += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return lower == "stretch_only" || lower == "stretch_resistant_only";
+}
+
 struct End {
   std::string body;
   int index = 0;
@@ -206,7 +214,10 @@ void convertWire(Context& ctx, const Element& e) {
     ctx.error(code::kMissing, e, "'stiffness' is required for a compliant wire");
     ok = false;
   }
-  if (const Attribute* st = e.attribute("stretch_type", "stretchType"); st && st->value != "STRETCH_RESISTANT_ONLY")
+  // rscene wires resist stretch only: RaiSim's exporter spells that
+  // "stretch_only" (the enum STRETCH_RESISTANT_ONLY); "both" and
+  // "compression_only" (BOTH, COMPRESSION_RESISTANT_ONLY) are lost.
+  if (const Attribute* st = e.attribute("stretch_type", "stretchType"); st && !stretchOnly(st->value))
     ctx.lost(label + ": stretch_type " + st->value + " (rscene wires resist stretch only)");
   End a, b;
   ok = wireEnd(ctx, e, label, "object1", a) && ok;

@@ -49,6 +49,13 @@ bool readSizes(Context& ctx, const Element& e, Grid& g) {
   return true;
 }
 
+// The first of `names` present (RS8112 naming the first when none is).
+const Attribute* requireOneOf(Context& ctx, const Element& e, std::initializer_list<std::string_view> names) {
+  for (std::string_view n : names)
+    if (const Attribute* a = e.attribute(n)) return a;
+  return ctx.require(e, *names.begin());
+}
+
 std::size_t byteLimit() { return static_cast<std::size_t>(kMaxTerrainSamples) * 32; }
 
 // Option 2: the PNG's pixels are the samples (width x height); a sample is
@@ -138,7 +145,8 @@ void convertHeightmap(Context& ctx, const Element& e) {
   ctx.checkAttributes(e, label,
                       {"name", "material", "x_sample", "xSample", "y_sample", "ySample", "x_size", "xSize", "y_size",
                        "ySize", "center_x", "centerX", "center_y", "centerY", "height", "png", "z_scale", "zScale",
-                       "z_offset", "zOffset", "text", "collision_mask", "collisionMask"},
+                       "z_offset", "zOffset", "heightScale", "height_scale", "heightOffset", "height_offset", "text",
+                       "collision_mask", "collisionMask"},
                       {"appearance"});
   ctx.checkChildren(e, label, {"terrain_properties", "terrainProperties"});
   std::string path = ctx.takePath(e);
@@ -153,8 +161,9 @@ void convertHeightmap(Context& ctx, const Element& e) {
   keys.keyText("contactMaterial", material && !material->value.empty() ? material->value : "default");
   const Element* props = e.child("terrain_properties", "terrainProperties");
   if (const Attribute* png = e.attribute("png")) {
-    auto scale = ctx.number(e, ctx.require(e, "z_scale", "zScale"));
-    auto offset = ctx.number(e, ctx.require(e, "z_offset", "zOffset"));
+    // heightMapUsingPng.xml spells them heightScale / heightOffset.
+    auto scale = ctx.number(e, requireOneOf(ctx, e, {"z_scale", "zScale", "heightScale", "height_scale"}));
+    auto offset = ctx.number(e, requireOneOf(ctx, e, {"z_offset", "zOffset", "heightOffset", "height_offset"}));
     if (!readSizes(ctx, e, g) || !scale || !offset || !readPng(ctx, e, *png, *scale, *offset, g)) return;
     keys.key("sourceKind", "png").keyText("sourcePath", ctx.assetPath(png->value));
     keys.keyNum("pngHeightScale", *scale).keyNum("pngHeightOffset", *offset);

@@ -423,7 +423,7 @@ TEST(ToXml, WireEndsAreBodyPaths) {
   ASSERT_TRUE(e.result.ok());
   EXPECT_TRUE(contains(e.result.xml,
                        "    <wire name=\"/World/W\" type=\"compliant\" length=\"1.5\" stiffness=\"500\" "
-                       "stretch_type=\"STRETCH_RESISTANT_ONLY\">\n"
+                       "stretch_type=\"stretch_only\">\n"
                        "        <object1 name=\"/World/A\" local_index=\"0\" pos=\"0 0 -0.1\"/>\n"
                        "        <object2 name=\"/World/B\" local_index=\"0\" pos=\"0 0.1 0\"/>\n"
                        "    </wire>\n"))
