@@ -103,8 +103,10 @@ void convertArticulated(Context& ctx, const Element& e) {
   l.text(path).text(resource).nums(pos).nums(quat).raw("true").raw("true");
   if (resDir) l.keyText("resourceDirectory", ctx.assetPath(resDir->value));
   if (modules && !words(modules->value).empty()) l.keyList("modules", words(modules->value));
-  if (group) l.key("collisionGroup", std::to_string(*group));
-  if (mask) l.key("collisionMask", std::to_string(*mask));
+  // The schema's defaults (1, all bits) are left out, as rscene-to-xml
+  // leaves them out of the XML, so a round trip gives the same record.
+  if (group && *group != 1) l.key("collisionGroup", std::to_string(*group));
+  if (mask && *mask != ~std::uint64_t{0}) l.key("collisionMask", std::to_string(*mask));
   if (!qpos.empty()) l.keyNums("generalizedCoordinate", qpos.data(), qpos.size());
   if (!qvel.empty()) l.keyNums("generalizedVelocity", qvel.data(), qvel.size());
   ctx.add(l);

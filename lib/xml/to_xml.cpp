@@ -142,8 +142,8 @@ class Exporter {
     if (o.primitive == "ground" || o.primitive == "half_space") {
       OutElement g("ground");
       g.text("name", o.path).number("height", o.world.position.z()).text("material", materialName(o.contactMaterial));
+      if (o.collisionGroup != 1) g.text("collision_group", collisionBits(o.collisionGroup));
       if (o.collisionMask != kAllBits) g.text("collision_mask", collisionBits(o.collisionMask));
-      if (o.collisionGroup != 1) losses.push_back("object " + o.path + ": collisionGroup");
       return g;
     }
     const std::string& tag = o.primitive;  // sphere, box, capsule, cylinder, mesh: RaiSim's element names

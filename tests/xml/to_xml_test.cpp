@@ -222,9 +222,11 @@ TEST(ToXml, GroundAndHalfSpace) {
                        "        <ground name=\"/World/Floor\" height=\"-0.5\" material=\"concrete\" "
                        "collision_mask=\"collision[0|1]\"/>\n"))
       << e.result.xml;
-  EXPECT_TRUE(contains(e.result.xml, "<ground name=\"/World/Half\" height=\"2\" material=\"default\"/>"));
-  // A ground element has no collision_group.
-  EXPECT_EQ(joined(e.result.notExported), "object /World/Half: collisionGroup");
+  // RaiSim's exporter writes a ground's collision_group, and so does this.
+  EXPECT_TRUE(contains(e.result.xml, "<ground name=\"/World/Half\" height=\"2\" material=\"default\" "
+                                     "collision_group=\"collision[2]\"/>"))
+      << e.result.xml;
+  EXPECT_EQ(joined(e.result.notExported), "");
 }
 
 TEST(ToXml, MeshPathRelativeToTheOutputOrAbsolute) {
