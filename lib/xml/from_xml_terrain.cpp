@@ -4,6 +4,7 @@
 // is not reproduced: the record keeps the parameters, the samples stay
 // flat, one warning says so).
 #include <algorithm>
+#include <tuple>
 
 #include "asset/image.hpp"
 #include "core/filesystem.hpp"
@@ -165,6 +166,14 @@ void convertHeightmap(Context& ctx, const Element& e) {
     auto scale = ctx.number(e, requireOneOf(ctx, e, {"z_scale", "zScale", "heightScale", "height_scale"}));
     auto offset = ctx.number(e, requireOneOf(ctx, e, {"z_offset", "zOffset", "heightOffset", "height_offset"}));
     if (!readSizes(ctx, e, g) || !scale || !offset || !readPng(ctx, e, *png, *scale, *offset, g)) return;
+    // The PNG's pixels are the samples (heightMapUsingPng.xml gives no
+    // counts); counts that disagree are not resampled, and say so.
+    for (auto [name, alias, have] : {std::tuple{"x_sample", "xSample", g.xs}, std::tuple{"y_sample", "ySample", g.ys}})
+      if (const Attribute* a = e.attribute(name, alias))
+        if (auto n = ctx.integer(e, a, 2, kMaxSamplesPerAxis); n && *n != have)
+          ctx.warning(code::kApproximate, e,
+                      std::string(name) + " " + std::to_string(*n) + " differs from the PNG's " +
+                          std::to_string(have) + " pixels: the pixels are the samples, not resampled");
     keys.key("sourceKind", "png").keyText("sourcePath", ctx.assetPath(png->value));
     keys.keyNum("pngHeightScale", *scale).keyNum("pngHeightOffset", *offset);
     keys.keyNums("heights", g.heights.data(), g.heights.size());

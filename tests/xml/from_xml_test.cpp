@@ -557,6 +557,14 @@ TEST(FromXml, HeightmapPngInRaisimsSpelling) {
   EXPECT_TRUE(r.diagnostics.empty()) << r.diagnostics[0].message;
   EXPECT_EQ(bodies(r), "terrain_region /World/terrain 3 2 6 4 1 2 0 contactMaterial=default sourceKind=png "
                        "sourcePath=h.png pngHeightScale=5 pngHeightOffset=-10 heights=-8,-6,-5,-10,-5,-9\n");
+  FromXmlResult counts = convert(world("<heightmap png=\"" + (dir / "h.png").string() +
+                                       "\" xSize=\"6\" ySize=\"4\" centerX=\"1\" centerY=\"2\" heightOffset=\"0\" "
+                                       "heightScale=\"1\" x_sample=\"3\" y_sample=\"5\"/>"));
+  ASSERT_TRUE(counts.ok());
+  ASSERT_EQ(counts.diagnostics.size(), 1u);
+  EXPECT_EQ(counts.diagnostics[0].message,
+            "<heightmap>: y_sample 5 differs from the PNG's 2 pixels: the pixels are the samples, not resampled");
+  EXPECT_NE(bodies(counts).find("terrain_region /World/heightmap 3 2 "), std::string::npos) << bodies(counts);
   FromXmlResult noScale = convert(world("<heightmap png=\"" + (dir / "h.png").string() +
                                         "\" xSize=\"6\" ySize=\"4\" centerX=\"1\" centerY=\"2\" heightOffset=\"0\"/>"));
   ASSERT_NE(find(noScale, "RS8112"), nullptr);
