@@ -365,3 +365,55 @@ RAISIM="$ROOT/tests/data/xml/raisim"
   grep -q '^object /World/floor ground 0 0 0.25 ' t.rscene
   grep -q '^object /World/ball sphere 2 0 1 ' t.rscene
 }
+
+# Each value rscene-validate, rscene-sim or rscene-to-xml would refuse:
+# exit 2 at file:line:col of the element, and no output file with -o.
+refused() {
+  printf '<raisim version="1.0">\n<objects>\n%s\n</objects>\n</raisim>\n' "$1" >bad.xml
+  run -2 --separate-stderr "$FROM" bad.xml -o out.rscene
+  [[ $stderr == "$2"* ]]
+  [ ! -e out.rscene ]
+}
+
+@test "values the other tools refuse are errors at their attribute, exit 2 and nothing written" {
+  refused '<sphere mass="1"><dim radius="-1"/></sphere>' \
+    'bad.xml:3:23: error: <dim> radius: -1 is not a positive length [RS8110]'
+  refused '<sphere mass="1"><dim radius="0"/></sphere>' \
+    'bad.xml:3:23: error: <dim> radius: 0 is not a positive length [RS8110]'
+  refused '<box mass="1"><dim x="1" y="-2" z="1"/></box>' \
+    'bad.xml:3:26: error: <dim> y: -2 is not a positive length [RS8110]'
+  refused '<capsule mass="1"><dim radius="1" height="-3"/></capsule>' \
+    'bad.xml:3:35: error: <dim> height: -3 is not a positive length [RS8110]'
+  refused '<sphere mass="-5"><dim radius="1"/></sphere>' \
+    'bad.xml:3:9: error: <sphere> mass: -5 is not a positive mass [RS8110]'
+  refused '<sphere mass="1"><dim radius="1"/><state pos="0 0 0" quat="0 0 0 0"/></sphere>' \
+    'bad.xml:3:54: error: <state> quat: the zero quaternion is no orientation [RS8110]'
+}
+
+@test "records the scene checks refuse are RS8125 at their element, naming the check's code" {
+  urdf="$ROOT/tests/data/robots/check/walker.urdf"
+  [ -f "$urdf" ] || skip "no walker.urdf"
+  refused "<articulatedSystem name=\"w\" urdf_path=\"$urdf\"><state qpos=\"0 0 0.5 0 0 0 0 0 0 0 0\"/></articulatedSystem>" \
+    'bad.xml:3:'
+  [[ $stderr == *"error: <state> qpos: generalizedCoordinate holds a zero quaternion"*"(RS7043 in the converted scene) [RS8125]"* ]]
+  refused '<sphere mass="1"><dim radius="1"/><state pos="1e300 0 0"/></sphere>' \
+    'bad.xml:3:42: error: <state> pos: '
+  [[ $stderr == *"(RS7021 in the converted scene) [RS8125]"* ]]
+  # The same robot with a unit quaternion converts, and the tools accept it.
+  printf '<raisim version="1.0">\n<objects>\n<articulatedSystem name="w" urdf_path="%s"><state qpos="0 0 0.5 1 0 0 0 0 0 0 0"/></articulatedSystem>\n</objects>\n</raisim>\n' "$urdf" >good.xml
+  run -0 "$FROM" -q good.xml -o good.rscene
+  validates_clean good.rscene
+}
+
+@test "a mesh file that does not exist is a warning at file_name; the scene is still written" {
+  printf '<raisim version="1.0">\n<objects>\n<mesh mass="1" file_name="nope.obj"/>\n</objects>\n</raisim>\n' >m.xml
+  run -0 --separate-stderr "$FROM" m.xml -o m.rscene
+  [[ $stderr == "m.xml:3:16: warning: <mesh> file_name: mesh file 'nope.obj' not found: rscene-sim will refuse the body until it exists [RS8113]"* ]]
+  grep -q '^object /World/mesh mesh .* nope.obj dynamic' m.rscene
+  run -0 --separate-stderr "$FROM" -q m.xml
+  [ -z "$stderr" ]
+  # With the file there, no warning.
+  touch nope.obj
+  run -0 --separate-stderr "$FROM" m.xml -o m.rscene
+  [[ $stderr != *RS8113* ]]
+}

@@ -176,8 +176,9 @@ constexpr CheckInfo kChecks[] = {
     {"RS8110", E, Xml, "from-xml", "element or attribute whose value cannot become a record field"},
     {"RS8111", W, Xml, "from-xml", "element or attribute with no .rscene field (unknown, or not modelled), not converted"},
     {"RS8112", E, Xml, "from-xml", "element without a required child or attribute (a sphere's radius, a mesh's file_name ...)"},
-    {"RS8113", W, Xml, "from-xml", "converted approximately: a repeated name renamed, a procedural heightmap left flat, a robot file not read"},
+    {"RS8113", W, Xml, "from-xml", "converted approximately: a repeated name renamed, a procedural heightmap left flat, a robot file not read, a mesh file not found"},
     {"RS8114", E, Xml, "from-xml", "heightmap PNG or text file that cannot be read"},
+    {"RS8125", E, Xml, "from-xml", "converted record that rscene-validate, rscene-sim or rscene-to-xml would refuse (their code in the message), at the element that made it"},
     {"RS8130", E, Xml, "to-xml", "scene that cannot be written as a world XML"},
     {"RS8131", W, Xml, "to-xml", "articulated system whose robot file cannot be read: exported with its urdf_path and the state as written"},
     // RS9xxx rendering (rscene-render)

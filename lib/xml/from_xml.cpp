@@ -30,6 +30,9 @@ struct Physics {
   double erp = 0.2, erp2 = 0;
   double friction = kRaisimFriction, restitution = kRaisimRestitution,
          restitutionThreshold = kRaisimRestitutionThreshold;
+  // The elements the time_step, gravity and solver lines come from (the
+  // <raisim> element where the XML leaves them out).
+  std::vector<const Element*> origins;
 };
 
 void readValue(Context& ctx, const Element& e, double& out) {
@@ -57,7 +60,7 @@ void readPairProp(Context& ctx, const Element& e) {
   l.text(a->value).text(b->value).num(*friction).num(*restitution).num(*threshold);
   l.num(staticFriction.value_or(*friction)).num(staticThreshold.value_or(kSchemaStaticFrictionVelocityThreshold));
   l.num(rolling.value_or(0)).num(spinning.value_or(0));
-  ctx.add(l);
+  ctx.add(l, e);
 }
 
 void readMaterial(Context& ctx, const Element& e, Physics& p) {
@@ -127,17 +130,24 @@ FromXmlResult worldToScene(const Element& raisim, const FromXmlOptions& options)
                      "object_class"},
                     {"camera"});
   Physics p;
+  p.origins = {&raisim, &raisim, &raisim};
   for (const Element& e : raisim.children) {
     if (e.name == "timeStep" || e.name == "time_step") {
+      p.origins[0] = &e;
       readValue(ctx, e, p.dt);
+      if (const Attribute* a = e.attribute("value"); a && !(p.dt > 0))
+        ctx.error(code::kBadValue, e, *a, a->value + " is not a positive time step");
     } else if (e.name == "gravity") {
+      p.origins[1] = &e;
       ctx.checkAttributes(e, "gravity", {"value"});
       if (auto v = ctx.vec<3>(e, ctx.require(e, "value"))) p.gravity = *v;
     } else if (e.name == "erp") {
+      p.origins[2] = &e;
       ctx.checkAttributes(e, "erp", {"erp", "erp2"});
       if (auto v = ctx.number(e, e.attribute("erp"))) p.erp = *v;
       if (auto v = ctx.number(e, e.attribute("erp2"))) p.erp2 = *v;
     } else if (e.name == "material") {
+      if (p.origins[2] == &raisim) p.origins[2] = &e;
       readMaterial(ctx, e, p);
     }
   }
@@ -161,7 +171,16 @@ FromXmlResult worldToScene(const Element& raisim, const FromXmlOptions& options)
   }
   if (!result.ok()) return result;
 
-  rscene::LoadResult loaded = parse("raisim_engine_scene 1\n" + physicsRecords(p) + ctx.records);
+  std::string text = "raisim_engine_scene 1\n" + physicsRecords(p) + ctx.records;
+  // Line L of `text` came from origins[L - 1]; the header from <raisim>.
+  std::vector<const Element*> origins{&raisim};
+  origins.insert(origins.end(), p.origins.begin(), p.origins.end());
+  origins.insert(origins.end(), ctx.origins.begin(), ctx.origins.end());
+  // What rscene-validate, rscene-sim or rscene-to-xml would refuse is
+  // refused here, at the element that made it: the output always loads.
+  detail::checkConverted(ctx, text, raisim, origins);
+  if (!result.ok()) return result;
+  rscene::LoadResult loaded = parse(std::move(text));
   if (!loaded.ok()) {
     // Only a bug of the mapping gets here: every value was checked above.
     for (Diagnostic& d : loaded.diagnostics) {

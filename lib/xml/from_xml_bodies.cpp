@@ -1,6 +1,8 @@
 // Single bodies (sphere, capsule, cylinder, box, mesh), ground and compound
 // as object / compound / compound_child records (rscene-from-xml(1), the
 // mapping table).
+#include <filesystem>
+
 #include "core/text.hpp"
 #include "xml/from_xml_context.hpp"
 
@@ -13,6 +15,18 @@ std::size_t errorCount(const Context& ctx) {
   std::size_t n = 0;
   for (const Diagnostic& d : ctx.result.diagnostics) n += d.severity == Severity::Error;
   return n;
+}
+
+// A size of <dim> (radius, height, a box side): the scene checks refuse a
+// zero or negative one (RS7003), said here in the XML's words.
+std::optional<double> length(Context& ctx, const Element& dim, const char* name) {
+  const Attribute* a = ctx.require(dim, name);
+  std::optional<double> v = ctx.number(dim, a);
+  if (v && !(*v > 0)) {
+    ctx.error(code::kBadValue, dim, *a, a->value + " is not a positive length");
+    return std::nullopt;
+  }
+  return v;
 }
 
 // What every single body and the compound share.
@@ -34,7 +48,12 @@ void readState(Context& ctx, const Element& owner, const std::string& label, Vec
   if (!state) return;
   ctx.checkAttributes(*state, label + " <state>", {"pos", "quat", "lin_vel", "linVel", "ang_vel", "angVel"});
   if (auto p = ctx.vec<3>(*state, state->attribute("pos"))) pos = *p;
-  if (auto q = ctx.vec<4>(*state, state->attribute("quat"))) quat = *q;
+  if (auto q = ctx.vec<4>(*state, state->attribute("quat"))) {
+    if ((*q)[0] * (*q)[0] + (*q)[1] * (*q)[1] + (*q)[2] * (*q)[2] + (*q)[3] * (*q)[3] < 1e-24)
+      ctx.error(code::kBadValue, *state, *state->attribute("quat"), "the zero quaternion is no orientation");
+    else
+      quat = *q;
+  }
   for (auto [name, alias] : {std::pair{"lin_vel", "linVel"}, std::pair{"ang_vel", "angVel"}})
     if (auto v = ctx.vec<3>(*state, state->attribute(name, alias)); v && (*v != Vec3{0, 0, 0}))
       ctx.lost(label + ": " + name);
@@ -74,6 +93,12 @@ bool readCommon(Context& ctx, const Element& e, Common& c) {
       ctx.error(code::kBadValue, e, *t, "'" + t->value + "' is not dynamic, kinematic or static");
   }
   c.mass = ctx.number(e, e.attribute("mass"));
+  // RS4008 refuses a dynamic body without a positive mass; no body has a
+  // negative one.
+  if (c.mass && (*c.mass < 0 || (*c.mass == 0 && c.mode == "dynamic")))
+    ctx.error(code::kBadValue, e, *e.attribute("mass"),
+              e.attribute("mass")->value + " is not a positive mass" +
+                  (*c.mass == 0 ? " (a dynamic body needs one)" : ""));
   if (auto g = ctx.group(e, e.attribute("collision_group", "collisionGroup"))) c.group = *g;
   if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
   c.com = ctx.vec<3>(e, e.attribute("com"));
@@ -119,6 +144,14 @@ void convertSingleBody(Context& ctx, const Element& e) {
   if (mesh) {
     const Attribute* file = ctx.requirePath(e, "file_name", "fileName");
     if (file) meshPath = ctx.assetPath(file->value);
+    // As for a robot file that does not load, the scene is still written
+    // (the mesh may be made later), but rscene-sim refuses a body whose
+    // collision mesh is missing (RS5001): say so now, at the element.
+    std::error_code ec;
+    if (file && !file->value.empty() && !std::filesystem::is_regular_file(file->value, ec))
+      ctx.result.diagnostics.push_back(attributeDiagnostic(
+          Severity::Warning, code::kApproximate, e, *file,
+          "mesh file '" + file->value + "' not found: rscene-sim will refuse the body until it exists"));
     if (auto s = ctx.vec<3>(e, e.attribute("scale"))) scale = *s;
     ok = ok && file;
   } else {
@@ -129,16 +162,16 @@ void convertSingleBody(Context& ctx, const Element& e) {
       ctx.checkAttributes(*dim, c.label + " <dim>", {"x", "y", "z"});
       for (int i = 0; i < 3; ++i) {
         const char* axis[] = {"x", "y", "z"};
-        if (auto v = ctx.number(*dim, ctx.require(*dim, axis[i]))) scale[static_cast<std::size_t>(i)] = *v;
+        if (auto v = length(ctx, *dim, axis[i])) scale[static_cast<std::size_t>(i)] = *v;
       }
     } else {
       bool tall = e.name != "sphere";
       ctx.checkAttributes(*dim, c.label + " <dim>",
                           tall ? std::initializer_list<std::string_view>{"radius", "height"}
                                : std::initializer_list<std::string_view>{"radius"});
-      if (auto r = ctx.number(*dim, ctx.require(*dim, "radius"))) radius = *r;
+      if (auto r = length(ctx, *dim, "radius")) radius = *r;
       if (tall)
-        if (auto h = ctx.number(*dim, ctx.require(*dim, "height"))) height = *h;
+        if (auto h = length(ctx, *dim, "height")) height = *h;
     }
     ok = ok && errorCount(ctx) == before;
   }
@@ -146,7 +179,7 @@ void convertSingleBody(Context& ctx, const Element& e) {
   Line l = objectLine(c, e.name, scale, radius, height, meshPath);
   if (c.inertia) l.key("customInertia", "true").keyNums("inertiaDiagonal", *c.inertia);
   if (c.com) l.keyNums("centerOfMass", *c.com);
-  ctx.add(l);
+  ctx.add(l, e);
   ctx.bodies.emplace(xmlName(e), c.path);
 }
 
@@ -197,7 +230,7 @@ void convertGround(Context& ctx, const Element& e) {
   if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
   if (errorCount(ctx) != before) return;
   // 10 x 10 is only the drawn plane's size: a ground is a half-space.
-  ctx.add(objectLine(c, "ground", Vec3{10, 10, 1}, 0, 0, ""));
+  ctx.add(objectLine(c, "ground", Vec3{10, 10, 1}, 0, 0, ""), e);
   ctx.bodies.emplace(xmlName(e), c.path);
 }
 
@@ -206,7 +239,7 @@ namespace {
 // One <children> entry: sphere, capsule, cylinder or box with dim, state
 // pos quat and material.
 bool compoundChild(Context& ctx, const std::string& compound, const std::string& label, const Element& e,
-                   std::string& out) {
+                   std::vector<std::pair<std::string, const Element*>>& out) {
   // One label for all children, so the not-converted line says "name" once.
   std::string childLabel = label + " <children>";
   ctx.checkAttributes(e, childLabel, {"material"}, {"name", "mass", "appearance", "body_type", "bodyType"});
@@ -224,21 +257,21 @@ bool compoundChild(Context& ctx, const std::string& compound, const std::string&
     Vec3 size{};
     const char* axis[] = {"x", "y", "z"};
     for (int i = 0; i < 3; ++i)
-      if (auto v = ctx.number(*dim, ctx.require(*dim, axis[i]))) size[static_cast<std::size_t>(i)] = *v;
+      if (auto v = length(ctx, *dim, axis[i])) size[static_cast<std::size_t>(i)] = *v;
     l.keyNums("size", size);
   } else {
     bool tall = e.name != "sphere";
     ctx.checkAttributes(*dim, childLabel + " <dim>",
                         tall ? std::initializer_list<std::string_view>{"radius", "height"}
                              : std::initializer_list<std::string_view>{"radius"});
-    if (auto r = ctx.number(*dim, ctx.require(*dim, "radius"))) l.keyNum("radius", *r);
+    if (auto r = length(ctx, *dim, "radius")) l.keyNum("radius", *r);
     if (tall)
-      if (auto h = ctx.number(*dim, ctx.require(*dim, "height"))) l.keyNum("height", *h);
+      if (auto h = length(ctx, *dim, "height")) l.keyNum("height", *h);
   }
   const Attribute* m = e.attribute("material");
   l.keyText("contactMaterial", m && !m->value.empty() ? m->value : "default");
   if (errorCount(ctx) != before) return false;
-  out += l.str() + '\n';
+  out.emplace_back(l.str(), &e);
   return true;
 }
 
@@ -254,7 +287,7 @@ void convertCompound(Context& ctx, const Element& e) {
   bool ok = readCommon(ctx, e, c);
   const Element* children = ctx.requireChild(e, "children");
   if (!children) return;
-  std::string childLines;
+  std::vector<std::pair<std::string, const Element*>> childLines;
   for (const Element& child : children->children) {
     if (child.name == "sphere" || child.name == "capsule" || child.name == "cylinder" || child.name == "box") {
       ok = compoundChild(ctx, c.path, c.label, child, childLines) && ok;
@@ -276,8 +309,8 @@ void convertCompound(Context& ctx, const Element& e) {
   if (c.inertia) l.keyNums("inertiaDiagonal", *c.inertia);
   l.key("collisionGroup", std::to_string(c.group)).key("collisionMask", std::to_string(c.mask));
   l.keyText("contactMaterial", c.material);
-  ctx.add(l);
-  ctx.records += childLines;
+  ctx.add(l, e);
+  for (const auto& [line, child] : childLines) ctx.add(line, *child);
   ctx.bodies.emplace(xmlName(e), c.path);
 }
 

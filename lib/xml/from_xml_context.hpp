@@ -24,8 +24,9 @@ namespace code {
 inline constexpr const char* kBadValue = "RS8110";      // value that cannot become a field
 inline constexpr const char* kNotConverted = "RS8111";  // unknown element or attribute (warning)
 inline constexpr const char* kMissing = "RS8112";       // required child or attribute missing
-inline constexpr const char* kApproximate = "RS8113";   // renamed, left flat, robot not read (warning)
+inline constexpr const char* kApproximate = "RS8113";   // renamed, left flat, robot not read, mesh not found (warning)
 inline constexpr const char* kBadAsset = "RS8114";      // heightmap PNG or text unreadable
+inline constexpr const char* kRefused = "RS8125";       // a record the scene checks refuse (their code in the message)
 }  // namespace code
 
 // One record line, tokens separated by single spaces.
@@ -64,6 +65,9 @@ struct Context {
   const FromXmlOptions& options;
   FromXmlResult& result;
   std::string records;                         // the record lines, LF-terminated
+  // The element each line of `records` came from, in order, so a finding
+  // of the scene checks on a record line is reported at its element.
+  std::vector<const Element*> origins;
   std::set<std::string> paths;                 // every record path taken
   // Renames of repeated paths, by the path wanted, in order.
   std::vector<std::pair<std::string, std::vector<std::string>>> renamed;
@@ -83,7 +87,13 @@ struct Context {
   robot::ModelCache models;
   std::set<std::string> notConverted;          // dedup of result.notConverted
 
-  void add(const Line& line) { records += line.str() + '\n'; }
+  // Appends one record line made from element `from`.
+  void add(const Line& line, const Element& from) { add(line.str(), from); }
+  void add(const std::string& line, const Element& from) {
+    records += line;
+    records += '\n';
+    origins.push_back(&from);
+  }
   void error(const char* code, const Element& e, std::string message);
   void error(const char* code, const Element& e, const Attribute& a, std::string message);
   void warning(const char* code, const Element& e, std::string message);
@@ -151,5 +161,12 @@ void convertCompound(Context& ctx, const Element& e);
 void convertHeightmap(Context& ctx, const Element& e);
 void convertArticulated(Context& ctx, const Element& e);
 void convertWire(Context& ctx, const Element& e);
+
+// Runs the checks rscene-validate, rscene-sim and rscene-to-xml run on the
+// scene `text` (from_xml_check.cpp) and adds each error as an RS8125 error
+// at the element line L of `text` came from (lineOrigins[L - 1]; `root`
+// when none), at the attribute of the field when there is one.
+void checkConverted(Context& ctx, const std::string& text, const Element& root,
+                    const std::vector<const Element*>& lineOrigins);
 
 }  // namespace rscene::xml::detail

@@ -25,7 +25,7 @@ std::vector<std::string> words(std::string_view s) {
 }
 
 // The articulated_resource of a robot file: one per distinct file.
-std::string resourceFor(Context& ctx, const std::string& file) {
+std::string resourceFor(Context& ctx, const std::string& file, const Element& from) {
   if (auto it = ctx.resourceOf.find(file); it != ctx.resourceOf.end()) return it->second;
   std::string stem = std::filesystem::path(file).stem().string();
   if (stem.empty()) stem = "robot";
@@ -35,7 +35,7 @@ std::string resourceFor(Context& ctx, const std::string& file) {
   ctx.resourceOf.emplace(file, id);
   Line l("articulated_resource");
   l.text(id).text(stem).text(ctx.assetPath(file));
-  ctx.add(l);
+  ctx.add(l, from);
   return id;
 }
 
@@ -97,7 +97,7 @@ void convertArticulated(Context& ctx, const Element& e) {
     ctx.warning(code::kApproximate, e,
                 "robot file not read (" + why + "): placed at the origin, qpos kept as written");
   }
-  std::string resource = resourceFor(ctx, urdf->value);
+  std::string resource = resourceFor(ctx, urdf->value, e);
   // articulated PATH resource pos quat visible collidable
   Line l("articulated");
   l.text(path).text(resource).nums(pos).nums(quat).raw("true").raw("true");
@@ -109,7 +109,7 @@ void convertArticulated(Context& ctx, const Element& e) {
   if (mask && *mask != ~std::uint64_t{0}) l.key("collisionMask", std::to_string(*mask));
   if (!qpos.empty()) l.keyNums("generalizedCoordinate", qpos.data(), qpos.size());
   if (!qvel.empty()) l.keyNums("generalizedVelocity", qvel.data(), qvel.size());
-  ctx.add(l);
+  ctx.add(l, e);
   ctx.robots.emplace(xmlName(e), Context::Robot{path, model});
 }
 
@@ -231,7 +231,7 @@ void convertWire(Context& ctx, const Element& e) {
   l.key("localIndexA", std::to_string(a.index)).key("localIndexB", std::to_string(b.index));
   l.keyNums("localPositionA", a.pos).keyNums("localPositionB", b.pos);
   if (stiffness) l.keyNum("stiffness", *stiffness);
-  ctx.add(l);
+  ctx.add(l, e);
 }
 
 }  // namespace rscene::xml::detail

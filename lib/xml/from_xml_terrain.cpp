@@ -232,7 +232,7 @@ void convertHeightmap(Context& ctx, const Element& e) {
   Line l("terrain_region");
   l.text(path).raw(std::to_string(g.xs)).raw(std::to_string(g.ys)).num(g.xSize).num(g.ySize);
   l.nums(Vec3{*cx, *cy, 0});
-  ctx.records += l.str() + keys.str() + '\n';
+  ctx.add(l.str() + keys.str(), e);
   ctx.bodies.emplace(xmlName(e), path);
 }
 

@@ -614,5 +614,107 @@ TEST(FromXml, RaisimsExporterForms) {
   ASSERT_NE(find(dimAttr, "RS8111"), nullptr);
 }
 
+// Values rscene-validate, rscene-sim and rscene-to-xml would refuse are
+// refused in the XML's words, at the attribute, and nothing is written.
+TEST(FromXml, ValuesTheOtherToolsRefuseAreErrorsAtTheirAttribute) {
+  struct Case {
+    const char* xml;
+    const char* message;
+    unsigned column;
+  } cases[] = {
+      {"<sphere mass=\"1\"><dim radius=\"-1\"/></sphere>", "<dim> radius: -1 is not a positive length", 23},
+      {"<sphere mass=\"1\"><dim radius=\"0\"/></sphere>", "<dim> radius: 0 is not a positive length", 23},
+      {"<box mass=\"1\"><dim x=\"1\" y=\"-2\" z=\"1\"/></box>", "<dim> y: -2 is not a positive length", 26},
+      {"<capsule mass=\"1\"><dim radius=\"1\" height=\"-3\"/></capsule>", "<dim> height: -3 is not a positive length",
+       35},
+      {"<sphere mass=\"-5\"><dim radius=\"1\"/></sphere>", "<sphere> mass: -5 is not a positive mass", 9},
+      {"<sphere mass=\"1\"><dim radius=\"1\"/><state pos=\"0 0 0\" quat=\"0 0 0 0\"/></sphere>",
+       "<state> quat: the zero quaternion is no orientation", 54},
+      {"<compound mass=\"1\"><children><cylinder><dim radius=\"1\" height=\"0\"/></cylinder></children></compound>",
+       "<dim> height: 0 is not a positive length", 56},
+  };
+  for (const Case& c : cases) {
+    FromXmlResult r = convert(world(c.xml));
+    EXPECT_FALSE(r.ok()) << c.xml;
+    EXPECT_TRUE(r.text.empty()) << c.xml;
+    const Diagnostic* d = find(r, "RS8110");
+    ASSERT_NE(d, nullptr) << c.xml;
+    EXPECT_EQ(d->message, c.message);
+    EXPECT_EQ(d->file, "w.xml");
+    EXPECT_EQ(d->line, 3u) << c.xml;
+    EXPECT_EQ(d->column, c.column) << c.xml;
+  }
+  FromXmlResult dt = convert("<raisim><timeStep value=\"-0.1\"/><objects/></raisim>");
+  ASSERT_NE(find(dt, "RS8110"), nullptr);
+  EXPECT_EQ(find(dt, "RS8110")->message, "<timeStep> value: -0.1 is not a positive time step");
+  EXPECT_TRUE(dt.text.empty());
+}
+
+// Whatever else the scene checks refuse comes back as RS8125 at the
+// element (and attribute) that made the record, naming the check's code.
+TEST(FromXml, RecordsTheSceneChecksRefuseAreErrorsAtTheirElement) {
+  FromXmlResult wire = convert(world("<sphere name=\"a\" mass=\"1\"><dim radius=\"1\"/></sphere>\n"
+                                     "<sphere name=\"b\" mass=\"1\"><dim radius=\"1\"/></sphere>",
+                                     "<wire type=\"stiff\" length=\"-1\"><object1 name=\"a\"/><object2 name=\"b\"/></wire>\n"));
+  EXPECT_TRUE(wire.text.empty());
+  const Diagnostic* d = find(wire, "RS8125");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->file, "w.xml");
+  EXPECT_EQ(d->line, 6u);
+  EXPECT_EQ(d->column, 20u);  // length=
+  EXPECT_EQ(d->message.rfind("<wire> length: ", 0), 0u) << d->message;
+  EXPECT_NE(d->message.find("(RS4011 in the converted scene)"), std::string::npos) << d->message;
+
+  FromXmlResult far = convert(world("<sphere mass=\"1\"><dim radius=\"1\"/><state pos=\"1e300 0 0\"/></sphere>"));
+  ASSERT_NE(find(far, "RS8125"), nullptr);
+  EXPECT_EQ(find(far, "RS8125")->message.rfind("<state> pos: ", 0), 0u);
+  EXPECT_EQ(find(far, "RS8125")->line, 3u);
+  EXPECT_TRUE(far.text.empty());
+
+  FromXmlResult g = convert("<raisim>\n<gravity value=\"1e300 0 0\"/><objects/></raisim>");
+  ASSERT_NE(find(g, "RS8125"), nullptr);
+  EXPECT_EQ(find(g, "RS8125")->line, 2u);
+  EXPECT_EQ(find(g, "RS8125")->message.rfind("<gravity> value: ", 0), 0u);
+}
+
+TEST(FromXml, ZeroQuaternionInARobotsQposIsAnErrorAtQpos) {
+  fs::path dir = fs::temp_directory_path() / "rscene_from_xml_robot";
+  fs::create_directories(dir);
+  writeRobot(dir / "arm.urdf");
+  FromXmlOptions options;
+  options.outputDir = dir.string();
+  std::string urdf = (dir / "arm.urdf").string();
+  FromXmlResult r = convert(world("<articulatedSystem urdf_path=\"" + urdf +
+                                  "\">\n<state qpos=\"0 0 1 0 0 0 0 0.5\"/></articulatedSystem>"),
+                            options);
+  EXPECT_FALSE(r.ok());
+  EXPECT_TRUE(r.text.empty());
+  bool atQpos = false;
+  for (const Diagnostic& d : r.diagnostics)
+    if (d.code == "RS8125" && d.line == 4 && d.column == 8 && d.message.rfind("<state> qpos: ", 0) == 0 &&
+        d.message.find("RS7043") != std::string::npos)
+      atQpos = true;
+  EXPECT_TRUE(atQpos);
+  // A unit quaternion converts.
+  FromXmlResult ok = convert(world("<articulatedSystem urdf_path=\"" + urdf +
+                                   "\"><state qpos=\"0 0 1 1 0 0 0 0.5\"/></articulatedSystem>"),
+                             options);
+  EXPECT_TRUE(ok.ok()) << ok.diagnostics[0].message;
+}
+
+// A missing mesh is converted (it may be made later), with a warning at
+// file_name, as an unreadable robot file is.
+TEST(FromXml, MissingMeshFileIsAWarning) {
+  FromXmlResult r = convert(world("<mesh mass=\"1\" file_name=\"/nonexistent/m.obj\"/>"));
+  ASSERT_TRUE(r.ok());
+  EXPECT_FALSE(r.text.empty());
+  const Diagnostic* d = find(r, "RS8113");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, Severity::Warning);
+  EXPECT_EQ(d->line, 3u);
+  EXPECT_EQ(d->column, 16u);
+  EXPECT_EQ(d->message, "<mesh> file_name: mesh file '/nonexistent/m.obj' not found: rscene-sim will refuse the body until it exists");
+}
+
 }  // namespace
 }  // namespace rscene::xml
