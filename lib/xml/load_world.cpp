@@ -312,6 +312,15 @@ LoadResult load(std::string_view text, const SourceFile& file, const LoadOptions
 LoadResult loadWorldText(std::string_view text, const std::string& displayName, const std::string& baseDir,
                          const LoadOptions& options) {
   SourceFile file{displayName, baseDir, absoluteDir(baseDir), ""};
+  // The same per-file limit as a file read from disk or included (a caller
+  // that read standard input passes what it read).
+  if (text.size() > options.limits.maxFileBytes) {
+    LoadResult result;
+    result.diagnostics.push_back(fileError(code::kXmlRead, displayName,
+                                           "cannot read: file larger than " +
+                                               std::to_string(options.limits.maxFileBytes) + " bytes"));
+    return result;
+  }
   return load(text, file, options);
 }
 
