@@ -138,3 +138,19 @@ EOF
   run -2 "$TOOL" missing.rscene
   [[ $output == *"cannot read 'missing.rscene'"* ]]
 }
+
+@test "an articulated system without generalizedVelocity gets no qvel: from-xml | to-xml | from-xml is byte-identical" {
+  [ -x "$BIN/rscene-from-xml" ] || skip "rscene-from-xml not built"
+  cp "$DATA/robots/check/walker.urdf" .
+  printf '<raisim version="1.0">\n<objects>\n<articulatedSystem name="w" urdf_path="[THIS_DIR]/walker.urdf">\n<state qpos="0 0 0.5 1 0 0 0 0.1 0.2 0.3 0.4"/>\n</articulatedSystem>\n</objects>\n</raisim>\n' >w.xml
+  "$BIN/rscene-from-xml" -q w.xml -o first.rscene
+  ! grep -q generalizedVelocity first.rscene
+  "$TOOL" -q first.rscene -o back.xml
+  grep -q 'qpos="0 0 0.5 1 0 0 0 0.1 0.2 0.3 0.4"' back.xml
+  ! grep -q qvel back.xml
+  "$BIN/rscene-from-xml" -q back.xml -o second.rscene
+  cmp first.rscene second.rscene
+  # A written velocity is kept.
+  sed 's#<state qpos="\([^"]*\)"/>#<state qpos="\1" qvel="0 0 0 0 0 0 1 2 3 4"/>#' w.xml >v.xml
+  "$BIN/rscene-from-xml" -q v.xml | "$TOOL" -q - --stdin-filename v.rscene | grep -q 'qvel="0 0 0 0 0 0 1 2 3 4"'
+}
