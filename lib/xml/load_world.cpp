@@ -194,8 +194,10 @@ class WorldReader {
     file.identity = identityOf(file.name);
     for (std::size_t i = 0; i < chain_.size(); ++i)
       if (chain_[i].identity == file.identity) {
+        // The whole chain from the top file: which include led into the
+        // cycle matters as much as the cycle itself.
         std::string cycle;
-        for (std::size_t j = i; j < chain_.size(); ++j) cycle += chain_[j].name + " -> ";
+        for (const SourceFile& f : chain_) cycle += f.name + " -> ";
         error(attributeDiagnostic(Severity::Error, code::kXmlInclude, inc, *named,
                                   "include cycle: " + cycle + file.name));
         return;
