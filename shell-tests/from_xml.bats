@@ -290,3 +290,78 @@ wire /World/rope stiff /World/ball /World/robot 1.5 localIndexA=0 localIndexB=1 
     grep -q "^$kind " second.rscene || { echo "no $kind"; return 1; }
   done
 }
+
+# Hand-written fixtures in the forms of RaiSim's real files
+# (tests/data/xml/raisim/: exportedWorld.xml, laikago.xml, heightMapUsingPng.xml,
+# heightMapUsingTxt.xml, newtonsCradle.xml); the walker test robot stands in
+# for anymal and laikago.
+RAISIM="$ROOT/tests/data/xml/raisim"
+
+@test "RaiSim's real forms: each fixture converts (exit 0) and validates clean" {
+  for f in exported_world laikago_world heightmap_png heightmap_txt wire_frame; do
+    run -0 "$FROM" -q "$RAISIM/$f.xml" -o "$f.rscene"
+    [ -z "$output" ]
+    validates_clean "$f.rscene"
+  done
+  # exportedWorld.xml: the ground's height from <dim>, its group kept; the
+  # robot's default group and mask left out; comma vectors read.
+  grep -qx 'object /World/unnamed_0 ground 0 0 0 1 0 0 0 10 10 1 0 0 0 default - false true false - static true 2147483648 4294967295' \
+    exported_world.rscene
+  grep -q '^articulated /World/walkerA res_walker -3 0 0.54 1 0 0 0 true true resourceDirectory=[^ ]* collisionMask=4294967295 generalizedCoordinate=-3,0,0.54,' \
+    exported_world.rscene
+  grep -qx 'gravity 0 0 -9.81' exported_world.rscene
+  [ "$(grep -c '^wire ' exported_world.rscene)" -eq 3 ]
+  # laikago.xml: collisionGroup="-2147483648" is its 64-bit two's complement.
+  grep -q '^object /World/ground ground .* static true 18446744071562067968 18446744073709551615$' laikago_world.rscene
+  grep -q '^object /World/crate box .* dynamic true 18446744071562067968 18446744073709551614$' laikago_world.rscene
+  # heightMapUsingPng.xml: 4 x 3 pixels are the samples; the bottom row
+  # (y = 0) is 255 200 100 0 -> 255/255 * 0.5 - 1 = -0.5 ...
+  grep -q '^terrain_region /World/terrain 4 3 6 4 0 0 0 contactMaterial=default sourceKind=png sourcePath=[^ ]*heights.png pngHeightScale=0.5 pngHeightOffset=-1 heights=-0.5,-0.6078' \
+    heightmap_png.rscene
+  # heightMapUsingTxt.xml: the file's first four numbers are the grid.
+  grep -q '^terrain_region /World/terrain 5 5 10 10 0 0 0 contactMaterial=default sourceKind=samples heights=1,1,1,1,1,1,2,2,2,1,1,2,3,' \
+    heightmap_txt.rscene
+  # newtonsCradle.xml: a wire end on a robot frame (the fixed L_FOOT under
+  # L_SHANK: body 2, 0.2 below its joint).
+  grep -qx 'wire /World/tether stiff /World/ball /World/walker 0.4 localIndexA=0 localIndexB=2 localPositionA=0,0,0 localPositionB=0,0,-0.2' \
+    wire_frame.rscene
+}
+
+@test "RaiSim's real forms: only what has no field is listed (stretch_type both, compression_only)" {
+  run -0 --separate-stderr "$FROM" "$RAISIM/exported_world.xml"
+  [ "$stderr" = "rscene-from-xml: warning: not converted: wire 'unnamed_7': stretch_type both (rscene wires resist stretch only), wire 'unnamed_8': stretch_type compression_only (rscene wires resist stretch only)" ]
+  for f in laikago_world heightmap_png heightmap_txt wire_frame; do
+    run -0 --separate-stderr "$FROM" "$RAISIM/$f.xml"
+    [ -z "$stderr" ] || { echo "$f: $stderr"; return 1; }
+  done
+}
+
+@test "RaiSim's real forms round-trip: from-xml | to-xml | from-xml is identical (a PNG source comes back as its samples)" {
+  [ -x "$BIN/rscene-to-xml" ] || skip "rscene-to-xml not built in $BIN"
+  for f in exported_world laikago_world heightmap_txt wire_frame; do
+    run -0 "$FROM" -q "$RAISIM/$f.xml" -o "$f.1.rscene"
+    run -0 "$BIN/rscene-to-xml" -q "$f.1.rscene" -o "$f.xml"
+    run -0 "$FROM" -q "$f.xml" -o "$f.2.rscene"
+    cmp "$f.1.rscene" "$f.2.rscene"
+  done
+  grep -q 'stretch_type="stretch_only"' exported_world.xml
+  grep -q '<ground name="/World/unnamed_0" height="0" material="default" collision_group="collision\[31\]"' exported_world.xml
+  # rscene-to-xml writes a heightmap's samples: the PNG's decoded heights
+  # come back exactly, the source keys do not.
+  run -0 "$FROM" -q "$RAISIM/heightmap_png.xml" -o png.1.rscene
+  run -0 "$BIN/rscene-to-xml" -q png.1.rscene -o png.xml
+  run -0 "$FROM" -q png.xml -o png.2.rscene
+  [ "$(grep -o ' heights=.*' png.1.rscene)" = "$(grep -o ' heights=.*' png.2.rscene)" ]
+  grep -q 'sourceKind=samples' png.2.rscene
+}
+
+@test "templatedWorld.xml's form: a top-level include's objects join; a parameter only --param sets" {
+  require_templates
+  run -2 --separate-stderr "$FROM" "$ROOT/tests/data/xml/templated/world.xml" -o t.rscene
+  [[ $stderr == *"world.xml:14:"*"@@start_x is not set"*"[RS8104]"* ]]
+  [ ! -e t.rscene ]
+  run -0 "$FROM" -q --param start_x=2 "$ROOT/tests/data/xml/templated/world.xml" -o t.rscene
+  validates_clean t.rscene
+  grep -q '^object /World/floor ground 0 0 0.25 ' t.rscene
+  grep -q '^object /World/ball sphere 2 0 1 ' t.rscene
+}

@@ -118,7 +118,8 @@ FromXmlResult worldToScene(const Element& raisim, const FromXmlOptions& options)
     ctx.error(code::kBadValue, raisim, "the top element is not <raisim>");
     return result;
   }
-  ctx.checkAttributes(raisim, "raisim", {"version"});
+  // RaiSim's own files write both spellings (<raisim Version="1.1.3">).
+  ctx.checkAttributes(raisim, "raisim", {"version", "Version"});
   // params and object_class are the front end's (xml_tree.hpp): after
   // expansion they carry nothing left to convert.
   ctx.checkChildren(raisim, "raisim",

@@ -1,6 +1,7 @@
 // Single bodies (sphere, capsule, cylinder, box, mesh), ground and compound
 // as object / compound / compound_child records (rscene-from-xml(1), the
 // mapping table).
+#include "core/text.hpp"
 #include "xml/from_xml_context.hpp"
 
 namespace rscene::xml::detail {
@@ -149,19 +150,49 @@ void convertSingleBody(Context& ctx, const Element& e) {
   ctx.bodies.emplace(xmlName(e), c.path);
 }
 
+// RaiSim's own exporter writes a ground as
+//   <ground name body_type="static" collision_group collision_mask>
+//     <dim height="0"/><state/></ground>
+// so body_type static (the only kind a ground is), the height in <dim>
+// and an empty <state> are read too.  RaiSim's ground reader does not
+// read <state>: a pos or quat there is listed as not converted (the
+// plane's height is `height`, never a pos z).
 void convertGround(Context& ctx, const Element& e) {
-  ctx.checkAttributes(e, labelOf(e),
+  std::string label = labelOf(e);
+  ctx.checkAttributes(e, label,
                       {"name", "height", "material", "collision_mask", "collisionMask", "collision_group",
-                       "collisionGroup"},
+                       "collisionGroup", "body_type", "bodyType"},
                       {"appearance"});
-  ctx.checkChildren(e, labelOf(e), {});
+  ctx.checkChildren(e, label, {"dim", "state"});
   std::size_t before = errorCount(ctx);
   Common c;
   c.path = ctx.takePath(e);
   c.mode = "static";
   c.mass = 0;
+  if (const Attribute* t = e.attribute("body_type", "bodyType"); t && t->value != "static")
+    ctx.error(code::kBadValue, e, *t, "'" + t->value + "': a ground is static");
   if (const Attribute* m = e.attribute("material"); m && !m->value.empty()) c.material = m->value;
-  if (auto h = ctx.number(e, e.attribute("height"))) c.pos[2] = *h;
+  std::optional<double> height = ctx.number(e, e.attribute("height"));
+  if (const Element* dim = e.child("dim")) {
+    ctx.checkAttributes(*dim, label + " <dim>", {"height"});
+    if (auto h = ctx.number(*dim, dim->attribute("height"))) {
+      if (height && *height != *h)
+        ctx.error(code::kBadValue, *dim, *dim->attribute("height"),
+                  "differs from the ground's height attribute (" + numberText(*height) + ")");
+      height = h;
+    }
+  }
+  if (height) c.pos[2] = *height;
+  if (const Element* state = e.child("state")) {
+    ctx.checkAttributes(*state, label + " <state>", {"pos", "quat", "lin_vel", "linVel", "ang_vel", "angVel"});
+    auto pos = ctx.vec<3>(*state, state->attribute("pos"));
+    auto quat = ctx.vec<4>(*state, state->attribute("quat"));
+    if (pos && *pos != Vec3{0, 0, 0}) ctx.lost(label + " <state>: pos (a ground's height is its height)");
+    if (quat && *quat != Quat{1, 0, 0, 0}) ctx.lost(label + " <state>: quat (a ground is level)");
+    for (auto [name, alias] : {std::pair{"lin_vel", "linVel"}, std::pair{"ang_vel", "angVel"}})
+      if (auto v = ctx.vec<3>(*state, state->attribute(name, alias)); v && (*v != Vec3{0, 0, 0}))
+        ctx.lost(label + " <state>: " + name);
+  }
   if (auto g = ctx.group(e, e.attribute("collision_group", "collisionGroup"))) c.group = *g;
   if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
   if (errorCount(ctx) != before) return;

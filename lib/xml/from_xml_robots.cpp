@@ -47,7 +47,9 @@ void convertArticulated(Context& ctx, const Element& e) {
                       {"name", "urdf_path", "urdfPath", "res_dir", "resDir", "modules", "collision_group",
                        "collisionGroup", "collision_mask", "collisionMask"},
                       {"appearance"});
-  ctx.checkChildren(e, label, {"state"});
+  // RaiSim's exporter writes an empty <dim/> in every articulatedSystem.
+  ctx.checkChildren(e, label, {"state", "dim"});
+  if (const Element* dim = e.child("dim")) ctx.checkAttributes(*dim, label + " <dim>", {});
   std::string path = ctx.takePath(e);
   const Attribute* urdf = ctx.requirePath(e, "urdf_path", "urdfPath");
   const Attribute* resDir = e.attribute("res_dir", "resDir");
@@ -101,8 +103,10 @@ void convertArticulated(Context& ctx, const Element& e) {
   l.text(path).text(resource).nums(pos).nums(quat).raw("true").raw("true");
   if (resDir) l.keyText("resourceDirectory", ctx.assetPath(resDir->value));
   if (modules && !words(modules->value).empty()) l.keyList("modules", words(modules->value));
-  if (group) l.key("collisionGroup", std::to_string(*group));
-  if (mask) l.key("collisionMask", std::to_string(*mask));
+  // The schema's defaults (1, all bits) are left out, as rscene-to-xml
+  // leaves them out of the XML, so a round trip gives the same record.
+  if (group && *group != 1) l.key("collisionGroup", std::to_string(*group));
+  if (mask && *mask != ~std::uint64_t{0}) l.key("collisionMask", std::to_string(*mask));
   if (!qpos.empty()) l.keyNums("generalizedCoordinate", qpos.data(), qpos.size());
   if (!qvel.empty()) l.keyNums("generalizedVelocity", qvel.data(), qvel.size());
   ctx.add(l);
@@ -130,6 +134,12 @@ int bodyIndexOf(const robot::Model& model, int link, Pose& inBody) {
   if (j < 0) return 0;
   auto it = std::find(c.joints.begin(), c.joints.end(), j);
   return it == c.joints.end() ? 0 : static_cast<int>(it - c.joints.begin()) + 1;
+}
+
+bool stretchOnly(std::string_view v) {
+  std::string lower;
+  for (char c : v) lower += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return lower == "stretch_only" || lower == "stretch_resistant_only";
 }
 
 struct End {
@@ -206,7 +216,10 @@ void convertWire(Context& ctx, const Element& e) {
     ctx.error(code::kMissing, e, "'stiffness' is required for a compliant wire");
     ok = false;
   }
-  if (const Attribute* st = e.attribute("stretch_type", "stretchType"); st && st->value != "STRETCH_RESISTANT_ONLY")
+  // rscene wires resist stretch only: RaiSim's exporter spells that
+  // "stretch_only" (the enum STRETCH_RESISTANT_ONLY); "both" and
+  // "compression_only" (BOTH, COMPRESSION_RESISTANT_ONLY) are lost.
+  if (const Attribute* st = e.attribute("stretch_type", "stretchType"); st && !stretchOnly(st->value))
     ctx.lost(label + ": stretch_type " + st->value + " (rscene wires resist stretch only)");
   End a, b;
   ok = wireEnd(ctx, e, label, "object1", a) && ok;

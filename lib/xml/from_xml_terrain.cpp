@@ -4,6 +4,7 @@
 // is not reproduced: the record keeps the parameters, the samples stay
 // flat, one warning says so).
 #include <algorithm>
+#include <tuple>
 
 #include "asset/image.hpp"
 #include "core/filesystem.hpp"
@@ -47,6 +48,13 @@ bool readSizes(Context& ctx, const Element& e, Grid& g) {
   g.xSize = *xSize;
   g.ySize = *ySize;
   return true;
+}
+
+// The first of `names` present (RS8112 naming the first when none is).
+const Attribute* requireOneOf(Context& ctx, const Element& e, std::initializer_list<std::string_view> names) {
+  for (std::string_view n : names)
+    if (const Attribute* a = e.attribute(n)) return a;
+  return ctx.require(e, *names.begin());
 }
 
 std::size_t byteLimit() { return static_cast<std::size_t>(kMaxTerrainSamples) * 32; }
@@ -138,7 +146,8 @@ void convertHeightmap(Context& ctx, const Element& e) {
   ctx.checkAttributes(e, label,
                       {"name", "material", "x_sample", "xSample", "y_sample", "ySample", "x_size", "xSize", "y_size",
                        "ySize", "center_x", "centerX", "center_y", "centerY", "height", "png", "z_scale", "zScale",
-                       "z_offset", "zOffset", "text", "collision_mask", "collisionMask"},
+                       "z_offset", "zOffset", "heightScale", "height_scale", "heightOffset", "height_offset", "text",
+                       "collision_mask", "collisionMask"},
                       {"appearance"});
   ctx.checkChildren(e, label, {"terrain_properties", "terrainProperties"});
   std::string path = ctx.takePath(e);
@@ -153,9 +162,18 @@ void convertHeightmap(Context& ctx, const Element& e) {
   keys.keyText("contactMaterial", material && !material->value.empty() ? material->value : "default");
   const Element* props = e.child("terrain_properties", "terrainProperties");
   if (const Attribute* png = e.attribute("png")) {
-    auto scale = ctx.number(e, ctx.require(e, "z_scale", "zScale"));
-    auto offset = ctx.number(e, ctx.require(e, "z_offset", "zOffset"));
+    // heightMapUsingPng.xml spells them heightScale / heightOffset.
+    auto scale = ctx.number(e, requireOneOf(ctx, e, {"z_scale", "zScale", "heightScale", "height_scale"}));
+    auto offset = ctx.number(e, requireOneOf(ctx, e, {"z_offset", "zOffset", "heightOffset", "height_offset"}));
     if (!readSizes(ctx, e, g) || !scale || !offset || !readPng(ctx, e, *png, *scale, *offset, g)) return;
+    // The PNG's pixels are the samples (heightMapUsingPng.xml gives no
+    // counts); counts that disagree are not resampled, and say so.
+    for (auto [name, alias, have] : {std::tuple{"x_sample", "xSample", g.xs}, std::tuple{"y_sample", "ySample", g.ys}})
+      if (const Attribute* a = e.attribute(name, alias))
+        if (auto n = ctx.integer(e, a, 2, kMaxSamplesPerAxis); n && *n != have)
+          ctx.warning(code::kApproximate, e,
+                      std::string(name) + " " + std::to_string(*n) + " differs from the PNG's " +
+                          std::to_string(have) + " pixels: the pixels are the samples, not resampled");
     keys.key("sourceKind", "png").keyText("sourcePath", ctx.assetPath(png->value));
     keys.keyNum("pngHeightScale", *scale).keyNum("pngHeightOffset", *offset);
     keys.keyNums("heights", g.heights.data(), g.heights.size());

@@ -134,6 +134,14 @@ std::optional<std::uint64_t> Context::group(const Element& e, const Attribute* a
     return std::nullopt;
   };
   if (s == "-1") return kAll;
+  // RaiSim keeps groups in signed integers too (laikago.xml writes
+  // collisionGroup="-2147483648"): a negative whole number is the uint64
+  // of its int64 two's complement, so -1 stays all bits.
+  if (!s.empty() && s.front() == '-') {
+    std::optional<std::int64_t> n = parseInteger(s);
+    if (!n) return bad("is not a collision group: a whole number from -2^63 to 2^64-1, or collision[i|j|...]");
+    return static_cast<std::uint64_t>(*n);
+  }
   if (s.substr(0, 10) == "collision[") {
     if (s.back() != ']') return bad("has no closing ']'");
     std::string_view inner = s.substr(10, s.size() - 11);
@@ -153,7 +161,7 @@ std::optional<std::uint64_t> Context::group(const Element& e, const Attribute* a
   std::uint64_t v = 0;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || ec != std::errc() || end != s.data() + s.size())
-    return bad("is not a collision group: a whole number from 0 to 2^64-1, -1, or collision[i|j|...]");
+    return bad("is not a collision group: a whole number from -2^63 to 2^64-1, or collision[i|j|...]");
   return v;
 }
 

@@ -19,10 +19,9 @@ namespace {
 
 constexpr const char* kCannotWrite = "RS8130";
 constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
-// rscene wires resist stretch only.  The spelling is the mapping
-// (rscene-from-xml reads it); RaiSim's own exporter writes "stretch_only"
-// for the same type, which a later change may adopt in both directions.
-constexpr const char* kStretchResistantOnly = "STRETCH_RESISTANT_ONLY";
+// rscene wires resist stretch only, spelt as RaiSim's own exporter writes
+// it (rscene-from-xml also reads the enum's name STRETCH_RESISTANT_ONLY).
+constexpr const char* kStretchOnly = "stretch_only";
 
 // The bounding-box volume rscene-sim weighs a compound child by
 // (lib/sim/world.cpp volumeOf: the product of the Bullet shape's AABB
@@ -188,8 +187,8 @@ class Exporter {
     if (o.primitive == "ground" || o.primitive == "half_space") {
       OutElement g("ground");
       g.text("name", o.path).number("height", o.world.position.z()).text("material", materialName(o.contactMaterial));
+      if (o.collisionGroup != 1) g.text("collision_group", collisionBits(o.collisionGroup));
       if (o.collisionMask != kAllBits) g.text("collision_mask", collisionBits(o.collisionMask));
-      if (o.collisionGroup != 1) losses.push_back("object " + o.path + ": collisionGroup");
       return g;
     }
     const std::string& tag = o.primitive;  // sphere, box, capsule, cylinder, mesh: RaiSim's element names
@@ -323,7 +322,7 @@ class Exporter {
     // stiff or custom one is a rope and uses neither, nor does any use
     // `compliance`.  Only a spring's damping is lost.
     if (w.kind == "compliant") e.number("stiffness", w.stiffness);
-    e.text("stretch_type", kStretchResistantOnly);
+    e.text("stretch_type", kStretchOnly);
     if (w.kind == "compliant" && w.damping != 0) losses.push_back("wire " + w.path + ": damping");
     e.add(OutElement("object1").text("name", body(w.bodyA)).integer("local_index", w.localIndexA).vec3("pos", w.localPositionA));
     e.add(OutElement("object2").text("name", body(w.bodyB)).integer("local_index", w.localIndexB).vec3("pos", w.localPositionB));

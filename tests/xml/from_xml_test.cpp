@@ -122,7 +122,8 @@ TEST(FromXml, CollisionGroupNotations) {
 }
 
 TEST(FromXml, BadCollisionGroupIsAnErrorAtItsLine) {
-  for (const char* bad : {"collision[64]", "collision[1|x]", "collision[2", "-2", "18446744073709551616", "abc"}) {
+  for (const char* bad : {"collision[64]", "collision[1|x]", "collision[2", "-9223372036854775809", "1.5", "-1.5",
+                          "18446744073709551616", "abc", "-"}) {
     FromXmlResult r = convert(world(std::string("<sphere mass=\"1\"\n collision_mask=\"") + bad +
                                     "\"><dim radius=\"1\"/></sphere>"));
     ASSERT_FALSE(r.ok()) << bad;
@@ -491,6 +492,126 @@ TEST_F(TemplatedExample, ExistFalseRemovesThem) {
   if (!skipped.empty()) GTEST_SKIP() << skipped;
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r.text.find("object "), std::string::npos) << r.text;
+}
+
+
+// RaiSim keeps groups in signed integers (laikago.xml: -2147483648): a
+// negative whole number is its int64 two's complement as a uint64.
+TEST(FromXml, NegativeCollisionGroupIsTwosComplement) {
+  FromXmlResult r = convert(world("<sphere name=\"a\" mass=\"1\" collisionGroup=\"-2147483648\" "
+                                  "collisionMask=\"-2\"><dim radius=\"1\"/></sphere>"
+                                  "<sphere name=\"b\" mass=\"1\" collision_group=\"-9223372036854775808\" "
+                                  "collision_mask=\"-1\"><dim radius=\"1\"/></sphere>"));
+  ASSERT_TRUE(r.ok()) << r.diagnostics[0].message;
+  std::string b = bodies(r);
+  EXPECT_NE(b.find(" dynamic true 18446744071562067968 18446744073709551614\n"), std::string::npos) << b;
+  EXPECT_NE(b.find(" dynamic true 9223372036854775808 18446744073709551615\n"), std::string::npos) << b;
+}
+
+// RaiSim's exporter (exportedWorld.xml): body_type static, the height in
+// <dim>, an empty <state>, groups on the ground.
+TEST(FromXml, GroundInRaisimsExportedForm) {
+  FromXmlResult r = convert(world("<ground name=\"g\" body_type=\"static\" collision_group=\"2147483648\" "
+                                  "collision_mask=\"4294967295\"><dim height=\"0.5\"/><state/></ground>"));
+  ASSERT_TRUE(r.ok()) << r.diagnostics[0].message;
+  EXPECT_TRUE(r.diagnostics.empty()) << r.diagnostics[0].message;
+  EXPECT_TRUE(r.notConverted.empty());
+  EXPECT_EQ(bodies(r), "object /World/g ground 0 0 0.5 1 0 0 0 10 10 1 0 0 0 default - false true false - static true "
+                       "2147483648 4294967295\n");
+  FromXmlResult both = convert(world("<ground height=\"0.5\"><dim height=\"0.5\"/></ground>"));
+  EXPECT_TRUE(both.ok());
+  FromXmlResult differ = convert(world("<ground height=\"1\">\n<dim height=\"0.5\"/></ground>"));
+  ASSERT_NE(find(differ, "RS8110"), nullptr);
+  EXPECT_EQ(find(differ, "RS8110")->message, "<dim> height: differs from the ground's height attribute (1)");
+  EXPECT_EQ(find(differ, "RS8110")->line, 4u);
+  FromXmlResult dynamic = convert(world("<ground body_type=\"dynamic\"/>"));
+  ASSERT_NE(find(dynamic, "RS8110"), nullptr);
+  EXPECT_EQ(find(dynamic, "RS8110")->message, "<ground> body_type: 'dynamic': a ground is static");
+  // RaiSim's ground reader ignores <state>: a pose there is listed, not the height.
+  FromXmlResult posed = convert(world("<ground name=\"p\"><state pos=\"1 2 3\" quat=\"0 1 0 0\"/></ground>"));
+  ASSERT_TRUE(posed.ok());
+  EXPECT_NE(bodies(posed).find("object /World/p ground 0 0 0 1 0 0 0 "), std::string::npos) << bodies(posed);
+  EXPECT_EQ(posed.notConverted,
+            (std::vector<std::string>{"ground 'p' <state>: pos (a ground's height is its height)",
+                                      "ground 'p' <state>: quat (a ground is level)"}));
+}
+
+// heightMapUsingPng.xml: heightScale / heightOffset, no x_sample/y_sample
+// (the PNG's width and height are the sample counts).
+TEST(FromXml, HeightmapPngInRaisimsSpelling) {
+  fs::path dir = fs::temp_directory_path() / "rscene_from_xml_png_alias";
+  fs::create_directories(dir);
+  asset::Image image;
+  image.width = 3;
+  image.height = 2;
+  image.rgba = {0, 0, 0, 255, 255, 0, 0, 255, 51, 0, 0, 255,      // top row (+y)
+                102, 0, 0, 255, 204, 0, 0, 255, 255, 0, 0, 255};  // bottom row (y = 0)
+  std::ofstream(dir / "h.png", std::ios::binary) << asset::encodePng(image);
+  FromXmlOptions options;
+  options.outputDir = dir.string();
+  FromXmlResult r = convert(world("<heightmap name=\"terrain\" png=\"" + (dir / "h.png").string() +
+                                  "\" xSize=\"6\" ySize=\"4\" centerX=\"1\" centerY=\"2\" heightOffset=\"-10\" "
+                                  "heightScale=\"5\"/>"),
+                            options);
+  ASSERT_TRUE(r.ok()) << r.diagnostics[0].message;
+  EXPECT_TRUE(r.diagnostics.empty()) << r.diagnostics[0].message;
+  EXPECT_EQ(bodies(r), "terrain_region /World/terrain 3 2 6 4 1 2 0 contactMaterial=default sourceKind=png "
+                       "sourcePath=h.png pngHeightScale=5 pngHeightOffset=-10 heights=-8,-6,-5,-10,-5,-9\n");
+  FromXmlResult counts = convert(world("<heightmap png=\"" + (dir / "h.png").string() +
+                                       "\" xSize=\"6\" ySize=\"4\" centerX=\"1\" centerY=\"2\" heightOffset=\"0\" "
+                                       "heightScale=\"1\" x_sample=\"3\" y_sample=\"5\"/>"));
+  ASSERT_TRUE(counts.ok());
+  ASSERT_EQ(counts.diagnostics.size(), 1u);
+  EXPECT_EQ(counts.diagnostics[0].message,
+            "<heightmap>: y_sample 5 differs from the PNG's 2 pixels: the pixels are the samples, not resampled");
+  EXPECT_NE(bodies(counts).find("terrain_region /World/heightmap 3 2 "), std::string::npos) << bodies(counts);
+  FromXmlResult noScale = convert(world("<heightmap png=\"" + (dir / "h.png").string() +
+                                        "\" xSize=\"6\" ySize=\"4\" centerX=\"1\" centerY=\"2\" heightOffset=\"0\"/>"));
+  ASSERT_NE(find(noScale, "RS8112"), nullptr);
+  EXPECT_EQ(find(noScale, "RS8112")->message, "<heightmap>: 'z_scale' is required");
+}
+
+// RaiSim's exporter writes stretch_type stretch_only / both /
+// compression_only; only what rscene wires do converts silently.
+TEST(FromXml, WireStretchTypesInRaisimsSpelling) {
+  std::string spheres = "<sphere name=\"a\" mass=\"1\"><dim radius=\"1\"/></sphere>"
+                        "<sphere name=\"b\" mass=\"1\"><dim radius=\"1\"/></sphere>";
+  auto wire = [&](const std::string& type) {
+    return convert(world(spheres, "<wire name=\"w\" type=\"stiff\" length=\"2\" stretch_type=\"" + type +
+                                      "\"><object1 name=\"a\"/><object2 name=\"b\"/></wire>"));
+  };
+  for (const char* same : {"stretch_only", "STRETCH_ONLY", "STRETCH_RESISTANT_ONLY", "Stretch_Resistant_Only"}) {
+    FromXmlResult r = wire(same);
+    ASSERT_TRUE(r.ok()) << same;
+    EXPECT_TRUE(r.diagnostics.empty()) << same;
+    EXPECT_TRUE(r.notConverted.empty()) << same;
+  }
+  for (const char* other : {"both", "compression_only", "COMPRESSION_RESISTANT_ONLY", "BOTH"}) {
+    FromXmlResult r = wire(other);
+    ASSERT_TRUE(r.ok()) << other;
+    EXPECT_EQ(r.notConverted,
+              std::vector<std::string>{"wire 'w': stretch_type " + std::string(other) +
+                                       " (rscene wires resist stretch only)"});
+  }
+}
+
+// exportedWorld.xml: <raisim Version>, an empty <dim/> in an
+// articulatedSystem, vectors with commas and spaces.
+TEST(FromXml, RaisimsExporterForms) {
+  FromXmlResult r = convert("<raisim Version=\"1.1.3\">\n<gravity value=\"0.000000, 0.000000, -9.810000\" />\n"
+                            "<objects><articulatedSystem name=\"r\" urdf_path=\"/nonexistent/a.urdf\"><dim />"
+                            "<state qpos=\"0.000000, 0.000000, 1.000000\" qvel=\"0, 0, 0\"/></articulatedSystem>"
+                            "<sphere name=\"s\" mass=\"0.8\" com=\"0.000000, 0.000000, 0.000000\"><dim radius=\"0.1\"/>"
+                            "<state pos=\"0.3, 0, 3\" quat=\"1, 0, 0, 0\" lin_vel=\"0, 0, 0\" ang_vel=\"0, 0, 0\"/>"
+                            "</sphere></objects></raisim>\n");
+  ASSERT_TRUE(r.ok()) << r.diagnostics[0].message;
+  for (const Diagnostic& d : r.diagnostics) EXPECT_EQ(d.code, "RS8113") << d.message;  // the robot file only
+  EXPECT_TRUE(r.notConverted.empty()) << r.notConverted[0];
+  EXPECT_NE(r.text.find("gravity 0 0 -9.81\n"), std::string::npos) << r.text;
+  EXPECT_NE(bodies(r).find("object /World/s sphere 0.3 0 3 1 0 0 0 1 1 1 0.1 0 0.8 "), std::string::npos) << bodies(r);
+  FromXmlResult dimAttr = convert(world("<articulatedSystem urdf_path=\"/nonexistent/a.urdf\"><dim x=\"1\"/>"
+                                        "</articulatedSystem>"));
+  ASSERT_NE(find(dimAttr, "RS8111"), nullptr);
 }
 
 }  // namespace
