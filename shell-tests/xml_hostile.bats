@@ -136,3 +136,36 @@ EOF
   refused parens.xml
   [[ ${stderr} =~ parens\.xml:2:[0-9]+:\ error:\ .*\[RS81[0-9][0-9]\] ]] || { echo "$stderr"; false; }
 }
+
+@test "a 100 MiB world is refused before it is read whole: as a file and on standard input" {
+  # The 64 MiB per-file limit held for included files only: the top file
+  # and standard input were read in full (exit 0, 930 MB).  ulimit -v 1 GiB
+  # in refused() and 200 MB here keep the read bounded.
+  { printf '<raisim><!--'; head -c 104857600 /dev/zero | tr '\0' x; printf '%s\n' '--></raisim>'; } >big.xml
+  refused big.xml
+  [[ $stderr == "big.xml: error: cannot read: file larger than 67108864 bytes [RS8101]" ]]
+  run -2 --separate-stderr bash -c 'ulimit -v 204800; exec timeout 10 "$@" <big.xml' _ "$FROM" - --stdin-filename in.xml
+  [[ $stderr == "in.xml: error: cannot read: file larger than 67108864 bytes [RS8101]" ]]
+  [ -z "$output" ]
+  run -2 --separate-stderr bash -c 'ulimit -v 204800; cat big.xml | exec timeout 10 "$@"' _ "$FROM"
+  [[ $stderr == "<stdin>: error: cannot read: file larger than 67108864 bytes [RS8101]" ]]
+}
+
+@test "a mismatched end tag names both elements at the end tag's line and column" {
+  printf '<raisim>\n  <objects>\n    <sphere name="a">\n  </objects>\n</raisim>\n' >nw.xml
+  refused nw.xml
+  [[ $stderr == "nw.xml:4:3: error: not well-formed XML: </objects> closes <sphere> opened at 3:5 [RS8101]"* ]]
+  printf '<raisim>\n<sphere name="a" mass="1" name="b"/>\n</raisim>\n' >dup.xml
+  refused dup.xml
+  [[ $stderr == "dup.xml:2:27: error: not well-formed XML: attribute 'name' written twice (first at 2:9) [RS8101]"* ]]
+}
+
+@test "character references XML 1.0 forbids (&#0;, &#x1;, surrogates) are refused at their column" {
+  printf '<raisim>\n<objects>\n<sphere name="a&#0;b"/>\n</objects>\n</raisim>\n' >nul.xml
+  refused nul.xml
+  [[ $stderr == "nul.xml:3:16: error: &#0; is a character XML 1.0 forbids"*"[RS8102]"* ]]
+  printf '<raisim>\n<objects>\n<sphere name="&#x1;"/><box name="&#xD800;"/>\n</objects>\n</raisim>\n' >ctl.xml
+  refused ctl.xml
+  [[ $stderr == *"ctl.xml:3:15: error: &#x1; is a character"* ]]
+  [[ $stderr == *"ctl.xml:3:34: error: &#xD800; is a character"* ]]
+}

@@ -1,7 +1,12 @@
 // rscene-from-xml: a RaiSim world configuration XML (templates expanded by
 // lib/xml's front end) as a version-1 .rscene in canonical form.
 #include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <iostream>
@@ -24,6 +29,38 @@ bool parseParam(const std::string& text, std::map<std::string, std::string>& par
   }
   params[name] = text.substr(eq + 1);
   return true;
+}
+
+// Reads `operand` ("-" = standard input) like cli::readInput, but stops
+// past `maxBytes` (LoadLimits::maxFileBytes): a 100 MiB world was read
+// whole before.  False with `why` set when it cannot read or it is larger.
+bool readCapped(const std::string& operand, std::uint64_t maxBytes, std::string& text, std::string& why) {
+  bool isStdin = operand.empty() || operand == "-";
+  int fd = isStdin ? 0 : ::open(operand.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return false;
+  }
+  char chunk[1 << 16];
+  bool ok = true;
+  for (;;) {
+    ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      why = std::strerror(errno);
+      ok = false;
+      break;
+    }
+    if (n == 0) break;
+    if (text.size() + static_cast<std::size_t>(n) > maxBytes) {
+      why = "file larger than " + std::to_string(maxBytes) + " bytes";
+      ok = false;
+      break;
+    }
+    text.append(chunk, static_cast<std::size_t>(n));
+  }
+  if (!isStdin) ::close(fd);
+  return ok;
 }
 
 std::string folderOf(const std::string& path) {
@@ -57,7 +94,17 @@ int main(int argc, char** argv) {
   if (!cli::checkOutputs({{"-o", outPath}})) return cli::kTrouble;
 
   cli::Input in;
-  if (!cli::readInput(file, stdinName, in)) return cli::kTrouble;
+  in.isStdin = file.empty() || file == "-";
+  in.display = in.isStdin ? (stdinName.empty() ? "<stdin>" : stdinName) : file;
+  in.path = in.isStdin ? stdinName : file;
+  if (std::string why; !readCapped(file, loadOptions.limits.maxFileBytes, in.text, why)) {
+    Diagnostic d;
+    d.code = "RS8101";
+    d.file = in.display;
+    d.message = "cannot read: " + why;
+    cli::printDiagnostics({d}, in.display, "", cli::colorFor(2));
+    return cli::kTrouble;
+  }
   std::string baseDir = in.path.empty() ? "." : folderOf(in.path);
   xml::LoadResult loaded = xml::loadWorldText(in.text, in.display, baseDir, loadOptions);
   Diagnostics diags = loaded.diagnostics;

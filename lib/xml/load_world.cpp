@@ -194,8 +194,10 @@ class WorldReader {
     file.identity = identityOf(file.name);
     for (std::size_t i = 0; i < chain_.size(); ++i)
       if (chain_[i].identity == file.identity) {
+        // The whole chain from the top file: which include led into the
+        // cycle matters as much as the cycle itself.
         std::string cycle;
-        for (std::size_t j = i; j < chain_.size(); ++j) cycle += chain_[j].name + " -> ";
+        for (const SourceFile& f : chain_) cycle += f.name + " -> ";
         error(attributeDiagnostic(Severity::Error, code::kXmlInclude, inc, *named,
                                   "include cycle: " + cycle + file.name));
         return;
@@ -312,6 +314,15 @@ LoadResult load(std::string_view text, const SourceFile& file, const LoadOptions
 LoadResult loadWorldText(std::string_view text, const std::string& displayName, const std::string& baseDir,
                          const LoadOptions& options) {
   SourceFile file{displayName, baseDir, absoluteDir(baseDir), ""};
+  // The same per-file limit as a file read from disk or included (a caller
+  // that read standard input passes what it read).
+  if (text.size() > options.limits.maxFileBytes) {
+    LoadResult result;
+    result.diagnostics.push_back(fileError(code::kXmlRead, displayName,
+                                           "cannot read: file larger than " +
+                                               std::to_string(options.limits.maxFileBytes) + " bytes"));
+    return result;
+  }
   return load(text, file, options);
 }
 

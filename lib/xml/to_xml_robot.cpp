@@ -65,10 +65,10 @@ RobotExport exportRobotState(const Document& doc, const Articulated& a, robot::M
   robot::makeCoordinates(model, {}, raisim);
   std::vector<double> q = a.hasCoordinate ? a.generalizedCoordinate
                                           : std::vector<double>(instance.q.data(), instance.q.data() + instance.q.size());
-  std::vector<double> u(instance.u.data(), instance.u.data() + instance.u.size());
-  if (a.hasVelocity) u = a.generalizedVelocity;
   out.qpos = reorder(model, instance.coordinates, raisim, q, false);
-  out.qvel = reorder(model, instance.coordinates, raisim, u, true);
+  // qvel only when the record writes generalizedVelocity: from-xml reads an
+  // absent qvel as no key, so a written zero qvel would add one.
+  if (a.hasVelocity) out.qvel = reorder(model, instance.coordinates, raisim, a.generalizedVelocity, true);
   // A fixed base sits at the record's pose; RaiSim's XML fixes it at the
   // origin (there is no pose attribute for it).
   if (!model.floatingBase && !atOrigin(a.world)) out.losses.push_back("articulated " + a.path + ": fixed-base pose");

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cstring>
+#include <unordered_set>
 
 namespace rscene::xml {
 namespace {
@@ -51,9 +52,10 @@ class Cursor {
 };
 
 // Finds the element start tags and attribute names in document order (the
-// order tinyxml2 builds them in) and checks entity use and nesting depth.
-// It assumes nothing about well-formedness: on text it cannot follow it
-// stops, and tinyxml2 reports the error.
+// order tinyxml2 builds them in) and checks entity and character
+// references, nesting depth, end tags against start tags and repeated
+// attributes, where tinyxml2 gives only a line (and not always the right
+// one).  On other text it cannot follow it stops, and tinyxml2 reports.
 class Scanner {
  public:
   Scanner(std::string_view text, const std::string& file, int maxDepth, Diagnostics& diagnostics)
@@ -77,12 +79,15 @@ class Scanner {
       } else if (startsWith(i, "<!")) {
         i = declaration(i);
       } else if (startsWith(i, "</")) {
-        --depth_;
-        i = skipPast(i + 2, ">");
+        i = endTag(i);
       } else {
         i = startTag(i);
       }
     }
+    // tinyxml2 names no element here: say which one is left open.
+    if (!stop_ && !open_.empty())
+      report(code::kXmlRead, open_.back().line, open_.back().column,
+             "not well-formed XML: <" + std::string(open_.back().name) + "> is never closed");
     return ok_;
   }
 
@@ -100,6 +105,10 @@ class Scanner {
   }
   void report(const char* code, std::size_t offset, std::string message) {
     auto [line, column] = cursor_.at(offset);
+    report(code, line, column, std::move(message));
+  }
+  // At a place found earlier (the cursor only moves forward).
+  void report(const char* code, std::uint32_t line, std::uint32_t column, std::string message) {
     diagnostics_.push_back(error(code, file_, line, column, std::move(message)));
     ok_ = false;
     if (++errors_ >= 10) stop_ = true;
@@ -141,7 +150,7 @@ class Scanner {
   // A '&' that starts no "&name;" is left to tinyxml2, which keeps it as text.
   void checkReference(std::size_t i) {
     std::size_t k = i + 1;
-    if (k < s_.size() && s_[k] == '#') return;  // numeric: tinyxml2 decodes or refuses
+    if (k < s_.size() && s_[k] == '#') return characterReference(i);
     while (k < s_.size() && k - i <= 64 &&
            (std::isalnum(static_cast<unsigned char>(s_[k])) || s_[k] == '_' || s_[k] == '-' || s_[k] == '.' ||
             s_[k] == ':'))
@@ -154,16 +163,88 @@ class Scanner {
            "(DOCTYPE entities are not expanded)");
   }
 
+  // "&#N;" / "&#xH;": XML 1.0 allows tab, LF, CR, 0x20-0xD7FF,
+  // 0xE000-0xFFFD and 0x10000-0x10FFFF only.  tinyxml2 decodes the rest
+  // silently (&#0; cut a name short, &#x1; made one rscene-to-xml refuses).
+  void characterReference(std::size_t i) {
+    std::size_t k = i + 2;
+    bool hex = k < s_.size() && s_[k] == 'x';
+    if (hex) ++k;
+    std::size_t digits = k;
+    std::uint64_t value = 0;
+    for (; k < s_.size(); ++k) {
+      int d = hexDigit(s_[k]);
+      if (d < 0 || (!hex && d > 9)) break;
+      value = std::min<std::uint64_t>(value * (hex ? 16 : 10) + static_cast<std::uint64_t>(d), 0x110000);
+    }
+    std::string_view shown = s_.substr(i, std::min<std::size_t>(k + 1 - i, 32));
+    if (k == digits || k >= s_.size() || s_[k] != ';') {
+      report(code::kXmlEntity, i, std::string(shown) + ": not a character reference (&#digits; or &#xhex;)");
+      return;
+    }
+    bool allowed = value == 0x9 || value == 0xA || value == 0xD || (value >= 0x20 && value <= 0xD7FF) ||
+                   (value >= 0xE000 && value <= 0xFFFD) || (value >= 0x10000 && value <= 0x10FFFF);
+    if (!allowed)
+      report(code::kXmlEntity, i,
+             std::string(shown) + " is a character XML 1.0 forbids (controls other than tab, LF and CR, "
+             "surrogates, U+FFFE, U+FFFF and values past U+10FFFF)");
+  }
+  static int hexDigit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  }
+
+  // "</name>": it must close the innermost open element.  tinyxml2 says
+  // only "mismatched element" at the line of the opening tag.
+  std::size_t endTag(std::size_t i) {
+    std::size_t k = i + 2;
+    while (k < s_.size() && !isSpace(s_[k]) && s_[k] != '>') ++k;
+    std::string_view name = s_.substr(i + 2, k - i - 2);
+    std::size_t end = skipPast(k, ">");
+    if (stop_) return end;
+    if (open_.empty()) {
+      report(code::kXmlRead, i, "not well-formed XML: </" + std::string(name) + "> closes no open element");
+      stop_ = true;
+    } else if (open_.back().name != name) {
+      const OpenElement& top = open_.back();
+      report(code::kXmlRead, i,
+             "not well-formed XML: </" + std::string(name) + "> closes <" + std::string(top.name) + "> opened at " +
+                 std::to_string(top.line) + ":" + std::to_string(top.column));
+      stop_ = true;  // the rest of the nesting no longer says anything
+    } else {
+      open_.pop_back();
+    }
+    return end;
+  }
+
+  // Two attributes of one name: tinyxml2 reports the line of the tag only.
+  void checkDuplicate(const std::vector<AttributePosition>& attributes) {
+    const AttributePosition& last = attributes.back();
+    for (std::size_t j = 0; j + 1 < attributes.size(); ++j)
+      if (attributes[j].name == last.name) {
+        report(code::kXmlRead, last.line, last.column,
+               "not well-formed XML: attribute '" + std::string(last.name) + "' written twice (first at " +
+                   std::to_string(attributes[j].line) + ":" + std::to_string(attributes[j].column) + ")");
+        return;
+      }
+  }
+
   std::size_t startTag(std::size_t i) {
     TagPosition tag;
     std::tie(tag.line, tag.column) = cursor_.at(i);
-    if (++depth_ > maxDepth_) {
+    if (static_cast<int>(open_.size()) + 1 > maxDepth_) {
       report(code::kXmlLimit, i, "elements nested deeper than " + std::to_string(maxDepth_));
       stop_ = true;
       return s_.size();
     }
     std::size_t k = i + 1;
     while (k < s_.size() && !isSpace(s_[k]) && s_[k] != '/' && s_[k] != '>') ++k;
+    open_.push_back({s_.substr(i + 1, k - i - 1), tag.line, tag.column});
+    // Attributes seen in this tag, by name: a tag with very many attributes
+    // is checked through a set so the scan stays linear.
+    std::unordered_set<std::string_view> names;
     while (k < s_.size()) {
       while (k < s_.size() && isSpace(s_[k])) ++k;
       if (k >= s_.size()) break;
@@ -172,7 +253,7 @@ class Scanner {
         break;
       }
       if (s_[k] == '/') {
-        --depth_;  // <x/>: no end tag will close it
+        open_.pop_back();  // <x/>: no end tag will close it
         k = skipPast(k, ">");
         break;
       }
@@ -182,10 +263,16 @@ class Scanner {
       a.name = s_.substr(nameStart, k - nameStart);
       std::tie(a.line, a.column) = cursor_.at(nameStart);
       while (k < s_.size() && isSpace(s_[k])) ++k;
-      if (k >= s_.size() || s_[k] != '=') break;  // malformed: tinyxml2 reports it
+      if (k >= s_.size() || s_[k] != '=') {  // malformed: tinyxml2 reports it
+        stop_ = true;
+        break;
+      }
       ++k;
       while (k < s_.size() && isSpace(s_[k])) ++k;
-      if (k >= s_.size() || (s_[k] != '"' && s_[k] != '\'')) break;
+      if (k >= s_.size() || (s_[k] != '"' && s_[k] != '\'')) {
+        stop_ = true;
+        break;
+      }
       char quote = s_[k];
       std::size_t end = s_.find(quote, k + 1);
       if (end == std::string_view::npos) {
@@ -197,6 +284,13 @@ class Scanner {
       for (std::size_t j = k + 1; j < end; ++j)
         if (s_[j] == '&') checkReference(j);
       tag.attributes.push_back(a);
+      if (tag.attributes.size() <= 16) {
+        checkDuplicate(tag.attributes);
+      } else {
+        if (names.empty())
+          for (std::size_t j = 0; j + 1 < tag.attributes.size(); ++j) names.insert(tag.attributes[j].name);
+        if (!names.insert(a.name).second) checkDuplicate(tag.attributes);
+      }
       k = end + 1;
     }
     tags.push_back(std::move(tag));
@@ -208,7 +302,11 @@ class Scanner {
   const std::string& file_;
   int maxDepth_;
   Diagnostics& diagnostics_;
-  int depth_ = 0;
+  struct OpenElement {
+    std::string_view name;
+    std::uint32_t line, column;
+  };
+  std::vector<OpenElement> open_;  // at most maxDepth_ long
   int errors_ = 0;
   bool ok_ = true;
   bool stop_ = false;

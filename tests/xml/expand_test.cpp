@@ -200,6 +200,15 @@ TEST(Expand, IncludeErrors) {
   EXPECT_TRUE(r.ok()) << errors(r);
 }
 
+// A cycle reached through another include is named from the top file on.
+TEST(Expand, IncludeCycleIsNamedFromTheTopFile) {
+  LoadResult r = loadText("<raisim>\n<include file=\"" + kData + "/cycle_b.xml\"/>\n</raisim>");
+  EXPECT_FALSE(r.ok());
+  ASSERT_EQ(r.diagnostics.size(), 1u) << errors(r);
+  EXPECT_EQ(r.diagnostics[0].message, "<include> file: include cycle: w.xml -> " + kData + "/cycle_b.xml -> " +
+                                          kData + "/cycle_a.xml -> " + kData + "/cycle_b.xml");
+}
+
 TEST(Expand, SeveralObjectsAndMaterialsMerge) {
   LoadResult r = loadText(R"(<raisim><objects><sphere name="a"/></objects><material><default friction="1"/></material>
   <objects><box name="b"/></objects><material><pair_prop name1="x" name2="y"/></material></raisim>)");

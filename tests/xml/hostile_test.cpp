@@ -244,9 +244,71 @@ TEST_F(HostileFiles, FileSizeLimit) {
   EXPECT_NE(r.diagnostics[0].message.find("1000"), std::string::npos) << errors(r);
 }
 
+// tinyxml2 said "w.xml:3: not well-formed XML (mismatched element)" at the
+// line of the opening tag, with no column and no element.
+TEST(Hostile, MismatchedEndTagNamesBothElementsAtTheEndTag) {
+  EXPECT_EQ(errors(loadText("<raisim>\n  <objects>\n    <sphere name=\"a\">\n  </objects>\n</raisim>\n")),
+            "w.xml:4:3: not well-formed XML: </objects> closes <sphere> opened at 3:5 [RS8101]\n");
+  EXPECT_EQ(errors(loadText("<raisim>\n  <objects/>\n</objects>\n</raisim>\n")),
+            "w.xml:3:1: not well-formed XML: </objects> closes <raisim> opened at 1:1 [RS8101]\n");
+  EXPECT_EQ(errors(loadText("<raisim>\n  <objects>\n")),
+            "w.xml:2:3: not well-formed XML: <objects> is never closed [RS8101]\n");
+  EXPECT_EQ(errors(loadText("<raisim/>\n</raisim>")),
+            "w.xml:2:1: not well-formed XML: </raisim> closes no open element [RS8101]\n");
+  // End tags with spaces before '>', comments and CDATA holding tags are fine.
+  LoadResult r = loadText("<raisim ><objects ><!-- </sphere> --><![CDATA[</x>]]></objects  ></raisim>");
+  EXPECT_TRUE(r.ok()) << errors(r);
+}
+
+TEST(Hostile, DuplicateAttributeIsReportedAtTheSecondOne) {
+  EXPECT_EQ(errors(loadText("<raisim>\n<objects>\n  <sphere name=\"a\" mass=\"1\"\n          name=\"b\"/>\n</objects></raisim>")),
+            "w.xml:4:11: not well-formed XML: attribute 'name' written twice (first at 3:11) [RS8101]\n");
+  // Past 16 attributes the check goes through a set: same answer.
+  std::string many = "<raisim a0=\"0\"";
+  for (int i = 1; i < 40; ++i) many += " a" + std::to_string(i) + "=\"" + std::to_string(i) + "\"";
+  EXPECT_TRUE(loadText(many + "/>").ok());
+  EXPECT_EQ(errors(loadText(many + " a30=\"x\"/>")),
+            "w.xml:1:" + std::to_string(many.size() + 2) +
+                ": not well-formed XML: attribute 'a30' written twice (first at 1:" +
+                std::to_string(many.find(" a30=") + 2) + ") [RS8101]\n");
+}
+
+// XML 1.0's Char production: &#0; used to cut a name short, &#x1; to make
+// a name rscene-to-xml then refused.
+TEST(Hostile, ForbiddenCharacterReferencesAreRefusedAtTheirColumn) {
+  const char* kWhy =
+      " is a character XML 1.0 forbids (controls other than tab, LF and CR, surrogates, U+FFFE, U+FFFF and values "
+      "past U+10FFFF) [RS8102]\n";
+  for (const std::string ref : {"&#0;", "&#x1;", "&#31;", "&#xD800;", "&#xDFFF;", "&#xFFFE;", "&#x110000;",
+                                "&#99999999999999999999;"}) {
+    LoadResult r = loadText("<raisim>\n<objects><sphere name=\"a" + ref + "b\"/></objects></raisim>");
+    EXPECT_FALSE(r.ok()) << ref;
+    EXPECT_EQ(errors(r), "w.xml:2:25: " + ref + kWhy) << ref;
+  }
+  // In text between elements too.
+  EXPECT_EQ(errors(loadText("<raisim>&#x7;</raisim>")), "w.xml:1:9: &#x7;" + std::string(kWhy));
+  EXPECT_EQ(errors(loadText("<raisim><objects><sphere name=\"&#;\"/></objects></raisim>")),
+            "w.xml:1:32: &#;: not a character reference (&#digits; or &#xhex;) [RS8102]\n");
+  // Tab, LF, CR and the rest of Unicode are read.
+  LoadResult ok = loadText("<raisim><objects><sphere name=\"&#9;&#xA;&#13;&#233;&#x10FFFF;&#xE000;\"/></objects></raisim>");
+  ASSERT_TRUE(ok.ok()) << errors(ok);
+  EXPECT_EQ(ok.root->children[0].children[0].attributes[0].value, "\t\n\r\xC3\xA9\xF4\x8F\xBF\xBF\xEE\x80\x80");
+}
+
+// The limit held for included files only: the top file's text (standard
+// input, as rscene-from-xml passes it) was read whatever its size.
+TEST(Hostile, TopTextPastTheFileSizeLimitIsRefused) {
+  LoadLimits limits;
+  limits.maxFileBytes = 1000;
+  LoadResult r = loadText("<raisim>" + std::string(5000, ' ') + "</raisim>", {}, limits);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(errors(r), "w.xml:0:0: cannot read: file larger than 1000 bytes [RS8101]\n");
+  EXPECT_TRUE(loadText("<raisim>" + std::string(900, ' ') + "</raisim>", {}, limits).ok());
+}
+
 TEST(Hostile, NotWorldXml) {
   EXPECT_EQ(errors(loadText("<raisim><objects></raisim>")),
-            "w.xml:1:0: not well-formed XML (mismatched element) [RS8101]\n");
+            "w.xml:1:18: not well-formed XML: </raisim> closes <objects> opened at 1:9 [RS8101]\n");
   EXPECT_EQ(errors(loadText("\n<world/>")), "w.xml:2:1: the top element is <world>, not <raisim> [RS8101]\n");
   EXPECT_EQ(errors(loadText("")), "w.xml:0:0: not well-formed XML (empty document) [RS8101]\n");
   EXPECT_EQ(first(loadText("<raisim><objects><params><x value=\"1\"/></params></objects></raisim>")),

@@ -295,6 +295,36 @@ TEST(ToXml, CompoundChildrenWithTheCompoundScaleMultipliedThrough) {
       << e.result.xml;
 }
 
+// RaiSim requires `com` on a compound; without centerOfMass rscene-sim
+// uses the children's centroid weighted by their bounding-box volumes
+// (lib/sim/world.cpp), and to-xml writes that point (it wrote none).
+TEST(ToXml, CompoundWithoutCenterOfMassGetsTheCentroidRsceneSimUses) {
+  Exported e = exportScene(
+      H + "compound /World/Cart 0 0 0 1 0 0 0 2 1 1 3 dynamic true true id=cart\n"
+          "compound_child cart box 0 0 0.5 1 0 0 0 1 1 1 size=1,1,0.1\n"      // 2 x 1 x 0.1 = 0.2 at (0, 0, 0.5)
+          "compound_child cart sphere 1 0 0 1 0 0 0 1 1 1 radius=0.5\n"       // r 1: 2^3 = 8 at (2, 0, 0)
+          "compound_child cart capsule 0 1 0 1 0 0 0 1 1 1 radius=0.1 height=1\n"  // r 0.2: 0.4^2 x 1.4 at (0, 1, 0)
+          "compound_child cart cylinder 0 0 -1 1 0 0 0 1 1 1 radius=0.1 height=0.5\n"  // 0.4^2 x 0.5 at (0, 0, -1)
+          "compound_child cart mesh 5 5 5 1 0 0 0 1 1 1 meshPath=hull.obj\n");  // not exported: not counted
+  ASSERT_TRUE(e.result.ok()) << e.result.xml;
+  Parsed p;
+  parseXml(e.result.xml, p);
+  const auto* c = p.body("compound", "/World/Cart");
+  ASSERT_NE(c, nullptr) << e.result.xml;
+  std::istringstream com(attr(c, "com"));
+  double x = 0, y = 0, z = 0;
+  ASSERT_TRUE(com >> x >> y >> z) << attr(c, "com");
+  double total = 0.2 + 8 + 0.16 * 1.4 + 0.16 * 0.5;
+  EXPECT_NEAR(x, 8 * 2 / total, 1e-15);
+  EXPECT_NEAR(y, 0.16 * 1.4 / total, 1e-15);
+  EXPECT_NEAR(z, (0.2 * 0.5 - 0.16 * 0.5) / total, 1e-15);
+  EXPECT_EQ(joined(e.result.notExported), "compound /World/Cart: mesh child");
+  // A written centerOfMass is written as it is.
+  Exported given = exportScene(H + "compound /World/C 0 0 0 1 0 0 0 1 1 1 3 dynamic true true id=c "
+                                   "centerOfMass=0.5,0,0\ncompound_child c box 0 0 1 1 0 0 0 1 1 1 size=1,1,1\n");
+  EXPECT_TRUE(contains(given.result.xml, "com=\"0.5 0 0\"")) << given.result.xml;
+}
+
 TEST(ToXml, HeightmapSamplesInRecordOrderWithTheCentreHeightAdded) {
   // Sample (x, y) is heights[y * xSamples + x]: x runs fastest.
   Exported e = exportScene(H + "terrain_region /World/T 3 2 4 2 1 -1 0.5 contactMaterial=grass "
@@ -355,7 +385,9 @@ TEST(ToXml, ArticulatedWithoutCoordinatesUsesTheWorldPoseAndZeroJoints) {
   parseXml(e.result.xml, p);
   const auto* w = p.body("articulatedSystem", "/World/Walker");
   EXPECT_EQ(attr(w->FirstChildElement("state"), "qpos"), "1 2 3 0 0 0 1 0 0 0 0");
-  EXPECT_EQ(attr(w->FirstChildElement("state"), "qvel"), "0 0 0 0 0 0 0 0 0 0");
+  // No generalizedVelocity: no qvel (from-xml would turn a written zero
+  // qvel into a generalizedVelocity key the scene did not have).
+  EXPECT_EQ(attr(w->FirstChildElement("state"), "qvel"), "<absent>");
   // collidable=false: rscene-sim gives the robot's bodies group and mask 0.
   EXPECT_EQ(attr(w, "collision_group"), "0");
   EXPECT_EQ(attr(w, "collision_mask"), "0");
@@ -381,9 +413,9 @@ TEST(ToXml, CorpusAnymalGetsItsModelsSizes) {
   Parsed p;
   parseXml(e.result.xml, p);
   const auto* state = p.body("articulatedSystem", "/World/A")->FirstChildElement("state");
-  // A floating base (7) and twelve revolute joints; velocities 6 + 12.
+  // A floating base (7) and twelve revolute joints; no velocity written.
   EXPECT_EQ(attr(state, "qpos"), "0 0 0.6 1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0");
-  EXPECT_EQ(attr(state, "qvel"), "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0");
+  EXPECT_EQ(attr(state, "qvel"), "<absent>");
   EXPECT_EQ(joined(e.result.notExported), "articulated /World/A: scale");
 }
 
