@@ -251,7 +251,7 @@ ClassTable gatherClasses(Element& root, Diagnostics& diagnostics) {
                                                 "no type (the element the class stands for: sphere, box, mesh ...)"));
       } else if (auto first = classes.find(cls.name); first != classes.end()) {
         diagnostics.push_back(elementDiagnostic(Severity::Error, code::kXmlClass, cls,
-                                                "class defined twice (first at " + first->second.where.file + ":" +
+                                                "class defined twice (first at " + first->second.where.file.str() + ":" +
                                                     std::to_string(first->second.where.line) + ")"));
       } else {
         std::string name = cls.name;

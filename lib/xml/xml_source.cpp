@@ -321,7 +321,7 @@ std::size_t countElements(const tinyxml2::XMLElement& e) {
 class Converter {
  public:
   Converter(const std::string& file, const std::string& thisDir, const std::vector<TagPosition>* tags)
-      : file_(file), thisDir_(thisDir), tags_(tags) {}
+      : file_(file), thisDir_(thisDir), tags_(tags) {}  // file_: the one shared copy of the name
 
   Element convert(const tinyxml2::XMLElement& e) {
     Element out;
@@ -342,7 +342,7 @@ class Converter {
   }
 
  private:
-  const std::string& file_;
+  FileName file_;
   const std::string& thisDir_;
   const std::vector<TagPosition>* tags_;
   std::size_t next_ = 0;
