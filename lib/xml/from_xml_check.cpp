@@ -85,18 +85,17 @@ struct Collect : DiagnosticSink {
 
 }  // namespace
 
-void checkConverted(Context& ctx, const std::string& text, const Element& root,
-                    const std::vector<const Element*>& lineOrigins) {
+void checkConverted(Context& ctx, std::string text, const Element& root,
+                    const std::vector<const Element*>& lineOrigins, Document& doc) {
   CheckOptions co;
   // Asset paths are written relative to the output's folder, where the
   // other tools will resolve them; missing files are not an error here
   // (a missing mesh is a warning at its element, see convertSingleBody).
   co.sceneDir = ctx.options.absolutePaths ? "." : ctx.options.outputDir;
   co.checkFiles = false;
-  Document doc;
   Collect sink;
   robot::RobotCheckOptions ro;
-  validateScene(text, co, doc, sink, [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
+  validateScene(std::move(text), co, doc, sink, [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
     robot::checkRobots(d, s, ro, ctx.models, out);
   });
   for (const Diagnostic& d : sink.errors) {

@@ -165,8 +165,10 @@ void convertWire(Context& ctx, const Element& e);
 // Runs the checks rscene-validate, rscene-sim and rscene-to-xml run on the
 // scene `text` (from_xml_check.cpp) and adds each error as an RS8125 error
 // at the element line L of `text` came from (lineOrigins[L - 1]; `root`
-// when none), at the attribute of the field when there is one.
-void checkConverted(Context& ctx, const std::string& text, const Element& root,
-                    const std::vector<const Element*>& lineOrigins);
+// when none), at the attribute of the field when there is one.  `doc` is
+// left holding the loaded scene, so the caller writes it without parsing
+// the text a second time.
+void checkConverted(Context& ctx, std::string text, const Element& root,
+                    const std::vector<const Element*>& lineOrigins, Document& doc);
 
 }  // namespace rscene::xml::detail
