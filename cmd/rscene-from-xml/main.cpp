@@ -1,17 +1,14 @@
 // rscene-from-xml: a RaiSim world configuration XML (templates expanded by
 // lib/xml's front end) as a version-1 .rscene in canonical form.
 #include <CLI/CLI.hpp>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <iostream>
 
 #include "common/cli.hpp"
+#include "core/io.hpp"
 #include "xml/from_xml.hpp"
 #include "xml/xml_tree.hpp"
 
@@ -29,38 +26,6 @@ bool parseParam(const std::string& text, std::map<std::string, std::string>& par
   }
   params[name] = text.substr(eq + 1);
   return true;
-}
-
-// Reads `operand` ("-" = standard input) like cli::readInput, but stops
-// past `maxBytes` (LoadLimits::maxFileBytes): a 100 MiB world was read
-// whole before.  False with `why` set when it cannot read or it is larger.
-bool readCapped(const std::string& operand, std::uint64_t maxBytes, std::string& text, std::string& why) {
-  bool isStdin = operand.empty() || operand == "-";
-  int fd = isStdin ? 0 : ::open(operand.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0) {
-    why = std::strerror(errno);
-    return false;
-  }
-  char chunk[1 << 16];
-  bool ok = true;
-  for (;;) {
-    ssize_t n = ::read(fd, chunk, sizeof chunk);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      why = std::strerror(errno);
-      ok = false;
-      break;
-    }
-    if (n == 0) break;
-    if (text.size() + static_cast<std::size_t>(n) > maxBytes) {
-      why = "file larger than " + std::to_string(maxBytes) + " bytes";
-      ok = false;
-      break;
-    }
-    text.append(chunk, static_cast<std::size_t>(n));
-  }
-  if (!isStdin) ::close(fd);
-  return ok;
 }
 
 std::string folderOf(const std::string& path) {
@@ -97,7 +62,9 @@ int main(int argc, char** argv) {
   in.isStdin = file.empty() || file == "-";
   in.display = in.isStdin ? (stdinName.empty() ? "<stdin>" : stdinName) : file;
   in.path = in.isStdin ? stdinName : file;
-  if (std::string why; !readCapped(file, loadOptions.limits.maxFileBytes, in.text, why)) {
+  // The top file and standard input are capped like included files: a
+  // 100 MiB world is refused, not read whole.
+  if (std::string why; !readFile(in.isStdin ? "/dev/stdin" : file, in.text, &why, loadOptions.limits.maxFileBytes)) {
     Diagnostic d;
     d.code = "RS8101";
     d.file = in.display;

@@ -15,8 +15,6 @@ bool fail(std::string* error, const std::string& why) {
   return false;
 }
 
-std::string tooLarge(std::uint64_t maxBytes) { return "file larger than " + std::to_string(maxBytes) + " bytes"; }
-
 FileKind kindOf(mode_t mode) {
   if (S_ISREG(mode)) return FileKind::Regular;
   if (S_ISDIR(mode)) return FileKind::Directory;
@@ -50,7 +48,7 @@ bool DiskFileSystem::read(const std::string& path, std::string& out, std::string
   if (S_ISDIR(st.st_mode)) return fail(error, "is a directory");
   if (!S_ISREG(st.st_mode)) return fail(error, "not a regular file");
   auto size = static_cast<std::uint64_t>(st.st_size);
-  if (size > maxBytes) return fail(error, tooLarge(maxBytes));
+  if (size > maxBytes) return fail(error, fileTooLarge(maxBytes));
   out.resize(static_cast<std::size_t>(size));
   std::size_t used = 0;
   while (used < out.size()) {
@@ -68,10 +66,12 @@ bool DiskFileSystem::read(const std::string& path, std::string& out, std::string
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) return fail(error, std::strerror(errno));
     if (n == 0) return true;
-    if (out.size() + static_cast<std::size_t>(n) > maxBytes) return fail(error, tooLarge(maxBytes));
+    if (out.size() + static_cast<std::size_t>(n) > maxBytes) return fail(error, fileTooLarge(maxBytes));
     out.append(chunk, static_cast<std::size_t>(n));
   }
 }
+
+std::string fileTooLarge(std::uint64_t maxBytes) { return "file larger than " + std::to_string(maxBytes) + " bytes"; }
 
 const FileSystem& diskFileSystem() {
   static const DiskFileSystem disk;
@@ -94,7 +94,7 @@ bool MemoryFileSystem::read(const std::string& path, std::string& out, std::stri
   if (st.kind == FileKind::Missing) return fail(error, std::strerror(ENOENT));
   if (st.kind == FileKind::Directory) return fail(error, "is a directory");
   if (st.kind == FileKind::Other) return fail(error, "not a regular file");
-  if (st.size > maxBytes) return fail(error, tooLarge(maxBytes));
+  if (st.size > maxBytes) return fail(error, fileTooLarge(maxBytes));
   out = files_.at(path);
   ++reads_;
   return true;

@@ -46,6 +46,9 @@ class DiskFileSystem : public FileSystem {
 // The process's disk, for callers that take a `const FileSystem&`.
 const FileSystem& diskFileSystem();
 
+// "file larger than N bytes": what a capped read says past its cap.
+std::string fileTooLarge(std::uint64_t maxBytes);
+
 // Files held in memory, for tests.  A directory exists when it was added
 // or when a file lies below it.
 class MemoryFileSystem : public FileSystem {

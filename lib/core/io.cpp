@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/filesystem.hpp"
 #include "core/output_file.hpp"
 #include "core/text.hpp"
 
@@ -29,7 +30,7 @@ ValueType fieldType(const Record& r, const Document& doc, const Field& f, std::u
 
 }  // namespace
 
-bool readFile(const std::string& path, std::string& out, std::string* error) {
+bool readFile(const std::string& path, std::string& out, std::string* error, std::size_t maxBytes) {
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     if (error) *error = std::strerror(errno);
@@ -41,11 +42,20 @@ bool readFile(const std::string& path, std::string& out, std::string* error) {
     if (error) *error = std::strerror(EISDIR);
     return false;
   }
+  auto tooLarge = [&] {
+    ::close(fd);
+    if (error) *error = fileTooLarge(maxBytes);
+    return false;
+  };
+  if (maxBytes > 0 && S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > maxBytes) return tooLarge();
   // Regular files are read straight into the string; pipes grow it.
   out.clear();
   std::size_t used = 0;
   if (st.st_size > 0) out.resize(static_cast<std::size_t>(st.st_size));
   char probe[1 << 12];
+  // A capped pipe gets its whole room at once: growing by doubling would
+  // hold the old and the new buffer (three times the cap) near the end.
+  if (maxBytes > 0 && !S_ISREG(st.st_mode)) out.reserve(maxBytes + sizeof probe);
   for (;;) {
     // When the string is full, a small read tells end of file from more
     // data, so a file of exactly st_size bytes is never over-allocated.
@@ -59,10 +69,15 @@ bool readFile(const std::string& path, std::string& out, std::string* error) {
     }
     if (n == 0) break;
     if (full) {
-      out.resize(std::max<std::size_t>(out.size() * 2, 1 << 16));
+      // Doubling, but never far past a cap: a pipe over it is refused
+      // without first holding twice the cap.
+      std::size_t grown = std::max<std::size_t>(out.size() * 2, 1 << 16);
+      if (maxBytes > 0) grown = std::min(grown, maxBytes + 1);
+      out.resize(std::max(grown, used + static_cast<std::size_t>(n)));
       std::memcpy(out.data() + used, probe, static_cast<std::size_t>(n));
     }
     used += static_cast<std::size_t>(n);
+    if (maxBytes > 0 && used > maxBytes) return tooLarge();
     if (used > kMaxInputBytes + 1) break;  // the loader reports it
   }
   out.resize(used);

@@ -18,8 +18,10 @@ bool loadFile(const std::string& path, Document& doc, std::string* error = nullp
 std::string saveString(const Document& doc);
 bool saveFile(const Document& doc, const std::string& path, std::string* error = nullptr);
 
-// Reads a whole file; `error` gets strerror-style text.
-bool readFile(const std::string& path, std::string& out, std::string* error);
+// Reads a whole file (also a pipe, /dev/stdin); `error` gets strerror-style
+// text.  With `maxBytes` > 0 a file longer than that is an error
+// (fileTooLarge()) found before more than a read past the cap is held.
+bool readFile(const std::string& path, std::string& out, std::string* error, std::size_t maxBytes = 0);
 
 // Writes `path` through the one output routine, writeOutputFile() in
 // core/output_file.hpp: atomic replacement of a regular file (mode and
