@@ -573,10 +573,14 @@ SCENE
   ! cmp -s a.png b.png
 }
 
-@test "geometry: granular beyond maxParticles or --max-instances is RS9070, exit 2" {
+@test "geometry: granular beyond maxParticles is validate's RS7082 at the key, beyond --max-instances RS9070, exit 2" {
   geometry_scene "" "maxParticles=10" > g.rscene
+  run -1 "$BIN/rscene-validate" g.rscene
+  vline=$(grep -m1 'error:' <<<"$output")
+  [[ "$vline" == *"[RS7082]" ]]
   run -2 --separate-stderr "$RENDER" g.rscene -o g.png
-  [ "${stderr_lines[0]}" = "g.rscene:9:1: error: granular /World/S has 32 particles, more than its maxParticles 10 [RS9070]" ]
+  [ "${stderr_lines[0]}" = "$vline" ]
+  [[ "${stderr_lines[0]}" == "g.rscene:9:"*"error: granular /World/S has 32 particles, more than its maxParticles 10 [RS7082]" ]]
   [ ! -e g.png ]
   geometry_scene "maxRenderedInstances=1" > g.rscene
   run -2 --separate-stderr "$RENDER" g.rscene --max-instances 20 -o g.png

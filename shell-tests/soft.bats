@@ -204,9 +204,11 @@ refused() {
   grep -q '^granular /World/Sand .* positions=' out.rscene
 }
 
-@test "a deformable whose mesh is missing: RS7080 at meshPath, exit 2, nothing written" {
+@test "a deformable whose mesh is missing: RS5001 at meshPath as validate --check-files says, exit 2, nothing written" {
   hostile "meshes/none.obj 0 0 1 1 0 0 0 1 1 1"
-  refused 5:31 RS7080 "deformable '/World/Cloth': mesh meshes/none.obj: No such file or directory"
+  refused 5:31 RS5001 "mesh file 'meshes/none.obj' does not exist"
+  run -1 "$BIN/rscene-validate" --check-files h.rscene
+  [[ $output == "h.rscene:5:31: error: "*"[RS5001]"* ]]
 }
 
 @test "a deformable whose mesh is not an OBJ: RS7080 at meshPath, exit 2, nothing written" {

@@ -149,14 +149,15 @@ constexpr CheckInfo kChecks[] = {
     {"RS7072", W, Scene, VSR, "lidar lidarVerticalFov of 0 with more than one channel (every ring scans the same plane)"},
     {"RS7073", W, Scene, VSR, "sensor segmentation=true on a kind that draws no image (lidar, imu, force_torque): not used"},
     {"RS7074", E, Scene, VSR, "camera orthoScale not finite and positive (at most 1e12) under an orthographic projection"},
-    // RS708x deformable and granular records in rscene-sim (lib/sim/particle_systems.hpp)
+    // RS708x deformable and granular records (lib/scene: granular.hpp, deformable_check.hpp; validate,
+    // sim and render judge them alike; RS7080 is the mesh read, which only rscene-sim does in full)
     {"RS7080", E, Sim, "sim", "deformable mesh that is not a usable OBJ surface (unreadable, not OBJ, a face index past its vertices, no triangles)"},
-    {"RS7081", E, Sim, "sim", "deformable record that cannot be simulated (a pinned vertex that is not one of the mesh's, a value out of range)"},
-    {"RS7082", E, Sim, "sim", "granular record that cannot be simulated (more particles than maxParticles, radii that do not match positions, a value out of range)"},
-    {"RS7086", W, Sim, "sim", "granular substeps raised for stability (the time step is past 0.6 of the critical step of the contact law for the lightest grain); the message says what it costs"},
-    {"RS7087", E, Sim, "sim", "granular record whose stability needs more than 1000 substeps per world step (lower normalStiffness or normalDamping, raise radius or density, or shorten time_step)"},
-    {"RS7088", E, Sim, "sim", "granular value out of range (a radius, density or stiffness that is not positive and finite, a negative damping, friction or cohesion, radii spanning more than a factor of 10, an unknown normalContactModel, substeps outside 1 to 1000)"},
-    {"RS7089", E, Sim, "sim", "granular particles that start overlapping by more than half their radii (a box fill with spacing below the radius, positions written at one point)"},
+    {"RS7081", E, Scene, VSR, "deformable record that cannot be simulated (a kind other than cloth, mass_spring or fem, a value out of range; with its mesh: a pinned vertex that is not one of the mesh's, an open mesh to fill)"},
+    {"RS7082", E, Scene, VSR, "granular record whose grains cannot be made (more particles than maxParticles or 2,000,000, radii that do not match positions, a box fill with a radius or spacing that is not positive)"},
+    {"RS7086", W, Scene, VSR, "granular substeps raised for stability (the time step is past 0.6 of the critical step of the contact law for the lightest grain); the message says what it costs"},
+    {"RS7087", E, Scene, VSR, "granular record whose stability needs more than 1000 substeps per world step (lower normalStiffness or normalDamping, raise radius or density, or shorten time_step)"},
+    {"RS7088", E, Scene, VSR, "granular value out of range (a radius, density or stiffness that is not positive and finite, a negative damping, friction or cohesion, radii spanning more than a factor of 10, substeps outside 1 to 1000)"},
+    {"RS7089", E, Scene, VSR, "granular particles that start overlapping by more than half their radii (a box fill with spacing below the radius, positions written at one point)"},
     // RS709x the scene model's bodies, continued (scene/limits.hpp)
     {"RS7090", E, Scene, VSR, "custom inertia diagonal (customInertia=true on a dynamic object, inertiaDiagonal of a dynamic compound) not positive and finite or above 1e15 kg m^2"},
     // RS8xxx JSON input (rscene-from-json)
@@ -208,8 +209,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS9060", W, Render, "render", "reflection probes not drawn: the OpenGL has no cube map arrays"},
     {"RS9061", W, Render, "render", "more than 8 reflection probes; the rest are not drawn"},
     // RS907x geometry records drawn: foliage, wires, deformables, granular media
-    {"RS9070", E, Render, "render", "granular record with more particles than its maxParticles or the --max-instances left"},
-    {"RS9071", E, Render, "render", "granular record whose particles cannot be made (radius or spacing not positive, radii not matching positions)"},
+    {"RS9070", E, Render, "render", "granular record with more particles than the --max-instances left (its own maxParticles is RS7082)"},
     {"RS9072", W, Render, "render", "terrain_foliage_layer primitive rscene-render does not draw: drawn as grass_blade"},
 };
 

@@ -213,7 +213,7 @@ const KindRow kKinds[] = {
  "id:id parentGroupId:ref@node pinnedVertices:ints scale:num=1 totalMass:num=1 distanceCompliance:num=0 "
  "distanceStiffness:num=1000 bendCompliance:num=0 bendStiffness:num=100 youngsModulus:num=0 poissonRatio:num=0.3 "
  "thickness:num=0.002 damping:num=0.01 collisionRadius:num=0.01 iterations:int=20 substeps:int=1 "
- "solverMode:name=xpbd particleMode:name=skinned particleSpacing:num=0.05 contactMaterial:ref@contact "
+ "solverMode:name@deformable_solver=xpbd particleMode:name@particle_mode=skinned particleSpacing:num=0.05 contactMaterial:ref@contact "
  "material:ref@material visible:flag=true collidable:flag=true collisionGroup:u64=1 "
  "collisionMask:u64=18446744073709551615"},
 {"granular", 25, Role::Node, "", "",
@@ -222,7 +222,7 @@ const KindRow kKinds[] = {
  "spacing:num=0.025 maxParticles:int=20000 velocity:vec3=0,0,0 angularVelocity:vec3=0,0,0 materialId:int=0 "
  "fixed:flag=false density:num=1600 normalStiffness:num=1e6 normalDamping:num=200 tangentialStiffness:num=1e5 "
  "tangentialDamping:num=20 friction:num=0.6 rollingFriction:num=0.05 cohesionStiffness:num=0 "
- "cohesionMaxDistance:num=0 normalContactModel:name=hertz substeps:int=2 visible:flag=true"},
+ "cohesionMaxDistance:num=0 normalContactModel:name@contact_model=hertz substeps:int=2 visible:flag=true"},
 {"articulated", 26, Role::Node, "", "",
  "path:text resource:ref@resource position:vec3 orientation:quat visible:flag collidable:flag",
  "id:id parentGroupId:ref@node sourcePath:path resourceDirectory:path modules:strs jointOrder:strs scale:vec3=1,1,1 "
@@ -320,6 +320,9 @@ const EnumRow kEnums[] = {
 {"render_mode", "rgb=color depth segmentation rgb_depth=rgbd ..."},
 {"sensor_kind", "rgb=rgb_camera,camera,color depth=depth_camera segmentation rgb_depth=rgbd imu lidar=spinning_lidar force_torque ..."},
 {"deformable_kind", "cloth mass_spring fem ..."},
+{"deformable_solver", "xpbd pbd"},
+{"particle_mode", "skinned surface filled"},
+{"contact_model", "hertz linear"},
 {"ik_method", "damped_least_squares=dls pseudo_inverse=pinv,pseudoinverse transpose=jacobian_transpose ..."},
 };
 // clang-format on

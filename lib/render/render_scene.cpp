@@ -18,6 +18,7 @@
 #include "robot/kinematics.hpp"
 #include "core/assets.hpp"
 #include "scene/check.hpp"
+#include "scene/granular.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::render {
@@ -674,17 +675,24 @@ class Preparer {
     std::vector<double> radii;
     std::string why = granularParticles(g, left, positions, radii);
     if (!why.empty()) {
-      bool tooMany = why.find(" particles, more than ") != std::string::npos;
+      // A record whose grains cannot be made at all is the scene model's
+      // finding (checkScene(): RS7082 at its key, as validate and sim say);
+      // what is left is this renderer's own cap, --max-instances.
+      std::vector<Vector3d> p;
+      std::vector<double> r;
+      if (!granularParticles(g, kMaxGranularParticles, p, r).empty()) {
+        ok_ = false;
+        return;
+      }
       Diagnostic d;
       d.severity = Severity::Error;
-      d.code = tooMany ? "RS9070" : "RS9071";
+      d.code = "RS9070";
       d.line = lineOf(g.recordIndex);
       d.column = d.line ? 1 : 0;
       d.message = why;
-      if (tooMany)
-        d.hint = "maxParticles is " + std::to_string(g.maxParticles) + "; " + std::to_string(left) + " of --max-instances " +
-                 std::to_string(limits_.maxInstances) + " are left: fill a smaller box, space the particles wider, or raise "
-                 "--max-instances";
+      d.hint = "maxParticles is " + std::to_string(g.maxParticles) + "; " + std::to_string(left) + " of --max-instances " +
+               std::to_string(limits_.maxInstances) + " are left: fill a smaller box, space the particles wider, or raise "
+               "--max-instances";
       diags_.push_back(std::move(d));
       ok_ = false;
       return;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "scene/deformable_check.hpp"
+#include "scene/granular.hpp"
 #include "scene/limits.hpp"
 #include "scene/reader.hpp"
 #include "scene/sensor_check.hpp"
@@ -41,6 +43,8 @@ class Checker {
     for (const Object& o : s_.objects) object(o);
     for (const Compound& c : s_.compounds) compound(c);
     for (const Wire& w : s_.wires) wire(w);
+    for (const Deformable& d : s_.deformables) deformable(d);
+    for (const Granular& g : s_.granulars) granular(g);
   }
 
  private:
@@ -127,6 +131,28 @@ class Checker {
                "wire '" + w.path + "' is not simulated: " + field + " '" + ref + "' is " + what +
                    ", which rscene-sim does not model",
                "", Severity::Warning);
+  }
+
+  // A deformable's own values (scene/deformable_check.hpp), then its mesh
+  // file when files are checked.
+  void deformable(const Deformable& d) {
+    RecordReader r = reader(d.recordIndex);
+    std::string error, field;
+    if (!checkDeformableRecord(d, error, field))
+      r.error(field, particle_code::kDeformable, "deformable '" + d.path + "': " + error);
+    if (opt_.checkFiles && !d.meshPath.empty() && !opt_.exists(d.meshPath))
+      r.error("meshPath", scene_code::kMissingFile, "mesh file '" + d.meshPath + "' " + whyNotAFile(d.meshPath),
+              "paths resolve against the scene's directory, then against asset_root");
+  }
+
+  // A granular record's material, grains and substeps
+  // (scene/granular.hpp): the findings rscene-sim builds its solver after.
+  void granular(const Granular& g) {
+    std::vector<ParticleFinding> found;
+    granularSetup(g, s_.timeStep, found, /*world=*/false);
+    RecordReader r = reader(g.recordIndex);
+    for (const ParticleFinding& f : found)
+      r.error(f.field, f.code, f.message, {}, f.error ? Severity::Error : Severity::Warning);
   }
 
   const Document& doc_;

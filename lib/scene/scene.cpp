@@ -42,7 +42,7 @@ bool modelled(std::string_view tag) {
 bool forBodies(std::string_view tag) {
   return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
          tag == "terrain_region" || tag == "wire" || tag == "point_cloud" || tag == "articulated_resource" ||
-         tag == "articulated" || tag == "articulated_ik";
+         tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular";
 }
 
 Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }

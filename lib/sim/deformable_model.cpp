@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/text.hpp"
+#include "scene/deformable_check.hpp"
 #include "sim/deformable_body.hpp"
 #include "sim/deformable_fill.hpp"
 
@@ -54,48 +55,14 @@ double triangleArea(const DeformableModel& m, const std::array<std::uint32_t, 3>
 bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface, DeformableModel& m,
                           std::string& error, std::string& field) {
   Fail fail{error, field};
-  const bool cloth = r.kind == "cloth", massSpring = r.kind == "mass_spring", fem = r.kind == "fem";
-  if (!cloth && !massSpring && !fem) return fail("kind", "kind '" + r.kind + "' is not one of cloth, mass_spring, fem");
-  if (r.solverMode != "xpbd" && r.solverMode != "pbd")
-    return fail("solverMode", "solverMode '" + r.solverMode + "' is not one of xpbd, pbd");
-  if (r.particleMode != "skinned" && r.particleMode != "surface" && r.particleMode != "filled")
-    return fail("particleMode", "particleMode '" + r.particleMode + "' is not one of skinned, surface, filled");
-  if (!(r.totalMass > 0 && r.totalMass <= 1e12))
-    return fail("totalMass", "totalMass " + num(r.totalMass) + " is not in (0, 1e12] kg");
-  auto finite = [&](const char* key, double x, double lo, double hi) {
-    if (x >= lo && x <= hi) return true;
-    fail(key, std::string(key) + " " + num(x) + " is not in [" + num(lo) + ", " + num(hi) + "]");
-    return false;
-  };
-  const double big = 1e30;
-  if (!finite("distanceCompliance", r.distanceCompliance, -big, big) ||
-      !finite("distanceStiffness", r.distanceStiffness, -big, big) ||
-      !finite("bendCompliance", r.bendCompliance, -big, big) || !finite("bendStiffness", r.bendStiffness, -big, big) ||
-      !finite("youngsModulus", r.youngsModulus, 0, big) || !finite("thickness", r.thickness, 0, 1e6) ||
-      !finite("damping", r.damping, 0, 1) || !finite("collisionRadius", r.collisionRadius, 0, 1e6) ||
-      !finite("particleSpacing", r.particleSpacing, 0, 1e6))
-    return false;
-  // Validated as RaiSim does, not used: no volumetric Poisson model.
-  if (!(r.poissonRatio > -1 && r.poissonRatio < 0.5))
-    return fail("poissonRatio", "poissonRatio " + num(r.poissonRatio) + " is not in (-1, 0.5)");
-  if (r.distanceCompliance < 0 && !(r.distanceStiffness > 0))
-    return fail("distanceStiffness", "distanceCompliance is negative (use 1/distanceStiffness) but distanceStiffness " +
-                                         num(r.distanceStiffness) + " is not positive");
-  if (r.youngsModulus > 0 && !(r.thickness > 0))
-    return fail("thickness", "youngsModulus > 0 derives each edge's area from thickness, which is 0");
-  if (r.iterations < 0 || r.iterations > 10000)
-    return fail("iterations", "iterations " + std::to_string(r.iterations) + " is not in [0, 10000]");
-  if (r.substeps < 1 || r.substeps > 1000)
-    return fail("substeps", "substeps " + std::to_string(r.substeps) + " is not in [1, 1000]");
-  if (!r.scale.allFinite() || r.scale.cwiseAbs().maxCoeff() > kMaxCoordinate)
-    return fail("scale", "scale is not finite");
+  // The record's own values: the scene model's rule (checkScene() ran it
+  // already; a caller that did not gets the same refusal).
+  if (!checkDeformableRecord(r, error, field)) return false;
+  const bool massSpring = r.kind == "mass_spring", fem = r.kind == "fem";
   if (!r.world.position.allFinite() || !r.world.orientation.coeffs().allFinite())
     return fail("position", "the record's pose is not finite");
-
-  const bool filled = r.particleMode == "filled" || (fem && r.particleMode == "skinned");
+  const bool filled = deformableFilled(r);
   const bool struts = fem || filled;  // fill particles are held by struts alone
-  if ((filled || struts) && !(r.particleSpacing > 0))
-    return fail("particleSpacing", "particleSpacing must be positive for a filled or fem body");
 
   // Particles: the OBJ's vertices in file order, scaled, then the fill;
   // in the record's frame until the end.

@@ -13,18 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "scene/granular.hpp"
 #include "scene/visual_records.hpp"
 #include "sim/surface_query.hpp"
 
 namespace rscene::sim {
 
-// What create() found: an error refuses the record, a warning does not.
-struct GranularFinding {
-  bool error = true;
-  const char* code = "";  // RS7082, RS7086 ... RS7089 (particle_systems.hpp)
-  std::string field;      // the record's key at fault, "" for the record
-  std::string message;
-};
+// What create() found (scene/granular.hpp): an error refuses the record,
+// a warning does not.
+using GranularFinding = ParticleFinding;
 
 // Where a granular body's time went, for rscene-sim --report.
 struct GranularStats {
@@ -40,16 +37,13 @@ struct GranularStats {
 
 class GranularBody {
  public:
-  // Most particles one granular record may have whatever its maxParticles.
-  static constexpr std::uint64_t kMaxParticles = 2'000'000;
-  // Most substeps per world step stability may ask for; past it the record
-  // is refused (RS7087) naming the keys that would make it affordable.
-  static constexpr int kMaxSubsteps = 1000;
+  static constexpr std::uint64_t kMaxParticles = kMaxGranularParticles;
+  static constexpr int kMaxSubsteps = kMaxGranularSubsteps;
 
-  // Builds the particles (explicit positions/radii, else the box fill of
-  // granularParticles(), refused past maxParticles before allocating),
-  // placed by the record's world pose, and chooses the substeps a world
-  // step of `worldTimeStep` needs.  nullptr when a finding is an error.
+  // The solver for the record's granularSetup() (the scene model's one
+  // decision: grains placed by the record's world pose, material, the
+  // substeps a world step of `worldTimeStep` needs), whose findings are
+  // appended.  nullptr when a finding is an error.
   static std::unique_ptr<GranularBody> create(const Granular& record, double worldTimeStep,
                                               std::vector<GranularFinding>& findings);
   virtual ~GranularBody() = default;

@@ -30,9 +30,10 @@ struct SurfaceHistory {
 
 class GranularDem final : public GranularBody {
  public:
-  GranularDem(GranularParticles p, const GranularMaterial& m, int substeps, double maxSubstep)
-      : m_(m), substeps_(substeps), maxSubstep_(maxSubstep), fixed_(p.fixed), x_(std::move(p.positions)),
+  explicit GranularDem(GranularSetup p)
+      : m_(p.material), substeps_(p.substeps), maxSubstep_(p.maxSubstep), fixed_(p.fixed), x_(std::move(p.positions)),
         r_(std::move(p.radii)) {
+    const GranularMaterial& m = m_;
     const std::size_t n = x_.size();
     v_.assign(n, p.velocity);
     w_.assign(n, p.angularVelocity);
@@ -219,9 +220,8 @@ class GranularDem final : public GranularBody {
 
 }  // namespace
 
-std::unique_ptr<GranularBody> makeGranularDem(GranularParticles particles, const GranularMaterial& material,
-                                              int substeps, double maxSubstep) {
-  return std::make_unique<GranularDem>(std::move(particles), material, substeps, maxSubstep);
+std::unique_ptr<GranularBody> makeGranularDem(GranularSetup setup) {
+  return std::make_unique<GranularDem>(std::move(setup));
 }
 
 }  // namespace rscene::sim

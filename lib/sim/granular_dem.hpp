@@ -14,16 +14,9 @@
 
 namespace rscene::sim {
 
-struct GranularParticles {
-  std::vector<Eigen::Vector3d> positions;  // world
-  std::vector<double> radii;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), angularVelocity = Eigen::Vector3d::Zero();  // world, all grains
-  bool fixed = false;
-};
-
-// `substeps` per world step at least; more when a world step is longer
-// than substeps x maxSubstep (a time step other than the one create() saw).
-std::unique_ptr<GranularBody> makeGranularDem(GranularParticles particles, const GranularMaterial& material,
-                                              int substeps, double maxSubstep);
+// The solver for a checked record (scene/granular.hpp: grains in world,
+// material, substeps per world step at least; more when a world step is
+// longer than substeps x maxSubstep, a time step other than the setup's).
+std::unique_ptr<GranularBody> makeGranularDem(GranularSetup setup);
 
 }  // namespace rscene::sim

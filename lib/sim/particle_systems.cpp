@@ -51,8 +51,10 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
   for (const Granular& g : scene.granulars) {
     std::vector<GranularFinding> findings;
     std::unique_ptr<GranularBody> body = GranularBody::create(g, scene.timeStep, findings);
+    // Its warnings (RS7086) are checkScene()'s to report, which ran the
+    // same granularSetup() before the world was built.
     for (const GranularFinding& f : findings)
-      report(doc, g.recordIndex, f.field, f.code, f.message, diagnostics, f.error ? Severity::Error : Severity::Warning);
+      if (f.error) report(doc, g.recordIndex, f.field, f.code, f.message, diagnostics);
     if (!body) {
       ok = false;
       continue;

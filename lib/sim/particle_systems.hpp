@@ -20,15 +20,7 @@
 
 namespace rscene::sim {
 
-namespace particle_code {
-inline constexpr const char* kDeformableMesh = "RS7080";  // a deformable's mesh is not a usable OBJ surface
-inline constexpr const char* kDeformable = "RS7081";      // a deformable record that cannot be simulated
-inline constexpr const char* kGranular = "RS7082";        // a granular record that cannot be simulated
-// Codes 7083 to 7085 are the deformable solver's own, 7086 to 7089 the granular solver's
-// (granular_body.cpp): 7086 substeps raised for stability (warning), 7087 stability needs
-// more than GranularBody::kMaxSubsteps, 7088 a value out of range, 7089 grains overlapping
-// by more than half their radii at the start.
-}  // namespace particle_code
+namespace particle_code = rscene::particle_code;  // RS7080-RS7089 (scene/granular.hpp)
 
 // The particles of one record now, for the trajectory and the renderer.
 struct ParticleState {

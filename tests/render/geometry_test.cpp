@@ -307,18 +307,25 @@ TEST(Granular, BoxFillDrawsItsSpheresInItsBox) {
   EXPECT_EQ(im.pixel(100, 20)[0], 0);  // above the box: background
 }
 
-TEST(Granular, MoreParticlesThanAllowedIsRS9070) {
+// The record's own limits are the scene model's rule (RS7082 at the key,
+// as validate and sim say it, and nothing more); --max-instances is the
+// renderer's own cap (RS9070).
+TEST(Granular, OwnLimitIsTheModelsRS7082AndTheDrawLimitIsRS9070) {
   std::string rec = "granular /World/Sand particles 0 0 0 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=1,1,1 radius=0.05 spacing=0.1";
   auto own = build(rec + " maxParticles=100\n");
   EXPECT_FALSE(own->ok);
-  EXPECT_TRUE(hasCode(own->diags, "RS9070"));
+  EXPECT_TRUE(hasCode(own->diags, "RS7082"));
+  EXPECT_FALSE(hasCode(own->diags, "RS9070"));
   DrawLimits limits;
   limits.maxInstances = 999;
   auto global = build(rec + "\n", limits);
   EXPECT_FALSE(global->ok);
   EXPECT_TRUE(hasCode(global->diags, "RS9070"));
+  EXPECT_FALSE(hasCode(global->diags, "RS7082"));
   auto bad = build("granular /World/S particles 0 0 0 1 0 0 0 1 1 1 boxMax=1,1,1 spacing=0\n");
-  EXPECT_TRUE(hasCode(bad->diags, "RS9071"));
+  EXPECT_FALSE(bad->ok);
+  EXPECT_TRUE(hasCode(bad->diags, "RS7082"));
+  EXPECT_EQ(bad->diags.size(), 1u);
 }
 
 TEST(Deformable, MeshAppearsAtItsPose) {

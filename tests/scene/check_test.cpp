@@ -27,6 +27,16 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
   return s.replace(s.find(from), from.size(), to);
 }
 const std::string K = "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true\n";
+// A 3 x 3 x 3 box fill of grains (radius 0.05, spacing 0.1) stable at the
+// default time step in 4 substeps, with `keys` after (a later key wins).
+std::string granular(const std::string& keys, const std::string& substeps = "4", const std::string& radius = "0.05",
+                     const std::string& spacing = "0.1") {
+  return H + "granular /World/S sand 0 0 0.2 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=0.3,0.3,0.3 radius=" + radius +
+         " spacing=" + spacing + " substeps=" + substeps + " " + keys + "\n";
+}
+std::string deformable(const std::string& keys) {
+  return H + "deformable /World/D cloth present.obj 0 0 1 1 0 0 0 1 1 1 " + keys + "\n";
+}
 std::string child(const std::string& prim, const std::string& keys) {
   return "compound_child /World/k " + prim + " 0 0 0 1 0 0 0 1 1 1 " + keys + "\n";
 }
@@ -95,6 +105,19 @@ std::vector<Case> cases() {
            "wire /World/w stiff /World/a /World/b 1 localPositionA=1e308,0,0\n",
        H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
            "wire /World/w stiff /World/a /World/b 1 localPositionA=1e12,0,0\n"},
+      // Issue 23: the granular and deformable rules are the scene model's,
+      // so validate reports what sim and render refuse, at the same key.
+      {"RS7088", granular("normalDamping=-1"), granular("normalDamping=1")},
+      {"RS7088", granular("", "0"), granular("", "1000")},
+      {"RS7082", granular("maxParticles=10"), granular("maxParticles=27")},
+      {"RS7082", granular("", "4", "0"), granular("", "4", "0.04")},
+      {"RS7089", granular("", "4", "0.05", "0.04"), granular("", "4", "0.05", "0.1")},
+      {"RS7087", granular("normalStiffness=1e12"), granular("normalStiffness=1e5")},
+      {"RS7086", granular("", "1"), granular("", "3")},
+      {"RS7081", deformable("totalMass=0"), deformable("totalMass=2")},
+      {"RS7081", deformable("particleMode=filled particleSpacing=0"), deformable("particleMode=filled")},
+      {"RS2006", deformable("solverMode=gauss"), deformable("solverMode=PBD")},
+      {"RS2006", granular("normalContactModel=hooke"), granular("normalContactModel=LINEAR")},
       {"RS7011",
        H + object("box") + "point_cloud /World/r points=0,0,0\n" + "wire /World/w stiff /World/a /World/r 1\n",
        H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +

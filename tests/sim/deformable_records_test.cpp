@@ -88,8 +88,6 @@ TEST(DeformableRecords, HostileValuesAreRefusedAtTheirKey) {
       {"position", [](Deformable& d) { d.world.position.z() = INFINITY; }},
       {"position", [](Deformable& d) { d.world.position.z() = 1e300; }},
       {"kind", [](Deformable& d) { d.kind = "jelly"; }},
-      {"solverMode", [](Deformable& d) { d.solverMode = "fem"; }},
-      {"particleMode", [](Deformable& d) { d.particleMode = "voxels"; }},
   };
   for (const Case& c : cases) {
     Deformable d = defaultRecord();

@@ -89,8 +89,12 @@ TEST(GranularWorld, AHostileRecordIsRefusedAtItsKey) {
   EXPECT_GT(d.column, 1u);
 }
 
+// The warning is the scene model's (checkPhysics, as in validate): the
+// world built after it does not say it again.
 TEST(GranularWorld, TheSchemaDefaultsWarnThatTheSubstepsWereRaised) {
-  auto r = make("granular /World/Sand sand 0 0 0 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=0.05,0.05,0.05\n");
+  test::WorldRunOptions o;
+  o.checkPhysics = true;
+  auto r = test::buildWorld("granular /World/Sand sand 0 0 0 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=0.05,0.05,0.05\n", o);
   ASSERT_TRUE(r->world);
   ASSERT_EQ(r->diags.size(), 1u);
   EXPECT_EQ(r->diags[0].code, "RS7086");

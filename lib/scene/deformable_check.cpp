@@ -1,0 +1,59 @@
+#include "scene/deformable_check.hpp"
+
+#include "core/text.hpp"
+
+namespace rscene {
+namespace {
+
+constexpr double kMaxCoordinate = 1e12;  // m, as for every other body
+
+std::string num(double x) { return roundedNumber(x, 6); }
+
+}  // namespace
+
+bool checkDeformableRecord(const Deformable& r, std::string& error, std::string& field) {
+  auto fail = [&](const char* f, std::string message) {
+    field = f;
+    error = std::move(message);
+    return false;
+  };
+  if (r.kind != "cloth" && r.kind != "mass_spring" && r.kind != "fem")
+    return fail("kind", "kind '" + r.kind + "' is not one of cloth, mass_spring, fem");
+  if (!(r.totalMass > 0 && r.totalMass <= 1e12))
+    return fail("totalMass", "totalMass " + num(r.totalMass) + " is not in (0, 1e12] kg");
+  const double big = 1e30;
+  struct Range {
+    const char* key;
+    double value, lo, hi;
+  };
+  for (const Range& k : {Range{"distanceCompliance", r.distanceCompliance, -big, big},
+                         Range{"distanceStiffness", r.distanceStiffness, -big, big},
+                         Range{"bendCompliance", r.bendCompliance, -big, big},
+                         Range{"bendStiffness", r.bendStiffness, -big, big},
+                         Range{"youngsModulus", r.youngsModulus, 0, big}, Range{"thickness", r.thickness, 0, 1e6},
+                         Range{"damping", r.damping, 0, 1}, Range{"collisionRadius", r.collisionRadius, 0, 1e6},
+                         Range{"particleSpacing", r.particleSpacing, 0, 1e6}})
+    if (!(k.value >= k.lo && k.value <= k.hi))
+      return fail(k.key, std::string(k.key) + " " + num(k.value) + " is not in [" + num(k.lo) + ", " + num(k.hi) + "]");
+  // Validated as RaiSim does, not used: no volumetric Poisson model.
+  if (!(r.poissonRatio > -1 && r.poissonRatio < 0.5))
+    return fail("poissonRatio", "poissonRatio " + num(r.poissonRatio) + " is not in (-1, 0.5)");
+  if (r.distanceCompliance < 0 && !(r.distanceStiffness > 0))
+    return fail("distanceStiffness", "distanceCompliance is negative (use 1/distanceStiffness) but distanceStiffness " +
+                                         num(r.distanceStiffness) + " is not positive");
+  if (r.youngsModulus > 0 && !(r.thickness > 0))
+    return fail("thickness", "youngsModulus > 0 derives each edge's area from thickness, which is 0");
+  if (r.iterations < 0 || r.iterations > kMaxDeformableIterations)
+    return fail("iterations", "iterations " + std::to_string(r.iterations) + " is not in [0, " +
+                                  std::to_string(kMaxDeformableIterations) + "]");
+  if (r.substeps < 1 || r.substeps > kMaxDeformableSubsteps)
+    return fail("substeps", "substeps " + std::to_string(r.substeps) + " is not in [1, " +
+                                std::to_string(kMaxDeformableSubsteps) + "]");
+  if (!r.scale.allFinite() || r.scale.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    return fail("scale", "scale is not finite");
+  if ((deformableFilled(r) || r.kind == "fem") && !(r.particleSpacing > 0))
+    return fail("particleSpacing", "particleSpacing must be positive for a filled or fem body");
+  return true;
+}
+
+}  // namespace rscene

@@ -1,0 +1,202 @@
+// The granular record's one decision: material, grains, substeps
+// (granular.hpp).  Moved here from lib/sim so that rscene-validate runs the
+// same rules rscene-sim builds its solver from.
+#include "scene/granular.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/text.hpp"
+#include "scene/neighbour_grid.hpp"
+
+namespace rscene {
+namespace {
+
+// Above this a value is hostile rather than physical (1e12 N/m, kg/m^3 ...)
+// and would only overflow the arithmetic of the stability bound.
+constexpr double kHuge = 1e12;
+// Coordinates past this are hostile, not a scene (and would lose every
+// digit of a grain's radius).
+constexpr double kMaxCoordinate = 1e9;
+// Largest over smallest radius of one record (polydisperse sand spans 2 to 5).
+constexpr double kMaxRadiusRatio = 10;
+
+using namespace particle_code;
+
+std::string number(double v) { return roundedNumber(v, 3); }  // a message, not data
+std::string seconds(double s) { return number(s) + " s"; }
+
+bool finiteVector(const Eigen::Vector3d& v, double limit) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= limit; }
+
+// Grains whose centres are closer than half the sum of their radii start
+// so deep in each other that the first substep throws them apart (and
+// grains written at one point would make every pair a contact).
+bool deepOverlap(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax, std::size_t& a,
+                 std::size_t& b) {
+  NeighbourGrid grid;
+  std::vector<std::uint32_t> is, js;
+  grid.pairs(x, r, rMax, 0, is, js);
+  for (std::size_t k = 0; k < is.size(); ++k) {
+    std::size_t i = is[k], j = js[k];
+    double limit = 0.5 * (r[i] + r[j]);
+    if ((x[i] - x[j]).squaredNorm() < limit * limit) {
+      a = i, b = j;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool granularMaterial(const Granular& g, GranularMaterial& m, std::vector<ParticleFinding>& findings) {
+  bool ok = true;
+  auto check = [&](const char* key, double v, bool positive) {
+    if (std::isfinite(v) && (positive ? v > 0 : v >= 0) && v <= kHuge) return v;
+    findings.push_back({true, kGranularValue, key,
+                        "granular " + g.path + ": " + key + " must be " + (positive ? "positive" : "non-negative") +
+                            ", finite and at most 1e12"});
+    ok = false;
+    return 0.0;
+  };
+  m.density = check("density", g.density, true);
+  m.kn = check("normalStiffness", g.normalStiffness, true);
+  m.cn = check("normalDamping", g.normalDamping, false);
+  m.kt = check("tangentialStiffness", g.tangentialStiffness, false);
+  m.ct = check("tangentialDamping", g.tangentialDamping, false);
+  m.friction = check("friction", g.friction, false);
+  m.rollingFriction = check("rollingFriction", g.rollingFriction, false);
+  m.cohesionStiffness = check("cohesionStiffness", g.cohesionStiffness, false);
+  m.cohesionMaxDistance = check("cohesionMaxDistance", g.cohesionMaxDistance, false);
+  if (m.kt == 0) m.kt = 2.0 / 7.0 * m.kn;
+  // The schema's granular_contact_model enumeration: the reader refused
+  // any other name (RS2006) and left the default.
+  m.hertz = g.normalContactModel != "linear";
+  return ok;
+}
+
+double granularMaxSubstep(const GranularMaterial& m, double minMass) {
+  const double pairMass = minMass / 2;
+  // Critical step of the damped oscillator x'' = -(k x + c x') / mass under
+  // explicit (semi-implicit Euler) integration.
+  auto critical = [](double k, double c, double mass) {
+    if (!(k > 0)) return mass > 0 && c > 0 ? 2 * mass / c : INFINITY;
+    double w = std::sqrt(k / mass), z = c / (2 * std::sqrt(k * mass));
+    return 2 / w * (std::sqrt(1 + z * z) - z);
+  };
+  // Hertz: dF/dd = 1.5 kn sqrt(d / Reff), taken at d = kHertzOverlap Reff.
+  double kNormal = m.hertz ? 1.5 * m.kn * std::sqrt(kHertzOverlap) : m.kn;
+  // A tangential force at the contact point moves it as a mass of m / 3.5
+  // would (translation 1/m plus rotation r^2 / (2/5 m r^2)).
+  double normal = critical(kNormal, m.cn, pairMass);
+  double tangential = critical(3.5 * m.kt, 3.5 * m.ct, pairMass);
+  // Cohesion is an undamped spring of cohesionStiffness across the gap: as
+  // stiff a mode as the normal one when kc is as large (a bed at the edge of
+  // stability without it gains energy and flies apart with it).
+  double cohesion = m.cohesionStiffness > 0 && m.cohesionMaxDistance > 0 ? critical(m.cohesionStiffness, 0, pairMass)
+                                                                         : INFINITY;
+  return kStableFraction * std::min({normal, tangential, cohesion});
+}
+
+std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeStep,
+                                           std::vector<ParticleFinding>& findings, bool world) {
+  const std::size_t before = findings.size();
+  auto failed = [&] {
+    for (std::size_t k = before; k < findings.size(); ++k)
+      if (findings[k].error) return true;
+    return false;
+  };
+  GranularSetup s;
+  granularMaterial(g, s.material, findings);
+  if (g.substeps < 1 || g.substeps > kMaxGranularSubsteps)
+    findings.push_back({true, kGranularValue, "substeps",
+                        "granular " + g.path + ": substeps must be between 1 and " +
+                            std::to_string(kMaxGranularSubsteps)});
+  for (auto [key, v] : {std::pair{"velocity", g.velocity}, std::pair{"angularVelocity", g.angularVelocity}})
+    if (!finiteVector(v, kMaxCoordinate))
+      findings.push_back({true, kGranularValue, key, "granular " + g.path + ": " + key + " must be finite and at most 1e9"});
+  if (failed()) return std::nullopt;
+
+  std::string error = granularParticles(g, kMaxGranularParticles, s.positions, s.radii);
+  if (!error.empty()) {
+    findings.push_back({true, kGranular, g.positions.empty() ? "maxParticles" : "positions", error});
+    return std::nullopt;
+  }
+  const char* radiusKey = g.radii.empty() ? "radius" : "radii";
+  for (std::size_t k = 0; k < s.radii.size(); ++k) {
+    double r = s.radii[k];
+    if (!(r > 0) || !(r <= kMaxCoordinate)) {
+      findings.push_back({true, kGranularValue, radiusKey,
+                          "granular " + g.path + ": particle " + std::to_string(k) +
+                              " has a radius that is not positive and finite"});
+      return std::nullopt;
+    }
+    if (!finiteVector(s.positions[k], kMaxCoordinate)) {
+      findings.push_back({true, kGranularValue, "positions",
+                          "granular " + g.path + ": particle " + std::to_string(k) +
+                              " has a position that is not finite or past 1e9"});
+      return std::nullopt;
+    }
+  }
+
+  s.fixed = g.fixed;
+  s.substeps = static_cast<int>(g.substeps);
+  s.maxSubstep = std::numeric_limits<double>::infinity();
+  if (!s.radii.empty()) {
+    double rMin = INFINITY, rMax = 0;
+    for (double r : s.radii) rMin = std::min(rMin, r), rMax = std::max(rMax, r);
+    // The neighbour grid's cells are sized by the largest grain: past this
+    // ratio a cell holds thousands of the smallest and the search turns
+    // quadratic (a hang, for a bed of a million).
+    if (rMax > kMaxRadiusRatio * rMin) {
+      findings.push_back({true, kGranularValue, radiusKey,
+                          "granular " + g.path + ": radii from " + number(rMin) + " to " + number(rMax) +
+                              " m span more than a factor of " + number(kMaxRadiusRatio)});
+      return std::nullopt;
+    }
+    std::size_t a = 0, b = 0;
+    if (deepOverlap(s.positions, s.radii, rMax, a, b)) {
+      findings.push_back({true, kOverlap, g.positions.empty() ? "spacing" : "positions",
+                          "granular " + g.path + ": particles " + std::to_string(a) + " and " + std::to_string(b) +
+                              " overlap by more than half their radii (spacing at least 2 x radius keeps a box "
+                              "fill apart)"});
+      return std::nullopt;
+    }
+    const double minMass = s.material.density * 4.0 / 3.0 * M_PI * rMin * rMin * rMin;
+    s.maxSubstep = granularMaxSubstep(s.material, minMass);
+    // Fixed grains never move: their step cannot go unstable.
+    const double needed = g.fixed ? 1 : std::ceil(worldTimeStep / s.maxSubstep - 1e-9);
+    const std::string why = "time_step " + seconds(worldTimeStep) + " against a stable substep of at most " +
+                            seconds(s.maxSubstep) + " (0.6 of the critical step of normalStiffness, normalDamping, "
+                            "tangentialStiffness, tangentialDamping and cohesionStiffness for the lightest grain, radius " +
+                            number(rMin) + " m)";
+    if (!(needed <= kMaxGranularSubsteps)) {
+      findings.push_back({true, kTooStiff, "normalStiffness",
+                          "granular " + g.path + ": stability needs more than " +
+                              std::to_string(kMaxGranularSubsteps) + " substeps per world step: " + why +
+                              "; lower normalStiffness or normalDamping, raise radius or density, or shorten "
+                              "time_step"});
+      return std::nullopt;
+    }
+    if (needed > s.substeps) {
+      findings.push_back({false, kSubstepsRaised, "substeps",
+                          "granular " + g.path + ": substeps raised from " + std::to_string(s.substeps) + " to " +
+                              std::to_string(static_cast<int>(needed)) + " for stability (" + why + "), " +
+                              number(std::round(needed / s.substeps * 10) / 10) +
+                              "x the particle time; write substeps=" + std::to_string(static_cast<int>(needed)) +
+                              " to accept it, or lower normalStiffness or normalDamping"});
+      s.substeps = static_cast<int>(needed);
+    }
+  }
+  if (world) {
+    // Positions, velocity and angular velocity are in the record's frame.
+    const Eigen::Quaterniond& q = g.world.orientation;
+    for (Eigen::Vector3d& x : s.positions) x = g.world.position + q * x;
+    s.velocity = g.fixed ? Eigen::Vector3d::Zero() : Eigen::Vector3d(q * g.velocity);
+    s.angularVelocity = g.fixed ? Eigen::Vector3d::Zero() : Eigen::Vector3d(q * g.angularVelocity);
+  }
+  return s;
+}
+
+}  // namespace rscene

@@ -1,0 +1,105 @@
+// What a granular record means for a simulator, decided once in the scene
+// model: its contact law (RaiSim's GranularSystem::Material), its grains
+// (explicit or the box fill, placed by the record's world pose) and the
+// substeps a world step needs.  checkScene() reports the same findings
+// (rscene-validate), rscene-sim builds its solver from the setup, and
+// rscene-render draws the same grains, so the three give one verdict.
+//
+// The forms, chosen where RaiSim's documentation leaves them open, are in
+// rscene-sim(1) "Granular media":
+//   normal, linear   fn = kn d - cn vn
+//   normal, Hertz    fn = kn d sqrt(d / Reff) - cn vn   (kn keeps N/m, and
+//                    for d < Reff it is softer than linear, as RaiSim says)
+//   both clamped at 0: damping never pulls grains together.
+//   tangential       Cundall-Strack spring kt xi + dashpot ct, |ft| <= mu fn;
+//                    kt = 0 in the record means 2/7 kn (the ratio that gives
+//                    a solid sphere the same normal and tangential frequency)
+//   rolling          a spring kr = kt Reff^2 on the relative rolling angle,
+//                    |M| <= mur Reff fn (elastic-plastic, with history)
+//   cohesion         attraction kc g for a surface gap 0 < g <= gmax
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/visual_records.hpp"
+
+namespace rscene {
+
+namespace particle_code {
+inline constexpr const char* kDeformableMesh = "RS7080";  // a deformable's mesh is not a usable OBJ surface
+inline constexpr const char* kDeformable = "RS7081";      // a deformable record that cannot be simulated
+inline constexpr const char* kGranular = "RS7082";        // a granular record whose grains cannot be made
+inline constexpr const char* kSubstepsRaised = "RS7086";  // warning: substeps raised for stability
+inline constexpr const char* kTooStiff = "RS7087";        // stability needs more than kMaxGranularSubsteps
+inline constexpr const char* kGranularValue = "RS7088";   // a granular value out of range
+inline constexpr const char* kOverlap = "RS7089";         // grains overlapping by more than half their radii
+}  // namespace particle_code
+
+// A finding of a particle record's check: an error refuses the record, a
+// warning does not.  The caller reports it at the record's `field`.
+struct ParticleFinding {
+  bool error = true;
+  const char* code = "";
+  std::string field;  // the record's key at fault, "" for the record
+  std::string message;
+};
+
+// Most particles one granular record may have whatever its maxParticles.
+inline constexpr std::uint64_t kMaxGranularParticles = 2'000'000;
+// Most substeps per world step stability may ask for; past it the record
+// is refused (RS7087) naming the keys that would make it affordable.
+inline constexpr int kMaxGranularSubsteps = 1000;
+// The margin below the pair's critical step for a grain's several
+// contacts at once: 0.6, which RaiSim's own example material (radius
+// 0.02, normalStiffness 5e4, tangentialStiffness 2.5e4) meets in its 2
+// substeps of a 1 ms step (it runs at 0.56).
+inline constexpr double kStableFraction = 0.6;
+// The Hertz overlap, as a fraction of Reff, at which the stability bound
+// takes the stiffness: 5 %, deeper than a usable bed sinks into itself.
+inline constexpr double kHertzOverlap = 0.05;
+
+struct GranularMaterial {
+  double density = 0;
+  double kn = 0, cn = 0, kt = 0, ct = 0;
+  double friction = 0, rollingFriction = 0;
+  double cohesionStiffness = 0, cohesionMaxDistance = 0;
+  bool hertz = true;
+};
+
+// The record's material, or findings (RS7088 at the key) when a value is
+// out of range: not finite, negative, a zero density or stiffness, an
+// unknown normalContactModel (the schema's enumeration).
+bool granularMaterial(const Granular& record, GranularMaterial& out, std::vector<ParticleFinding>& findings);
+
+// The largest substep the explicit integrator stays stable and accurate
+// with for grains of mass `minMass` (the lightest): kStableFraction of the
+// critical step 2/w (sqrt(1 + z^2) - z) of the stiffest mode, the normal
+// (kn; Hertz: its tangent stiffness at an overlap of kHertzOverlap x
+// Reff) or tangential one (kt with rotation: 3.5 kt), of a pair (mass m/2).
+double granularMaxSubstep(const GranularMaterial& m, double minMass);
+
+// A granular record ready to simulate.
+struct GranularSetup {
+  GranularMaterial material;
+  std::vector<Eigen::Vector3d> positions;  // world (the record's world pose applied)
+  std::vector<double> radii;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), angularVelocity = Eigen::Vector3d::Zero();  // world, all grains
+  bool fixed = false;
+  int substeps = 1;        // what stability asks for, at least the record's
+  double maxSubstep = 0;   // s; infinity for an empty bed
+};
+
+// Checks the record against a world step of `worldTimeStep` and builds its
+// grains: findings RS7082 (grains that cannot be made: past maxParticles or
+// kMaxGranularParticles, radii that do not match), RS7088 (a value out of
+// range), RS7089 (a deep overlap at the start), RS7087 (too stiff to
+// afford), and the warning RS7086 (substeps raised).  std::nullopt when a
+// finding is an error.  `world` false: the grains stay in the record's
+// frame (a check needs no world pose).
+std::optional<GranularSetup> granularSetup(const Granular& record, double worldTimeStep,
+                                           std::vector<ParticleFinding>& findings, bool world = true);
+
+}  // namespace rscene
