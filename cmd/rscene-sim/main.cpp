@@ -65,7 +65,7 @@ int run(const Options& opt) {
   asset::AssetCache assets;
   bool ok = buildScene(doc, so, scene, ds);
   if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
-  ok = ok && sim::checkPhysics(doc, scene, ds);
+  ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem());
   // The step count, before anything is built: --max-steps bounds the run.
   auto maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
   std::uint64_t total = 0;

@@ -9,6 +9,7 @@
 #include "common/cli.hpp"
 #include "core/check.hpp"
 #include "robot/check.hpp"
+#include "asset/obj_surface.hpp"
 #include "scene/validate.hpp"
 #include "rscene-validate/output.hpp"
 
@@ -100,7 +101,8 @@ struct Run {
     validateScene(std::move(in.text), co, doc, keep,
                   [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
                     robot::checkRobots(d, s, ro, models, out);
-                  });
+                  },
+                  asset::objSurfaceReader(diskFileSystem()));
     totals.errors += keep.counts.errors;
     totals.warnings += keep.counts.warnings;
     ++totals.files;

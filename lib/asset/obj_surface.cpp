@@ -89,4 +89,10 @@ bool loadObjSurface(const FileSystem& fs, const std::string& path, ObjSurface& o
   return parseObjSurface(text, out, error, limits);
 }
 
+SurfaceReader objSurfaceReader(const FileSystem& fs) {
+  return [&fs](const std::string& path, TriangleSurface& out, std::string& error) {
+    return loadObjSurface(fs, path, out, &error);
+  };
+}
+
 }  // namespace rscene::asset

@@ -14,13 +14,12 @@
 #include <vector>
 
 #include "core/filesystem.hpp"
+#include "scene/triangle_surface.hpp"
 
 namespace rscene::asset {
 
-struct ObjSurface {
-  std::vector<std::array<double, 3>> vertices;           // file order, the file's frame
-  std::vector<std::array<std::uint32_t, 3>> triangles;   // zero-based, fans of the file's polygons
-};
+// Triangles are fans of the file's polygons.
+using ObjSurface = TriangleSurface;
 
 struct ObjLimits {
   std::uint64_t maxBytes = std::uint64_t{256} << 20;  // the file
@@ -34,6 +33,10 @@ struct ObjLimits {
 // as OBJ says; a degenerate face (a repeated index) is kept out.
 bool loadObjSurface(const FileSystem& fs, const std::string& path, ObjSurface& out, std::string* error,
                     const ObjLimits& limits = {});
+// loadObjSurface over `fs` as the scene model's SurfaceReader
+// (SceneCheckOptions::readSurface): validate --check-files, sim and render
+// judge a deformable with its mesh through it.  `fs` must outlive it.
+SurfaceReader objSurfaceReader(const FileSystem& fs);
 // The same, from text already in memory (tests, fuzzing).
 bool parseObjSurface(const std::string& text, ObjSurface& out, std::string* error, const ObjLimits& limits = {});
 

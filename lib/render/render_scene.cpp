@@ -1012,7 +1012,11 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& s
   bool ok = buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
-  ok = checkScene(doc, scene, SceneCheckOptions{}, diags) && ok;
+  // A deformable is judged with its mesh, as sim judges it (a missing
+  // file stays the renderer's: RS5001 or a placeholder).
+  SceneCheckOptions check;
+  check.readSurface = asset::objSurfaceReader(assets ? assets->fileSystem() : diskFileSystem());
+  ok = checkScene(doc, scene, check, diags) && ok;
   return prepareScene(doc, scene, out, diags, limits, assets) && ok;
 }
 

@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "scene/deformable_check.hpp"
+#include "scene/deformable_model.hpp"
 #include "scene/granular.hpp"
 #include "scene/limits.hpp"
 #include "scene/reader.hpp"
@@ -138,11 +139,27 @@ class Checker {
   void deformable(const Deformable& d) {
     RecordReader r = reader(d.recordIndex);
     std::string error, field;
-    if (!checkDeformableRecord(d, error, field))
+    const bool ownValues = checkDeformableRecord(d, error, field);
+    if (!ownValues) r.error(field, particle_code::kDeformable, "deformable '" + d.path + "': " + error);
+    if (d.meshPath.empty()) return;  // lib/core's RS2xxx for the positional meshPath
+    if (!opt_.exists(d.meshPath)) {
+      // Unless files are checked, a missing file is the caller's to report
+      // (rscene-render draws a placeholder where missing assets are allowed).
+      if (opt_.checkFiles)
+        r.error("meshPath", scene_code::kMissingFile, "mesh file '" + d.meshPath + "' " + whyNotAFile(d.meshPath),
+                "paths resolve against the scene's directory, then against asset_root");
+      return;
+    }
+    if (!opt_.readSurface || !ownValues) return;
+    TriangleSurface surface;
+    if (!opt_.readSurface(d.meshPath, surface, error)) {
+      r.error("meshPath", particle_code::kDeformableMesh,
+              "deformable '" + d.path + "': mesh " + d.meshPath + ": " + error);
+      return;
+    }
+    DeformableModel model;
+    if (!buildDeformableModel(d, surface, model, error, field))
       r.error(field, particle_code::kDeformable, "deformable '" + d.path + "': " + error);
-    if (opt_.checkFiles && !d.meshPath.empty() && !opt_.exists(d.meshPath))
-      r.error("meshPath", scene_code::kMissingFile, "mesh file '" + d.meshPath + "' " + whyNotAFile(d.meshPath),
-              "paths resolve against the scene's directory, then against asset_root");
   }
 
   // A granular record's material, grains and substeps

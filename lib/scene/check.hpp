@@ -8,6 +8,7 @@
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
+#include "scene/triangle_surface.hpp"
 
 namespace rscene {
 
@@ -17,6 +18,12 @@ struct SceneCheckOptions {
   // as placeholders.
   bool checkFiles = false;
   FileExists exists = fileExistsOnDisk;
+  // When set, a deformable whose mesh file exists is judged with its mesh
+  // too (scene/deformable_model.hpp: RS7080 when it is no usable surface,
+  // RS7081 for a pinned vertex it lacks, an open mesh to fill, a fill or
+  // constraint count past the bounds ...).  The tools pass lib/asset's
+  // OBJ reader (asset::objSurfaceReader); validate only with --check-files.
+  SurfaceReader readSurface;
 };
 
 // Appends the findings about `scene` (built from `doc`):
@@ -32,6 +39,9 @@ struct SceneCheckOptions {
 //   RS3012  enabled wire whose body names no node
 //   RS7011  warning: wire to a node the simulator does not model, skipped
 //   RS7020-RS7022  numbers no simulator can stand behind (scene/limits.hpp)
+//   RS7080, RS7081  deformable records (scene/deformable_check.hpp; with
+//           readSurface, scene/deformable_model.hpp with their mesh)
+//   RS7082, RS7086-RS7089  granular records (scene/granular.hpp)
 //   RS7064-RS7069, RS2007  sensor records and camera outputPath
 //           (scene/sensor_check.hpp)
 // Returns false when it added an error.

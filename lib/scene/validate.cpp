@@ -88,7 +88,7 @@ class MergeSink : public DiagnosticSink {
 }  // namespace
 
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
-                   const ExtraSceneCheck& extra) {
+                   const ExtraSceneCheck& extra, const SurfaceReader& readSurface) {
   LoadResult loaded = parse(std::move(text));
   doc = std::move(loaded.document);
   if (!loaded.ok()) {
@@ -108,6 +108,7 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   SceneCheckOptions sc;
   sc.checkFiles = options.checkFiles;
   sc.exists = options.fileExists;
+  if (options.checkFiles) sc.readSurface = readSurface;
   checkScene(doc, scene, sc, found);
   hintContinuations(loaded.continuedLines, found);
   std::vector<SceneFinding> listed;

@@ -11,6 +11,7 @@
 #include "core/check.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "scene/triangle_surface.hpp"
 
 namespace rscene {
 
@@ -38,7 +39,9 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
 // core's are not held, so a caller that keeps few holds little.  `doc`
 // holds the text from the first call of the sink on, for source lines.
 // `extra`'s findings merge with the scene model's.
+// `readSurface`, when given with options.checkFiles, judges each
+// deformable with its mesh as rscene-sim does (SceneCheckOptions::readSurface).
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
-                   const ExtraSceneCheck& extra = {});
+                   const ExtraSceneCheck& extra = {}, const SurfaceReader& readSurface = {});
 
 }  // namespace rscene

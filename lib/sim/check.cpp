@@ -3,14 +3,17 @@
 // the records it keeps without simulating.
 #include <set>
 
+#include "asset/obj_surface.hpp"
 #include "scene/check.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {
 
-bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
+bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics, const FileSystem& files) {
   SceneCheckOptions options;
   options.checkFiles = true;  // Bullet needs every collision mesh
+  options.exists = [&files](const std::string& path) { return files.stat(path).kind == FileKind::Regular; };
+  options.readSurface = asset::objSurfaceReader(files);  // a deformable's particles are its mesh's
   return checkScene(doc, scene, options, diagnostics);
 }
 

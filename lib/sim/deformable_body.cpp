@@ -1,6 +1,6 @@
 #include "sim/deformable_body.hpp"
 
-#include "sim/deformable_model.hpp"
+#include "scene/deformable_model.hpp"
 #include "sim/deformable_solver.hpp"
 
 namespace rscene::sim {

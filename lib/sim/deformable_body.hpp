@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "asset/obj_surface.hpp"
+#include "scene/deformable_model.hpp"
 #include "scene/visual_records.hpp"
 #include "sim/surface_query.hpp"
 
@@ -21,7 +22,7 @@ class DeformableBody {
  public:
   // Most particles one deformable may have (surface vertices plus a fem
   // fill), so a fine spacing is refused before it is allocated.
-  static constexpr std::uint64_t kMaxParticles = 1'000'000;
+  static constexpr std::uint64_t kMaxParticles = kMaxDeformableParticles;
 
   // Builds the body from its record and its OBJ surface (the file's frame:
   // placed by the record's world pose and scale).  nullptr with `error`

@@ -10,9 +10,33 @@
 #include <vector>
 
 #include "sim/deformable_body.hpp"
-#include "sim/deformable_model.hpp"
+#include "scene/deformable_model.hpp"
 
 namespace rscene::sim {
+
+// The angle's gradient per particle; false when a triangle is degenerate
+// (no gradient).  The angle too when `angle` is given (one computation of
+// the normals for both).  Inline: the solver's innermost loop.
+inline bool dihedralGradient(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                             const Eigen::Vector3d& d, Eigen::Vector3d g[4], double* angle = nullptr) {
+  // Bridson, Marino and Fedkiw (2003), "Simulation of clothing with folds
+  // and wrinkles": the angle's gradient from the area-weighted normals.
+  Eigen::Vector3d e = d - c;
+  Eigen::Vector3d n1 = (c - a).cross(d - a), n2 = (d - b).cross(c - b);
+  double len = e.norm(), s1 = n1.squaredNorm(), s2 = n2.squaredNorm();
+  if (!(len > 1e-12) || !(s1 > 1e-24) || !(s2 > 1e-24)) return false;
+  const double invLen = 1 / len;
+  if (angle) *angle = std::atan2(n1.cross(n2).dot(e) * invLen, n1.dot(n2));
+  n1 *= 1 / s1;  // one division, not three
+  n2 *= 1 / s2;
+  g[0] = -len * n1;
+  g[1] = -len * n2;
+  g[2] = -(((a - d).dot(e) * invLen) * n1 + ((b - d).dot(e) * invLen) * n2);
+  g[3] = -g[0] - g[1] - g[2];  // the angle does not change when all four move together
+  return true;
+}
+
+
 
 class XpbdDeformable final : public DeformableBody {
  public:

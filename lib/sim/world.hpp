@@ -113,8 +113,10 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
 
 // Checks what Bullet cannot simulate sensibly: checkScene() of
 // scene/check.hpp (what rscene-validate reports too) with collision mesh
-// files required.  Returns false when it added an error.
-bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
+// files required and each deformable judged with its mesh, read through
+// `files`.  Returns false when it added an error.
+bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics,
+                  const FileSystem& files = diskFileSystem());
 
 // Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);

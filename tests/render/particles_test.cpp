@@ -72,14 +72,14 @@ class Particles : public ::testing::Test {
 
   // Camera at the origin looking along +x (200 x 200, 60 degrees); a red
   // cloth at x = 5; two grains of radius 0.2 whose frame is at (5, 1.5, 1).
-  bool build(const std::string& mesh = "cloth.obj", const std::string& kind = "cloth") {
+  bool build(const std::string& mesh = "cloth.obj", const std::string& kind = "cloth", const std::string& keys = "") {
     LoadResult loaded = parse(
         "raisim_engine_scene 1\n"
         "environment 0 0 0 0.2 0.2 0.2 0 true true 10 - backgroundMode=plain_color colorMode=linear\n"
         "material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red\n"
         "camera /World/Cam 0 0 0 1 0 0 0 60 0.05 100 200 200 rgb true id=cam\n"
         "light /World/Sun 1 0.4 -0.4 3 type=directional\n"
-        "deformable /World/Cloth " + kind + " " + mesh + " 5 0 0 1 0 0 0 1 1 1 material=red\n"
+        "deformable /World/Cloth " + kind + " " + mesh + " 5 0 0 1 0 0 0 1 1 1 material=red" + keys + "\n"
         "granular /World/Sand particles 5 1.5 1 1 0 0 0 1 1 1 boxMin=0,0,0 boxMax=0.4,0.8,0.4 radius=0.2 spacing=0.4\n");
     EXPECT_TRUE(loaded.ok());
     doc_ = std::move(loaded.document);
@@ -142,13 +142,12 @@ TEST_F(Particles, ClothAtRestIsItsObjSurfaceInFileOrder) {
   EXPECT_EQ(counts.deformables, std::vector<std::int64_t>{9});
   EXPECT_EQ(counts.granulars, std::vector<std::int64_t>{2});
   EXPECT_EQ(trajectoryLimits(render_).maxPoints, 9u);
-  // A mesh that is no OBJ goes through assimp as before: no surface, and
-  // frames cannot move it (any count is taken).
-  ASSERT_TRUE(build("cloth.OBJ.stl"));  // the renderer reads it (or reports it) later
-  EXPECT_TRUE(render_.surfaces.empty());
-  EXPECT_EQ(render_.drawables.back().surface, -1);
-  EXPECT_EQ(render_.drawables.back().meshPath, (dir_ / "cloth.OBJ.stl").string());
-  EXPECT_EQ(particleCounts(render_).deformables, std::vector<std::int64_t>{-1});
+  // A mesh that is no OBJ cannot be a deformable's particles: refused at
+  // meshPath with rscene-sim's (and validate --check-files') RS7080.
+  EXPECT_FALSE(build("cloth.OBJ.stl"));
+  ASSERT_FALSE(diags_.empty());
+  EXPECT_EQ(diags_[0].code, "RS7080");
+  EXPECT_EQ(diags_[0].line, 6u);
 }
 
 TEST_F(Particles, TrajectoryFramesMoveTheClothAndTheGrains) {
@@ -234,7 +233,12 @@ TEST_F(Particles, TrajectoryFramesMoveTheClothAndTheGrains) {
 }
 
 TEST_F(Particles, AFemVolumesFillParticlesAreNotDrawn) {
-  ASSERT_TRUE(build("cloth.obj", "fem"));
+  // An open sheet is no volume to fill (sim and validate refuse it, RS7081);
+  // as a surface-mode fem its particles are the sheet's, strutted.
+  EXPECT_FALSE(build("cloth.obj", "fem"));
+  ASSERT_FALSE(diags_.empty());
+  EXPECT_EQ(diags_[0].code, "RS7081");
+  ASSERT_TRUE(build("cloth.obj", "fem", " particleMode=surface"));
   ASSERT_EQ(render_.surfaces.size(), 1u);
   EXPECT_TRUE(render_.surfaces[0].mayFill);
   EXPECT_FALSE(render_.drawables[render_.surfaces[0].drawable].doubleSided);  // a closed volume

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "asset/obj_surface.hpp"
-#include "sim/deformable_model.hpp"
+#include "scene/deformable_model.hpp"
 #include "sim/deformable_solver.hpp"
 #include "sim/surface_query.hpp"
 

@@ -1,4 +1,4 @@
-#include "sim/deformable_model.hpp"
+#include "scene/deformable_model.hpp"
 
 #include <Eigen/Geometry>
 
@@ -8,10 +8,9 @@
 
 #include "core/text.hpp"
 #include "scene/deformable_check.hpp"
-#include "sim/deformable_body.hpp"
-#include "sim/deformable_fill.hpp"
+#include "scene/deformable_fill.hpp"
 
-namespace rscene::sim {
+namespace rscene {
 namespace {
 
 // Strut reach in particle spacings: past the grid's diagonal (sqrt 3), so
@@ -52,7 +51,7 @@ double triangleArea(const DeformableModel& m, const std::array<std::uint32_t, 3>
 
 }  // namespace
 
-bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface, DeformableModel& m,
+bool buildDeformableModel(const Deformable& r, const TriangleSurface& surface, DeformableModel& m,
                           std::string& error, std::string& field) {
   Fail fail{error, field};
   // The record's own values: the scene model's rule (checkScene() ran it
@@ -76,8 +75,8 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
     m.positions.push_back(p);
   }
   m.surfaceCount = nv;
-  if (nv > DeformableBody::kMaxParticles)
-    return fail("meshPath", "the mesh has more than " + std::to_string(DeformableBody::kMaxParticles) + " vertices");
+  if (nv > kMaxDeformableParticles)
+    return fail("meshPath", "the mesh has more than " + std::to_string(kMaxDeformableParticles) + " vertices");
   for (std::int64_t pin : r.pinnedVertices)
     if (pin < 0)  // the scene reader's mark for a value that is no whole number from 0
       return fail("pinnedVertices", "pinnedVertices holds a value that is not a vertex index (a whole number from 0 to " +
@@ -90,7 +89,7 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
     if (!closedSurface(surface.triangles, why))
       return fail("meshPath", "a filled body needs a closed mesh: " + why);
     const std::vector<Eigen::Vector3d> shell = m.positions;  // the fill appends to m.positions
-    if (!fillClosedSurface(shell, surface.triangles, r.particleSpacing, DeformableBody::kMaxParticles, m.positions,
+    if (!fillClosedSurface(shell, surface.triangles, r.particleSpacing, kMaxDeformableParticles, m.positions,
                            why))
       return fail("particleSpacing", why);
   }
@@ -169,15 +168,10 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
     return fail("iterations", "iterations x substeps x (constraints + particles) is " + num(work) +
                                   " a step (at most " + num(kMaxDeformableWorkPerStep) + ")");
 
-  for (Eigen::Vector3d& p : m.positions) {
-    p = r.world.position + r.world.orientation * p;
-    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate)
-      return fail("position", "a particle is beyond 1e12 m once placed");
-  }
   // A proxy sphere larger than the whole body is no contact model: every
   // particle starts deep inside the ground or its neighbours' surfaces and
   // is pushed out at once (collisionRadius=100 threw a 1 m cloth 9 km up).
-  if (r.collidable && !m.positions.empty()) {
+  if (r.collidable && !m.positions.empty()) {  // in the record's frame: the size does not turn with the pose
     Eigen::AlignedBox3d box;
     for (const Eigen::Vector3d& p : m.positions) box.extend(p);
     const double size = box.diagonal().norm();
@@ -186,6 +180,11 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
                                          " m is larger than the body itself (" + num(size) +
                                          " m across): each particle's contact sphere should cover about the "
                                          "distance to its neighbours");
+  }
+  for (Eigen::Vector3d& p : m.positions) {
+    p = r.world.position + r.world.orientation * p;
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return fail("position", "a particle is beyond 1e12 m once placed");
   }
   const std::size_t n = m.positions.size();
   m.particleMass = r.totalMass / static_cast<double>(n);
@@ -203,4 +202,4 @@ bool buildDeformableModel(const Deformable& r, const asset::ObjSurface& surface,
   return true;
 }
 
-}  // namespace rscene::sim
+}  // namespace rscene

@@ -1,9 +1,9 @@
-#include "sim/deformable_fill.hpp"
+#include "scene/deformable_fill.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace rscene::sim {
+namespace rscene {
 namespace {
 
 // Tests of a ray against a triangle or of a pair of points: past this, a
@@ -163,4 +163,4 @@ bool pairsWithinRadius(const std::vector<Eigen::Vector3d>& p, double r, std::uin
   return true;
 }
 
-}  // namespace rscene::sim
+}  // namespace rscene

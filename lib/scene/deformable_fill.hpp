@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace rscene::sim {
+namespace rscene {
 
 // True when every edge of the triangles is shared by exactly two of them
 // (a closed surface); else `error` names an open or non-manifold edge.
@@ -31,4 +31,4 @@ bool fillClosedSurface(const std::vector<Eigen::Vector3d>& vertices,
 bool pairsWithinRadius(const std::vector<Eigen::Vector3d>& points, double radius, std::uint64_t maxPairs,
                        std::vector<std::pair<std::uint32_t, std::uint32_t>>& out, std::string& error);
 
-}  // namespace rscene::sim
+}  // namespace rscene

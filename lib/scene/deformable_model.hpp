@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "asset/obj_surface.hpp"
+#include "scene/triangle_surface.hpp"
 #include "scene/visual_records.hpp"
 
-namespace rscene::sim {
+namespace rscene {
 
 struct DistanceConstraint {
   std::uint32_t a = 0, b = 0;
@@ -49,6 +49,7 @@ struct DeformableModel {
 };
 
 // Bounds that keep one body's memory and one world step's work finite.
+inline constexpr std::uint64_t kMaxDeformableParticles = 1'000'000;
 inline constexpr std::uint64_t kMaxDeformableConstraints = 16'000'000;
 // (constraints + particles) x iterations x substeps per world step: about
 // 20 s of one core (a 64 x 64 cloth at 20 iterations takes 5e5).
@@ -56,7 +57,7 @@ inline constexpr double kMaxDeformableWorkPerStep = 1e9;
 
 // False with `error` (a sentence) and `field` (the record's key at fault,
 // "" for the record) when the record cannot be simulated.
-bool buildDeformableModel(const Deformable& record, const asset::ObjSurface& surface, DeformableModel& model,
+bool buildDeformableModel(const Deformable& record, const TriangleSurface& surface, DeformableModel& model,
                           std::string& error, std::string& field);
 
 // Signed dihedral angle across the edge (c, d) of the triangles (a, c, d)
@@ -70,26 +71,4 @@ inline double dihedralAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return std::atan2(n1.cross(n2).dot(e) / len, n1.dot(n2));
 }
 
-// The angle's gradient per particle; false when a triangle is degenerate
-// (no gradient).  The angle too when `angle` is given (one computation of
-// the normals for both).  Inline: the solver's innermost loop.
-inline bool dihedralGradient(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                             const Eigen::Vector3d& d, Eigen::Vector3d g[4], double* angle = nullptr) {
-  // Bridson, Marino and Fedkiw (2003), "Simulation of clothing with folds
-  // and wrinkles": the angle's gradient from the area-weighted normals.
-  Eigen::Vector3d e = d - c;
-  Eigen::Vector3d n1 = (c - a).cross(d - a), n2 = (d - b).cross(c - b);
-  double len = e.norm(), s1 = n1.squaredNorm(), s2 = n2.squaredNorm();
-  if (!(len > 1e-12) || !(s1 > 1e-24) || !(s2 > 1e-24)) return false;
-  const double invLen = 1 / len;
-  if (angle) *angle = std::atan2(n1.cross(n2).dot(e) * invLen, n1.dot(n2));
-  n1 *= 1 / s1;  // one division, not three
-  n2 *= 1 / s2;
-  g[0] = -len * n1;
-  g[1] = -len * n2;
-  g[2] = -(((a - d).dot(e) * invLen) * n1 + ((b - d).dot(e) * invLen) * n2);
-  g[3] = -g[0] - g[1] - g[2];  // the angle does not change when all four move together
-  return true;
-}
-
-}  // namespace rscene::sim
+}  // namespace rscene
