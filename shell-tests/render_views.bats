@@ -96,6 +96,41 @@ npy_shape() {
   cmp one.png p/rgb.png
 }
 
+@test "a depth camera drawn alone (-o FILE, --camera NAME) writes what --all-cameras writes for it, not a color PNG" {
+  grep -v -e '^camera' -e '^sensor' s.rscene > d.rscene
+  echo 'camera /World/Depth -4 0 1 1 0 0 0 60 0.05 100 64 48 depth true id=dcam outputPath=caps/d.png' >> d.rscene
+  run "$RENDER" d.rscene --all-cameras
+  [ "$status" -eq 0 ]
+  [ "$(cd caps && ls | tr '\n' ' ')" = "d.npy d.png " ]
+  run --separate-stderr "$RENDER" d.rscene -o plain.png  # the first enabled camera
+  [ "$status" -eq 0 ]
+  [ "$stderr" = "" ]
+  run "$RENDER" d.rscene --camera dcam -o named.png
+  [ "$status" -eq 0 ]
+  for f in plain named; do
+    cmp $f.png caps/d.png
+    cmp $f.npy caps/d.npy
+    # IHDR: 16-bit grayscale (bit depth 16, colour type 0), not 8-bit RGBA ("8 6").
+    [ "$(png_format $f.png)" = "16 0" ]
+    [ "$(python3 -c 'import sys; h = open(sys.argv[1], "rb").read(26); print(h[12:16].decode(), h[24], h[25])' $f.png)" = "IHDR 16 0" ]
+  done
+  [ "$(png_size plain.png)" = "64x48" ]
+  [ "$(npy_shape plain.npy)" = "'shape': (48, 64)" ]
+  # A segmentation camera likewise: its image and legend.
+  sed 's/ depth true id=dcam/ segmentation true id=dcam/' d.rscene > g.rscene
+  "$RENDER" g.rscene --all-cameras -o 'all/{name}.{kind}.png'
+  "$RENDER" g.rscene -o seg.png
+  cmp seg.png all/World_Depth.segmentation.png
+  cmp seg.json all/World_Depth.segmentation.json
+  # --reference compares a color image, which a depth camera does not make;
+  # -o - writes one color image.
+  run -2 --separate-stderr "$RENDER" d.rscene --reference ref.png
+  [ "$stderr" = "rscene-render: error: --reference compares a color image; camera '/World/Depth' has renderMode depth, which makes none: write its images with -o and compare those files" ]
+  [ ! -e ref.png ]
+  run -2 --separate-stderr "$RENDER" d.rscene -o -
+  [ "$stderr" = "rscene-render: error: -o - writes one color image; '/World/Depth' makes a depth image and its .npy beside it: give -o FILE or -o PATTERN" ]
+}
+
 @test "an outputPath outside the current folder is refused; nothing is written" {
   sed 's#outputPath=caps/cam.png#outputPath=../cam.png#' s.rscene > up.rscene
   run -2 --separate-stderr "$RENDER" up.rscene --all-cameras

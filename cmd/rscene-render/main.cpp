@@ -1,20 +1,15 @@
-// rscene-render: headless EGL render of a scene's camera to PNG, with an
-// optional comparison against a baseline image; or of many views (every
-// camera and camera-like sensor, RGB, depth, segmentation) along a
-// trajectory (views_run.cpp).
+// rscene-render: headless EGL render of a scene's views (one camera, every
+// camera and camera-like sensor; RGB, depth, segmentation) to PNG, at rest
+// or along a trajectory, with an optional comparison of one color image
+// against a baseline: the flags and the scene here, the one drawing
+// pipeline in views_run.cpp and lib/render (view_select.hpp).
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cstdio>
-#include <iostream>
 #include <map>
 
 #include "common/cli.hpp"
 #include "core/assets.hpp"
 #include "core/loader.hpp"
-#include "render/camera.hpp"
-#include "render/gl_context.hpp"
-#include "render/image.hpp"
-#include "render/limits.hpp"
 #include "render/render_scene.hpp"
 #include "render/views.hpp"
 #include "render/renderer.hpp"
@@ -73,73 +68,12 @@ int run(const Options& opt) {
   if (!built) return cli::kTrouble;
   if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
 
-  Camera camera;
-  std::string err;
-  bool cameraRecord = render::chooseCamera(scene, opt.camera, camera, &err);
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
   ro.post = !opt.noPost;
-  render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color};
-  if (render_cli::wantsViews(opt.views, !opt.baseline.reference.empty(), cameraRecord))
-    return render_cli::renderViews(opt.views, prepared);
-  if (cameraRecord && !render_cli::cameraUnique(opt.views, prepared)) return cli::kTrouble;
-  if (!cameraRecord) {
-    cli::error(err);
-    return cli::kTrouble;
-  }
-  ro.width = opt.width > 0 ? opt.width : camera.width > 0 ? camera.width : 1280;
-  ro.height = opt.height > 0 ? opt.height : camera.height > 0 ? camera.height : 720;
-  // Checked before any framebuffer exists: a size the flags gave is a
-  // usage error, one the camera record gave an error at its width field.
-  if (opt.width > 0 && opt.height > 0) {
-    if (std::string problem = render::imageSizeProblem(ro.width, ro.height, opt.maxPixels); !problem.empty()) {
-      cli::error("--width/--height: " + problem);
-      return cli::kTrouble;
-    }
-  } else if (!render::checkCameraImageSize(loaded.document, camera, ro.width, ro.height, opt.maxPixels, diags)) {
-    cli::hintStdinPaths(in, opt.baseDir, diags);
-    cli::printDiagnostics(diags, in.display, in.text, color);
-    return cli::kTrouble;
-  }
-  double aspect = double(ro.width) / ro.height;
-  if (camera.path == "auto") camera = render::autoCamera(scene, aspect);
-  if (!render::seesAnything(scene, camera, aspect))
-    cli::warning("camera '" + camera.path + "' sees none of the scene's geometry");
-  double buildSeconds = since(tBuild);
-
-  auto tStart = Clock::now();
-  auto context = render_cli::openContext(opt.backend, opt.verbose);
-  if (!context) return cli::kTrouble;
-  double startSeconds = since(tStart);
-
-  render::Image image;
-  render::RenderTimings timings;
-  diags.clear();
-  bool ok = render::renderScene(scene, camera, ro, image, diags, &timings);
-  cli::hintStdinPaths(in, opt.baseDir, diags);
-  cli::printDiagnostics(diags, in.display, in.text, color);
-  if (!ok) return cli::kTrouble;
-  auto tEncode = Clock::now();
-  std::string png = render::encodePng(image);
-  double encodeSeconds = since(tEncode);
-  if (opt.verbose) {
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
-                  cli::toolName().c_str(), ro.width, ro.height, scene.drawables.size(), scene.robots, startSeconds,
-                  buildSeconds, timings.uploadSeconds, timings.shadowSeconds, timings.drawSeconds,
-                  timings.postSeconds, encodeSeconds);
-    std::cerr << line;
-  }
-  if (!opt.output.empty() && !cli::writeOutput(opt.output, [&](Sink& s) {
-        s.write(png);
-        return true;
-      }))
-    return cli::kTrouble;
-  if (opt.baseline.reference.empty()) return cli::kSuccess;
-  return render_cli::checkBaseline(image, png, opt.baseline);
+  render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color, since(tBuild)};
+  return render_cli::renderViews(opt.views, prepared);
 }
 
 // The many-view flags that do not go together; -1 when they do.
@@ -162,7 +96,6 @@ int checkViewFlags(const CLI::App& app, Options& opt) {
   v.maxPixels = opt.maxPixels;
   v.backend = opt.backend;
   v.verbose = opt.verbose;
-  v.reference = !opt.baseline.reference.empty();
   return -1;
 }
 
@@ -176,10 +109,13 @@ int main(int argc, char** argv) {
   cli::addOutputOption(app, opt.output,
                        "Write the PNG to FILE (atomically; - writes standard output), or to a PATTERN with "
                        "{name} {id} {kind} {frame} {time} for many views and frames (default: each drawn record's outputPath)");
-  app.add_option("--width", opt.width, "Image width in pixels (default: the camera's, else 1280)")
-      ->check(CLI::Range(1, 16384));
-  app.add_option("--height", opt.height, "Image height in pixels (default: the camera's, else 720)")
-      ->check(CLI::Range(1, 16384));
+  app.add_option("--width", opt.width,
+                 "Image width in pixels (default: the camera's, else " + std::to_string(render::kDefaultImageWidth) + ")")
+      ->check(CLI::Range(1, render::kMaxImageSide));
+  app.add_option("--height", opt.height,
+                 "Image height in pixels (default: the camera's, else " + std::to_string(render::kDefaultImageHeight) +
+                     ")")
+      ->check(CLI::Range(1, render::kMaxImageSide));
   app.add_option("--samples", opt.samples, "Multisample anti-aliasing samples per pixel (default 4)")
       ->check(CLI::Range(1, 64));
   app.add_option("--max-pixels", opt.maxPixels,
@@ -251,5 +187,6 @@ int main(int argc, char** argv) {
     }
   }
   opt.baseline.reportToStderr = opt.output == "-";
+  opt.views.baseline = opt.baseline;
   return run(opt);
 }

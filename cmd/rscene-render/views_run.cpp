@@ -15,17 +15,17 @@
 #include <optional>
 #include <thread>
 
-#include "core/suggest.hpp"
 #include "core/text.hpp"
-#include "render/camera.hpp"
-#include "render/limits.hpp"
+#include "render/image.hpp"
 #include "render/view.hpp"
 #include "render/view_output.hpp"
+#include "render/view_select.hpp"
 #include "render/views.hpp"
 #include "robot/trajectory_read.hpp"
 #include "rscene-render/image_writer.hpp"
 #include "scene/reader.hpp"
 #include "scene/sensor_check.hpp"
+#include "rscene-render/baseline.hpp"
 
 namespace rscene::render_cli {
 namespace {
@@ -59,19 +59,6 @@ class ViewsRun {
  public:
   ViewsRun(const ViewsOptions& o, Prepared& p) : opt_(o), p_(p) {}
 
-  // Whether --camera names one view only (the single-image path picks a
-  // camera record by itself; a sensor of the same name makes it ambiguous).
-  bool selectorUnique() {
-    Diagnostics diags;  // what collectViews warns of is printed by no run of this one
-    sensors_ = robot::collectSensors(p_.document, p_.scene, p_.renderScene.robotModels, diags);
-    rest_ = robot::restPoses(p_.scene, p_.renderScene.robotModels);
-    std::vector<View> all = render::collectViews(p_.document, p_.scene, p_.renderScene, sensors_, rest_, diags);
-    std::vector<int> found = render::findViews(all, opt_.camera);
-    if (found.size() <= 1) return true;
-    cli::error(ambiguous(all, found));
-    return false;
-  }
-
   int run() {
     std::unique_ptr<std::istream> trajectoryStream;
     std::optional<robot::TrajectoryReader> reader;
@@ -103,9 +90,14 @@ class ViewsRun {
 
     // After the trajectory opened: a folder of -o is made only for a run that can start.
     if (!selectViews() || !checkSizes() || !planOutputs()) return cli::kTrouble;
+    // A view that sees nothing at rest: a trajectory may still bring something into it.
+    if (!reader)
+      for (const std::string& w : render::unseenViewWarnings(views_, p_.renderScene)) cli::warning(w);
 
+    auto tStart = Clock::now();
     auto context = openContext(opt_.backend, opt_.verbose);
     if (!context) return cli::kTrouble;
+    double startSeconds = since(tStart);
     Diagnostics diags;
     // One frame: round shapes tessellated for these views, as a single
     // camera's render is (same pixels).  Along a trajectory the views move:
@@ -126,7 +118,7 @@ class ViewsRun {
     robot::ParticlePositions particles;
     robot::TrajectoryFrame frame;
     std::uint64_t written = 0;
-    bool progress = !opt_.verbose && isatty(2);
+    bool progress = reader && !opt_.verbose && isatty(2);  // frames of a trajectory
     for (;;) {
       if (interrupted) {
         writer.finish();
@@ -161,8 +153,22 @@ class ViewsRun {
     }
     bool ok = writer.finish();
     if (progress) std::fputc('\n', stderr);
-    if (opt_.verbose) report(*renderer, writer, written, since(tRun));
-    return ok ? cli::kSuccess : cli::kTrouble;
+    double encodeSeconds = writer.encodeSeconds();
+    std::string referencePng;
+    if (ok && reference()) {
+      auto t = Clock::now();
+      referencePng = render::encodePng(referenceImage_);
+      encodeSeconds += since(t);
+    }
+    if (opt_.verbose) {
+      if (views_.size() == 1 && !reader)
+        reportOne(*renderer, startSeconds, encodeSeconds);
+      else
+        report(*renderer, writer, written, since(tRun));
+    }
+    if (!ok) return cli::kTrouble;
+    if (!reference()) return cli::kSuccess;
+    return checkBaseline(referenceImage_, referencePng, opt_.baseline);
   }
 
  private:
@@ -174,151 +180,60 @@ class ViewsRun {
     return ok;
   }
 
-  // The views to draw: every enabled one (--all-cameras), or the one
-  // --camera names (a sensor too), or the first enabled camera, or auto.
+  bool reference() const { return !opt_.baseline.reference.empty(); }
+
+  render::ViewRequest request() const {
+    render::ViewRequest r;
+    r.allCameras = opt_.allCameras;
+    r.camera = opt_.camera;
+    r.width = opt_.width;
+    r.height = opt_.height;
+    r.maxPixels = opt_.maxPixels;
+    return r;
+  }
+
+  render::ViewSources sources() const {
+    return {p_.document, p_.scene, p_.renderScene, sensors_, p_.input.display};
+  }
+
+  // Prints what a step found; false when it refuses the run.
+  bool print(render::ViewFindings& found) {
+    for (const std::string& w : found.warnings) cli::warning(w);
+    if (!found.error.empty()) {
+      cli::error(found.error);
+      return false;
+    }
+    return print(found.diagnostics);
+  }
+
+  // The views to draw (render::selectViews()).  A single view written to
+  // one file (-o FILE, --reference) keeps the one image a file holds
+  // (render::keepOneImage()).
   bool selectViews() {
     Diagnostics diags;
     sensors_ = robot::collectSensors(p_.document, p_.scene, p_.renderScene.robotModels, diags);
     rest_ = robot::restPoses(p_.scene, p_.renderScene.robotModels);
     std::vector<View> all = render::collectViews(p_.document, p_.scene, p_.renderScene, sensors_, rest_, diags);
     if (!print(diags)) return false;
-    if (opt_.allCameras) {
-      for (View& v : all)
-        if (v.camera.enabled) views_.push_back(std::move(v));
-      if (views_.empty()) {
-        cli::error("--all-cameras: the scene has no enabled camera or camera-like sensor");
+    render::ViewFindings found;
+    views_ = render::selectViews(std::move(all), request(), sources(), found);
+    if (!print(found)) return false;
+    const bool oneFile = !opt_.output.empty() && opt_.output.find('{') == std::string::npos;
+    if (views_.size() == 1 && !opt_.allCameras && (oneFile || reference())) {
+      if (std::string why = render::keepOneImage(views_[0], reference()); !why.empty()) {
+        cli::error(why);
         return false;
       }
-      return true;
     }
-    int chosen = -1;
-    if (opt_.camera.empty()) {
-      for (std::size_t i = 0; i < all.size() && chosen < 0; ++i)
-        if (!all[i].sensor && all[i].camera.enabled) chosen = static_cast<int>(i);
-    } else if (opt_.camera != "auto") {
-      std::vector<int> found = render::findViews(all, opt_.camera);
-      if (found.size() > 1) {
-        cli::error(ambiguous(all, found));
-        return false;
-      }
-      if (found.empty()) {
-        cli::error(unknownView(all));
-        return false;
-      }
-      chosen = found[0];
-    }
-    if (chosen >= 0) {
-      views_.push_back(std::move(all[static_cast<std::size_t>(chosen)]));
-      if (opt_.reference && views_[0].sensor) {
-        cli::error("--reference compares a camera record's color image; '" + views_[0].name +
-                   "' is a sensor: write its images with -o and compare those files");
-        return false;
-      }
-      return true;
-    }
-    View v;  // the automatic three-quarter view of today's rscene-render
-    int w = opt_.width > 0 ? opt_.width : 1280, h = opt_.height > 0 ? opt_.height : 720;
-    v.camera = render::autoCamera(p_.renderScene, double(w) / h);
-    v.camera.width = w;
-    v.camera.height = h;
-    v.camera.enabled = true;
-    v.name = "auto";
-    v.passes = {Pass::Color};
-    views_.push_back(std::move(v));
     return true;
   }
 
-  // Where a view is declared, for messages: "the camera record at s.rscene:5",
-  // "a URDF sensor of robot '/World/A' (sensors/cam.xml:3)".
-  std::string declaredAt(const View& v) const {
-    const std::string what = v.sensor ? "sensor" : "camera";
-    if (v.recordIndex >= 0 && static_cast<std::size_t>(v.recordIndex) < p_.document.records.size())
-      return "the " + what + " record at " + p_.input.display + ":" +
-             std::to_string(p_.document.records[static_cast<std::size_t>(v.recordIndex)].line);
-    if (v.sensorIndex >= 0 && static_cast<std::size_t>(v.sensorIndex) < sensors_.size()) {
-      const robot::SensorSpec& s = sensors_[static_cast<std::size_t>(v.sensorIndex)];
-      std::string robot;
-      for (const Articulated& a : p_.scene.articulated)
-        if (a.recordIndex == s.robotRecord) robot = " of robot '" + a.path + "'";
-      return "a URDF sensor" + robot + " (" + s.file + ":" + std::to_string(s.line) + ")";
-    }
-    return "a " + what;
-  }
-
-  std::string ambiguous(const std::vector<View>& all, const std::vector<int>& found) const {
-    std::string list;
-    for (int i : found) {
-      const View& v = all[static_cast<std::size_t>(i)];
-      list += (list.empty() ? "" : "; ") + std::string("'") + v.name + "'" + (v.id.empty() ? "" : " (id " + v.id + ")") +
-              ", " + declaredAt(v);
-    }
-    return "--camera '" + opt_.camera + "' names " + std::to_string(found.size()) + " views: " + list +
-           "; select one by its record's id, or rename the record";
-  }
-
-  // No view by that name: a sensor that is no view (a LiDAR, an IMU) says
-  // so; else the closest view's name, or the views there are.
-  std::string unknownView(const std::vector<View>& all) const {
-    std::string message = "no camera or camera-like sensor with path or id '" + opt_.camera + "'";
-    for (const robot::SensorSpec& s : sensors_) {
-      bool named = s.name == opt_.camera || (!s.id.empty() && s.id == opt_.camera) ||
-                   (!s.name.empty() && s.name[0] == '/' && s.name.compare(1, std::string::npos, opt_.camera) == 0);
-      if (named && !robot::cameraLike(s.kind)) {
-        message = "'" + s.name + "' is a sensor of kind " + s.kindName +
-                  ", not a view (rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it)";
-        break;
-      }
-    }
-    if (all.empty()) return message + "; the scene has no view (leave out --camera, or use --camera auto)";
-    // Paths compare by their last part: a shared /World/ is no likeness.
-    auto last = [](std::string_view p) { return p.substr(p.rfind('/') + 1); };
-    const bool isPath = opt_.camera.find('/') != std::string::npos;
-    std::vector<std::string_view> names;
-    for (const View& v : all) names.push_back(isPath ? last(v.name) : std::string_view(v.id));
-    std::string near = closestName(isPath ? last(opt_.camera) : std::string_view(opt_.camera), names);
-    if (!near.empty() && message[0] != '\'') {
-      const View& v = all[static_cast<std::size_t>(std::find(names.begin(), names.end(), near) - names.begin())];
-      return message + "; did you mean '" + (isPath ? v.name : v.id) + "'?";
-    }
-    std::string list;
-    for (std::size_t i = 0; i < all.size() && i < 8; ++i) list += (i ? ", " : "") + all[i].name;
-    return message + "; the views of the scene: " + list + (all.size() > 8 ? ", ..." : "");
-  }
-
-  // Camera records take --width/--height (else their own size, else
-  // 1280x720); a sensor keeps its own, which its intrinsics are written for.
+  // Camera records take --width/--height (else their own size, else the
+  // default); a sensor keeps its own (render::sizeViews()).
   bool checkSizes() {
-    Diagnostics diags;
-    for (View& v : views_) {
-      if (v.sensor && (opt_.width > 0 || opt_.height > 0))
-        cli::warning("--width/--height: sensor '" + v.name + "' keeps its own size, " + std::to_string(v.camera.width) +
-                     "x" + std::to_string(v.camera.height) + " (its intrinsics are written for it)");
-      if (v.sensor) {
-        std::string problem = render::imageSizeProblem(v.camera.width, v.camera.height, opt_.maxPixels);
-        if (problem.empty()) continue;
-        if (v.recordIndex >= 0) {
-          RecordReader r(p_.document, static_cast<std::size_t>(v.recordIndex), diags);
-          r.error("width", "RS9013", "sensor image " + problem);
-        } else {
-          cli::error("sensor '" + v.name + "': image " + problem);
-          return false;
-        }
-        continue;
-      }
-      int w = opt_.width > 0 ? opt_.width : v.camera.width > 0 ? v.camera.width : 1280;
-      int h = opt_.height > 0 ? opt_.height : v.camera.height > 0 ? v.camera.height : 720;
-      if (opt_.width > 0 && opt_.height > 0) {
-        if (std::string problem = render::imageSizeProblem(w, h, opt_.maxPixels); !problem.empty()) {
-          cli::error("--width/--height: " + problem);
-          return false;
-        }
-      } else if (!render::checkCameraImageSize(p_.document, v.camera, w, h, opt_.maxPixels, diags)) {
-        continue;
-      }
-      v.camera.width = w;
-      v.camera.height = h;
-    }
-    return print(diags);
+    render::ViewFindings found;
+    render::sizeViews(views_, request(), sources(), found);
+    return print(found);
   }
 
   // Every image's pattern, then every file of the first frame checked
@@ -339,6 +254,7 @@ class ViewsRun {
       const View& v = views_[i];
       std::string pattern = opt_.output;
       if (pattern.empty()) {
+        if (reference()) continue;  // --reference alone writes only a missing baseline
         if (v.outputPath.empty() || v.outputPath == "-") {
           cli::error("nothing to write: '" + v.name + "' has no outputPath; give -o FILE (-o - for standard output)" +
                      (v.sensor ? std::string() : ", --reference FILE") + " or -o PATTERN such as '{name}.{kind}.png'");
@@ -357,6 +273,12 @@ class ViewsRun {
     }
     if (!print(diags)) return false;
     if (opt_.output == "-" && (outputs_.size() != 1 || outputs_[0].pass != Pass::Color)) {
+      if (outputs_.size() == 1) {
+        cli::error("-o - writes one color image; '" + views_[0].name + "' makes a " +
+                   render::passName(outputs_[0].pass) + " image and its " +
+                   (outputs_[0].pass == Pass::Depth ? ".npy" : ".json") + " beside it: give -o FILE or -o PATTERN");
+        return false;
+      }
       cli::error("-o - writes one color image; these views make " + std::to_string(outputs_.size()) +
                  " images and their files: give -o PATTERN such as 'out/{name}.{kind}.png'");
       return false;
@@ -413,7 +335,8 @@ class ViewsRun {
     }
     if (a.name == b.name) {
       bool ids = !a.id.empty() || !b.id.empty();
-      return head + "two views are named '" + a.name + "': " + declaredAt(a) + " and " + declaredAt(b) +
+      return head + "two views are named '" + a.name + "': " + render::declaredAt(a, sources()) + " and " +
+             render::declaredAt(b, sources()) +
              "; rename the record" + (ids && !render::patternHas(opt_.output, "id") ? ", or use {id} in -o" : "") +
              " [RS9048]";
     }
@@ -446,6 +369,7 @@ class ViewsRun {
       }
       if (!print(diags)) return false;
       drawSeconds_ += since(t);
+      if (reference()) referenceImage_ = job.images.color;
       for (; next < outputs_.size() && outputs_[next].view == i; ++next) {
         const Output& o = outputs_[next];
         std::string path, err;
@@ -471,29 +395,33 @@ class ViewsRun {
     std::cerr << line;
   }
 
+  // The one view's line: where the time of one image went (issue 13).
+  void reportOne(const render::Renderer& renderer, double startSeconds, double encodeSeconds) const {
+    render::RenderTimings t = renderer.timings();
+    const Camera& c = views_[0].camera;
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
+                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
+                  cli::toolName().c_str(), c.width, c.height, p_.renderScene.drawables.size(), p_.renderScene.robots,
+                  startSeconds, p_.buildSeconds, t.uploadSeconds, t.shadowSeconds, t.drawSeconds, t.postSeconds,
+                  encodeSeconds);
+    std::cerr << line;
+  }
+
   const ViewsOptions& opt_;
   Prepared& p_;
   std::vector<robot::SensorSpec> sensors_;
   robot::BodyPoses rest_;
   std::vector<View> views_;
   std::vector<Output> outputs_;  // grouped by view, in view order
+  render::Image referenceImage_;  // the color image --reference compares
   double drawSeconds_ = 0;
 };
 
 }  // namespace
 
-bool wantsViews(const ViewsOptions& o, bool referenceGiven, bool cameraRecord) {
-  if (o.allCameras || !o.trajectory.empty() || !cameraRecord) return true;
-  if (referenceGiven) return false;
-  return o.output.empty() || o.output.find('{') != std::string::npos;
-}
-
 int renderViews(const ViewsOptions& options, Prepared& prepared) { return ViewsRun(options, prepared).run(); }
-
-bool cameraUnique(const ViewsOptions& options, Prepared& prepared) {
-  if (options.camera.empty() || options.camera == "auto") return true;
-  return ViewsRun(options, prepared).selectorUnique();
-}
 
 std::unique_ptr<render::GlContext> openContext(const std::string& backend, bool verbose) {
   render::Backend b = backend == "gpu"   ? render::Backend::Gpu

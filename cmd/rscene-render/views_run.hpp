@@ -1,7 +1,9 @@
-// rscene-render's many-view run: --all-cameras, a sensor chosen by
-// --camera, an output pattern or the records' outputPath, and --trajectory
-// frames.  The scene is built and uploaded once; every selected view is
-// drawn for every frame.
+// rscene-render's one drawing pipeline: the views chosen (--all-cameras,
+// --camera, the scene's first enabled camera, the automatic view: a single
+// camera is one view, render/view_select.hpp), their images written to -o
+// (a file or a pattern) or the records' outputPath, --trajectory frames, and
+// the --reference comparison.  The scene is built and uploaded once; every
+// selected view is drawn for every frame.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -12,28 +14,22 @@
 #include "render/gl_context.hpp"
 #include "render/render_scene.hpp"
 #include "render/renderer.hpp"
+#include "rscene-render/baseline.hpp"
 
 namespace rscene::render_cli {
 
 struct ViewsOptions {
   bool allCameras = false;
   std::string camera;      // --camera: a camera's or sensor's path or id, "auto", or "" (the first enabled camera)
-  std::string output;      // -o pattern; "" = each record's outputPath
+  std::string output;      // -o FILE or PATTERN; "" = each record's outputPath
   std::string trajectory;  // --trajectory FILE, "-" = standard input; "" = the scene's own state
   std::uint64_t every = 1;
   int width = 0, height = 0;  // --width/--height: camera records only (a sensor's intrinsics fix its size)
   std::uint64_t maxPixels = 0;
   std::string backend = "auto";
   bool verbose = false;
-  bool reference = false;  // --reference given: a sensor view cannot take it (one camera record's color image)
+  BaselineOptions baseline;  // reference "" = no --reference; else one camera record's color image is compared
 };
-
-// Whether the flags ask for the many-view run rather than the single
-// colour image of one camera record (today's behaviour, which --reference
-// and -o FILE keep): --all-cameras, --trajectory, an -o pattern, no -o
-// (the records' outputPath), or a --camera that is no camera record (a
-// sensor: `cameraRecord` false).
-bool wantsViews(const ViewsOptions& options, bool referenceGiven, bool cameraRecord);
 
 // The scene read and built by main.cpp's run(), and how to report.
 struct Prepared {
@@ -44,14 +40,12 @@ struct Prepared {
   render::RenderOptions renderOptions;
   std::string baseDir;
   bool color = false;
+  double buildSeconds = 0;  // reading and building the scene, for --verbose
 };
 
+// Draws what the options select; returns the exit status (the messages
+// printed).
 int renderViews(const ViewsOptions& options, Prepared& prepared);
-
-// False, with the error printed, when --camera names more than one view (a
-// camera record and a sensor of the same path, or a path that is another's
-// id): the single-image path must not pick one silently.
-bool cameraUnique(const ViewsOptions& options, Prepared& prepared);
 
 // The OpenGL context of --backend; prints the error (and with --verbose the
 // device) itself.  Null on failure.

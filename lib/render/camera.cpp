@@ -4,16 +4,19 @@
 #include <cmath>
 
 #include "core/suggest.hpp"
+#include "render/renderer.hpp"
 
 namespace rscene::render {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 double radians(double d) { return d * kPi / 180; }
+// The automatic view's aspect when no size is known yet: the default image's.
+constexpr double kDefaultAspect = double(kDefaultImageWidth) / kDefaultImageHeight;
 }  // namespace
 
 bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera& out, std::string* error) {
   if (selector == "auto") {
-    out = autoCamera(scene, 16.0 / 9.0);
+    out = autoCamera(scene, kDefaultAspect);
     return true;
   }
   if (selector.empty()) {
@@ -22,7 +25,7 @@ bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera&
         out = c;
         return true;
       }
-    out = autoCamera(scene, 16.0 / 9.0);
+    out = autoCamera(scene, kDefaultAspect);
     return true;
   }
   for (const Camera& c : scene.cameras)

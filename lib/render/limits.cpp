@@ -5,6 +5,13 @@
 
 namespace rscene::render {
 
+ImageSize cameraImageSize(const Camera& camera, int width, int height) {
+  ImageSize s;
+  s.width = width > 0 ? width : camera.width > 0 ? camera.width : kDefaultImageWidth;
+  s.height = height > 0 ? height : camera.height > 0 ? camera.height : kDefaultImageHeight;
+  return s;
+}
+
 std::string imageSizeProblem(std::int64_t width, std::int64_t height, std::uint64_t maxPixels) {
   std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)

@@ -10,6 +10,17 @@
 
 namespace rscene::render {
 
+struct ImageSize {
+  int width = 0, height = 0;
+};
+
+// The size a camera record's view (or the automatic view) is drawn at,
+// each side on its own: `width`/`height` when > 0 (--width/--height), else
+// the camera's when > 0, else kDefaultImageWidth x kDefaultImageHeight
+// (renderer.hpp).  The one place the default is decided; a sensor keeps
+// its own size (its intrinsics are written for it).
+ImageSize cameraImageSize(const Camera& camera, int width = 0, int height = 0);
+
 // Empty when a `width` x `height` image fits in `maxPixels` and each side
 // in kMaxImageSide (renderer.hpp), else the reason ("16384x16384 is
 // 268435456 pixels, more than --max-pixels 16777216").

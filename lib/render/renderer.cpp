@@ -13,6 +13,7 @@
 #include "render/camera.hpp"
 #include "render/deformed_surface.hpp"
 #include "render/gl_renderer.hpp"
+#include "render/limits.hpp"
 #include "render/main_pass.hpp"
 #include "render/mesh.hpp"
 #include "render/mipmap.hpp"
@@ -207,8 +208,8 @@ int GlRenderer::segmentsFor(const Eigen::AlignedBox3d& box) const {
   double radius = 0.5 * box.sizes().maxCoeff();
   double pixels = 0;  // radius on screen, in the view that sees it largest
   for (const Camera& c : lodCameras_) {
-    double height = c.height > 0 ? c.height : 720,
-           aspect = c.width > 0 && c.height > 0 ? double(c.width) / c.height : 16.0 / 9.0;
+    ImageSize size = cameraImageSize(c);  // the size it is drawn at when it has none of its own
+    double height = size.height, aspect = double(size.width) / size.height;
     if (c.projection == "orthographic") {
       pixels = std::max(pixels, radius / std::max(c.orthoScale / 2, 1e-9) * height / 2);
     } else {

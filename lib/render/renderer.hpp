@@ -14,8 +14,13 @@
 
 namespace rscene::render {
 
+// The image size of a view that has none of its own (a camera record
+// without width/height, the automatic view) and no --width/--height: the
+// one default, which cameraImageSize() (limits.hpp) applies.
+inline constexpr int kDefaultImageWidth = 1280, kDefaultImageHeight = 720;
+
 struct RenderOptions {
-  int width = 1280, height = 720;
+  int width = kDefaultImageWidth, height = kDefaultImageHeight;
   int samples = 4;            // clamped to what the driver offers
   bool transparent = false;   // alpha 0 where no geometry covers a pixel
   bool allowMissingAssets = false;  // placeholder box + warning instead of an error

@@ -167,7 +167,11 @@ void poseViews(std::vector<View>& views, const Scene& scene, const RenderScene& 
       if (c.recordIndex == v.recordIndex) record = &c;
     if (!record) continue;
     std::optional<Pose> from = bodyPose(record->mount, rs, rest), to = bodyPose(record->mount, rs, poses);
-    v.camera.world = from && to ? *to * (from->inverse() * record->world) : record->world;
+    // A body where the file puts it leaves the camera where the file puts
+    // it, to the last bit (the pose a single camera has always had).
+    bool moved =
+        from && to && (from->position != to->position || from->orientation.coeffs() != to->orientation.coeffs());
+    v.camera.world = moved ? *to * (from->inverse() * record->world) : record->world;
   }
 }
 

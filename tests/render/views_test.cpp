@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "core/loader.hpp"
+#include "render/limits.hpp"
 #include "robot/kinematics.hpp"
 #include "scene/sensor_check.hpp"
 
@@ -264,3 +265,32 @@ TEST(OutputNames, ImagesArePngOrHaveNoExtension) {
 }
 
 }  // namespace
+
+TEST(ImageSize, OneDefaultDecidedOnce) {
+  // A view with no size of its own and no flags: 1280x720, the default of
+  // rscene-render(1), for a camera record, the automatic view and the
+  // renderer's own options alike.
+  EXPECT_EQ(kDefaultImageWidth, 1280);
+  EXPECT_EQ(kDefaultImageHeight, 720);
+  ImageSize none = cameraImageSize(Camera{});
+  EXPECT_EQ(none.width, kDefaultImageWidth);
+  EXPECT_EQ(none.height, kDefaultImageHeight);
+  EXPECT_EQ(RenderOptions{}.width, none.width);
+  EXPECT_EQ(RenderOptions{}.height, none.height);
+  // Each side on its own: the flag, else the camera's, else the default.
+  Camera own;
+  own.width = 64;
+  own.height = 48;
+  EXPECT_EQ(cameraImageSize(own).width, 64);
+  EXPECT_EQ(cameraImageSize(own).height, 48);
+  EXPECT_EQ(cameraImageSize(own, 100).width, 100);
+  EXPECT_EQ(cameraImageSize(own, 100).height, 48);
+  EXPECT_EQ(cameraImageSize(own, 0, 30).width, 64);
+  EXPECT_EQ(cameraImageSize(own, 0, 30).height, 30);
+  Camera wide;
+  wide.width = 640;  // no height of its own
+  EXPECT_EQ(cameraImageSize(wide).width, 640);
+  EXPECT_EQ(cameraImageSize(wide).height, kDefaultImageHeight);
+  EXPECT_EQ(cameraImageSize(Camera{}, 40).width, 40);
+  EXPECT_EQ(cameraImageSize(Camera{}, 40).height, kDefaultImageHeight);
+}

@@ -1,0 +1,130 @@
+// rscene-render's one pipeline (lib/render/view_select): a single camera
+// is chosen as a view, with its renderMode; the image size default is
+// decided once.  No GL: the views are data.
+#include "render/view_select.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/loader.hpp"
+#include "render/limits.hpp"
+#include "render/views.hpp"
+
+using namespace rscene;
+using namespace rscene::render;
+
+namespace {
+
+struct Built {
+  LoadResult loaded;
+  Scene scene;
+  RenderScene render;
+  std::vector<robot::SensorSpec> sensors;
+  std::vector<View> all;
+  Diagnostics diags;
+  ViewSources sources() const { return {loaded.document, scene, render, sensors, "s.rscene"}; }
+};
+
+// Built in place: ViewSources refers to its members.
+void build(Built& b, const std::string& body) {
+  b.loaded = parse(
+      "raisim_engine_scene 2\n"
+      "object /World/Box box 1 0 0.5 1 0 0 0 1 1 1 0.5 1 1.0 default - false true false - dynamic true 1 "
+      "18446744073709551615 id=box\n" +
+      body);
+  ASSERT_TRUE(b.loaded.ok());
+  SceneOptions so;
+  ASSERT_TRUE(buildRenderScene(b.loaded.document, so, b.scene, b.render, b.diags));
+  b.sensors = robot::collectSensors(b.loaded.document, b.scene, b.render.robotModels, b.diags);
+  robot::BodyPoses rest = robot::restPoses(b.scene, b.render.robotModels);
+  b.all = collectViews(b.loaded.document, b.scene, b.render, b.sensors, rest, b.diags);
+}
+
+std::vector<View> select(const Built& b, const std::string& camera, ViewFindings& found, bool allCameras = false) {
+  ViewRequest r;
+  r.camera = camera;
+  r.allCameras = allCameras;
+  return selectViews(b.all, r, b.sources(), found);
+}
+
+}  // namespace
+
+TEST(ImageSize, TheAutomaticViewAndASizelessCameraGetTheDefault) {
+  Built b;
+  build(b, "");
+  ViewFindings found;
+  std::vector<View> views = select(b, "", found);  // no camera: the automatic view
+  ASSERT_TRUE(found.ok()) << found.error;
+  ASSERT_EQ(views.size(), 1u);
+  EXPECT_EQ(views[0].name, "auto");
+  EXPECT_EQ(views[0].camera.width, kDefaultImageWidth);
+  EXPECT_EQ(views[0].camera.height, kDefaultImageHeight);
+
+  ViewRequest flags;
+  flags.width = 40;
+  flags.height = 30;
+  views = selectViews(b.all, flags, b.sources(), found);
+  ASSERT_EQ(views.size(), 1u);
+  EXPECT_EQ(views[0].camera.width, 40);
+  EXPECT_EQ(views[0].camera.height, 30);
+
+  // A camera record of no size: sizeViews() gives it the same default.
+  Built c;
+  build(c, "camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 0 0 rgb true id=cam\n");
+  views = select(c, "cam", found);
+  ASSERT_EQ(views.size(), 1u);
+  ViewRequest none;
+  sizeViews(views, none, c.sources(), found);
+  ASSERT_TRUE(found.ok()) << found.error;
+  EXPECT_EQ(views[0].camera.width, kDefaultImageWidth);
+  EXPECT_EQ(views[0].camera.height, kDefaultImageHeight);
+}
+
+TEST(ViewSelect, ASingleCameraIsAViewWithItsRenderMode) {
+  Built b;
+  build(b,
+        "camera /World/Depth -4 0 1 1 0 0 0 60 0.05 100 64 48 depth true id=d\n"
+        "camera /World/Both -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb_depth true id=both\n");
+  ViewFindings found;
+  // The default camera (the first enabled record) and --camera NAME alike.
+  for (const char* selector : {"", "d", "/World/Depth", "World/Depth"}) {
+    std::vector<View> views = select(b, selector, found);
+    ASSERT_TRUE(found.ok()) << found.error;
+    ASSERT_EQ(views.size(), 1u) << selector;
+    EXPECT_EQ(views[0].name, "/World/Depth");
+    EXPECT_EQ(views[0].passes, std::vector<Pass>{Pass::Depth}) << selector;
+    // One file holds its one image: the depth image, not a color one.
+    EXPECT_EQ(keepOneImage(views[0], false), "");
+    EXPECT_EQ(views[0].passes, std::vector<Pass>{Pass::Depth});
+    // --reference compares a color image, which it does not make.
+    EXPECT_EQ(keepOneImage(views[0], true),
+              "--reference compares a color image; camera '/World/Depth' has renderMode depth, which makes none: "
+              "write its images with -o and compare those files");
+  }
+  // The same view as --all-cameras has for it.
+  std::vector<View> every = select(b, "", found, true);
+  ASSERT_EQ(every.size(), 2u);
+  EXPECT_EQ(every[0].passes, std::vector<Pass>{Pass::Depth});
+  // rgb_depth in one file: its color image (as -o FILE has always written).
+  std::vector<View> both = select(b, "both", found);
+  ASSERT_EQ(both.size(), 1u);
+  EXPECT_EQ(both[0].passes, (std::vector<Pass>{Pass::Color, Pass::Depth}));
+  EXPECT_EQ(keepOneImage(both[0], false), "");
+  EXPECT_EQ(both[0].passes, std::vector<Pass>{Pass::Color});
+}
+
+TEST(ViewSelect, UnknownAndAmbiguousNamesAreErrors) {
+  Built b;
+  build(b, "camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=cam\n");
+  ViewFindings found;
+  EXPECT_TRUE(select(b, "/World/Cma", found).empty());
+  EXPECT_EQ(found.error, "no camera or camera-like sensor with path or id '/World/Cma'; did you mean '/World/Cam'?");
+  Built two;
+  build(two,
+        "camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=cam\n"
+        "camera /World/Other -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=/World/Cam\n");
+  ViewFindings again;
+  EXPECT_TRUE(select(two, "/World/Cam", again).empty());
+  EXPECT_EQ(again.error.rfind("--camera '/World/Cam' names 2 views: '/World/Cam' (id cam), the camera record at s.rscene:3", 0),
+            0u)
+      << again.error;
+}
