@@ -149,10 +149,10 @@ constexpr CheckInfo kChecks[] = {
     {"RS7072", W, Scene, VSR, "lidar lidarVerticalFov of 0 with more than one channel (every ring scans the same plane)"},
     {"RS7073", W, Scene, VSR, "sensor segmentation=true on a kind that draws no image (lidar, imu, force_torque): not used"},
     {"RS7074", E, Scene, VSR, "camera orthoScale not finite and positive (at most 1e12) under an orthographic projection"},
-    // RS708x deformable and granular records (lib/scene: granular.hpp, deformable_check.hpp; validate,
-    // sim and render judge them alike; RS7080 is the mesh read, which only rscene-sim does in full)
-    {"RS7080", E, Sim, "sim", "deformable mesh that is not a usable OBJ surface (unreadable, not OBJ, a face index past its vertices, no triangles)"},
-    {"RS7081", E, Scene, VSR, "deformable record that cannot be simulated (a kind other than cloth, mass_spring or fem, a value out of range; with its mesh: a pinned vertex that is not one of the mesh's, an open mesh to fill)"},
+    // RS708x deformable and granular records (lib/scene: granular.hpp, deformable_check.hpp,
+    // deformable_model.hpp; validate, sim and render judge them alike, a deformable's mesh with --check-files)
+    {"RS7080", E, Scene, VSR, "deformable mesh that is not a usable OBJ surface (unreadable, not OBJ, a face index past its vertices, no triangles); validate with --check-files"},
+    {"RS7081", E, Scene, VSR, "deformable record that cannot be simulated (a kind other than cloth, mass_spring or fem, a value out of range; with its mesh (validate: --check-files): a pinned vertex that is not one of the mesh's, an open mesh to fill, a collisionRadius larger than the body)"},
     {"RS7082", E, Scene, VSR, "granular record whose grains cannot be made (more particles than maxParticles or 2,000,000, radii that do not match positions, a box fill with a radius or spacing that is not positive)"},
     {"RS7086", W, Scene, VSR, "granular substeps raised for stability (the time step is past 0.6 of the critical step of the contact law for the lightest grain); the message says what it costs"},
     {"RS7087", E, Scene, VSR, "granular record whose stability needs more than 1000 substeps per world step (lower normalStiffness or normalDamping, raise radius or density, or shorten time_step)"},

@@ -142,8 +142,41 @@ TEST(SceneCheck, EachCodeTriggersOnItsSceneAndNotOnTheFineOne) {
   }
 }
 
+// With --check-files, validate judges a deformable with its mesh as sim
+// does: through the SurfaceReader the tool passes (here one in memory).
+TEST(SceneCheck, ADeformableIsJudgedWithItsMeshOnlyWithCheckFiles) {
+  const std::string text = deformable("pinnedVertices=0,7");
+  SurfaceReader triangle = [](const std::string&, TriangleSurface& out, std::string&) {
+    out.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    out.triangles = {{0, 1, 2}};
+    return true;
+  };
+  SurfaceReader broken = [](const std::string&, TriangleSurface&, std::string& error) {
+    error = "line 3: face index 9 is past the 3 vertices";
+    return false;
+  };
+  auto run = [&](const SurfaceReader& reader, bool files) {
+    CheckOptions o;
+    o.checkFiles = files;
+    o.fileExists = [](const std::string& p) { return p.find("present") != std::string::npos; };
+    Document doc;
+    CollectDiagnostics all;
+    validateScene(text, o, doc, all, {}, reader);
+    return all.all;
+  };
+  Diagnostics pinned = run(triangle, true);
+  ASSERT_EQ(codes(pinned), std::vector<std::string>{"RS7081"}) << describe(pinned);
+  EXPECT_NE(pinned[0].message.find("pinnedVertices 7 is not a vertex"), std::string::npos) << pinned[0].message;
+  EXPECT_EQ(pinned[0].column, text.find("pinnedVertices=") - H.size() + 1);
+  Diagnostics bad = run(broken, true);
+  ASSERT_EQ(codes(bad), std::vector<std::string>{"RS7080"}) << describe(bad);
+  EXPECT_EQ(bad[0].column, text.find("present.obj") - H.size() + 1);
+  EXPECT_TRUE(run(broken, false).empty());  // without --check-files no file is read
+}
+
 TEST(SceneCheck, EveryCodeOfTheSceneLayerHasACase) {
   std::set<std::string> covered{"RS5001",   // MissingCollisionMeshIsReportedOnceWithCheckFiles
+                                "RS7080",   // ADeformableIsJudgedWithItsMeshOnlyWithCheckFiles
                                 "RS7021",   // AnOrientationThatDoesNotNormaliseIsRefused
                                 // sensor_check_test.cpp: SensorCheck.EachBoundFiresAtItsFieldAndNotWithinIt
                                 "RS7064", "RS7065", "RS7066", "RS7067", "RS7068", "RS7069",
