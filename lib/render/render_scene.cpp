@@ -1016,6 +1016,7 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& s
   // file stays the renderer's: RS5001 or a placeholder).
   SceneCheckOptions check;
   check.readSurface = asset::objSurfaceReader(assets ? assets->fileSystem() : diskFileSystem());
+  check.stepWarnings = false;  // nothing is stepped here
   ok = checkScene(doc, scene, check, diags) && ok;
   return prepareScene(doc, scene, out, diags, limits, assets) && ok;
 }

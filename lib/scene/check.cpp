@@ -169,7 +169,7 @@ class Checker {
     granularSetup(g, s_.timeStep, found, /*world=*/false);
     RecordReader r = reader(g.recordIndex);
     for (const ParticleFinding& f : found)
-      r.error(f.field, f.code, f.message, {}, f.error ? Severity::Error : Severity::Warning);
+      if (f.error || opt_.stepWarnings) r.error(f.field, f.code, f.message, {}, f.error ? Severity::Error : Severity::Warning);
   }
 
   const Document& doc_;

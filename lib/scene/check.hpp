@@ -24,6 +24,9 @@ struct SceneCheckOptions {
   // constraint count past the bounds ...).  The tools pass lib/asset's
   // OBJ reader (asset::objSurfaceReader); validate only with --check-files.
   SurfaceReader readSurface;
+  // Warnings about what stepping the scene costs (RS7086: granular
+  // substeps raised): off in a tool that does not step it (rscene-render).
+  bool stepWarnings = true;
 };
 
 // Appends the findings about `scene` (built from `doc`):
