@@ -15,6 +15,8 @@
 #include "core/suggest.hpp"
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
+#include "robot/check.hpp"
+#include "scene/validate.hpp"
 #include "core/writer.hpp"
 #include "sensor_files.hpp"
 #include "sim/limits.hpp"
@@ -63,7 +65,9 @@ int run(const Options& opt) {
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
   asset::AssetCache assets;
-  bool ok = buildScene(doc, so, scene, ds);
+  // lib/core's verdict first, as validate gives it; the model is built
+  // only from a document that has none.
+  bool ok = robot::checkDocument(doc, so.baseDir.empty() ? so.sceneDir : so.baseDir, ds) && buildScene(doc, so, scene, ds);
   if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
   ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem());
   // The step count, before anything is built: --max-steps bounds the run.

@@ -7,6 +7,8 @@
 #include "core/loader.hpp"
 #include "scene/check.hpp"
 #include "scene/scene.hpp"
+#include "robot/check.hpp"
+#include "scene/validate.hpp"
 #include "xml/to_xml.hpp"
 
 int main(int argc, char** argv) {
@@ -45,7 +47,7 @@ int main(int argc, char** argv) {
   // What rscene-sim refuses (a dynamic body without mass, a zero size ...)
   // is refused here too: RaiSim could not load it either.  Missing mesh
   // files are not checked: the XML names them all the same.
-  bool built = buildScene(doc, so, scene, ds) && checkScene(doc, scene, {}, ds);
+  bool built = robot::checkDocument(doc, so.sceneDir, ds) && buildScene(doc, so, scene, ds) && checkScene(doc, scene, {}, ds);
   if (!built) return print(ds), cli::kTrouble;
 
   xml::ToXmlOptions xo;

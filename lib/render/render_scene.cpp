@@ -14,10 +14,12 @@
 #include "render/render_bodies.hpp"
 #include "render/render_foliage.hpp"
 #include "render/robot_drawables.hpp"
+#include "robot/check.hpp"
 #include "robot/instance.hpp"
 #include "robot/kinematics.hpp"
 #include "core/assets.hpp"
 #include "scene/check.hpp"
+#include "scene/validate.hpp"
 #include "scene/granular.hpp"
 #include "scene/reader.hpp"
 
@@ -1009,7 +1011,9 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, RenderSc
 bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& scene, RenderScene& out,
                       Diagnostics& diags, const DrawLimits& limits, asset::AssetCache* assets) {
   scene = Scene{};
-  bool ok = buildScene(doc, options, scene, diags);
+  // lib/core's verdict first, as validate gives it (scene/validate.hpp).
+  bool ok = robot::checkDocument(doc, options.baseDir.empty() ? options.sceneDir : options.baseDir, diags) &&
+            buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
   // A deformable is judged with its mesh, as sim judges it (a missing

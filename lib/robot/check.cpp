@@ -1,5 +1,7 @@
 #include "robot/check.hpp"
 
+#include "scene/validate.hpp"
+
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -225,6 +227,13 @@ int bodyCount(const Coordinates& c) { return static_cast<int>(c.joints.size()) +
 void checkRobots(const Document& doc, const Scene& scene, const RobotCheckOptions& options, ModelCache& cache,
                  std::vector<SceneFinding>& out) {
   RobotChecker(doc, scene, options, cache, out).run();
+}
+
+bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out) {
+  return rscene::checkDocument(doc, sceneDir, out, [&](const Document& d, const Scene& s, std::vector<SceneFinding>& found) {
+    ModelCache models;
+    checkRobots(d, s, RobotCheckOptions{}, models, found);
+  });
 }
 
 }  // namespace rscene::robot

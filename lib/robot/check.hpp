@@ -45,4 +45,9 @@ int bodyCount(const Coordinates& c);
 void checkRobots(const Document& doc, const Scene& scene, const RobotCheckOptions& options, ModelCache& cache,
                  std::vector<SceneFinding>& out);
 
+// rscene::checkDocument (scene/validate.hpp) with these robot checks: the
+// verdict rscene-validate gives a scene (no files), which rscene-sim,
+// rscene-render and rscene-to-xml take before they build their model.
+bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out);
+
 }  // namespace rscene::robot

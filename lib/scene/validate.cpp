@@ -28,9 +28,19 @@ struct ModelFindings {
       return std::tuple(a.sceneLine, !a.diagnostic.file.empty(), a.diagnostic.column) <
              std::tuple(b.sceneLine, !b.diagnostic.file.empty(), b.diagnostic.column);
     });
+    auto core = [](const Diagnostic& d) {
+      const CheckInfo* info = checkInfo(d.code);
+      return d.file.empty() && info && info->layer == CheckLayer::Core;
+    };
+    // A record with a value that does not parse is not judged again by
+    // the model: the model read a fallback there, and a scale written `1x`
+    // would also be a zero-size box.  One typo, one error (core's).
+    std::vector<std::uint32_t> unparsed;
+    for (const SceneFinding& f : found)
+      if (core(f.diagnostic) && f.diagnostic.severity == Severity::Error) unparsed.push_back(f.sceneLine);
     for (SceneFinding& f : found) {
-      const CheckInfo* info = checkInfo(f.diagnostic.code);
-      if (f.diagnostic.file.empty() && info && info->layer == CheckLayer::Core) continue;
+      if (core(f.diagnostic)) continue;
+      if (std::binary_search(unparsed.begin(), unparsed.end(), f.sceneLine)) continue;
       lines.push_back(f.sceneLine);
       list.push_back(std::move(f.diagnostic));
     }
@@ -129,6 +139,32 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
   CollectDiagnostics all;
   validateScene(std::move(text), options, doc, all);
   return std::move(all.all);
+}
+
+bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out, const ExtraSceneCheck& extra) {
+  struct Errors : DiagnosticSink {
+    Diagnostics* out;
+    bool any = false;
+    void add(Diagnostic d) override {
+      if (d.severity != Severity::Error) return;
+      any = true;
+      if (out) out->push_back(std::move(d));
+    }
+  };
+  CheckOptions options;
+  options.sceneDir = sceneDir;
+  Errors core;
+  core.out = nullptr;
+  check(doc, options, core);
+  if (!core.any) return true;
+  // The errors, and their order, are rscene-validate's: core's merged
+  // with the model's and the robots' by line and column.  Only a scene
+  // with errors pays for this second reading.
+  Errors all;
+  all.out = &out;
+  Document again;
+  validateScene(std::string(doc.buffer()), options, again, all, extra);
+  return false;
 }
 
 }  // namespace rscene

@@ -44,4 +44,16 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
                    const ExtraSceneCheck& extra = {}, const SurfaceReader& readSurface = {});
 
+// lib/core's checks of `doc` as rscene-validate runs them (syntax, types,
+// references, sizes; no files, the Engine 2 profile), errors only.  A tool
+// that interprets the scene (rscene-sim, rscene-render, rscene-to-xml) runs
+// this before it builds the scene model, so that it stops at the finding
+// validate reports, with its code and column, and the model never judges a
+// value that does not parse (a scale written `1x` is RS2001, not also a
+// zero-size box).  When there are errors, `out` gets validate's errors in
+// validate's order (with `extra`'s, lib/robot's robot checks).  False when
+// it added an error.
+bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out,
+                   const ExtraSceneCheck& extra = {});
+
 }  // namespace rscene

@@ -163,13 +163,17 @@ Deformable readDeformable(const Document& doc, const RecordReader& r, int idx, c
     if (end && *end == '\0' && std::isfinite(s)) d.scale *= s;
   }
   std::vector<double> pins;
+  bool reported = false;
   if (r.numbers("pinnedVertices", pins))
     for (double p : pins) {
       // Only whole numbers a vertex index can be; anything else (2.7, 1e30,
       // NaN) becomes -1, which no mesh has, so the simulator refuses it at
       // this key instead of reading it as another vertex (or, for 1e30,
       // converting out of range).
-      bool index = p == std::floor(p) && p >= 0 && p < 9007199254740992.0;
+      bool whole = p == std::floor(p) && std::abs(p) < 9007199254740992.0;
+      if (!whole && !reported)  // lib/core's RS2003, so the model does not judge this record again
+        r.error("pinnedVertices", "RS2003", "pinnedVertices holds a value that is not a whole number"), reported = true;
+      bool index = whole && p >= 0;
       d.pinnedVertices.push_back(index ? static_cast<std::int64_t>(p) : -1);
     }
   d.totalMass = r.number("totalMass");

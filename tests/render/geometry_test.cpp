@@ -264,9 +264,9 @@ TEST(Wire, LineSpansItsTwoPoints) {
 
 TEST(Wire, FollowsBothEndsWhenBodiesMove) {
   auto b = build(
-      "object /World/A box 0 0 1 1 0 0 0 0.2 0.2 0.2 1 1 1 default default false true false - dynamic true 1 "
+      "object /World/A box 0 0 1 1 0 0 0 0.2 0.2 0.2 1 1 1 default engine_default false true false - dynamic true 1 "
       "18446744073709551615 id=a\n"
-      "object /World/B box 2 0 1 1 0 0 0 0.2 0.2 0.2 1 1 1 default default false true false - dynamic true 1 "
+      "object /World/B box 2 0 1 1 0 0 0 0.2 0.2 0.2 1 1 1 default engine_default false true false - dynamic true 1 "
       "18446744073709551615 id=b\n"
       "wire /World/W stiff a b 2\n");
   ASSERT_EQ(b->render.wires.size(), 1u);

@@ -182,5 +182,5 @@ TEST(RenderLimits, CameraWidthPastIntRangeIsAnErrorNotAWrap) {
   EXPECT_EQ(b.diags[0].code, "RS2003");
   EXPECT_EQ(b.diags[0].line, 2u);
   EXPECT_EQ(b.diags[0].column, 45u);
-  EXPECT_EQ(b.diags[0].message, "invalid 32-bit integer '4294967297' for width of camera");
+  EXPECT_EQ(b.diags[0].message, "expected a 32-bit integer, found '4294967297'");  // validate's words
 }

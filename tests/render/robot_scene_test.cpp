@@ -265,9 +265,9 @@ TEST_F(RobotScene, MjcfGeomsInTheirRgba) {
 // one stays; each record is one segmentation legend entry.
 TEST_F(RobotScene, DrawablesFollowTheirBodiesAndLinks) {
   Built b = build(arm("5 0 0") +
-                  "object /World/Crate box 0 0 1 1 0 0 0 1 1 1 0 0 1 default default false true false - dynamic true "
+                  "object /World/Crate box 0 0 1 1 0 0 0 1 1 1 0 0 1 default engine_default false true false - dynamic true "
                   "1 18446744073709551615 id=crate semanticClass=crate\n"
-                  "object /World/Wall box 0 3 1 1 0 0 0 1 1 1 0 0 1 default default false true true - static true "
+                  "object /World/Wall box 0 3 1 1 0 0 0 1 1 1 0 0 1 default engine_default false true true - static true "
                   "1 18446744073709551615 id=wall segmentationColor=1,0,0\n");
   ASSERT_TRUE(b.ok) << (b.diags.empty() ? "" : b.diags[0].message);
   ASSERT_EQ(b.scene.drawables.size(), 4u);  // crate, wall, the arm's two links

@@ -20,7 +20,7 @@ namespace {
 
 // The merge as it was before the sink: `out` gathered whole, `extra` sorted
 // by line and column and merged in, dropping one whose code `out` has on
-// that line.
+// that line, and the model's own rules on a line its reader could not parse.
 Diagnostics referenceValidate(const std::string& text, const CheckOptions& options) {
   LoadResult loaded = parse(text);
   if (!loaded.ok()) return loaded.diagnostics;
@@ -42,6 +42,11 @@ Diagnostics referenceValidate(const std::string& text, const CheckOptions& optio
   hintContinuations(loaded.continuedLines, extra);
   std::set<std::pair<std::uint32_t, std::string>> seen;
   for (const Diagnostic& d : out) seen.emplace(d.line, d.code);
+  // A line whose value the model's reader could not parse is not judged
+  // by the model again (issue 23: one typo, one error).
+  std::set<std::uint32_t> unparsed;
+  for (const Diagnostic& d : extra)
+    if (d.severity == Severity::Error && d.code.rfind("RS2", 0) == 0) unparsed.insert(d.line);
   std::stable_sort(extra.begin(), extra.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::tie(a.line, a.column) < std::tie(b.line, b.column);
   });
@@ -49,6 +54,7 @@ Diagnostics referenceValidate(const std::string& text, const CheckOptions& optio
   std::size_t i = 0;
   for (const Diagnostic& d : extra) {
     if (seen.count({d.line, d.code})) continue;
+    if (unparsed.count(d.line) && d.code.rfind("RS2", 0) != 0) continue;
     while (i < out.size() && (out[i].line < d.line || (out[i].line == d.line && out[i].column <= d.column)))
       merged.push_back(out[i++]);
     merged.push_back(d);
