@@ -1012,8 +1012,9 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& s
                       Diagnostics& diags, const DrawLimits& limits, asset::AssetCache* assets) {
   scene = Scene{};
   // lib/core's verdict first, as validate gives it (scene/validate.hpp).
-  bool ok = robot::checkDocument(doc, options.baseDir.empty() ? options.sceneDir : options.baseDir, diags) &&
-            buildScene(doc, options, scene, diags);
+  // A document with errors goes no further: the model would read fallbacks.
+  if (!robot::checkDocument(doc, options.baseDir.empty() ? options.sceneDir : options.baseDir, diags)) return false;
+  bool ok = buildScene(doc, options, scene, diags);
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
   // A deformable is judged with its mesh, as sim judges it (a missing

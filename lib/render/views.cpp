@@ -259,26 +259,6 @@ bool expandPattern(const std::string& pattern, const OutputFields& f, std::strin
 }
 
 
-std::string imageExtensionProblem(const std::string& file) {
-  std::size_t start = file.find_last_of('/');
-  start = start == std::string::npos ? 0 : start + 1;
-  std::size_t dot = file.find_last_of('.');
-  if (dot == std::string::npos || dot <= start) return {};
-  std::string extension = file.substr(dot + 1);
-  std::string lower = extension;
-  for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  // Only names that promise another format are refused: a name such as
-  // "pipe.out" or "frame.tmp" promises nothing, and a FIFO or a temporary
-  // name must stay writable.
-  static const char* const kOther[] = {"jpg", "jpeg", "jpe", "jp2", "bmp", "gif", "tif", "tiff", "webp", "exr",
-                                       "ppm", "pgm", "pbm", "pnm", "pfm", "hdr", "tga", "npy", "npz", "json",
-                                       "csv", "pcd", "rgb", "depth", "segmentation"};
-  if (std::find(std::begin(kOther), std::end(kOther), lower) == std::end(kOther)) return {};
-  return "'" + file + "' ends in ." + extension +
-         ", but rscene-render writes PNG images only (a depth image's float .npy and a segmentation's .json legend "
-         "are written beside the image, under its name with .npy or .json)";
-}
-
 std::string outputPathPattern(const std::string& path, bool severalKinds, bool severalFrames) {
   std::string suffix;
   if (severalKinds && !patternHas(path, "kind")) suffix += ".{kind}";

@@ -8,6 +8,7 @@
 // parentObject/parentLink (robot::sensorPose).  poseViews() moves the views
 // with the bodies along a trajectory.
 #pragma once
+#include "scene/sensor_check.hpp"
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -83,12 +84,10 @@ bool patternHas(const std::string& pattern, const char* field);
 // unmatched brace.
 bool expandPattern(const std::string& pattern, const OutputFields& fields, std::string& out, std::string* error);
 
-// Why an image file name does not suit: rscene-render writes PNG only, so
-// its extension must be .png (any case) or absent ("" when it suits).  A
-// .jpg holding PNG bytes would mislead every viewer; a .npy or .json one
-// would also clash with the depth and segmentation files written beside
-// the image.  A leading dot ("out/.hidden") is no extension.
-std::string imageExtensionProblem(const std::string& file);
+// Why an image file name does not suit (.png or no extension): the scene
+// model's rule (scene/sensor_check.hpp), which validate applies to every
+// camera's outputPath too.
+using rscene::imageExtensionProblem;
 
 // The pattern a record's outputPath stands for, for a view with several
 // passes or frames: ".{kind}" before the extension when `severalKinds` and

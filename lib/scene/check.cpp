@@ -141,7 +141,10 @@ class Checker {
     std::string error, field;
     const bool ownValues = checkDeformableRecord(d, error, field);
     if (!ownValues) r.error(field, particle_code::kDeformable, "deformable '" + d.path + "': " + error);
-    if (d.meshPath.empty()) return;  // lib/core's RS2xxx for the positional meshPath
+    if (d.meshPath.empty()) {  // `-`: rscene-sim has no particles to make, rscene-render nothing to draw
+      r.error("meshPath", scene_code::kNoMesh, "deformable '" + d.path + "' has no mesh file");
+      return;
+    }
     if (!opt_.exists(d.meshPath)) {
       // Unless files are checked, a missing file is the caller's to report
       // (rscene-render draws a placeholder where missing assets are allowed).

@@ -51,6 +51,10 @@ bool checkDeformableRecord(const Deformable& r, std::string& error, std::string&
                                 std::to_string(kMaxDeformableSubsteps) + "]");
   if (!r.scale.allFinite() || r.scale.cwiseAbs().maxCoeff() > kMaxCoordinate)
     return fail("scale", "scale is not finite");
+  // As written (a check needs no world pose); the placed particles are
+  // bounded again once placed (deformable_model.hpp).
+  if (!r.local.position.allFinite() || r.local.position.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    return fail("position", "position is beyond 1e12 m");
   if ((deformableFilled(r) || r.kind == "fem") && !(r.particleSpacing > 0))
     return fail("particleSpacing", "particleSpacing must be positive for a filled or fem body");
   return true;

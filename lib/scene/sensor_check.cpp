@@ -150,6 +150,9 @@ std::vector<SensorProblem> sensorProblems(const SensorValues& s) {
 
 std::string outputPathProblem(const std::string& path) {
   if (path.empty() || path == "-") return {};
+  // %00 decodes to a NUL the file system would cut the name at: two
+  // records would write one file.
+  if (path.find('\0') != std::string::npos) return "contains a NUL byte";
   if (path.front() == '/' || path.front() == '\\') return "is absolute";
   if (path.size() >= 2 && path[1] == ':') return "is absolute";  // a Windows drive: C:x, C:/x
   // A '..' part ('/' or '\\' separated) climbs out of the folder outputs are written to.
@@ -161,6 +164,26 @@ std::string outputPathProblem(const std::string& path) {
     start = end + 1;
   }
   return {};
+}
+
+std::string imageExtensionProblem(const std::string& file) {
+  std::size_t start = file.find_last_of('/');
+  start = start == std::string::npos ? 0 : start + 1;
+  std::size_t dot = file.find_last_of('.');
+  if (dot == std::string::npos || dot <= start) return {};
+  std::string extension = file.substr(dot + 1);
+  std::string lower = extension;
+  for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  // Only names that promise another format are refused: a name such as
+  // "pipe.out" or "frame.tmp" promises nothing, and a FIFO or a temporary
+  // name must stay writable.
+  static const char* const kOther[] = {"jpg", "jpeg", "jpe", "jp2", "bmp", "gif", "tif", "tiff", "webp", "exr",
+                                       "ppm", "pgm", "pbm", "pnm", "pfm", "hdr", "tga", "npy", "npz", "json",
+                                       "csv", "pcd", "rgb", "depth", "segmentation"};
+  if (std::find(std::begin(kOther), std::end(kOther), lower) == std::end(kOther)) return {};
+  return "'" + file + "' ends in ." + extension +
+         ", but rscene-render writes PNG images only (a depth image's float .npy and a segmentation's .json legend "
+         "are written beside the image, under its name with .npy or .json)";
 }
 
 std::string sensorFileName(const std::string& path) {
@@ -277,7 +300,7 @@ class SensorChecker {
 
   void camera(std::size_t i) {
     RecordReader r(doc_, i, out_);
-    outputPath(r, "camera");
+    outputPath(r, "camera", true);
     Diagnostics ignored;  // values that do not parse are RS2xxx errors already
     RecordReader values(doc_, i, ignored);
     std::size_t before = ignored.size();
@@ -348,7 +371,7 @@ class SensorChecker {
     bool onBody = object.empty() || mount(r, object);
     std::string link = values.str("parentLink");
     if (onBody && !link.empty() && link != "-") parentLink(r, object, link);
-    bool problem = outputPath(r, "sensor");
+    bool problem = outputPath(r, "sensor", isCameraLikeSensor(s.kind));
     if (!values.flag("enabled")) return;
     if (s.kind == "lidar" || s.kind == "imu") {
       if (!problem) recorded(r, s.kind == "lidar", values.str("outputPath"));
@@ -441,13 +464,21 @@ class SensorChecker {
     return -1;
   }
 
-  // False when the outputPath is refused (said here).
-  bool outputPath(const RecordReader& r, const char* what) {
+  // False when the outputPath is refused (said here).  `image`: the path
+  // names the PNG rscene-render writes (a camera, a camera-like sensor).
+  bool outputPath(const RecordReader& r, const char* what, bool image) {
     std::string path = r.str("outputPath");
     std::string problem = outputPathProblem(path);
+    if (problem.empty() && image && path != "-" && !path.empty()) {
+      if (path.back() == '/' || path.back() == '\\')
+        problem = "ends in '/', but a view's image is a file";
+      else if (std::string why = imageExtensionProblem(path); !why.empty())
+        problem = why.substr(why.find("' ends in") + 2);
+    }
     if (problem.empty()) return false;
     r.error("outputPath", sensor_code::kOutputPath, std::string(what) + " outputPath '" + path + "' " + problem,
-            "tools write outputs only inside their output folder: give a relative path without '..'");
+            image ? "name a .png file (or no extension) inside the output folder, without '..'"
+                  : "tools write outputs only inside their output folder: give a relative path without '..'");
     return true;
   }
 

@@ -106,6 +106,13 @@ bool isKnownSensorKind(const std::string& canonicalKind);
 // climbs out of the output directory), or empty when they may.  "" and "-"
 // are no output.
 std::string outputPathProblem(const std::string& outputPath);
+// Why an image file name does not suit: rscene-render writes PNG only, so
+// its extension must be .png (any case) or absent ("" when it suits).  A
+// .jpg holding PNG bytes would mislead every viewer; a .npy or .json one
+// would also clash with the depth and segmentation files written beside
+// the image.  A leading dot ("out/.hidden") is no extension.  A camera's
+// outputPath must also name a file, not a folder (no final '/').
+std::string imageExtensionProblem(const std::string& file);
 
 // ---- What rscene-sim --sensors writes, one rule for sim and validate ----
 //

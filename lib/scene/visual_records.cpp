@@ -203,7 +203,7 @@ Deformable readDeformable(const Document& doc, const RecordReader& r, int idx, c
 Granular readGranular(const Document& doc, const RecordReader& r, int idx) {
   Granular g;
   identity(doc, r, idx, g);
-  g.kind = r.name("kind");
+  g.kind = r.name("kind", std::string());  // free text RaiSim does not read; `-` (empty) is allowed, as validate says
   g.local = readPose(r, "position", "orientation");
   g.scale = r.vec3("scale", Eigen::Vector3d::Ones());
   std::vector<double> xs;
