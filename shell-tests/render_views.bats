@@ -421,9 +421,13 @@ XML
   [[ "$stderr" == "rscene-render: error: --diff-output: 'd.jpg' ends in .jpg, "* ]]
   [ ! -e ref.png ]
   sed 's#outputPath=caps/eye.png#outputPath=caps/eye.jpg#' s.rscene > j.rscene
+  # The record's own outputPath is the scene model's rule: RS7069 at the
+  # key, as validate and sim say it.
   run -2 --separate-stderr "$RENDER" j.rscene --camera eye
-  [[ "$stderr" == "j.rscene:7:"*": error: outputPath: 'caps/eye.depth.jpg' ends in .jpg, but "*" [RS9048]"* ]]
+  [[ "$stderr" == "j.rscene:7:"*": error: sensor outputPath 'caps/eye.jpg' ends in .jpg, but "*" [RS7069]"* ]]
   [ ! -e caps ]
+  run -1 "$BIN/rscene-validate" j.rscene
+  [[ "$output" == "j.rscene:7:"*": error: sensor outputPath 'caps/eye.jpg' ends in .jpg, but "*" [RS7069]"* ]]
   run "$RENDER" s.rscene --camera eye -o 'u/{kind}.PNG'
   [ "$status" -eq 0 ]
   is_png u/depth.PNG && [ -f u/depth.npy ] && [ -f u/segmentation.json ]

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string_view>
 #include <tuple>
+#include <unordered_map>
 
 #include "core/loader.hpp"
 #include "scene/check.hpp"
@@ -32,15 +33,8 @@ struct ModelFindings {
       const CheckInfo* info = checkInfo(d.code);
       return d.file.empty() && info && info->layer == CheckLayer::Core;
     };
-    // A record with a value that does not parse is not judged again by
-    // the model: the model read a fallback there, and a scale written `1x`
-    // would also be a zero-size box.  One typo, one error (core's).
-    std::vector<std::uint32_t> unparsed;
-    for (const SceneFinding& f : found)
-      if (core(f.diagnostic) && f.diagnostic.severity == Severity::Error) unparsed.push_back(f.sceneLine);
     for (SceneFinding& f : found) {
       if (core(f.diagnostic)) continue;
-      if (std::binary_search(unparsed.begin(), unparsed.end(), f.sceneLine)) continue;
       lines.push_back(f.sceneLine);
       list.push_back(std::move(f.diagnostic));
     }
@@ -95,6 +89,36 @@ class MergeSink : public DiagnosticSink {
   std::size_t i_ = 0;
 };
 
+// A field whose value does not parse is not judged again by the model:
+// the model read a fallback there (a scale written `1x` would also be a
+// zero-size box).  One typo, one error (the reader's, which is core's code
+// and which core reports itself).  A model finding is dropped when a
+// reader error of its line falls inside the token it points at.
+void dropJudgedAgain(const Document& doc, Diagnostics& found) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> unparsed;  // (line, column)
+  for (const Diagnostic& d : found) {
+    const CheckInfo* info = checkInfo(d.code);
+    if (d.file.empty() && d.severity == Severity::Error && info && info->layer == CheckLayer::Core)
+      unparsed.emplace_back(d.line, d.column);
+  }
+  if (unparsed.empty()) return;
+  std::sort(unparsed.begin(), unparsed.end());
+  std::unordered_map<std::uint32_t, const Record*> byLine;
+  for (const Record& r : doc.records) byLine.emplace(r.line, &r);
+  auto judgedAgain = [&](const Diagnostic& d) {
+    const CheckInfo* info = checkInfo(d.code);
+    if (!d.file.empty() || !info || info->layer == CheckLayer::Core || d.column == 0) return false;
+    auto it = byLine.find(d.line);
+    if (it == byLine.end()) return false;
+    std::string_view text = doc.sourceLine(*it->second);
+    std::size_t end = text.find_first_of(" \t", d.column - 1);
+    auto last = static_cast<std::uint32_t>(end == std::string_view::npos ? text.size() : end);
+    auto lo = std::lower_bound(unparsed.begin(), unparsed.end(), std::pair{d.line, d.column});
+    return lo != unparsed.end() && lo->first == d.line && lo->second <= last;
+  };
+  found.erase(std::remove_if(found.begin(), found.end(), judgedAgain), found.end());
+}
+
 }  // namespace
 
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
@@ -121,6 +145,7 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   if (options.checkFiles) sc.readSurface = readSurface;
   checkScene(doc, scene, sc, found);
   hintContinuations(loaded.continuedLines, found);
+  dropJudgedAgain(doc, found);
   std::vector<SceneFinding> listed;
   listed.reserve(found.size());
   for (Diagnostic& d : found) listed.push_back({d.line, std::move(d)});
@@ -144,10 +169,11 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
 bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out, const ExtraSceneCheck& extra) {
   struct Errors : DiagnosticSink {
     Diagnostics* out;
+    bool warnings = false;  // keep warnings too
     bool any = false;
     void add(Diagnostic d) override {
-      if (d.severity != Severity::Error) return;
-      any = true;
+      if (d.severity == Severity::Error) any = true;
+      else if (!warnings) return;
       if (out) out->push_back(std::move(d));
     }
   };
@@ -157,11 +183,12 @@ bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics
   core.out = nullptr;
   check(doc, options, core);
   if (!core.any) return true;
-  // The errors, and their order, are rscene-validate's: core's merged
-  // with the model's and the robots' by line and column.  Only a scene
+  // The findings, and their order, are rscene-validate's: core's merged
+  // with the model's and the robots' by line and column, warnings too.  Only a scene
   // with errors pays for this second reading.
   Errors all;
   all.out = &out;
+  all.warnings = true;  // validate's whole list: its warnings too
   Document again;
   validateScene(std::string(doc.buffer()), options, again, all, extra);
   return false;

@@ -50,8 +50,8 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
 // this before it builds the scene model, so that it stops at the finding
 // validate reports, with its code and column, and the model never judges a
 // value that does not parse (a scale written `1x` is RS2001, not also a
-// zero-size box).  When there are errors, `out` gets validate's errors in
-// validate's order (with `extra`'s, lib/robot's robot checks).  False when
+// zero-size box).  When there are errors, `out` gets validate's findings
+// (warnings too) in validate's order (with `extra`'s, lib/robot's robot checks).  False when
 // it added an error.
 bool checkDocument(const Document& doc, const std::string& sceneDir, Diagnostics& out,
                    const ExtraSceneCheck& extra = {});
