@@ -116,6 +116,15 @@ std::vector<Case> cases() {
       {"RS7086", granular("", "1"), granular("", "3")},
       {"RS7081", deformable("totalMass=0"), deformable("totalMass=2")},
       {"RS7081", deformable("particleMode=filled particleSpacing=0"), deformable("particleMode=filled")},
+      // One outputPath rule for validate, sim and render (issue 23): a NUL
+      // would cut the name (two views, one file), a camera writes a PNG file.
+      {"RS7069", H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=a.png%00x\n",
+       H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=a.png\n"},
+      {"RS7069", H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=shots/a.jpg\n",
+       H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=shots/a.PNG\n"},
+      {"RS7069", H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=shots/\n",
+       H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 64 48 rgb true outputPath=shots/a\n"},
+      {"RS7004", "raisim_engine_scene 2\ndeformable /World/D cloth - 0 0 1 1 0 0 0 1 1 1\n", deformable("")},
       {"RS2006", deformable("solverMode=gauss"), deformable("solverMode=PBD")},
       {"RS2006", granular("normalContactModel=hooke"), granular("normalContactModel=LINEAR")},
       {"RS7011",
