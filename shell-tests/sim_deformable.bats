@@ -54,12 +54,17 @@ PY
   [ "${stderr%%$'\n'*}" = "cloth.rscene:6:208: error: deformable '/World/Cloth': pinnedVertices 99 is not a vertex of cloth.obj (it has 81) [RS7081]" ]
 }
 
-@test "a pinned vertex that is no whole number (2.7, 1e30, -3) is an error at pinnedVertices" {
-  for v in 2.7 1e30 -3; do
+@test "a pinned vertex that is no whole number (2.7, 1e30) is validate's RS2003 at the value; -3 is RS7081 at pinnedVertices" {
+  for v in 2.7 1e30; do
     scene "pinnedVertices=0,$v"
     run -2 --separate-stderr "$SIM" --steps 1 cloth.rscene
-    [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:208: error: deformable '/World/Cloth': pinnedVertices holds a value that is not a vertex index (a whole number from 0 to 80) [RS7081]" ]]
+    [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:210: error: expected an integer, found '$v' [RS2003]" ]]
+    run -1 "$BIN/rscene-validate" cloth.rscene
+    [[ "${lines[0]}" == "cloth.rscene:6:210: error: expected an integer, found '$v' [RS2003]" ]]
   done
+  scene "pinnedVertices=0,-3"
+  run -2 --separate-stderr "$SIM" --steps 1 cloth.rscene
+  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:208: error: deformable '/World/Cloth': pinnedVertices holds a value that is not a vertex index (a whole number from 0 to 80) [RS7081]" ]]
 }
 
 @test "a collisionRadius larger than the body is an error at collisionRadius" {

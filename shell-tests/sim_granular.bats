@@ -49,7 +49,7 @@ setup() {
   [[ ${stderr_lines[0]} =~ ^neg\.rscene:4:[0-9]+:\ error:\ granular\ /World/Sand:\ density\ must\ be\ positive.*\[RS7088\]$ ]]
   bed | sed 's/=linear/=mindlin/' > model.rscene
   run -2 --separate-stderr "$SIM" --steps 1 model.rscene
-  [[ $stderr == *"invalid contact_model name 'mindlin' for normalContactModel of granular [RS2006]"* ]]
+  [[ $stderr == *"error: unknown contact_model 'mindlin' [RS2006]"* ]]  # validate's words
   bed | sed 's/normalStiffness=5e4/normalStiffness=1e12/' > stiff.rscene
   run -2 --separate-stderr "$SIM" --steps 1 stiff.rscene
   [[ $stderr == *"stability needs more than 1000 substeps per world step"*"[RS7087]"* ]]
