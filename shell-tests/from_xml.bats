@@ -417,3 +417,17 @@ refused() {
   run -0 --separate-stderr "$FROM" m.xml -o m.rscene
   [[ $stderr != *RS8113* ]]
 }
+
+@test "--relative-to DIR: asset paths from DIR on standard output, as -o into DIR writes them" {
+  mkdir -p out/sub
+  "$BIN/rscene-to-xml" -q "$ROOT/examples/robot_cell.rscene" -o w.xml
+  "$FROM" -q w.xml --relative-to out/sub > out/sub/s.rscene
+  "$FROM" -q w.xml -o out/sub/o.rscene
+  cmp out/sub/s.rscene out/sub/o.rscene
+  "$FROM" -q w.xml > here.rscene
+  ! cmp -s here.rscene out/sub/s.rscene
+  run -2 --separate-stderr "$FROM" w.xml --relative-to out -o x.rscene
+  [ "$stderr" = "rscene-from-xml: error: --relative-to is for standard output: with -o FILE, paths are relative to FILE's folder" ]
+  [ ! -e x.rscene ]
+  run -2 "$FROM" w.xml --relative-to out --absolute-paths
+}

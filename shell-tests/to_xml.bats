@@ -170,3 +170,16 @@ EOF
   ! cmp -s back.rscene changed.rscene
   run -1 bash -c '"$1" -q changed.rscene | cmp - scene.xml' _ "$TOOL"
 }
+
+@test "--relative-to DIR: [THIS_DIR] paths from DIR on standard output; with -o or --absolute-paths a usage error" {
+  mkdir -p out/sub
+  "$BIN/rscene-to-xml" -q "$ROOT/examples/robot_cell.rscene" --relative-to out/sub > out/sub/w.xml
+  "$BIN/rscene-to-xml" -q "$ROOT/examples/robot_cell.rscene" -o out/sub/o.xml
+  cmp out/sub/w.xml out/sub/o.xml  # the same paths as -o writes into that folder
+  "$BIN/rscene-to-xml" -q "$ROOT/examples/robot_cell.rscene" > here.xml
+  ! cmp -s here.xml out/sub/w.xml
+  run -2 --separate-stderr "$BIN/rscene-to-xml" "$ROOT/examples/robot_cell.rscene" --relative-to out -o x.xml
+  [ "$stderr" = "rscene-to-xml: error: --relative-to is for standard output: with -o FILE, paths are relative to FILE's folder" ]
+  [ ! -e x.xml ]
+  run -2 "$BIN/rscene-to-xml" "$ROOT/examples/robot_cell.rscene" --relative-to out --absolute-paths
+}

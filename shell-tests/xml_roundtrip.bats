@@ -392,3 +392,31 @@ EOF
   run -1 same_trajectory a.csv d.csv 1e-9
   [[ $output == *"field 2: /World/a against /World/b"* ]]
 }
+
+# Issue 23: a scene or XML written to standard output names paths from the
+# current folder; --relative-to DIR names them from where it will be read,
+# so the round trip run from another folder still resolves every asset.
+@test "--relative-to: to-xml | from-xml run from another folder writes paths that resolve where the files are saved" {
+  mkdir -p a/b/c/out elsewhere
+  out=$PWD/a/b/c/out
+  cd elsewhere
+  "$TO" -q "$ROOT/examples/robot_cell.rscene" --relative-to "$out" > "$out/world.xml"
+  "$FROM" -q --stdin-filename "$out/world.xml" --relative-to "$out" < "$out/world.xml" > "$out/scene.rscene"
+  cd "$out"
+  run -0 "$BIN/rscene-validate" --check-files scene.rscene
+  [ "$output" = "no issues in 1 file" ]
+  run -0 "$BIN/rscene-sim" --steps 2 -o /dev/null scene.rscene
+  # Without it the paths are the current folder's: they do not resolve from out/.
+  cd "$out/../../../../elsewhere"
+  "$FROM" -q "$out/world.xml" > "$out/plain.rscene"
+  cd "$out"
+  run -1 "$BIN/rscene-validate" --check-files plain.rscene
+  [[ $output == *"[RS5001]"* ]]
+  # With -o the output's folder is used: --relative-to is a usage error, as is
+  # giving it with --absolute-paths.
+  run -2 --separate-stderr "$FROM" "$out/world.xml" --relative-to . -o x.rscene
+  [ "$stderr" = "rscene-from-xml: error: --relative-to is for standard output: with -o FILE, paths are relative to FILE's folder" ]
+  [ ! -e x.rscene ]
+  run -2 --separate-stderr "$TO" "$ROOT/examples/robot_cell.rscene" --relative-to . --absolute-paths
+  [[ $stderr == *"--absolute-paths excludes --relative-to"* ]]
+}

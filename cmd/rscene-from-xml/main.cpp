@@ -42,15 +42,26 @@ int main(int argc, char** argv) {
   std::string file = "-", output, stdinName;
   std::vector<std::string> paramTexts;
   bool absolutePaths = false, quiet = false;
+  std::string relativeTo;
   cli::addInputOperand(app, file, "World XML file");
   cli::addOutputOption(app, output, "Write the scene to FILE (atomically) instead of standard output");
   app.add_option("--param", paramTexts, "Set the template parameter @@NAME to VALUE (repeatable)")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);
-  app.add_flag("--absolute-paths", absolutePaths, "Write asset paths absolute instead of relative to the output");
+  CLI::Option* absolute = app.add_flag("--absolute-paths", absolutePaths, "Write asset paths absolute instead of relative to the output");
+  // Standard output has no folder: the paths are written relative to the
+  // current one unless this says where the output will be read from.
+  app.add_option("--relative-to", relativeTo,
+                 "Standard output only: write asset paths relative to DIR, the folder the output will be read from")
+      ->type_name("DIR")
+      ->excludes(absolute);
   app.add_flag("-q,--quiet", quiet, "Print errors only: no warnings, no list of what was not converted");
   cli::addStdinFilename(app, stdinName, true);
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  if (!relativeTo.empty() && !output.empty() && output != "-") {
+    cli::error("--relative-to is for standard output: with -o FILE, paths are relative to FILE's folder");
+    return cli::kTrouble;
+  }
 
   xml::LoadOptions loadOptions;
   for (const std::string& p : paramTexts)
@@ -78,7 +89,7 @@ int main(int argc, char** argv) {
   xml::FromXmlResult converted;
   if (loaded.ok()) {
     xml::FromXmlOptions options;
-    options.outputDir = outPath == "-" ? "." : folderOf(outPath);
+    options.outputDir = outPath != "-" ? folderOf(outPath) : relativeTo.empty() ? "." : relativeTo;
     options.absolutePaths = absolutePaths;
     converted = xml::worldToScene(*loaded.root, options);
     diags.insert(diags.end(), converted.diagnostics.begin(), converted.diagnostics.end());

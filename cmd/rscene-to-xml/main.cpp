@@ -17,13 +17,24 @@ int main(int argc, char** argv) {
   cli::setup(app, "rscene-to-xml");
   std::string file = "-", output, stdinName;
   bool absolutePaths = false, quiet = false;
+  std::string relativeTo;
   cli::addInputOperand(app, file);
   cli::addOutputOption(app, output, "Write the XML to FILE (atomically) instead of standard output");
   cli::addStdinFilename(app, stdinName, true);
-  app.add_flag("--absolute-paths", absolutePaths,
+  CLI::Option* absolute = app.add_flag("--absolute-paths", absolutePaths,
                "Write asset paths absolute instead of [THIS_DIR]/ and the path from the XML's folder");
+  // Standard output has no folder: the paths are written relative to the
+  // current one unless this says where the output will be read from.
+  app.add_option("--relative-to", relativeTo,
+                 "Standard output only: write asset paths relative to DIR, the folder the output will be read from")
+      ->type_name("DIR")
+      ->excludes(absolute);
   app.add_flag("-q,--quiet", quiet, "Do not print the line listing what the XML cannot hold");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
+  if (!relativeTo.empty() && !output.empty() && output != "-") {
+    cli::error("--relative-to is for standard output: with -o FILE, paths are relative to FILE's folder");
+    return cli::kTrouble;
+  }
   // Before any work: -o must name something writeOutput() can replace.
   if (!cli::checkOutputs({{"-o", output.empty() ? "-" : output}})) return cli::kTrouble;
 
@@ -51,7 +62,7 @@ int main(int argc, char** argv) {
   if (!built) return print(ds), cli::kTrouble;
 
   xml::ToXmlOptions xo;
-  xo.outputDir = output.empty() || output == "-" ? "." : directoryOf(output);
+  xo.outputDir = !output.empty() && output != "-" ? directoryOf(output) : relativeTo.empty() ? "." : relativeTo;
   xo.absolutePaths = absolutePaths;
   xml::ToXmlResult result = xml::sceneToXml(doc, scene, xo);
   ds.insert(ds.end(), result.diagnostics.begin(), result.diagnostics.end());

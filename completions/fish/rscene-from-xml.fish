@@ -7,3 +7,4 @@ complete -c rscene-from-xml -l absolute-paths -d 'Write asset paths absolute ins
 complete -c rscene-from-xml -s q -l quiet -d 'Print errors only, no warnings'
 complete -c rscene-from-xml -l stdin-filename -r -F -d 'Name standard input in messages and for [THIS_DIR]'
 complete -c rscene-from-xml -k -x -a '(__fish_complete_suffix .xml)'
+complete -c rscene-from-xml -l relative-to -r -a '(__fish_complete_directories)' -d 'Standard output only: write asset paths relative to DIR'
