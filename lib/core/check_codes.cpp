@@ -40,7 +40,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS2003", E, Core, VSR, "value is not an integer in range"},
     {"RS2004", E, Core, VSR, "collision group or mask is not an unsigned 64-bit integer"},
     {"RS2005", E, Core, VSR, "value is not a flag (true/false, 1/0, yes/no, on/off)"},
-    {"RS2006", E, Core, V, "unknown name for an enumeration"},
+    {"RS2006", E, Core, VSR, "unknown name for a closed enumeration"},
     {"RS2007", W, Core, VSR, "name not known for an open enumeration (newer writers may add names; sim and render say so of a sensor kind, which they neither render nor simulate)"},
     {"RS2008", E, Core, VSR, "vector, quaternion or color with the wrong number of components"},
     {"RS2009", E, Core, VSR, "number list with an empty entry or a trailing separator"},
@@ -142,7 +142,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7066", E, Scene, VSR, "lidar channels or samples below 1 or more than 4194304 rays a scan, ranges not 0 <= min < max <= 1e12 m, vertical field of view outside 0..180 degrees"},
     {"RS7067", E, Scene, VSR, "sensor updateRate outside 0..1e6 Hz, noise standard deviation negative, noise or IMU limit beyond 1e12"},
     {"RS7068", W, Scene, VSR, "sensor parentLink whose parentObject is not an articulated system (the link is not used)"},
-    {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute or has a '..' part (tools write only inside their output folder); a LiDAR or IMU outputPath that names the --sensors folder itself ('.'), an IMU outputPath ending in '/'"},
+    {"RS7069", E, Scene, VSR, "sensor or camera outputPath that is absolute, names a drive, has a '..' part or a NUL byte (tools write only inside their output folder); a camera's or camera-like sensor's image path that names a folder or another format than PNG (.jpg, .npy ...); a LiDAR or IMU outputPath that names the --sensors folder itself ('.'), an IMU outputPath ending in '/'"},
     // RS707x recording sensors (lib/sim/sensor_recorder.hpp, rscene-sim --sensors)
     {"RS7070", E, Scene, VSR, "two sensors that would write one output: two enabled sensor records with the same outputPath; two LiDARs or IMUs (records or robots' sensor sets) whose rscene-sim --sensors outputs are one place or one inside the other (an IMU file in a LiDAR's folder)"},
     {"RS7071", W, Sim, "sim", "physical sensor kind rscene-sim does not record (force_torque, unknown kinds), skipped"},

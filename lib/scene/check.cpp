@@ -1,6 +1,9 @@
 #include "scene/check.hpp"
 
+#include "core/check.hpp"
+
 #include <cmath>
+#include <set>
 #include <tuple>
 
 #include "scene/deformable_check.hpp"
@@ -40,12 +43,31 @@ class Checker {
       : doc_(doc), s_(scene), opt_(opt), out_(out) {}
 
   void run() {
-    timeStep();
-    for (const Object& o : s_.objects) object(o);
-    for (const Compound& c : s_.compounds) compound(c);
+    // A body record with a value its reader could not parse (RS2xxx,
+    // already in `out_`) is not judged by the rules below: they read the
+    // fallback, and one typo would be two errors (`0.8x` as a side is
+    // RS2001, not also a zero-size box; `spacing=0.043m` not also a fill
+    // past maxParticles).  The typo's error stands; fix it and the rules run.
+    for (const Diagnostic& d : out_) {
+      const CheckInfo* info = checkInfo(d.code);
+      if (d.severity == Severity::Error && d.file.empty() && info && info->layer == CheckLayer::Core)
+        unparsed_.insert(d.line);
+    }
+    const bool stepUnparsed = s_.timeStepRecord >= 0 && !judged(s_.timeStepRecord);
+    if (!stepUnparsed) timeStep();
+    for (const Object& o : s_.objects)
+      if (judged(o.recordIndex)) object(o);
+    for (const Compound& c : s_.compounds)
+      if (judged(c.recordIndex)) compound(c);
     for (const Wire& w : s_.wires) wire(w);
-    for (const Deformable& d : s_.deformables) deformable(d);
-    for (const Granular& g : s_.granulars) granular(g);
+    for (const Deformable& d : s_.deformables)
+      if (judged(d.recordIndex)) deformable(d);
+    for (const Granular& g : s_.granulars)  // their substeps depend on the time step too
+      if (judged(g.recordIndex) && !stepUnparsed) granular(g);
+  }
+
+  bool judged(int recordIndex) const {
+    return recordIndex < 0 || !unparsed_.count(doc_.records[static_cast<std::size_t>(recordIndex)].line);
   }
 
  private:
@@ -94,6 +116,7 @@ class Checker {
     if (c.bodyMode == BodyMode::VisualOnly) return;
     mass(reader(c.recordIndex), c.bodyMode, c.mass, c.path);
     for (const CompoundChild& ch : c.children) {
+      if (!judged(ch.recordIndex)) continue;
       RecordReader r = reader(ch.recordIndex);
       // A plane has no place inside a body (Bullet has no compound of one).
       if (ch.primitive == "ground" || ch.primitive == "half_space") {
@@ -179,6 +202,7 @@ class Checker {
   const Scene& s_;
   const SceneCheckOptions& opt_;
   Diagnostics& out_;
+  std::set<std::uint32_t> unparsed_;  // lines of records with a value that does not parse
 };
 
 }  // namespace

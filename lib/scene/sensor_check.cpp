@@ -470,13 +470,18 @@ class SensorChecker {
     std::string path = r.str("outputPath");
     std::string problem = outputPathProblem(path);
     if (problem.empty() && image && path != "-" && !path.empty()) {
-      if (path.back() == '/' || path.back() == '\\')
-        problem = "ends in '/', but a view's image is a file";
+      std::string_view last(path);
+      if (std::size_t slash = last.find_last_of("/\\"); slash != std::string_view::npos) last.remove_prefix(slash + 1);
+      if (last.empty() || last == "." || last == "..")
+        problem = "names a folder, but a view's image is a file";
       else if (std::string why = imageExtensionProblem(path); !why.empty())
         problem = why.substr(why.find("' ends in") + 2);
     }
     if (problem.empty()) return false;
-    r.error("outputPath", sensor_code::kOutputPath, std::string(what) + " outputPath '" + path + "' " + problem,
+    // Shown as written: a NUL byte spelled %00, not a raw byte on a terminal.
+    std::string shown;
+    for (char c : path) shown += c == '\0' ? std::string("%00") : std::string(1, c);
+    r.error("outputPath", sensor_code::kOutputPath, std::string(what) + " outputPath '" + shown + "' " + problem,
             image ? "name a .png file (or no extension) inside the output folder, without '..'"
                   : "tools write outputs only inside their output folder: give a relative path without '..'");
     return true;
