@@ -151,6 +151,27 @@ TEST(SceneCheck, EachCodeTriggersOnItsSceneAndNotOnTheFineOne) {
   }
 }
 
+// One typo, one error (issue 23): a body record whose value does not parse
+// is not judged again by the model, which would read the fallback.
+TEST(SceneCheck, AValueThatDoesNotParseIsOneErrorNotAlsoTheModels) {
+  struct Typo {
+    std::string text, code;
+  };
+  const Typo typos[] = {
+      {H + object("box", "1 0.8x 1"), "RS2001"},  // not also a zero-size box (RS7003)
+      {H + object("sphere", "1 1 1", "0.5q"), "RS2001"},  // not also a zero radius
+      {H + object("box", "1 1 1", "0.5", "2kg"), "RS2001"},  // not also a massless body (RS4008)
+      {granular("", "4", "0.05", "0.043m"), "RS2001"},  // not also a fill past maxParticles (RS7082)
+      {granular("normalStiffness=5e4N", "1"), "RS2001"},  // not also substeps raised (RS7086)
+      {"raisim_engine_scene 2\ntime_step 0.002s\n" + granular("", "1").substr(H.size()), "RS2001"},
+  };
+  for (const Typo& t : typos) {
+    SCOPED_TRACE(t.text);
+    Diagnostics found = validate(t.text);
+    EXPECT_EQ(codes(found), std::vector<std::string>{t.code}) << describe(found);
+  }
+}
+
 // With --check-files, validate judges a deformable with its mesh as sim
 // does: through the SurfaceReader the tool passes (here one in memory).
 TEST(SceneCheck, ADeformableIsJudgedWithItsMeshOnlyWithCheckFiles) {
