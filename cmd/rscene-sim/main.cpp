@@ -113,6 +113,7 @@ int run(const Options& opt) {
   // --sensors: what will be recorded, checked before anything is built.
   std::vector<sim::RecordedSensor> sensors;
   if (ok && !opt.sensors.empty()) ok = simcmd::planSensors(doc, scene, robots, opt.imuFormat, sensors, ds);
+  else if (ok) ok = simcmd::checkSensorMounts(doc, scene, robots, ds);  // RS7045, as validate and render say
   std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
   if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);

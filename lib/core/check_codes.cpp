@@ -123,7 +123,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7042", E, Robot, VSR, "jointOrder names an unknown, fixed or repeated joint, or leaves one out"},
     {"RS7043", W, Robot, VSR, "quaternion in generalizedCoordinate not of unit length (normalised), or zero (error)"},
     {"RS7044", E, Robot, "validate sim", "articulated_ik frame that is no joint or link of the robot (a warning when the target is disabled)"},
-    {"RS7045", E, Robot, V, "sensor parentLink that is no link of the articulated system its parentObject names"},
+    {"RS7045", E, Robot, VSR, "sensor parentLink that is no link of the articulated system its parentObject names"},
     {"RS7046", E, Robot, "validate sim", "wire localIndexA/B past the body count of the articulated system it names (movable bodies, base included)"},
     {"RS7047", W, Robot, "sim", "articulated_ik target not reached within its tolerances (the message names the residual)"},
     {"RS7048", E, Robot, "validate sim", "articulated_ik setting that cannot be used (iterations, tolerances, gains, unknown inverseMethod)"},
