@@ -340,6 +340,13 @@ TEST(FromXml, ProceduralHeightmapKeepsParametersAndWarnsOnce) {
 }
 
 // A floating-base robot: base -> (revolute) arm -> (fixed) tip.
+// A folder of this test's own: ctest runs tests in parallel processes, and
+// two tests rewriting one arm.urdf made a reader see it half-written.
+fs::path ownDir(const std::string& stem) {
+  return fs::temp_directory_path() /
+         (stem + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
+
 void writeRobot(const fs::path& file) {
   std::ofstream(file) << R"(<robot name="arm">
   <link name="base"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
@@ -353,7 +360,7 @@ void writeRobot(const fs::path& file) {
 }
 
 TEST(FromXml, ArticulatedSystemAndWireToAFrame) {
-  fs::path dir = fs::temp_directory_path() / "rscene_from_xml_robot";
+  fs::path dir = ownDir("rscene_from_xml_robot");
   fs::create_directories(dir);
   writeRobot(dir / "arm.urdf");
   FromXmlOptions options;
@@ -382,7 +389,7 @@ TEST(FromXml, ArticulatedSystemAndWireToAFrame) {
 }
 
 TEST(FromXml, RobotErrorsAndUnreadableRobot) {
-  fs::path dir = fs::temp_directory_path() / "rscene_from_xml_robot";
+  fs::path dir = ownDir("rscene_from_xml_robot");
   fs::create_directories(dir);
   writeRobot(dir / "arm.urdf");
   std::string urdf = (dir / "arm.urdf").string();
@@ -678,7 +685,7 @@ TEST(FromXml, RecordsTheSceneChecksRefuseAreErrorsAtTheirElement) {
 }
 
 TEST(FromXml, ZeroQuaternionInARobotsQposIsAnErrorAtQpos) {
-  fs::path dir = fs::temp_directory_path() / "rscene_from_xml_robot";
+  fs::path dir = ownDir("rscene_from_xml_robot");
   fs::create_directories(dir);
   writeRobot(dir / "arm.urdf");
   FromXmlOptions options;
