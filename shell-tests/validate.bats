@@ -143,7 +143,7 @@ setup() {
   run --separate-stderr "$V" --check-files "$DATA/validate_mesh.rscene"
   [ "$status" -eq 1 ]
   [[ "${lines[0]}" == *"error: file 'validate_missing_mesh.obj' does not exist (resolved to '$DATA/./validate_missing_mesh.obj')"* || "${lines[0]}" == *"error: file 'validate_missing_mesh.obj' does not exist"* ]]
-  mkdir -p here && touch here/validate_missing_mesh.obj
+  mkdir -p here && printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > here/validate_missing_mesh.obj  # a mesh: --check-files reads it
   run "$V" --check-files --base-dir here - < "$DATA/validate_mesh.rscene"
   [ "$status" -eq 0 ]
   run "$V" --check-files --stdin-filename here/scene.rscene < "$DATA/validate_mesh.rscene"

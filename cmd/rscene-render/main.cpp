@@ -62,7 +62,9 @@ int run(const Options& opt) {
   render::RenderScene scene;
   Scene model;
   Diagnostics diags;
-  bool built = render::buildRenderScene(loaded.document, so, model, scene, diags, opt.limits, &assets);
+  render::DrawLimits limits = opt.limits;
+  limits.allowMissingAssets = opt.allowMissing;
+  bool built = render::buildRenderScene(loaded.document, so, model, scene, diags, limits, &assets);
   cli::hintStdinPaths(in, opt.baseDir, diags);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;

@@ -69,7 +69,7 @@ int run(const Options& opt) {
   // only from a document that has none.
   bool ok = robot::checkDocument(doc, so.baseDir.empty() ? so.sceneDir : so.baseDir, ds) && buildScene(doc, so, scene, ds);
   if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
-  ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem());
+  ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem(), assets.meshReader(asset::MeshContent::Geometry));
   // The step count, before anything is built: --max-steps bounds the run.
   auto maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
   std::uint64_t total = 0;

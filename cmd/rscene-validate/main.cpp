@@ -9,6 +9,7 @@
 #include "common/cli.hpp"
 #include "core/check.hpp"
 #include "robot/check.hpp"
+#include "asset/cache.hpp"
 #include "asset/obj_surface.hpp"
 #include "scene/validate.hpp"
 #include "rscene-validate/output.hpp"
@@ -97,12 +98,13 @@ struct Run {
     // Robots are checked against their models (lib/robot, above lib/scene):
     // one model cache per scene, so each scene reports its robots' files.
     robot::ModelCache models;
+    asset::AssetCache meshes;  // --check-files reads each mesh once, as sim would
     robot::RobotCheckOptions ro{co.checkFiles, co.fileExists};
     validateScene(std::move(in.text), co, doc, keep,
                   [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
                     robot::checkRobots(d, s, ro, models, out);
                   },
-                  asset::objSurfaceReader(diskFileSystem()));
+                  asset::objSurfaceReader(diskFileSystem()), meshes.meshReader(asset::MeshContent::Geometry));
     totals.errors += keep.counts.errors;
     totals.warnings += keep.counts.warnings;
     ++totals.files;

@@ -40,4 +40,8 @@ std::shared_ptr<const FloatImage> AssetCache::floatImage(const std::string& path
   });
 }
 
+MeshReader AssetCache::meshReader(MeshContent content) {
+  return [this, content](const std::string& path, std::string& error) { return mesh(path, content, &error) != nullptr; };
+}
+
 }  // namespace rscene::asset

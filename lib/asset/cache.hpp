@@ -12,6 +12,7 @@
 #include "asset/image.hpp"
 #include "asset/mesh.hpp"
 #include "core/filesystem.hpp"
+#include "scene/triangle_surface.hpp"
 
 namespace rscene::asset {
 
@@ -26,6 +27,9 @@ class AssetCache {
   std::shared_ptr<const FloatImage> floatImage(const std::string& path, std::string* error);  // HDR, PNG, JPEG
 
   const FileSystem& fileSystem() const { return fs_; }
+  // mesh() as the scene model's MeshReader (SceneCheckOptions::readMesh):
+  // a mesh read for the check stays cached for the tool's own use.
+  MeshReader meshReader(MeshContent content);
   const AssetLimits& limits() const { return limits_; }
 
  private:

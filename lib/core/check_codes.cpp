@@ -93,7 +93,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7001", E, Scene, VSR, "point cloud colors that are not one per point"},
     {"RS7003", E, Scene, VSR, "body shape with a zero or negative physical size"},
     {"RS7004", E, Scene, VSR, "mesh body without a mesh path"},
-    {"RS7007", E, Sim, "sim", "mesh file that cannot be read or has no triangles"},
+    {"RS7007", E, Scene, VSR, "mesh file that cannot be read or has no triangles (a body's collision mesh, a compound child's; a foliage mesh for validate and render); validate with --check-files"},
     {"RS7008", E, Scene, VSR, "time_step not positive"},
     {"RS7009", E, Scene, VSR, "compound child that is a plane (ground or half_space)"},
     {"RS7010", W, Sim, "sim", "records kept but not simulated (sensor records of kinds rscene-sim does not model)"},
@@ -130,7 +130,7 @@ constexpr CheckInfo kChecks[] = {
     {"RS7049", E, Robot, VSR, "generalizedCoordinate or generalizedVelocity entry beyond 1e12 in magnitude"},
     // RS705x simulating robots (lib/sim)
     {"RS7051", W, Sim, "sim", "convexifyCollisionMeshes=false: robot mesh collisions are simulated as convex hulls all the same"},
-    {"RS7052", E, Sim, "sim", "robot with more than 1000 bodies (movable joints + 1): Bullet's cost grows with their square"},
+    {"RS7052", E, Robot, VSR, "robot with more than 1000 bodies (movable joints + 1): Bullet's cost grows with their square"},
     // RS706x sensors: sensor sets of robot files (lib/robot/sensor_set.hpp),
     // sensor records and output paths (lib/scene/sensor_check.hpp).
     {"RS7060", E, Robot, VSR, "sensor set file that a URDF link names (sensor=) not found in RaiSim's search order"},

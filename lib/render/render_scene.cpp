@@ -1022,6 +1022,13 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& s
   SceneCheckOptions check;
   check.readSurface = asset::objSurfaceReader(assets ? assets->fileSystem() : diskFileSystem());
   check.stepWarnings = false;  // nothing is stepped here
+  // Every body and foliage mesh must read, as validate --check-files and
+  // sim say (RS7007); read into the drawing's cache, so once.
+  asset::AssetCache own;
+  if (!limits.allowMissingAssets) {
+    check.readMesh = (assets ? *assets : own).meshReader(asset::MeshContent::Surface);
+    check.visualAssets = true;
+  }
   ok = checkScene(doc, scene, check, diags) && ok;
   return prepareScene(doc, scene, out, diags, limits, assets) && ok;
 }

@@ -339,6 +339,9 @@ struct DrawLimits {
   // (every k-th sample, the last row and column kept), a uniform flat one
   // as its 4 corners.  Not an error: the scene is drawn at bounded cost.
   std::uint64_t maxTerrainVertices = std::uint64_t{1} << 20;
+  // --allow-missing-assets: an unreadable mesh is drawn as a placeholder
+  // later, so the scene check does not read meshes (RS7007) before.
+  bool allowMissingAssets = false;
 };
 
 // The segmentation color of a record (see Segment): never black.

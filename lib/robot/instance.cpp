@@ -113,6 +113,13 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
     ok = false;
   }
   const Coordinates& c = out.coordinates;
+  if (std::size_t bodies = c.joints.size() + 1; bodies > kMaxRobotBodies) {
+    r.error("resource", code::kTooLarge,
+            "articulated system '" + a.path + "' has " + std::to_string(bodies) + " bodies; rscene-sim simulates at most " +
+                std::to_string(kMaxRobotBodies) + " per robot",
+            "each movable joint adds a body; fixed joints merge into their parent");
+    return false;
+  }
 
   out.q = neutralCoordinate(model, c, a.world);
   if (a.hasCoordinate) {

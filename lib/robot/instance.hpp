@@ -21,7 +21,14 @@ inline constexpr const char* kVelocityLength = "RS7041";    // generalizedVeloci
 inline constexpr const char* kJointOrder = "RS7042";        // jointOrder names an unknown, fixed or repeated joint, or omits one
 inline constexpr const char* kQuaternion = "RS7043";        // quaternion in generalizedCoordinate not of unit length (warning) or zero
 inline constexpr const char* kStateRange = "RS7049";        // coordinate or velocity entry beyond 1e12 (or not finite)
+inline constexpr const char* kTooLarge = "RS7052";          // more than kMaxRobotBodies bodies
 }  // namespace code
+
+// Most bodies (movable joints + 1) of one robot: Bullet's cost grows with
+// the square of a robot's bodies (its self-collision pairs), and 20,000
+// links took 8 GB and then crashed.  A rule of the instance, so validate,
+// sim and render refuse such a robot alike.
+inline constexpr std::size_t kMaxRobotBodies = 1000;
 
 struct RobotInstance {
   const Articulated* record = nullptr;

@@ -435,10 +435,14 @@ void UrdfReader::readJointParts(const Source& src, const XMLElement* e, Joint& j
     std::vector<double> xyz;
     if (numbers(src, a, "xyz", 3, 3, xyz, "the <axis> of " + name + " is ignored (1 0 0)") == Read::Ok) {
       Eigen::Vector3d axis(xyz[0], xyz[1], xyz[2]);
-      if (axis.norm() < 1e-12 && j.type != JointType::Fixed)
+      // A direction: its length is not read.  stableNorm() scales first, so
+      // 1e308 1e308 0 is the diagonal, not an overflow to a zero axis
+      // (which rscene-sim diverged on while validate and render took it).
+      const double length = axis.stableNorm();
+      if (length < 1e-12 && j.type != JointType::Fixed)
         fail(src, a, "<axis> of " + name + " has zero length");
-      else if (axis.norm() >= 1e-12)
-        j.axis = axis.normalized();
+      else if (length >= 1e-12)
+        j.axis = axis.stableNormalized();
     }
   }
   if (const XMLElement* l = e->FirstChildElement("limit")) {

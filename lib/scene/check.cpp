@@ -64,6 +64,10 @@ class Checker {
       if (judged(d.recordIndex)) deformable(d);
     for (const Granular& g : s_.granulars)  // their substeps depend on the time step too
       if (judged(g.recordIndex) && !stepUnparsed) granular(g);
+    if (opt_.visualAssets)
+      for (const Terrain& t : s_.terrains)
+        for (const FoliageLayer& l : t.foliageLayers)
+          if (judged(l.recordIndex)) foliage(l);
   }
 
   bool judged(int recordIndex) const {
@@ -93,6 +97,20 @@ class Checker {
     if (opt_.checkFiles && !opt_.exists(resolved))
       r.error(field, scene_code::kMissingFile, "mesh file '" + resolved + "' " + whyNotAFile(resolved),
               "paths resolve against the scene's directory, then against asset_root");
+    else
+      readable(r, resolved, field, "body '" + path + "': ");
+  }
+
+  // RS7007 when an existing mesh file does not read as a mesh (readMesh).
+  // `who` starts the message, as rscene-sim's World said it ("body 'P': ").
+  void readable(const RecordReader& r, const std::string& resolved, const char* field, const std::string& who) {
+    std::string why;
+    if (opt_.readMesh && !resolved.empty() && opt_.exists(resolved) && !opt_.readMesh(resolved, why))
+      r.error(field, scene_code::kBadMesh, who + "cannot read mesh '" + resolved + "': " + why);
+  }
+
+  void foliage(const FoliageLayer& l) {
+    if (l.enabled && l.primitive == "mesh") readable(reader(l.recordIndex), l.meshPath, "meshPath", "foliage layer '" + l.name + "': ");
   }
 
   void object(const Object& o) {

@@ -24,6 +24,14 @@ struct SceneCheckOptions {
   // constraint count past the bounds ...).  The tools pass lib/asset's
   // OBJ reader (asset::objSurfaceReader); validate only with --check-files.
   SurfaceReader readSurface;
+  // When set, a mesh file that exists must read as a mesh (RS7007): a
+  // body's collision mesh and compound child meshes, and with
+  // visualAssets a foliage layer's mesh.  The tools pass lib/asset's
+  // reader (asset::meshReader); validate only with --check-files.
+  MeshReader readMesh;
+  // Also judge the meshes only drawn (foliage): validate and rscene-render;
+  // rscene-sim reads no visual asset.
+  bool visualAssets = false;
   // Warnings about what stepping the scene costs (RS7086: granular
   // substeps raised): off in a tool that does not step it (rscene-render).
   bool stepWarnings = true;

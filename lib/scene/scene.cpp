@@ -42,7 +42,7 @@ bool modelled(std::string_view tag) {
 bool forBodies(std::string_view tag) {
   return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
          tag == "terrain_region" || tag == "wire" || tag == "point_cloud" || tag == "articulated_resource" ||
-         tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular";
+         tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular" || tag == "terrain_foliage_layer";
 }
 
 Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
@@ -719,8 +719,10 @@ class Builder {
       return;
     }
     FoliageLayer l = readFoliageLayer(r, idx, assetFn());
-    std::size_t samples = static_cast<std::size_t>(owner->xSamples) * owner->ySamples;
-    sampleList(r, "density", samples, 1, l.density);
+    if (!opt_.bodiesOnly) {  // a terrain node of a bodiesOnly build has no samples (validate checks the list)
+      std::size_t samples = static_cast<std::size_t>(owner->xSamples) * owner->ySamples;
+      sampleList(r, "density", samples, 1, l.density);
+    }
     owner->foliageLayers.push_back(std::move(l));
   }
 

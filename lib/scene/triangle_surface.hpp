@@ -21,4 +21,8 @@ struct TriangleSurface {
 // scene model judges a deformable with its mesh without reading files.
 using SurfaceReader = std::function<bool(const std::string& path, TriangleSurface& out, std::string& error)>;
 
+// Whether the mesh file at a resolved path reads as a mesh with triangles
+// (lib/asset's assimp reader); false with a sentence in `error`.
+using MeshReader = std::function<bool(const std::string& path, std::string& error)>;
+
 }  // namespace rscene

@@ -122,7 +122,7 @@ void dropJudgedAgain(const Document& doc, Diagnostics& found) {
 }  // namespace
 
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
-                   const ExtraSceneCheck& extra, const SurfaceReader& readSurface) {
+                   const ExtraSceneCheck& extra, const SurfaceReader& readSurface, const MeshReader& readMesh) {
   LoadResult loaded = parse(std::move(text));
   doc = std::move(loaded.document);
   if (!loaded.ok()) {
@@ -142,7 +142,11 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   SceneCheckOptions sc;
   sc.checkFiles = options.checkFiles;
   sc.exists = options.fileExists;
-  if (options.checkFiles) sc.readSurface = readSurface;
+  if (options.checkFiles) {
+    sc.readSurface = readSurface;
+    sc.readMesh = readMesh;
+    sc.visualAssets = true;
+  }
   checkScene(doc, scene, sc, found);
   hintContinuations(loaded.continuedLines, found);
   dropJudgedAgain(doc, found);

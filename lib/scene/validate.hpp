@@ -39,10 +39,12 @@ Diagnostics validateScene(std::string text, const CheckOptions& options, Documen
 // core's are not held, so a caller that keeps few holds little.  `doc`
 // holds the text from the first call of the sink on, for source lines.
 // `extra`'s findings merge with the scene model's.
-// `readSurface`, when given with options.checkFiles, judges each
-// deformable with its mesh as rscene-sim does (SceneCheckOptions::readSurface).
+// `readSurface` and `readMesh`, when given with options.checkFiles, judge
+// each deformable with its mesh and read every body and foliage mesh, as
+// rscene-sim and rscene-render do (SceneCheckOptions::readSurface, readMesh).
 void validateScene(std::string text, const CheckOptions& options, Document& doc, DiagnosticSink& sink,
-                   const ExtraSceneCheck& extra = {}, const SurfaceReader& readSurface = {});
+                   const ExtraSceneCheck& extra = {}, const SurfaceReader& readSurface = {},
+                   const MeshReader& readMesh = {});
 
 // lib/core's checks of `doc` as rscene-validate runs them (syntax, types,
 // references, sizes; no files, the Engine 2 profile), errors only.  A tool

@@ -9,11 +9,13 @@
 
 namespace rscene::sim {
 
-bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics, const FileSystem& files) {
+bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics, const FileSystem& files,
+                  const MeshReader& readMesh) {
   SceneCheckOptions options;
   options.checkFiles = true;  // Bullet needs every collision mesh
   options.exists = [&files](const std::string& path) { return files.stat(path).kind == FileKind::Regular; };
   options.readSurface = asset::objSurfaceReader(files);  // a deformable's particles are its mesh's
+  options.readMesh = readMesh;  // RS7007 as validate --check-files says it
   return checkScene(doc, scene, options, diagnostics);
 }
 

@@ -22,18 +22,7 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
       ok = false;
       continue;
     }
-    // Bullet's cost grows with the square of a robot's bodies (its
-    // self-collision pairs): 20,000 links took 8 GB and then crashed.
-    std::size_t bodies = robots[i].coordinates.joints.size() + 1;
-    if (bodies > kMaxRobotBodies) {
-      RecordReader(doc, static_cast<std::size_t>(scene.articulated[i].recordIndex), diagnostics)
-          .error("resource", sim_code::kRobotTooLarge,
-                 "articulated system '" + scene.articulated[i].path + "' has " + std::to_string(bodies) +
-                     " bodies; rscene-sim simulates at most " + std::to_string(kMaxRobotBodies) + " per robot",
-                 "each movable joint adds a body; fixed joints merge into their parent");
-      ok = false;
-      continue;
-    }
+    // (A robot past robot::kMaxRobotBodies is makeInstance's RS7052.)
     // The joints start where the targets put them (a target not reached is
     // a warning, RS7047); --steps 0 writes that pose back.
     ok = robot::solveIk(doc, robots[i], diagnostics) && ok;

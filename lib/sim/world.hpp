@@ -40,6 +40,7 @@
 #include <map>
 #include <utility>
 
+#include "robot/instance.hpp"
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
@@ -56,7 +57,7 @@ namespace rscene::sim {
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
 inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
-inline constexpr const char* kRobotTooLarge = "RS7052";  // a robot with more than kMaxRobotBodies bodies
+inline constexpr const char* kRobotTooLarge = robot::code::kTooLarge;  // more than robot::kMaxRobotBodies bodies
 inline constexpr const char* kWireLocalIndex = "RS7046";  // a wire's localIndex is not a body of its articulated system (validate's code)
 inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
@@ -116,7 +117,7 @@ bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::Robo
 // files required and each deformable judged with its mesh, read through
 // `files`.  Returns false when it added an error.
 bool checkPhysics(const Document& doc, const Scene& scene, Diagnostics& diagnostics,
-                  const FileSystem& files = diskFileSystem());
+                  const FileSystem& files = diskFileSystem(), const MeshReader& readMesh = {});
 
 // Records kept but not simulated, named in one warning (RS7010), or none.
 std::optional<Diagnostic> unsupportedWarning(const Scene& scene);
@@ -168,8 +169,8 @@ struct NonFinite {
 // The joint speed cap set on every robot (btMultiBody::setMaxCoordinateVelocity):
 // a joint that reaches it has diverged.
 inline constexpr double kMaxJointSpeed = 1e6;
-// Most bodies (movable joints + 1) of one robot rscene-sim builds.
-inline constexpr std::size_t kMaxRobotBodies = 1000;
+// Most bodies (movable joints + 1) of one robot: robot/instance.hpp's rule.
+inline constexpr std::size_t kMaxRobotBodies = robot::kMaxRobotBodies;
 
 // A dynamic body that left the world: below the lowest static geometry
 // by WorldOptions::leaveMargin, or outside the solver's broadphase bounds

@@ -204,9 +204,33 @@ TEST(SceneCheck, ADeformableIsJudgedWithItsMeshOnlyWithCheckFiles) {
   EXPECT_TRUE(run(broken, false).empty());  // without --check-files no file is read
 }
 
+// With --check-files, validate reads each body mesh as sim and render do
+// (the MeshReader the tool passes: here one in memory).
+TEST(SceneCheck, ABodyMeshThatDoesNotReadIsRS7007OnlyWithCheckFiles) {
+  const std::string text = H + object("mesh", "1 1 1", "0.5", "1", "dynamic", "", "/World/a", "present.obj");
+  MeshReader broken = [](const std::string&, std::string& error) {
+    error = "no triangles in mesh file";
+    return false;
+  };
+  auto run = [&](bool files) {
+    CheckOptions o;
+    o.checkFiles = files;
+    o.fileExists = [](const std::string& p) { return p.find("present") != std::string::npos; };
+    Document doc;
+    CollectDiagnostics all;
+    validateScene(text, o, doc, all, {}, {}, broken);
+    return all.all;
+  };
+  Diagnostics bad = run(true);
+  ASSERT_EQ(codes(bad), std::vector<std::string>{"RS7007"}) << describe(bad);
+  EXPECT_EQ(bad[0].column, text.find("present.obj") - H.size() + 1);
+  EXPECT_TRUE(run(false).empty());
+}
+
 TEST(SceneCheck, EveryCodeOfTheSceneLayerHasACase) {
   std::set<std::string> covered{"RS5001",   // MissingCollisionMeshIsReportedOnceWithCheckFiles
                                 "RS7080",   // ADeformableIsJudgedWithItsMeshOnlyWithCheckFiles
+                                "RS7007",   // ABodyMeshThatDoesNotReadIsRS7007OnlyWithCheckFiles
                                 "RS7021",   // AnOrientationThatDoesNotNormaliseIsRefused
                                 // sensor_check_test.cpp: SensorCheck.EachBoundFiresAtItsFieldAndNotWithinIt
                                 "RS7064", "RS7065", "RS7066", "RS7067", "RS7068", "RS7069",
