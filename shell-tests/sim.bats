@@ -177,6 +177,46 @@ CORPUS="$ROOT/../shared/corpus"
   [[ $stderr == *"mesh file '/dev/zero' is a device, not a regular file [RS5001]"* ]]
 }
 
+@test "--allow-missing-assets leaves out a robot whose file is missing, as rscene-render does" {
+  # The robot cell without its robots/ folder: the format's own situation
+  # (a scene whose URDF is not shipped).
+  cp "$ROOT/examples/robot_cell.rscene" cell.rscene
+  run -2 --separate-stderr "$SIM" --steps 5 cell.rscene
+  [[ ${stderr_lines[0]} == "cell.rscene:5:51: error: robot file 'robots/quadruped/quadruped.urdf' does not exist [RS5001]" ]]
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 --sensors sensors cell.rscene
+  [ "${stderr_lines[0]}" = "cell.rscene:5:51: warning: robot file 'robots/quadruped/quadruped.urdf' does not exist; articulated system '/World/Robot' is left out (--allow-missing-assets) [RS5001]" ]
+  [[ $stderr == *"cell.rscene:13:29: warning: sensor '/World/Robot/Imu' is not used: 'articulated_quadruped' was left out for its missing robot file [RS5001]"* ]]
+  [[ $stderr == *"cell.rscene:14:26: warning: wire '/World/Tether' is not attached: 'articulated_quadruped' was left out for its missing robot file [RS5001]"* ]]
+  # nothing recorded for the robot's sensors; its record written back as it was
+  [ -z "$(ls sensors 2>/dev/null)" ]
+  grep -qxF "$("$BIN/rscene-fmt" cell.rscene | grep '^articulated ')" <<<"$output"
+  # rscene-render leaves out the same things with the same words
+  grep -v '^ ' <<<"$stderr" > sim.err
+  run -0 --separate-stderr "$BIN/rscene-render" --allow-missing-assets --width 64 --height 48 -o cell.png cell.rscene
+  diff sim.err <(grep -v '^ ' <<<"$stderr" | grep -v '^rscene-render:')
+}
+
+@test "--allow-missing-assets drops a robot's missing or unreadable collision mesh with a warning" {
+  mkdir -p robots/quadruped
+  cp "$ROOT/examples/robot_cell.rscene" cell.rscene
+  # the base's collision box becomes a mesh file that is not there
+  awk '!done && /<box size="0.5 0.22 0.12"\/>/ && seen { sub(/<box size="0.5 0.22 0.12"\/>/, "<mesh filename=\"gone.obj\"/>"); done = 1 }
+       /<collision>/ { seen = 1 } { print }' "$ROOT/examples/robots/quadruped/quadruped.urdf" > robots/quadruped/quadruped.urdf
+  grep -q 'gone.obj' robots/quadruped/quadruped.urdf
+  run -2 --separate-stderr "$SIM" --steps 5 cell.rscene
+  [[ $stderr == *"robots/quadruped/quadruped.urdf:41: error: collision mesh 'gone.obj' not found"*"[RS5001]"* ]]
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 cell.rscene
+  [[ ${stderr_lines[0]} == "robots/quadruped/quadruped.urdf:41: warning: collision mesh 'gone.obj' not found"*"; the <collision> is skipped (--allow-missing-assets) [RS5001]" ]]
+  run -0 --separate-stderr "$BIN/rscene-render" --allow-missing-assets --width 64 --height 48 -o cell.png cell.rscene
+  [[ ${stderr_lines[0]} == "robots/quadruped/quadruped.urdf:41: warning: collision mesh 'gone.obj' not found"*"[RS5001]" ]]
+  # a file that is there but no mesh: sim drops it too (render draws no collisions)
+  head -c 3000 /dev/urandom > robots/quadruped/gone.obj
+  run -2 --separate-stderr "$SIM" --steps 5 cell.rscene
+  [[ $stderr == *"link 'base': cannot read mesh 'robots/quadruped/gone.obj'"*"[RS7007]"* ]]
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 cell.rscene
+  [[ ${stderr_lines[0]} == "cell.rscene:5:51: warning: articulated system '/World/Robot': cannot read mesh 'robots/quadruped/gone.obj': "*"; that collision is left out [RS7007]" ]]
+}
+
 @test "a body that falls off the edge leaves the world and --until-rest still finishes" {
   cat > edge.rscene <<'SCENE'
 raisim_engine_scene 1

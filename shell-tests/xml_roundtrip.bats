@@ -158,7 +158,7 @@ physics_fixtures() {
 #    default) dropped;
 #  - a compound without centerOfMass given the one rscene-sim uses for it,
 #    its box/sphere/capsule/cylinder children's centroid weighted by their
-#    bounding-box volumes (lib/sim/world.cpp volumeOf): rscene-to-xml writes
+#    true volumes (scene/mass_properties.hpp): rscene-to-xml writes
 #    that point as `com` (RaiSim requires one) and from-xml reads it back as
 #    centerOfMass=, so "absent" and "the centroid written" are one physics
 #    spelt two ways (the trajectory test below checks the physics).

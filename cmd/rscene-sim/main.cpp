@@ -16,12 +16,14 @@
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
 #include "robot/check.hpp"
+#include "robot/instance.hpp"
+#include "robot/trajectory_format.hpp"
 #include "scene/validate.hpp"
 #include "core/writer.hpp"
 #include "sensor_files.hpp"
 #include "sim/limits.hpp"
+#include "sim/run.hpp"
 #include "sim/sensor_recorder.hpp"
-#include "sim/trajectory.hpp"
 #include "sim/world.hpp"
 
 namespace {
@@ -68,7 +70,10 @@ int run(const Options& opt) {
   // lib/core's verdict first, as validate gives it; the model is built
   // only from a document that has none.
   bool ok = robot::checkDocument(doc, so.baseDir.empty() ? so.sceneDir : so.baseDir, ds) && buildScene(doc, so, scene, ds);
-  if (ok && opt.allowMissing) sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
+  if (ok && opt.allowMissing) {
+    sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
+    robot::leaveOutMissingRobots(doc, scene, ds);
+  }
   ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem(), assets.meshReader(asset::MeshContent::Geometry));
   // The step count, before anything is built: --max-steps bounds the run.
   auto maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
@@ -91,8 +96,9 @@ int run(const Options& opt) {
   wo.assets = &assets;
   wo.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
   wo.document = &doc;
+  wo.allowMissingAssets = opt.allowMissing;
   std::vector<robot::RobotInstance> robots;
-  ok = ok && sim::makeRobots(doc, scene, robots, ds);
+  ok = ok && sim::makeRobots(doc, scene, robots, ds, opt.allowMissing);
   wo.robots = &robots;
   std::string pdError;
   if (!sim::parsePdGains(opt.pdGains, wo.pd, pdError)) {
@@ -133,63 +139,35 @@ int run(const Options& opt) {
   };
   Clock::time_point loadedAt = Clock::now();
 
-  // Steps the world, streaming trajectory samples to `traj` (when given) as
-  // they are made, so memory does not grow with the steps.  After every
-  // step (and before the first) every body's state is checked: false, with
-  // `failure` set, as soon as one is not finite or the pair cap is passed,
-  // before that state is written anywhere.
-  auto format = opt.trajectoryFormat == "csv" ? sim::TrajectoryFormat::Csv : sim::TrajectoryFormat::Jsonl;
-  const sim::Trajectory lines(format, world->robotStates());
-  std::optional<Diagnostic> failure;
-  double contacts = 0;
-  bool rested = false;
-  auto healthy = [&] {
-    if (auto bad = world->nonFinite()) failure = sim::nonFiniteError(doc, *bad);
-    else if (auto record = world->pairOverflow()) failure = sim::tooManyPairs(doc, *record, world->steps(), wo.maxPairs);
-    return !failure;
-  };
-  auto simulate = [&](Sink* traj) {
-    constexpr std::size_t kChunk = 1 << 16;
-    std::string buffer;
-    if (traj) buffer = lines.header();
-    // SIGINT stops the loop below even though it runs inside the writes
-    // of the trajectory and sensor files: the run then cancels them.
-    cli::InterruptibleScope interruptible;
-    if (!healthy() || !record()) return false;
-    if (traj) lines.append(buffer, world->time(), world->states(), world->robotStates(), world->particleStates());
-    bool progress = isatty(2);
-    Clock::time_point lastProgress = Clock::now();
-    while (world->steps() < total && !gInterrupted) {
-      world->step();
-      if (!healthy() || !record()) break;
-      contacts += world->contactCount();
-      std::uint64_t n = world->steps();
-      if (traj && n % static_cast<std::uint64_t>(opt.every) == 0) {
-        lines.append(buffer, world->time(), world->states(), world->robotStates(), world->particleStates());
-        if (buffer.size() >= kChunk) traj->write(buffer), buffer.clear();
-      }
-      if (opt.untilRest && world->atRest()) {
-        rested = true;
-        break;
-      }
-      if (progress && (n & 255) == 0 && seconds(lastProgress, Clock::now()) > 0.25) {
-        lastProgress = Clock::now();
-        std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << total << std::flush;
-      }
-    }
-    if (progress) std::cerr << "\r\033[K" << std::flush;
-    if (failure || sensorsFailed || gInterrupted) return false;
-    if (traj) traj->write(buffer);
-    return true;
-  };
+  // The stepping loop is the library's (sim/run.hpp): trajectory frames
+  // streamed, every state checked before it is written anywhere.
+  auto format = opt.trajectoryFormat == "csv" ? robot::TrajectoryFormat::Csv : robot::TrajectoryFormat::Jsonl;
+  const robot::TrajectoryWriter lines(format, world->robotStates());
+  sim::RunOptions ro;
+  ro.steps = total;
+  ro.every = static_cast<std::uint64_t>(opt.every);
+  ro.untilRest = opt.untilRest;
+  ro.maxPairs = wo.maxPairs;
+  ro.interrupted = &gInterrupted;
+  ro.sample = record;
+  if (isatty(2)) {
+    ro.progress = [](std::uint64_t n, std::uint64_t of) {
+      std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << of << std::flush;
+    };
+    ro.progressDone = [] { std::cerr << "\r\033[K" << std::flush; };
+  }
+  sim::RunResult result;
   // A failed run cancels the trajectory (no file is left at its path) and
-  // writes no scene; the failure is printed before the cancelled write is.
-  // The failure is printed before any cancelled write says so.
+  // writes no scene; the failure is printed before any cancelled write
+  // says so.
   auto withTrajectory = [&] {
     auto run = [&](Sink* s) {
-      bool good = simulate(s);
-      if (failure) print(Diagnostics{*failure});
-      return good;
+      // SIGINT stops the loop even inside the writes of the trajectory and
+      // sensor files: the run then cancels them.
+      cli::InterruptibleScope interruptible;
+      result = sim::runWorld(*world, doc, ro, s, &lines);
+      if (result.failure) print(Diagnostics{*result.failure});
+      return result.ok();
     };
     return opt.trajectory.empty() ? run(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); });
   };
@@ -207,43 +185,14 @@ int run(const Options& opt) {
   if (!cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; })) return cli::kTrouble;
   Clock::time_point writtenAt = Clock::now();
   if (opt.report) {
-    double wall = seconds(start, Clock::now()), stepping = seconds(loadedAt, steppedAt);
-    auto steps = world->steps();
-    nlohmann::json r = {{"steps", steps},
-                        {"simulatedTime", world->time()},
-                        {"wallTime", wall},
-                        {"loadTime", seconds(start, loadedAt)},
-                        {"parseTime", seconds(start, parsedAt)},
-                        {"buildTime", seconds(parsedAt, loadedAt)},
-                        {"stepTime", stepping},
-                        {"writeTime", seconds(steppedAt, writtenAt)},
-                        {"stepsPerSecond", stepping > 0 ? steps / stepping : 0.0},
-                        {"realtimeFactor", wall > 0 ? world->time() / wall : 0.0},
-                        {"bodies", world->bodyCount()},
-                        {"robots", world->robotCount()},
-                        {"particleSystems", world->particleSystems().systems()},
-                        {"particles", world->particleSystems().particles()},
-                        {"particleStepTime", world->particleSystems().stepSeconds()},
-                        {"leftWorld", world->departures().size()},
-                        {"contactsPerStep", steps ? contacts / steps : 0.0},
-                        {"sensors", sensors.size()},
-                        {"lidarScans", recorder ? recorder->scans() : 0},
-                        {"lidarScanTime", recorder ? recorder->scanSeconds() : 0.0},
-                        {"atRest", rested || world->atRest()}};
-    // Where the granular solvers' time went (rscene-sim(1), Granular media).
-    sim::GranularStats gs = world->particleSystems().granularStats();
-    double granularTime = gs.neighbourSeconds + gs.contactSeconds + gs.surfaceSeconds + gs.integrateSeconds;
-    r["granular"] = {{"substepsPerStep", gs.substepsPerStep},
-                     {"particleSubsteps", gs.particleSubsteps},
-                     {"particleSubstepsPerSecond", granularTime > 0 ? gs.particleSubsteps / granularTime : 0.0},
-                     {"neighbourTime", gs.neighbourSeconds},
-                     {"neighbourBuilds", gs.neighbourBuilds},
-                     {"contactTime", gs.contactSeconds},
-                     {"surfaceTime", gs.surfaceSeconds},
-                     {"integrationTime", gs.integrateSeconds},
-                     {"contacts", gs.contacts},
-                     {"surfaceContacts", gs.surfaceContacts},
-                     {"maxPenetration", gs.maxPenetration}};
+    sim::RunTimes t;
+    t.wall = seconds(start, Clock::now());
+    t.parse = seconds(start, parsedAt);
+    t.build = seconds(parsedAt, loadedAt);
+    t.step = seconds(loadedAt, steppedAt);
+    t.write = seconds(steppedAt, writtenAt);
+    nlohmann::json r = sim::runReport(*world, result, t, sensors.size(), recorder ? recorder->scans() : 0,
+                                      recorder ? recorder->scanSeconds() : 0.0);
     std::cerr << r.dump() << '\n';
   }
   return cli::kSuccess;

@@ -853,6 +853,7 @@ class Preparer {
     robotLinks_.assign(s_.articulated.size(), {});
     for (std::size_t i = 0; i < s_.articulated.size(); ++i) {
       const Articulated& a = s_.articulated[i];
+      if (a.leftOut) continue;  // --allow-missing-assets: robot::leaveOutMissingRobots warned
       if (!robot::checkRobotFile(doc_, a, diags_)) {
         ok_ = false;
         continue;
@@ -860,7 +861,9 @@ class Preparer {
       robot::RobotInstance r;
       // An error (a model that does not load, a coordinate of the wrong
       // length) fails the render; what could be read is still drawn.
-      if (!robot::makeInstance(doc_, a, models, r, diags_)) ok_ = false;
+      robot::InstanceOptions io;
+      io.allowMissingMeshes = limits_.allowMissingAssets;
+      if (!robot::makeInstance(doc_, a, models, r, diags_, io)) ok_ = false;
       if (!r.model) continue;
       out_.robotModels[i] = r.model;
       robotLinks_[i] = robot::linkPoses(r);
@@ -1015,6 +1018,7 @@ bool buildRenderScene(const Document& doc, const SceneOptions& options, Scene& s
   // A document with errors goes no further: the model would read fallbacks.
   if (!robot::checkDocument(doc, options.baseDir.empty() ? options.sceneDir : options.baseDir, diags)) return false;
   bool ok = buildScene(doc, options, scene, diags);
+  if (ok && limits.allowMissingAssets) robot::leaveOutMissingRobots(doc, scene, diags);  // as rscene-sim
   // The scene model's verdict, as in validate and sim; missing files are
   // the renderer's to report (RS9001, or placeholders when allowed).
   // A deformable is judged with its mesh, as sim judges it (a missing

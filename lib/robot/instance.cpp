@@ -1,12 +1,16 @@
 #include "robot/instance.hpp"
 
 #include <cmath>
+#include <map>
+#include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/suggest.hpp"
 #include "core/assets.hpp"
 #include "scene/limits.hpp"
+#include "scene/left_out.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene::robot {
@@ -79,11 +83,46 @@ bool checkRobotFile(const Document& doc, const Articulated& a, Diagnostics& diag
   return false;
 }
 
-LoadOptions loadOptionsOf(const Articulated& record) {
+int leaveOutMissingRobots(const Document& doc, Scene& scene, Diagnostics& diags) {
+  // One warning per file, at the first record that names it, as for a
+  // missing body mesh (sim/missing_assets.cpp).
+  std::map<std::string, std::vector<const Articulated*>> byFile;
+  std::vector<std::string> order;
+  std::set<std::string> names;  // ids and paths of the robots left out
+  int count = 0;
+  for (Articulated& a : scene.articulated) {
+    if (a.sourcePath.empty() || fileExistsOnDisk(a.sourcePath)) continue;
+    a.leftOut = true;
+    ++count;
+    for (const std::string* name : {&a.id, &a.path})
+      if (!name->empty()) names.insert(*name);
+    auto& robots = byFile[a.sourcePath];
+    if (robots.empty()) order.push_back(a.sourcePath);
+    robots.push_back(&a);
+  }
+  for (const std::string& file : order) {
+    const std::vector<const Articulated*>& robots = byFile[file];
+    const Articulated& first = *robots.front();
+    std::size_t others = robots.size() - 1;
+    std::string who = others == 0 ? "articulated system '" + first.path + "' is"
+                                  : "articulated systems '" + first.path + "' and " + std::to_string(others) +
+                                        (others == 1 ? " other are" : " others are");
+    FieldSource at = writtenBy(doc, first, "sourcePath");
+    RecordReader(doc, static_cast<std::size_t>(at.record), diags)
+        .error(at.field, scene_code::kMissingFile,
+               "robot file '" + file + "' " + whyNotAFile(file) + "; " + who + " left out (--allow-missing-assets)",
+               {}, Severity::Warning);
+  }
+  detachFromLeftOut(doc, scene, names, true, "for its missing robot file", diags);
+  return count;
+}
+
+LoadOptions loadOptionsOf(const Articulated& record, bool allowMissingMeshes) {
   LoadOptions o;
   o.resourceDirectory = record.resourceDirectory;
   o.modules = record.modules;
   o.scale = record.scale;
+  o.allowMissingMeshes = allowMissingMeshes;
   return o;
 }
 
@@ -101,7 +140,7 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
     return false;
   }
   Diagnostics loadDiags;
-  out.model = cache.get(a.sourcePath, loadOptionsOf(a), loadDiags);
+  out.model = cache.get(a.sourcePath, loadOptionsOf(a, options.allowMissingMeshes), loadDiags);
   if (options.reportModel) diags.insert(diags.end(), loadDiags.begin(), loadDiags.end());
   if (!out.model) return false;
   const Model& model = *out.model;

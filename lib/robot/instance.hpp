@@ -41,6 +41,7 @@ struct RobotInstance {
 
 struct InstanceOptions {
   bool reportModel = true;  // false: a missing or broken model is left to --check-files (validate)
+  bool allowMissingMeshes = false;  // --allow-missing-assets (LoadOptions)
 };
 
 // Loads the record's model through `cache` and reads its state: q from
@@ -67,8 +68,17 @@ FieldSource writtenBy(const Document& doc, const Articulated& record, const char
 // in a file that does not exist).  False after the error.
 bool checkRobotFile(const Document& doc, const Articulated& record, Diagnostics& diagnostics);
 
-// LoadOptions of a record (its resource directory, modules and scale).
-LoadOptions loadOptionsOf(const Articulated& record);
+// rscene-sim and rscene-render --allow-missing-assets: every articulated
+// record whose robot file is not a regular file is marked leftOut, with
+// one warning (RS5001) per file at the field that names it, naming the
+// first robot and how many more; wires and sensors attached to one are
+// disabled with a warning (scene/left_out.hpp).  Returns how many robots
+// were left out.
+int leaveOutMissingRobots(const Document& doc, Scene& scene, Diagnostics& diagnostics);
+
+// LoadOptions of a record (its resource directory, modules and scale);
+// `allowMissingMeshes` as LoadOptions says.
+LoadOptions loadOptionsOf(const Articulated& record, bool allowMissingMeshes = false);
 
 // World poses of the instance's links at its current q.
 inline std::vector<Pose> linkPoses(const RobotInstance& r) {

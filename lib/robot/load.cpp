@@ -150,7 +150,8 @@ bool loadModel(const std::string& path, const LoadOptions& options, Model& out, 
 
 std::shared_ptr<const Model> ModelCache::get(const std::string& path, const LoadOptions& options,
                                              Diagnostics& diagnostics) {
-  Key key{path, options.resourceDirectory, options.modules, options.scale.x(), options.scale.y(), options.scale.z()};
+  Key key{path, options.resourceDirectory, options.modules, options.scale.x(), options.scale.y(), options.scale.z(),
+          options.allowMissingMeshes};
   auto found = models_.find(key);
   if (found != models_.end()) return found->second;
   std::shared_ptr<const Model> model;

@@ -35,6 +35,10 @@ struct LoadOptions {
   std::vector<std::string> modules;  // URDF fragments inserted before </robot>
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   std::size_t maxFileBytes = std::size_t{256} << 20;  // robot file size cap
+  // --allow-missing-assets: a URDF collision mesh that is not found is a
+  // warning and that <collision> is left out (as a visual mesh always is),
+  // not an error.  MJCF files are compiled by MuJoCo, which needs them all.
+  bool allowMissingMeshes = false;
 };
 
 // Reads `path` by its root element (<robot>: URDF, <mujoco>: MJCF), then
@@ -66,7 +70,7 @@ class ModelCache {
   std::shared_ptr<const Model> get(const std::string& path, const LoadOptions& options, Diagnostics& diagnostics);
 
  private:
-  using Key = std::tuple<std::string, std::string, std::vector<std::string>, double, double, double>;
+  using Key = std::tuple<std::string, std::string, std::vector<std::string>, double, double, double, bool>;
   std::map<Key, std::shared_ptr<const Model>> models_;
 };
 

@@ -10,64 +10,9 @@
 namespace rscene::robot {
 namespace {
 
-// Positions past this are not a simulation's (scene/limits.hpp caps scene
-// coordinates alike); they would only overflow the renderer's matrices.
-constexpr double kMaxCoordinate = 1e12;
 
-const char* const kCsvBodyColumns[] = {"time", "path", "px", "py", "pz", "qw", "qx", "qy",
-                                       "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
-constexpr std::size_t kCsvBodyCount = sizeof kCsvBodyColumns / sizeof *kCsvBodyColumns;
+bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxTrajectoryValue; }
 
-bool finiteBounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxCoordinate; }
-
-// One CSV field: its decoded text and its 1-based column.
-struct CsvField {
-  std::string text;
-  std::uint32_t column = 0;
-};
-
-// Splits a CSV line as trajectory.cpp's csvField() quotes it (RFC 4180: a
-// field in double quotes, "" inside for a quote).  False on an unclosed
-// quote or text after a closing quote; `bad` is the column.
-bool splitCsv(const std::string& line, std::vector<CsvField>& out, std::uint32_t& bad) {
-  out.clear();
-  std::size_t i = 0;
-  for (;;) {
-    CsvField f;
-    f.column = static_cast<std::uint32_t>(i + 1);
-    if (i < line.size() && line[i] == '"') {
-      ++i;
-      for (;;) {
-        if (i >= line.size()) {
-          bad = f.column;
-          return false;
-        }
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') {
-            f.text += '"';
-            i += 2;
-            continue;
-          }
-          ++i;
-          break;
-        }
-        f.text += line[i++];
-      }
-      if (i < line.size() && line[i] != ',') {
-        bad = static_cast<std::uint32_t>(i + 1);
-        return false;
-      }
-    } else {
-      std::size_t end = line.find(',', i);
-      if (end == std::string::npos) end = line.size();
-      f.text = line.substr(i, end - i);
-      i = end;
-    }
-    out.push_back(std::move(f));
-    if (i >= line.size()) return true;
-    ++i;  // the comma
-  }
-}
 
 // The column of `"key"` in a JSON line, for messages (1 when absent).
 std::uint32_t keyColumn(const std::string& line, const char* key) {
@@ -235,13 +180,6 @@ JsonLine parseJsonLine(const std::string& text, PointSink& sink) {
 
 }  // namespace
 
-TrajectoryLimits TrajectoryLimits::forPoints(std::size_t points) {
-  TrajectoryLimits l;
-  l.maxPoints = points;
-  l.maxLineBytes = (std::size_t{1} << 20) + kBytesPerPoint * std::min<std::size_t>(points, std::size_t{1} << 40);
-  return l;
-}
-
 TrajectoryReader::TrajectoryReader(std::istream& in, std::string file, TrajectoryLimits limits)
     : in_(in), file_(std::move(file)), limits_(limits) {}
 
@@ -368,18 +306,18 @@ bool TrajectoryReader::parseCsvHeader(const std::string& text, Diagnostics& d) {
   std::vector<CsvField> fields;
   std::uint32_t bad = 0;
   if (!splitCsv(text, fields, bad)) return fail(d, bad, "malformed CSV header (unclosed quote)");
-  for (std::size_t i = 0; i < kCsvBodyCount; ++i)
-    if (i >= fields.size() || fields[i].text != kCsvBodyColumns[i])
+  for (std::size_t i = 0; i < kTrajectoryBodyColumns.size(); ++i)
+    if (i >= fields.size() || fields[i].text != kTrajectoryBodyColumns[i])
       return fail(d, i < fields.size() ? fields[i].column : static_cast<std::uint32_t>(text.size() + 1),
-                  std::string("CSV header column ") + std::to_string(i + 1) + " is not '" + kCsvBodyColumns[i] +
+                  std::string("CSV header column ") + std::to_string(i + 1) + " is not '" + std::string(kTrajectoryBodyColumns[i]) +
                       "' (rscene-sim --trajectory-format csv writes time,path,px,...,wz)");
-  for (std::size_t i = kCsvBodyCount; i < fields.size(); ++i) {
+  for (std::size_t i = kTrajectoryBodyColumns.size(); i < fields.size(); ++i) {
     const std::string& name = fields[i].text;
-    if (name == "points" && i + 1 == fields.size())  // particles of deformables and granular media (last)
+    if (name == kTrajectoryPointsColumn && i + 1 == fields.size())  // particles of deformables and granular media (last)
       csvPoints_ = true;
-    else if (name.rfind("q.", 0) == 0 && name.size() > 2)
-      csvJoints_.push_back(name.substr(2));
-    else if (name.rfind("u.", 0) == 0 && name.size() > 2)
+    else if (name.rfind(kJointPositionPrefix, 0) == 0 && name.size() > kJointPositionPrefix.size())
+      csvJoints_.push_back(name.substr(kJointPositionPrefix.size()));
+    else if (name.rfind(kJointVelocityPrefix, 0) == 0 && name.size() > kJointVelocityPrefix.size())
       csvJoints_.emplace_back();
     else
       return fail(d, fields[i].column, "CSV header column '" + name + "' is neither q.JOINT nor u.JOINT");
@@ -391,7 +329,7 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
   std::vector<CsvField> f;
   std::uint32_t bad = 0;
   if (!splitCsv(text, f, bad)) return fail(d, bad, "malformed CSV field (unclosed quote)");
-  std::size_t want = kCsvBodyCount + csvJoints_.size() + (csvPoints_ ? 1 : 0);
+  std::size_t want = kTrajectoryBodyColumns.size() + csvJoints_.size() + (csvPoints_ ? 1 : 0);
   if (f.size() != want)
     return fail(d, f.size() > want ? f[want].column : static_cast<std::uint32_t>(text.size() + 1),
                 std::to_string(f.size()) + " fields where the header has " + std::to_string(want));
@@ -412,12 +350,12 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
     e.pointsColumn = cell.column;
     return parseCsvPoints(cell.text, start, e.points, d);
   }
-  double v[kCsvBodyCount];
-  for (std::size_t i = 0; i < kCsvBodyCount; ++i) {
+  double v[kTrajectoryBodyColumns.size()];
+  for (std::size_t i = 0; i < kTrajectoryBodyColumns.size(); ++i) {
     if (i == 1) continue;
     std::optional<double> n = parseNumber(f[i].text);
     if (!n || !finiteBounded(*n))
-      return fail(d, f[i].column, std::string(kCsvBodyColumns[i]) + " '" + f[i].text + "' is not a number in range");
+      return fail(d, f[i].column, std::string(kTrajectoryBodyColumns[i]) + " '" + f[i].text + "' is not a number in range");
     v[i] = *n;
   }
   time = v[0];
@@ -428,11 +366,11 @@ bool TrajectoryReader::parseCsv(const std::string& text, double& time, Trajector
   if (q.norm() < 1e-12) return fail(d, f[5].column, "quaternion of zero length");
   e.pose = {{v[2], v[3], v[4]}, q.normalized()};
   for (std::size_t k = 0; k < csvJoints_.size(); ++k) {
-    const CsvField& cell = f[kCsvBodyCount + k];
+    const CsvField& cell = f[kTrajectoryBodyColumns.size() + k];
     if (csvJoints_[k].empty() || cell.text.empty()) continue;  // a velocity, or another robot's joint
     std::optional<double> n = parseNumber(cell.text);
     if (!n || !finiteBounded(*n))
-      return fail(d, cell.column, "q." + csvJoints_[k] + " '" + cell.text + "' is not a number in range");
+      return fail(d, cell.column, std::string(kJointPositionPrefix) + csvJoints_[k] + " '" + cell.text + "' is not a number in range");
     e.joints.push_back({csvJoints_[k], *n, cell.column});
   }
   return true;

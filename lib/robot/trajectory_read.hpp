@@ -1,4 +1,4 @@
-// Reading back what `rscene-sim --trajectory` writes (sim/trajectory.hpp:
+// Reading back what `rscene-sim --trajectory` writes (robot/trajectory_format.hpp:
 // JSON Lines or CSV, told apart by the first line), one frame at a time,
 // so that rscene-render --trajectory can pose a scene along a simulation.
 //
@@ -19,6 +19,7 @@
 #include "robot/kinematics.hpp"
 #include "robot/model.hpp"
 #include "robot/sensors.hpp"
+#include "robot/trajectory_format.hpp"
 #include "scene/scene.hpp"
 
 namespace rscene::robot {
@@ -52,27 +53,6 @@ struct TrajectoryFrame {
   double time = 0;
   std::uint64_t index = 0;  // 0 for the file's first frame
   std::vector<TrajectoryEntry> entries;
-};
-
-struct TrajectoryLimits {
-  // rscene-sim writes a particle at most kBytesPerPoint bytes wide (three
-  // shortest round-trip numbers of up to 24 characters, brackets, commas).
-  static constexpr std::size_t kBytesPerPoint = 80;
-  // A longer line is an error.  What rscene-sim writes for a robot of 1000
-  // joints is about 60 KB, for a granular bed of 20,000 particles about
-  // 1.2 MB (1.6 MB at the widest numbers); 64 MiB holds 800,000 particles
-  // at the widest.  forPoints() fits it to a scene instead.
-  std::size_t maxLineBytes = std::size_t{64} << 20;
-  // Lines of one frame: rscene-sim writes one per body and robot.
-  std::size_t maxEntriesPerFrame = std::size_t{1} << 18;
-  // Points on one line (a line with more is an error before they are all
-  // held: 24 bytes each).
-  std::size_t maxPoints = 1'000'000;
-
-  // Limits for a scene whose largest deformable or granular record has
-  // `points` particles: lines of 1 MiB plus kBytesPerPoint per point, at
-  // most `points` points (a 20,000-grain bed: 2.6 MB lines).
-  static TrajectoryLimits forPoints(std::size_t points);
 };
 
 enum class TrajectoryFileFormat { Unknown, Jsonl, Csv };

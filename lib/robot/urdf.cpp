@@ -280,9 +280,10 @@ bool UrdfReader::readGeometry(const Source& src, const XMLElement* owner, const 
     g.meshPath = resolve(src, file);
     if (g.meshPath.empty()) {
       if (std::string(what) == "collision")
-        report(Severity::Error, code::kMissingFile, src, shape,
+        report(options_.allowMissingMeshes ? Severity::Warning : Severity::Error, code::kMissingFile, src, shape,
                "collision mesh '" + std::string(file) + "' not found (paths relative to the URDF, package:// " +
-                   "against the resource directory and the URDF's parent directories)");
+                   "against the resource directory and the URDF's parent directories)" +
+                   (options_.allowMissingMeshes ? "; " + skipping + " (--allow-missing-assets)" : std::string()));
       else
         warn(src, shape, "visual mesh '" + std::string(file) + "' not found; " + skipping);
       return false;

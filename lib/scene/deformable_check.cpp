@@ -1,11 +1,12 @@
 #include "scene/deformable_check.hpp"
 
 #include "core/text.hpp"
+#include "scene/limits.hpp"
 
 namespace rscene {
 namespace {
 
-constexpr double kMaxCoordinate = 1e12;  // m, as for every other body
+constexpr double kMaxCoordinate = kMaxLength;  // m, as for every other body (scene/limits.hpp)
 
 std::string num(double x) { return roundedNumber(x, 6); }
 

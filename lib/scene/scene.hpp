@@ -495,6 +495,10 @@ struct Articulated {
   std::string semanticClass;
   std::vector<ArticulatedIk> ik;
   int positionToken = -1;  // token of position.x (orientation w at +3)
+  // --allow-missing-assets: its robot file is missing, so it is neither
+  // simulated nor drawn (robot::leaveOutMissingRobots); its record is
+  // written back as it was.
+  bool leftOut = false;
 };
 
 // What one end of a wire names (compat-notes.md, "Wire kinds": a body by id

@@ -4,6 +4,7 @@
 #include <set>
 #include <vector>
 
+#include "scene/left_out.hpp"
 #include "scene/reader.hpp"
 #include "sim/world.hpp"
 
@@ -87,13 +88,7 @@ int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetC
                                           (m.bodies == 2 ? " other are" : " others are");
     warn(doc, m.recordIndex, m.field, m.code, m.problem + "; " + who + " not simulated", diagnostics);
   }
-  for (Wire& w : scene.wires) {
-    if (!w.enabled || !(skipped.count(w.bodyA) || skipped.count(w.bodyB))) continue;
-    const std::string& body = skipped.count(w.bodyA) ? w.bodyA : w.bodyB;
-    warn(doc, w.recordIndex, body == w.bodyA ? "bodyA" : "bodyB", scene_code::kMissingFile,
-         "wire '" + w.path + "' is not simulated: body '" + body + "' was left out for its mesh", diagnostics);
-    w.enabled = false;
-  }
+  detachFromLeftOut(doc, scene, skipped, false, "for its mesh", diagnostics);
   return count;
 }
 

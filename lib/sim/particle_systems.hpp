@@ -13,6 +13,7 @@
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "robot/trajectory_format.hpp"
 #include "scene/scene.hpp"
 #include "sim/deformable_body.hpp"
 #include "sim/granular_body.hpp"
@@ -23,12 +24,7 @@ namespace rscene::sim {
 namespace particle_code = rscene::particle_code;  // RS7080-RS7089 (scene/granular.hpp)
 
 // The particles of one record now, for the trajectory and the renderer.
-struct ParticleState {
-  int recordIndex = -1;
-  std::string path;
-  bool granular = false;                               // else deformable
-  const std::vector<Eigen::Vector3d>* points = nullptr;  // world; valid until the next step
-};
+using robot::ParticleState;
 
 class ParticleSystems {
  public:

@@ -8,17 +8,20 @@
 namespace rscene::sim {
 
 bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::RobotInstance>& robots,
-                Diagnostics& diagnostics) {
+                Diagnostics& diagnostics, bool allowMissingMeshes) {
   robot::ModelCache cache;
   robots.clear();
   robots.resize(scene.articulated.size());
   bool ok = true;
+  robot::InstanceOptions io;
+  io.allowMissingMeshes = allowMissingMeshes;
   for (std::size_t i = 0; i < scene.articulated.size(); ++i) {
+    if (scene.articulated[i].leftOut) continue;  // --allow-missing-assets: no model, not simulated
     if (!robot::checkRobotFile(doc, scene.articulated[i], diagnostics)) {
       ok = false;
       continue;
     }
-    if (!robot::makeInstance(doc, scene.articulated[i], cache, robots[i], diagnostics)) {
+    if (!robot::makeInstance(doc, scene.articulated[i], cache, robots[i], diagnostics, io)) {
       ok = false;
       continue;
     }

@@ -85,6 +85,7 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
       for (const robot::Collision& c : link.collisions) {
         std::string why;
         btCollisionShape* shape = shapes(c.geometry, why);
+        if (!shape && why.empty()) continue;  // left out by the maker (--allow-missing-assets)
         if (!shape) {
           error = "link '" + link.name + "': " + why;
           return nullptr;

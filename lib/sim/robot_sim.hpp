@@ -52,7 +52,8 @@ namespace rscene::sim {
 class SimRobot {
  public:
   // A collision shape for a model geometry (the world's: shared meshes),
-  // nullptr with `error` set when it cannot be made.
+  // nullptr with `error` set when it cannot be made; nullptr with no
+  // error leaves that collision out (--allow-missing-assets).
   using ShapeMaker = std::function<btCollisionShape*(const robot::Geometry&, std::string& error)>;
 
   // Builds the multibody at the instance's state.  `pd` drives every

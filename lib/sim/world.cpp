@@ -5,6 +5,7 @@
 
 #include "scene/limits.hpp"
 
+#include <LinearMath/btConvexHullComputer.h>
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
@@ -19,6 +20,7 @@
 #include <unordered_map>
 
 #include "core/text.hpp"
+#include "scene/mass_properties.hpp"
 #include "scene/reader.hpp"
 #include "sim/bt_eigen.hpp"
 #include "sim/bullet_surfaces.hpp"
@@ -114,11 +116,31 @@ btScalar combinedSpinning(const btCollisionObject* a, const btCollisionObject* b
   return c ? c->spinningFriction : tPairs ? tPairs->spinning : 0;
 }
 
-double volumeOf(const btCollisionShape* s) {
-  btVector3 lo, hi;
-  s->getAabb(btTransform::getIdentity(), lo, hi);
-  btVector3 d = hi - lo;
-  return std::max(d.x() * d.y() * d.z(), 1e-12);
+// The volume of a mesh child's convex hull (what Bullet simulates for it):
+// the hull's faces fanned into tetrahedra about its first vertex.
+double hullVolume(const btCollisionShape* s) {
+  const auto* hull = dynamic_cast<const btConvexHullShape*>(s);
+  if (!hull || hull->getNumPoints() < 4) return 0;
+  btConvexHullComputer computer;
+  const btVector3* points = hull->getUnscaledPoints();
+  std::vector<btVector3> scaled(points, points + hull->getNumPoints());
+  for (btVector3& p : scaled) p *= hull->getLocalScaling();
+  if (computer.compute(&scaled[0].x(), sizeof(btVector3), hull->getNumPoints(), 0, 0) < 0) return 0;
+  if (computer.vertices.size() < 4) return 0;
+  const btVector3 apex = computer.vertices[0];
+  double volume = 0;
+  for (int f = 0; f < computer.faces.size(); ++f) {
+    const btConvexHullComputer::Edge* first = &computer.edges[computer.faces[f]];
+    btVector3 a = computer.vertices[first->getSourceVertex()];
+    const btConvexHullComputer::Edge* e = first->getNextEdgeOfFace();
+    btVector3 b = computer.vertices[e->getSourceVertex()];
+    for (e = e->getNextEdgeOfFace(); e != first; e = e->getNextEdgeOfFace()) {
+      btVector3 c = computer.vertices[e->getSourceVertex()];
+      volume += static_cast<double>((a - apex).dot((b - apex).cross(c - apex))) / 6.0;
+      b = c;
+    }
+  }
+  return std::fabs(volume);
 }
 
 bool hasMeshCollision(const robot::Model& model) {
@@ -142,6 +164,23 @@ void warnNotConvexified(const Document* doc, const Articulated& a, Diagnostics& 
   Diagnostic d;
   d.severity = Severity::Warning;
   d.code = sim_code::kNotConvexified;
+  d.message = message;
+  diagnostics.push_back(std::move(d));
+}
+
+// --allow-missing-assets: a robot collision mesh that does not read, left
+// out of its link.
+void warnMeshLeftOut(const Document* doc, const Articulated& a, const std::string& why, Diagnostics& diagnostics) {
+  std::string message = "articulated system '" + a.path + "': " + why + "; that collision is left out";
+  if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
+    robot::FieldSource at = robot::writtenBy(*doc, a, "sourcePath");
+    RecordReader(*doc, static_cast<std::size_t>(at.record), diagnostics)
+        .error(at.field, scene_code::kBadMesh, message, "", Severity::Warning);
+    return;
+  }
+  Diagnostic d;
+  d.severity = Severity::Warning;
+  d.code = scene_code::kBadMesh;
   d.message = message;
   diagnostics.push_back(std::move(d));
 }
@@ -368,13 +407,23 @@ struct World::Impl {
       case robot::GeometryKind::Sphere: return keep(new btSphereShape(g.radius));
       case robot::GeometryKind::Cylinder: return keep(new btCylinderShapeZ(btVector3(g.radius, g.radius, g.length / 2)));
       case robot::GeometryKind::Capsule: return keep(new btCapsuleShapeZ(g.radius, g.length));
-      case robot::GeometryKind::Mesh: return meshShape(g.meshPath, g.meshScale, true, error);
+      case robot::GeometryKind::Mesh: {
+        btCollisionShape* shape = meshShape(g.meshPath, g.meshScale, true, error);
+        if (!shape && allowMissingAssets) {
+          // SimRobot::create leaves out a shape with no error.
+          robotMeshesLeftOut.push_back(error);
+          error.clear();
+        }
+        return shape;
+      }
     }
     error = "unknown geometry";
     return nullptr;
   }
 
   std::string robotError;  // why addRobot failed
+  bool allowMissingAssets = false;
+  std::vector<std::string> robotMeshesLeftOut;  // by the robot being added, with allowMissingAssets
 
   // Builds one articulated system into the world: its multibody, colliders
   // (the record's group and mask; self-collision as selfPairsOf decides),
@@ -512,6 +561,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.assets = w.ownAssets.get();
   }
   w.leaveMargin = options.leaveMargin;
+  w.allowMissingAssets = options.allowMissingAssets;
   w.sleepLinear = scene.solver.sleepingLinearVelocityThreshold;
   w.sleepAngular = scene.solver.sleepingAngularVelocityThreshold;
   const Solver& sv = scene.solver;
@@ -611,9 +661,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     if (c.bodyMode == BodyMode::VisualOnly || c.children.empty()) continue;
     // Child shapes about the centre of mass: given, or volume-weighted.
     std::vector<std::pair<btCollisionShape*, btTransform>> parts;
-    std::vector<double> volumes;
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    double total = 0;
+    std::vector<double> volumes;  // true volumes (scene/mass_properties.hpp); a mesh child's hull's
     for (const CompoundChild& ch : c.children) {
       Eigen::Vector3d s = ch.scale.cwiseProduct(c.scale);
       Eigen::Vector3d box = ch.size.isZero() ? s : ch.size.cwiseProduct(s);
@@ -624,21 +672,21 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       Pose local = ch.local;
       local.position = local.position.cwiseProduct(c.scale);
       parts.emplace_back(shape, bt(local));
-      double v = volumeOf(shape);
-      volumes.push_back(v);
-      centroid += v * local.position;
-      total += v;
+      volumes.push_back(ch.primitive == "mesh" ? hullVolume(shape) : primitiveVolume(c, ch));
     }
-    Eigen::Vector3d com = c.hasCenterOfMass ? c.centerOfMass : Eigen::Vector3d(centroid / total);
+    Eigen::Vector3d com = compoundCenterOfMass(c, volumes);
+    // Uniform density; children with no volume (a degenerate hull) get no mass.
+    double total = 0;
+    for (double v : volumes) total += v;
     auto* compound = new btCompoundShape();
     w.keep(compound);
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    double mass = c.bodyMode == BodyMode::Dynamic ? c.mass : (c.mass > 0 ? c.mass : 1.0);
+    double mass = compoundMass(c);
     for (std::size_t i = 0; i < parts.size(); ++i) {
       btTransform t = parts[i].second;
       t.setOrigin(t.getOrigin() - bt(com));
       compound->addChildShape(t, parts[i].first);
-      double m = mass * volumes[i] / total;
+      double m = total > 0 ? mass * volumes[i] / total : mass / static_cast<double>(parts.size());
       btVector3 li;
       parts[i].first->calculateLocalInertia(m, li);
       Eigen::Matrix3d r = eig(t.getRotation()).toRotationMatrix();
@@ -675,10 +723,13 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
 
   if (options.robots) {
     for (const robot::RobotInstance& instance : *options.robots) {
+      w.robotMeshesLeftOut.clear();
       if (!w.addRobot(instance, options.pd, sv)) {
         const Articulated& a = *instance.record;
         return fail(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
       }
+      for (const std::string& why : w.robotMeshesLeftOut)
+        warnMeshLeftOut(options.document, *instance.record, why, diagnostics);
       if (instance.model && !instance.record->convexifyCollisionMeshes && hasMeshCollision(*instance.model))
         warnNotConvexified(options.document, *instance.record, diagnostics);
     }

@@ -40,11 +40,11 @@
 #include <map>
 #include <utility>
 
-#include "robot/instance.hpp"
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "robot/instance.hpp"
+#include "robot/trajectory_format.hpp"
 #include "scene/scene.hpp"
 #include "sim/particle_systems.hpp"
 
@@ -62,34 +62,9 @@ inline constexpr const char* kWireLocalIndex = "RS7046";  // a wire's localIndex
 inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
 
-// State of one simulated body (dynamic or kinematic), in the world frame.
-struct BodyState {
-  int recordIndex = -1;  // object or compound record
-  std::string path;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();
-  bool dynamic = true;
-  bool sleeping = false;
-  bool departed = false;  // left the world (see Departure): frozen at its last pose
-};
-
-// State of one articulated system, RaiSim's layout (robot/kinematics.hpp).
-struct RobotState {
-  int recordIndex = -1;
-  std::string path;
-  const robot::RobotInstance* instance = nullptr;  // model, coordinate layout and names
-  Eigen::VectorXd q, u;                            // generalized coordinate and velocity
-  Pose base;                                       // the root link's frame, world
-  Eigen::Vector3d baseLinearVelocity = Eigen::Vector3d::Zero();   // of that frame's origin, world
-  Eigen::Vector3d baseAngularVelocity = Eigen::Vector3d::Zero();  // world
-  // Per body (RaiSim's body index: 0 the root, then one per movable joint
-  // in RaiSim's joint order; fixed links merged): the body frame's world
-  // pose, and its centre of mass's world velocity and angular velocity.
-  std::vector<Pose> bodyPoses;
-  std::vector<Eigen::Vector3d> bodyLinearVelocities, bodyAngularVelocities;
-};
+// The states a trajectory line carries (robot/trajectory_format.hpp).
+using robot::BodyState;
+using robot::RobotState;
 
 // rscene-sim --pd-gains: every movable joint of every articulated system
 // is driven toward its initial position with torque -kp e - kd e' (made
@@ -108,9 +83,12 @@ std::vector<std::string> unknownPdJoints(const PdGains& pd, const std::vector<ro
 
 // The instance of every articulated record (Scene::articulated order),
 // loaded through one robot::ModelCache: the one reading of each robot's
-// state (robot::makeInstance).  Returns false after an error.
+// state (robot::makeInstance).  A robot left out
+// (robot::leaveOutMissingRobots) gets an instance with no model; with
+// `allowMissingMeshes` (--allow-missing-assets) a URDF collision mesh that
+// is missing is dropped with a warning.  Returns false after an error.
 bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::RobotInstance>& robots,
-                Diagnostics& diagnostics);
+                Diagnostics& diagnostics, bool allowMissingMeshes = false);
 
 // Checks what Bullet cannot simulate sensibly: checkScene() of
 // scene/check.hpp (what rscene-validate reports too) with collision mesh
@@ -149,6 +127,9 @@ struct WorldOptions {
   // Instances must outlive the world.
   const std::vector<robot::RobotInstance>* robots = nullptr;
   PdGains pd;
+  // --allow-missing-assets: a robot collision mesh that does not read is
+  // left out of its link with a warning (RS7007), not an error.
+  bool allowMissingAssets = false;
 };
 
 // A simulated body whose state is no longer finite (World::nonFinite()).

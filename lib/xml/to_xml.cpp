@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 
+#include "scene/mass_properties.hpp"
 #include "scene/reader.hpp"
 #include "xml/to_xml_report.hpp"
 #include "xml/to_xml_robot.hpp"
@@ -22,51 +23,6 @@ constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
 // rscene wires resist stretch only, spelt as RaiSim's own exporter writes
 // it (rscene-from-xml also reads the enum's name STRETCH_RESISTANT_ONLY).
 constexpr const char* kStretchOnly = "stretch_only";
-
-// The bounding-box volume rscene-sim weighs a compound child by
-// (lib/sim/world.cpp volumeOf: the product of the Bullet shape's AABB
-// sides, at least 1e-12), in closed form: a box's sides, a sphere's cube
-// (2r)^3, a cylinder's (2r)^2 h, a capsule's (2r)^2 (h + 2r).  A box's and
-// a cylinder's half extents pass through Bullet's margin bookkeeping (the
-// constructor keeps half - 0.04, setSafeMargin moves the margin to
-// 0.1f x the smallest half extent when that is less, the AABB adds the
-// margin back); it is repeated here so the value is Bullet's to the bit.
-Eigen::Vector3d bulletHalfExtents(const Eigen::Vector3d& half) {
-  constexpr double kMargin = 0.04;                               // CONVEX_DISTANCE_MARGIN
-  double safe = static_cast<double>(0.1f) * half.minCoeff();     // setSafeMargin's multiplier is a float
-  Eigen::Vector3d w;
-  for (int i = 0; i < 3; ++i) {
-    w[i] = (half[i] - kMargin) + kMargin;
-    if (safe < kMargin) w[i] = (w[i] - safe) + safe;
-  }
-  return w;
-}
-double childVolume(const Compound& c, const CompoundChild& ch) {
-  Eigen::Vector3d d = Eigen::Vector3d::Zero();
-  double r = childRadius(c, ch), h = childHeight(c, ch);
-  if (ch.primitive == "box") d = 2 * bulletHalfExtents(childBox(c, ch) / 2);
-  if (ch.primitive == "sphere") d = Eigen::Vector3d::Constant(2 * r);
-  if (ch.primitive == "cylinder") d = 2 * bulletHalfExtents(Eigen::Vector3d(r, r, h / 2));
-  if (ch.primitive == "capsule") d = Eigen::Vector3d(2 * r, 2 * r, 2 * (r + h / 2));
-  return std::max(d.x() * d.y() * d.z(), 1e-12);
-}
-
-// rscene-sim's centre of mass of a compound without centerOfMass: its
-// children's positions weighted by childVolume, summed in child order as
-// the simulator sums them.  Only the children the XML holds count: a mesh
-// child is not exported (listed), and RaiSim's compound will not have it.
-Eigen::Vector3d childrenCentroid(const Compound& c) {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  double total = 0;
-  for (const CompoundChild& ch : c.children) {
-    if (ch.primitive != "box" && ch.primitive != "sphere" && ch.primitive != "capsule" && ch.primitive != "cylinder")
-      continue;
-    double v = childVolume(c, ch);
-    centroid += v * childPose(c, ch).position;
-    total += v;
-  }
-  return total > 0 ? Eigen::Vector3d(centroid / total) : Eigen::Vector3d::Zero();
-}
 
 class Exporter {
  public:
@@ -216,11 +172,14 @@ class Exporter {
     e.text("name", c.path).number("mass", c.mass).text("material", materialName(c.contactMaterial));
     e.text("body_type", bodyModeName(c.bodyMode));
     groups(e, c.collisionGroup, c.collisionMask);
-    // RaiSim's compound requires `com`: the record's, else where rscene-sim
-    // puts it (childrenCentroid), so both engines turn the compound about
-    // the same point.  from-xml reads it back as centerOfMass=: the same
-    // physics, spelt out.
-    e.vec3("com", c.hasCenterOfMass ? c.centerOfMass : childrenCentroid(c));
+    // RaiSim's compound requires `com`: where rscene-sim puts it
+    // (scene/mass_properties.hpp), so both engines turn the compound about
+    // the same point.  Only the children the XML holds count: a mesh child
+    // is not exported (listed), and RaiSim's compound will not have it.
+    // from-xml reads it back as centerOfMass=: the same physics, spelt out.
+    std::vector<double> volumes;
+    for (const CompoundChild& ch : c.children) volumes.push_back(primitiveVolume(c, ch));
+    e.vec3("com", compoundCenterOfMass(c, volumes));
     if (c.hasInertia) {
       const Eigen::Vector3d& d = c.inertiaDiagonal;
       e.add(OutElement("inertia").number("xx", d.x()).number("xy", 0).number("xz", 0).number("yy", d.y())

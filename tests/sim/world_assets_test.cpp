@@ -115,7 +115,7 @@ TEST(SimAssets, MissingAndUnreadableMeshesAreLeftOutWithAWarning) {
   EXPECT_EQ(r->diags[1].message.rfind("cannot read mesh '/s/junk.obj': ", 0), 0u) << r->diags[1].message;
   EXPECT_TRUE(r->diags[1].message.ends_with("; body '/World/Junk' is not simulated")) << r->diags[1].message;
   EXPECT_EQ(r->diags[2].line, 7u);  // the wire to the rock is skipped too
-  EXPECT_EQ(r->diags[2].message, "wire '/World/W' is not simulated: body '/World/Rock' was left out for its mesh");
+  EXPECT_EQ(r->diags[2].message, "wire '/World/W' is not attached: '/World/Rock' was left out for its mesh");
   EXPECT_EQ(r->world->bodyCount(), 1);
   std::string before = canonicalText(r->doc);
   steps(*r->world, 2);

@@ -296,15 +296,15 @@ TEST(ToXml, CompoundChildrenWithTheCompoundScaleMultipliedThrough) {
 }
 
 // RaiSim requires `com` on a compound; without centerOfMass rscene-sim
-// uses the children's centroid weighted by their bounding-box volumes
-// (lib/sim/world.cpp), and to-xml writes that point (it wrote none).
+// uses the children's centroid weighted by their true volumes
+// (scene/mass_properties.hpp), and to-xml writes that point.
 TEST(ToXml, CompoundWithoutCenterOfMassGetsTheCentroidRsceneSimUses) {
   Exported e = exportScene(
       H + "compound /World/Cart 0 0 0 1 0 0 0 2 1 1 3 dynamic true true id=cart\n"
           "compound_child cart box 0 0 0.5 1 0 0 0 1 1 1 size=1,1,0.1\n"      // 2 x 1 x 0.1 = 0.2 at (0, 0, 0.5)
-          "compound_child cart sphere 1 0 0 1 0 0 0 1 1 1 radius=0.5\n"       // r 1: 2^3 = 8 at (2, 0, 0)
-          "compound_child cart capsule 0 1 0 1 0 0 0 1 1 1 radius=0.1 height=1\n"  // r 0.2: 0.4^2 x 1.4 at (0, 1, 0)
-          "compound_child cart cylinder 0 0 -1 1 0 0 0 1 1 1 radius=0.1 height=0.5\n"  // 0.4^2 x 0.5 at (0, 0, -1)
+          "compound_child cart sphere 1 0 0 1 0 0 0 1 1 1 radius=0.5\n"       // r 1: 4/3 pi at (2, 0, 0)
+          "compound_child cart capsule 0 1 0 1 0 0 0 1 1 1 radius=0.1 height=1\n"  // r 0.2: pi 0.04 (1 + 0.8/3) at (0, 1, 0)
+          "compound_child cart cylinder 0 0 -1 1 0 0 0 1 1 1 radius=0.1 height=0.5\n"  // pi 0.04 x 0.5 at (0, 0, -1)
           "compound_child cart mesh 5 5 5 1 0 0 0 1 1 1 meshPath=hull.obj\n");  // not exported: not counted
   ASSERT_TRUE(e.result.ok()) << e.result.xml;
   Parsed p;
@@ -314,10 +314,12 @@ TEST(ToXml, CompoundWithoutCenterOfMassGetsTheCentroidRsceneSimUses) {
   std::istringstream com(attr(c, "com"));
   double x = 0, y = 0, z = 0;
   ASSERT_TRUE(com >> x >> y >> z) << attr(c, "com");
-  double total = 0.2 + 8 + 0.16 * 1.4 + 0.16 * 0.5;
-  EXPECT_NEAR(x, 8 * 2 / total, 1e-15);
-  EXPECT_NEAR(y, 0.16 * 1.4 / total, 1e-15);
-  EXPECT_NEAR(z, (0.2 * 0.5 - 0.16 * 0.5) / total, 1e-15);
+  const double pi = 3.14159265358979323846;
+  double sphere = 4.0 / 3.0 * pi, capsule = pi * 0.04 * (1 + 0.8 / 3), cylinder = pi * 0.04 * 0.5;
+  double total = 0.2 + sphere + capsule + cylinder;
+  EXPECT_NEAR(x, sphere * 2 / total, 1e-15);
+  EXPECT_NEAR(y, capsule / total, 1e-15);
+  EXPECT_NEAR(z, (0.2 * 0.5 - cylinder) / total, 1e-15);
   EXPECT_EQ(joined(e.result.notExported), "compound /World/Cart: mesh child");
   // A written centerOfMass is written as it is.
   Exported given = exportScene(H + "compound /World/C 0 0 0 1 0 0 0 1 1 1 3 dynamic true true id=c "

@@ -1,4 +1,4 @@
-#include "sim/trajectory.hpp"
+#include "robot/trajectory_format.hpp"
 
 #include <nlohmann/json.hpp>
 #include <unordered_map>
@@ -6,21 +6,8 @@
 #include "core/text.hpp"
 #include "robot/kinematics.hpp"
 
-namespace rscene::sim {
+namespace rscene::robot {
 namespace {
-
-void csvField(std::string& out, const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) {
-    out += s;
-    return;
-  }
-  out += '"';
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  out += '"';
-}
 
 void number(std::string& out, double v) { appendNumber(out, v == 0 ? 0.0 : v); }
 
@@ -38,7 +25,7 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
   if (format == TrajectoryFormat::Csv) {
     number(out, time);
     out += ',';
-    csvField(out, path);
+    appendCsvField(out, path);
     numbers(out, {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}, ',');
     return;
   }
@@ -62,7 +49,67 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
 
 }  // namespace
 
-Trajectory::Trajectory(TrajectoryFormat format, const std::vector<RobotState>& robots) : format_(format) {
+void appendCsvField(std::string& out, std::string_view s) {
+  if (s.find_first_of(",\"\n") == std::string_view::npos) {
+    out += s;
+    return;
+  }
+  out += '"';
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+}
+
+bool splitCsv(const std::string& line, std::vector<CsvField>& out, std::uint32_t& bad) {
+  out.clear();
+  std::size_t i = 0;
+  for (;;) {
+    CsvField f;
+    f.column = static_cast<std::uint32_t>(i + 1);
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      for (;;) {
+        if (i >= line.size()) {
+          bad = f.column;
+          return false;
+        }
+        if (line[i] == '"') {
+          if (i + 1 < line.size() && line[i + 1] == '"') {
+            f.text += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        f.text += line[i++];
+      }
+      if (i < line.size() && line[i] != ',') {
+        bad = static_cast<std::uint32_t>(i + 1);
+        return false;
+      }
+    } else {
+      std::size_t end = line.find(',', i);
+      if (end == std::string::npos) end = line.size();
+      f.text = line.substr(i, end - i);
+      i = end;
+    }
+    out.push_back(std::move(f));
+    if (i >= line.size()) return true;
+    ++i;  // the comma
+  }
+}
+
+TrajectoryLimits TrajectoryLimits::forPoints(std::size_t points) {
+  TrajectoryLimits l;
+  l.maxPoints = points;
+  l.maxLineBytes = (std::size_t{1} << 20) + kBytesPerPoint * std::min<std::size_t>(points, std::size_t{1} << 40);
+  return l;
+}
+
+TrajectoryWriter::TrajectoryWriter(TrajectoryFormat format, const std::vector<RobotState>& robots) : format_(format) {
   std::unordered_map<std::string, int> index;
   auto column = [&](const std::string& name) {
     auto [it, added] = index.emplace(name, static_cast<int>(columns_.size()));
@@ -70,29 +117,35 @@ Trajectory::Trajectory(TrajectoryFormat format, const std::vector<RobotState>& r
     return it->second;
   };
   for (const RobotState& r : robots) {
-    const robot::RobotInstance& in = *r.instance;
-    std::vector<std::string> q = robot::coordinateNames(*in.model, in.coordinates, false);
-    std::vector<std::string> u = robot::coordinateNames(*in.model, in.coordinates, true);
+    const RobotInstance& in = *r.instance;
+    std::vector<std::string> q = coordinateNames(*in.model, in.coordinates, false);
+    std::vector<std::string> u = coordinateNames(*in.model, in.coordinates, true);
     qColumns_.emplace_back();
     uColumns_.emplace_back();
     for (std::size_t i = static_cast<std::size_t>(in.coordinates.baseCoordinates); i < q.size(); ++i)
-      qColumns_.back().push_back(column("q." + q[i]));
+      qColumns_.back().push_back(column(std::string(kJointPositionPrefix) + q[i]));
     for (std::size_t i = static_cast<std::size_t>(in.coordinates.baseVelocities); i < u.size(); ++i)
-      uColumns_.back().push_back(column("u." + u[i]));
+      uColumns_.back().push_back(column(std::string(kJointVelocityPrefix) + u[i]));
   }
 }
 
-std::string Trajectory::header() const {
+std::string TrajectoryWriter::header() const {
   if (format_ == TrajectoryFormat::Jsonl) return {};
-  std::string h = "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+  std::string h;
+  for (std::string_view c : kTrajectoryBodyColumns) {
+    if (!h.empty()) h += ',';
+    h += c;
+  }
   for (const std::string& c : columns_) {
     h += ',';
-    csvField(h, c);
+    appendCsvField(h, c);
   }
-  return h + ",points\n";
+  h += ',';
+  h += kTrajectoryPointsColumn;
+  return h + '\n';
 }
 
-void Trajectory::append(std::string& out, double time, const std::vector<BodyState>& bodies,
+void TrajectoryWriter::append(std::string& out, double time, const std::vector<BodyState>& bodies,
                         const std::vector<RobotState>& robots, const std::vector<ParticleState>& particles) const {
   const std::string empty(columns_.size() + 1, ',');  // the joint columns and points
   for (const BodyState& b : bodies) {
@@ -102,7 +155,7 @@ void Trajectory::append(std::string& out, double time, const std::vector<BodySta
   std::vector<const double*> cells(columns_.size());
   for (std::size_t k = 0; k < robots.size() && k < qColumns_.size(); ++k) {
     const RobotState& r = robots[k];
-    const robot::RobotInstance& in = *r.instance;
+    const RobotInstance& in = *r.instance;
     poseLine(out, format_, time, r.path, r.base.position, r.base.orientation, r.baseLinearVelocity,
              r.baseAngularVelocity);
     const int q0 = in.coordinates.baseCoordinates, u0 = in.coordinates.baseVelocities;
@@ -139,8 +192,8 @@ void Trajectory::append(std::string& out, double time, const std::vector<BodySta
     if (csv) {
       number(out, time);
       out += ',';
-      csvField(out, p.path);
-      out += std::string(13 + columns_.size() + 1, ',');
+      appendCsvField(out, p.path);
+      out += std::string(kTrajectoryBodyColumns.size() - 2 + columns_.size() + 1, ',');
     } else {
       out += "{\"time\":";
       number(out, time);
@@ -160,4 +213,4 @@ void Trajectory::append(std::string& out, double time, const std::vector<BodySta
   }
 }
 
-}  // namespace rscene::sim
+}  // namespace rscene::robot

@@ -1,0 +1,21 @@
+// What rscene-sim and rscene-render leave out under --allow-missing-assets
+// (a body whose collision mesh, a robot whose file is missing), and what
+// hangs on it: decided once here so both tools say the same.
+#pragma once
+#include <set>
+#include <string>
+
+#include "core/diagnostic.hpp"
+#include "core/document.hpp"
+#include "scene/scene.hpp"
+
+namespace rscene {
+
+// Disables every enabled wire with an end on one of `names` (the ids and
+// paths of what was left out) and, with `sensors`, every enabled sensor
+// mounted on one, each with a warning (RS5001) at the field that names it:
+// "wire ... is not attached" / "sensor ... is not used: <name> was left out <why>".
+void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<std::string>& names, bool sensors,
+                       const std::string& why, Diagnostics& diagnostics);
+
+}  // namespace rscene
