@@ -504,12 +504,14 @@ SCENE
   [ "$status" -eq 1 ]  # the red base is still there
 }
 
-@test "robots: a robot file that does not exist is an error, also with --allow-missing-assets" {
+@test "robots: a robot file that does not exist is an error; --allow-missing-assets leaves the robot out, as sim does" {
   write_cell
   run -2 --separate-stderr "$RENDER" cell.rscene -o out.png
   [ "${stderr_lines[0]}" = "cell.rscene:3:34: error: robot file 'arm.urdf' does not exist [RS5001]" ]
   [ ! -e out.png ]
-  run -2 "$RENDER" cell.rscene --allow-missing-assets -o out.png
+  run -0 --separate-stderr "$RENDER" cell.rscene --allow-missing-assets -o out.png
+  [[ ${stderr_lines[0]} == "cell.rscene:3:34: warning: robot file 'arm.urdf' does not exist; articulated system '"*"' is left out (--allow-missing-assets) [RS5001]" ]]
+  is_png out.png
 }
 
 @test "robots: a coordinate of the wrong length is RS7040 at the field" {

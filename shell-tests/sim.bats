@@ -217,6 +217,21 @@ CORPUS="$ROOT/../shared/corpus"
   [[ ${stderr_lines[0]} == "cell.rscene:5:51: warning: articulated system '/World/Robot': cannot read mesh 'robots/quadruped/gone.obj': "*"; that collision is left out [RS7007]" ]]
 }
 
+@test "a wire end names a body by id first, then by path: the scene model's one rule" {
+  # /World/A has the id "/World/B"; the wire's "/World/B" is that id, so A
+  # hangs from the wire's world end and the body whose path is /World/B falls.
+  cat > ends.rscene <<'SCENE'
+raisim_engine_scene 1
+time_step 0.0025
+object /World/A sphere 0 0 0.5 1 0 0 0 1 1 1 0.1 0 1 default - false true false - dynamic true 1 18446744073709551615 id=/World/B
+object /World/B sphere 3 0 0.5 1 0 0 0 1 1 1 0.1 0 1 default - false true false - dynamic true 1 18446744073709551615 id=object_b
+wire /World/W stiff - /World/B 0.2 id=w localPositionA=0,0,2
+SCENE
+  run -0 "$SIM" --steps 400 ends.rscene
+  a=$(zof /World/A <<<"$output") b=$(zof /World/B <<<"$output")
+  awk -v a="$a" -v b="$b" 'BEGIN { exit !(a > 1.79 && a < 1.81 && b < -4) }'
+}
+
 @test "a body that falls off the edge leaves the world and --until-rest still finishes" {
   cat > edge.rscene <<'SCENE'
 raisim_engine_scene 1

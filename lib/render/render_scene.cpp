@@ -747,12 +747,14 @@ class Preparer {
   // Where a wire end is attached: the body `ref` names (id or path; its
   // record frame, or a robot's link localIndex), or the world when `ref` is
   // empty.  False when it names nothing that is drawn at a known pose.
-  bool wireEnd(const std::string& ref, int localIndex, const Vector3d& point, Attachment& at, Vector3d& world) const {
+  bool wireEnd(const std::string& ref, int record, int localIndex, const Vector3d& point, Attachment& at,
+               Vector3d& world) const {
     at = Attachment{};
     at.local = Affine3d(Eigen::Translation3d(point));
     world = point;
     if (ref.empty()) return true;
-    auto named = [&](const auto& node) { return node.id == ref || node.path == ref; };
+    // The record the scene model resolved the name to (Wire::recordA/B).
+    auto named = [&](const auto& node) { return record >= 0 && node.recordIndex == record; };
     for (std::size_t i = 0; i < s_.objects.size(); ++i)
       if (named(s_.objects[i])) {
         at.kind = Mount::Kind::Object;
@@ -793,8 +795,8 @@ class Preparer {
   void wire(const Wire& w) {
     if (!w.enabled) return;
     WireSpan span;
-    if (!wireEnd(w.bodyA, w.localIndexA, w.localPositionA, span.endA, span.a) ||
-        !wireEnd(w.bodyB, w.localIndexB, w.localPositionB, span.endB, span.b)) {
+    if (!wireEnd(w.bodyA, w.recordA, w.localIndexA, w.localPositionA, span.endA, span.a) ||
+        !wireEnd(w.bodyB, w.recordB, w.localIndexB, w.localPositionB, span.endB, span.b)) {
       ++out_.skipped["wire"];
       return;
     }

@@ -31,11 +31,8 @@ class RobotChecker {
       : doc_(doc), scene_(scene), options_(options), cache_(cache), out_(out) {}
 
   void run() {
-    for (const Articulated& a : scene_.articulated) {
-      byName_[a.id] = &a;  // the last of a name, as everywhere in the scene model
-      byName_[a.path] = &a;
-      used_.insert(a.resource);
-    }
+    for (const Articulated& a : scene_.articulated) used_.insert(a.resource);
+    for (const Sensor& s : scene_.sensors) sensorAt_[s.recordIndex] = &s;
     for (const Articulated& a : scene_.articulated) articulated(a);
     if (options_.checkFiles) unusedResources();
     sensors();
@@ -121,13 +118,11 @@ class RobotChecker {
     }
   }
 
-  // The checked robot a reference (an id or a path) names, the last of
-  // that name as everywhere in the scene model; nullptr when it names none
-  // or its model was not read.
-  const Checked* robotNamed(const std::string& ref) const {
-    auto named = byName_.find(ref);
-    if (named == byName_.end()) return nullptr;
-    auto it = robots_.find(named->second->recordIndex);
+  // The checked robot of an articulated record (the record a wire end or
+  // a sensor mount resolved to in the scene model: one rule, by id then by
+  // path); nullptr when its model was not read.
+  const Checked* robotAt(int recordIndex) const {
+    auto it = robots_.find(recordIndex);
     return it == robots_.end() ? nullptr : &it->second;
   }
 
@@ -153,7 +148,11 @@ class RobotChecker {
       if (!byName.empty()) sameOutput(r, i, urdf, byName);
       std::string link = r.str("parentLink");
       if (link.empty() || link == "-") continue;
-      const Checked* robot = robotNamed(r.str("parentObject"));
+      // The robot the scene model mounted the sensor on (Sensor::mount).
+      auto sensor = sensorAt_.find(static_cast<int>(i));
+      if (sensor == sensorAt_.end() || sensor->second->mount.kind != Mount::Kind::Articulated) continue;
+      const Checked* robot =
+          robotAt(scene_.articulated[static_cast<std::size_t>(sensor->second->mount.index)].recordIndex);
       if (!robot || robot->model->findLink(link) >= 0) continue;
       reportUnknownSensorLink(doc_, static_cast<int>(i), *robot->model, link, robot->record->path, found);
     }
@@ -193,9 +192,9 @@ class RobotChecker {
     Diagnostics found;
     for (const Wire& w : scene_.wires) {
       RecordReader r(doc_, static_cast<std::size_t>(w.recordIndex), found);
-      auto end = [&](WireEnd kind, const std::string& ref, int index, const char* field) {
+      auto end = [&](WireEnd kind, int record, int index, const char* field) {
         if (kind != WireEnd::Articulated) return;
-        const Checked* robot = robotNamed(ref);
+        const Checked* robot = robotAt(record);
         if (!robot) return;
         int bodies = bodyCount(robot->coordinates);
         if (index >= 0 && index < bodies) return;
@@ -204,8 +203,8 @@ class RobotChecker {
                     std::to_string(bodies - 1),
                 "RaiSim's body index: the base is 0, then one body per movable joint in joint order");
       };
-      end(w.endA, w.bodyA, w.localIndexA, "localIndexA");
-      end(w.endB, w.bodyB, w.localIndexB, "localIndexB");
+      end(w.endA, w.recordA, w.localIndexA, "localIndexA");
+      end(w.endB, w.recordB, w.localIndexB, "localIndexB");
     }
     take(found, 0);
   }
@@ -216,7 +215,7 @@ class RobotChecker {
   ModelCache& cache_;
   std::vector<SceneFinding>& out_;
   std::map<int, Checked> robots_;  // by articulated record index
-  std::unordered_map<std::string, const Articulated*> byName_;  // by id and by path
+  std::unordered_map<int, const Sensor*> sensorAt_;  // by record index
   std::unordered_set<int> used_;  // resources some articulated record instantiates
 };
 

@@ -88,14 +88,13 @@ int leaveOutMissingRobots(const Document& doc, Scene& scene, Diagnostics& diags)
   // missing body mesh (sim/missing_assets.cpp).
   std::map<std::string, std::vector<const Articulated*>> byFile;
   std::vector<std::string> order;
-  std::set<std::string> names;  // ids and paths of the robots left out
+  std::set<int> records;  // of the robots left out
   int count = 0;
   for (Articulated& a : scene.articulated) {
     if (a.sourcePath.empty() || fileExistsOnDisk(a.sourcePath)) continue;
     a.leftOut = true;
     ++count;
-    for (const std::string* name : {&a.id, &a.path})
-      if (!name->empty()) names.insert(*name);
+    records.insert(a.recordIndex);
     auto& robots = byFile[a.sourcePath];
     if (robots.empty()) order.push_back(a.sourcePath);
     robots.push_back(&a);
@@ -113,7 +112,7 @@ int leaveOutMissingRobots(const Document& doc, Scene& scene, Diagnostics& diags)
                "robot file '" + file + "' " + whyNotAFile(file) + "; " + who + " left out (--allow-missing-assets)",
                {}, Severity::Warning);
   }
-  detachFromLeftOut(doc, scene, names, true, "for its missing robot file", diags);
+  detachFromLeftOut(doc, scene, records, true, "for its missing robot file", diags);
   return count;
 }
 

@@ -4,25 +4,35 @@
 
 namespace rscene {
 
-void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<std::string>& names, bool sensors,
+void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<int>& records, bool sensors,
                        const std::string& why, Diagnostics& diagnostics) {
-  if (names.empty()) return;
+  if (records.empty()) return;
   auto warn = [&](int recordIndex, const char* field, const std::string& message) {
     RecordReader(doc, static_cast<std::size_t>(recordIndex), diagnostics)
         .error(field, scene_code::kMissingFile, message, {}, Severity::Warning);
   };
   for (Wire& w : scene.wires) {
     if (!w.enabled) continue;
-    bool a = names.count(w.bodyA) > 0;
-    if (!a && !names.count(w.bodyB)) continue;
+    bool a = records.count(w.recordA) > 0;
+    if (!a && !records.count(w.recordB)) continue;
     const std::string& body = a ? w.bodyA : w.bodyB;
     warn(w.recordIndex, a ? "bodyA" : "bodyB",
          "wire '" + w.path + "' is not attached: '" + body + "' was left out " + why);
     w.enabled = false;
   }
   if (!sensors) return;
+  auto mountRecord = [&](const Mount& m) {
+    auto at = static_cast<std::size_t>(m.index);
+    switch (m.kind) {
+      case Mount::Kind::Object: return scene.objects[at].recordIndex;
+      case Mount::Kind::Compound: return scene.compounds[at].recordIndex;
+      case Mount::Kind::Articulated: return scene.articulated[at].recordIndex;
+      case Mount::Kind::World: break;
+    }
+    return -1;
+  };
   for (Sensor& s : scene.sensors) {
-    if (!s.enabled || !names.count(s.parentObject)) continue;
+    if (!s.enabled || !records.count(mountRecord(s.mount))) continue;
     warn(s.recordIndex, "parentObject",
          "sensor '" + s.path + "' is not used: '" + s.parentObject + "' was left out " + why);
     s.enabled = false;

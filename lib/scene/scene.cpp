@@ -1260,9 +1260,10 @@ class Builder {
     for (const Terrain& t : s_.terrains) simulatedBody[t.recordIndex] = true;
     std::unordered_map<int, bool> robot;
     for (const Articulated& a : s_.articulated) robot[a.recordIndex] = true;
-    auto classify = [&](const std::string& ref, WireEnd& end, std::string& tag) {
+    auto classify = [&](const std::string& ref, WireEnd& end, std::string& tag, int& record) {
       if (ref.empty()) return;
       int target = lookup(ref);
+      record = target;
       if (target < 0) {
         end = WireEnd::Unknown;
         return;
@@ -1281,8 +1282,8 @@ class Builder {
       end = it != simulatedBody.end() && it->second ? WireEnd::Body : WireEnd::NotSimulated;
     };
     for (Wire& w : s_.wires) {
-      classify(w.bodyA, w.endA, w.tagA);
-      classify(w.bodyB, w.endB, w.tagB);
+      classify(w.bodyA, w.endA, w.tagA, w.recordA);
+      classify(w.bodyB, w.endB, w.tagB, w.recordB);
     }
   }
 

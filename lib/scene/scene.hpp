@@ -519,6 +519,10 @@ struct Wire {
   bool enabled{};
   WireEnd endA = WireEnd::World, endB = WireEnd::World;
   std::string tagA, tagB;  // record kind an end names (when it names a node)
+  // The record each end names, by the model's one rule (an id first, then
+  // a path); -1 for the world or a name nothing has.  Sim, render and the
+  // robot checks attach by this, never by the name again.
+  int recordA = -1, recordB = -1;
 
   // Whether a simulator attaches this wire: enabled, and each end is the
   // world, a simulated body (object, compound, terrain) or an articulated

@@ -54,7 +54,7 @@ int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetC
   };
   std::vector<Missing> missing;
   std::map<std::string, std::size_t> byPath;
-  std::set<std::string> skipped;  // ids and paths
+  std::set<int> skipped;  // record indices
   int count = 0;
   auto skip = [&](auto& body, const std::string& path, int recordIndex, const char* field) {
     auto [it, fresh] = byPath.try_emplace(path, missing.size());
@@ -64,8 +64,7 @@ int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetC
     }
     ++missing[it->second].bodies;
     body.bodyMode = BodyMode::VisualOnly;
-    for (const std::string* name : {&body.id, &body.path})
-      if (!name->empty()) skipped.insert(*name);
+    skipped.insert(body.recordIndex);
     ++count;
   };
   for (Object& o : scene.objects) {

@@ -205,6 +205,7 @@ struct World::Impl {
   void registerBody(const Node& n, btRigidBody* body, const btTransform& toRecord = btTransform::getIdentity()) {
     byName[n.id] = body;
     byName[n.path] = body;
+    byRecord[n.recordIndex] = body;
     if (n.bodyMode != BodyMode::Dynamic && n.bodyMode != BodyMode::Kinematic) return;
     Simulated s;
     s.recordIndex = n.recordIndex;
@@ -255,7 +256,9 @@ struct World::Impl {
   std::vector<SelfPairs> selfPairs;  // per robot
   double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
-  std::unordered_map<std::string, int> robotByName;      // id and path -> index into robots
+  std::unordered_map<int, btRigidBody*> byRecord;       // record index -> body (wire ends: Wire::recordA/B)
+  std::unordered_map<std::string, int> robotByName;      // id and path -> index into robots (sensor mounts)
+  std::unordered_map<int, int> robotByRecord;           // articulated record index -> index into robots
   std::map<std::string, int> materialIndex;
   double dt = 0.0025;
   std::uint64_t stepCount = 0;
@@ -462,6 +465,7 @@ struct World::Impl {
     for (auto& c : r->constraints()) world->addMultiBodyConstraint(c.get());
     robotByName[a.id] = index;
     robotByName[a.path] = index;
+    robotByRecord[a.recordIndex] = index;
     robots.push_back(std::move(r));
     return true;
   }
@@ -719,6 +723,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     w.lowerFloorTo(body);
     w.byName[t.id] = body;
     w.byName[t.path] = body;
+    w.byRecord[t.recordIndex] = body;
   }
 
   if (options.robots) {
@@ -741,11 +746,11 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     // record frame; compounds simulate about their centre of mass), or a
     // robot's body localIndex (point in that body's frame).
     enum Kind { None, Point, Body };
-    auto anchor = [&](const std::string& ref, int localIndex, const Eigen::Vector3d& p, const char* field,
-                      WireAnchor& out) -> Kind {
+    auto anchor = [&](const std::string& ref, int record, int localIndex, const Eigen::Vector3d& p,
+                      const char* field, WireAnchor& out) -> Kind {
       out.local = bt(p);
       if (ref.empty()) return Point;
-      if (auto it = w.robotByName.find(ref); it != w.robotByName.end()) {
+      if (auto it = w.robotByRecord.find(record); it != w.robotByRecord.end()) {
         SimRobot* r = w.robots[static_cast<std::size_t>(it->second)].get();
         int bodies = static_cast<int>(r->layout().bodies.size());
         if (localIndex < 0 || localIndex >= bodies) {
@@ -759,16 +764,16 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
         out.body = localIndex;
         return Body;
       }
-      auto it = w.byName.find(ref);
-      if (it == w.byName.end()) return None;  // checkPhysics reported it
+      auto it = w.byRecord.find(record);
+      if (it == w.byRecord.end()) return None;  // checkPhysics reported it
       out.rigid = it->second;
       for (const Simulated& s : w.simulated)
         if (s.body == out.rigid) out.local = s.toRecord.inverse() * bt(p);
       return Body;
     };
     WireAnchor a, b;
-    Kind ka = anchor(wire.bodyA, wire.localIndexA, wire.localPositionA, "bodyA", a);
-    Kind kb = anchor(wire.bodyB, wire.localIndexB, wire.localPositionB, "bodyB", b);
+    Kind ka = anchor(wire.bodyA, wire.recordA, wire.localIndexA, wire.localPositionA, "bodyA", a);
+    Kind kb = anchor(wire.bodyB, wire.recordB, wire.localIndexB, wire.localPositionB, "bodyB", b);
     if (w.wireError.recordIndex >= 0)
       return fail(wire.path, w.wireError.message, sim_code::kWireLocalIndex, w.wireError.recordIndex,
                   w.wireError.field);
