@@ -126,6 +126,17 @@ class RobotChecker {
     return it == robots_.end() ? nullptr : &it->second;
   }
 
+  // The record of the articulated system `ref` names: by id, then by path
+  // (the scene model's rule); -1 when none.
+  int articulatedNamed(const std::string& ref) const {
+    if (ref.empty()) return -1;
+    for (const Articulated& a : scene_.articulated)
+      if (a.id == ref) return a.recordIndex;
+    for (const Articulated& a : scene_.articulated)
+      if (a.path == ref) return a.recordIndex;
+    return -1;
+  }
+
   void sensors() {
     if (robots_.empty()) return;
     // Where rscene-sim --sensors would write the LiDARs and IMUs of the
@@ -148,11 +159,17 @@ class RobotChecker {
       if (!byName.empty()) sameOutput(r, i, urdf, byName);
       std::string link = r.str("parentLink");
       if (link.empty() || link == "-") continue;
-      // The robot the scene model mounted the sensor on (Sensor::mount).
-      auto sensor = sensorAt_.find(static_cast<int>(i));
-      if (sensor == sensorAt_.end() || sensor->second->mount.kind != Mount::Kind::Articulated) continue;
-      const Checked* robot =
-          robotAt(scene_.articulated[static_cast<std::size_t>(sensor->second->mount.index)].recordIndex);
+      // The robot the sensor rides on: Sensor::mount where the model read
+      // sensors, else (validate's bodies-only build) the same rule, an id
+      // first, then a path.
+      const Checked* robot = nullptr;
+      if (auto sensor = sensorAt_.find(static_cast<int>(i)); sensor != sensorAt_.end()) {
+        const Mount& m = sensor->second->mount;
+        if (m.kind == Mount::Kind::Articulated)
+          robot = robotAt(scene_.articulated[static_cast<std::size_t>(m.index)].recordIndex);
+      } else {
+        robot = robotAt(articulatedNamed(r.str("parentObject")));
+      }
       if (!robot || robot->model->findLink(link) >= 0) continue;
       reportUnknownSensorLink(doc_, static_cast<int>(i), *robot->model, link, robot->record->path, found);
     }
