@@ -57,9 +57,10 @@ bounded() {
 #     (a literal prefix: "bad.xml:3:", or the whole line);
 #   - no file appears or disappears anywhere under the current folder (no
 #     output and no temporary file left behind, no input removed);
-#   - every output CMD names (the operand of -o or --trajectory) is also
-#     left as it was when it exists already: CMD runs a second time with
-#     each one holding a line of its own, which must keep its bytes.
+#   - every output CMD names (the operand of -o, --output or --trajectory)
+#     is also left as it was when it exists already: CMD runs a second
+#     time with each one holding a line of its own, which must keep its
+#     bytes.
 # It leaves $status, $output, $stderr, $lines and $stderr_lines of the
 # first run for further assertions.  CMD is run as given: name its inputs
 # with paths relative to the current folder so WHERE can name them.
@@ -68,7 +69,7 @@ refused() {
   shift
   local outs=() prev="" arg out
   for arg in "$@"; do
-    case $prev in -o | --trajectory) outs+=("$arg") ;; esac
+    case $prev in -o | --output | --trajectory) outs+=("$arg") ;; esac
     prev=$arg
   done
   for out in "${outs[@]}"; do
