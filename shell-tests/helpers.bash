@@ -3,6 +3,8 @@
 # only *.bats, and docs.bats reads a tool's own FILE.bats for its flags,
 # so every flag a test exercises is still written in that file.
 
+# shellcheck disable=SC2034  # the variables set here are read by the files that load it
+
 bats_require_minimum_version 1.5.0
 
 # The tools under test: `make shell-test` sets RSCENE_BIN to its build.
@@ -34,7 +36,7 @@ needs_shared() {
 # that a test can assert on everything a tool left in its folder.
 in_workdir() {
   mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  cd "$BATS_TEST_TMPDIR/w" || return
 }
 
 # bounded KB SECONDS CMD...: runs CMD with at most KB of address space and
