@@ -10,7 +10,9 @@
 # At the end, when rscene-sim is built, bench/sim/run.sh compares it with
 # a hand-written Bullet program (several minutes; SIM_BENCH_* there), and
 # bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2, and
-# bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest.
+# bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest; then
+# bench/soft/*.sh, bench/xml/convert.sh and rscene-xml-hostile-bench
+# (what refusing hostile world XML costs).
 #
 # Environment:
 #   BENCH_DIR     where the scenes go (default: a temporary directory, removed)
@@ -217,4 +219,10 @@ done
 # RaiSim world XML both ways (issue 15), beside rscene-fmt.
 echo
 bash "$(dirname "${BASH_SOURCE[0]}")/xml/convert.sh" "$BIN" || status=1
+# Hostile world XML refused (issue 15): tests/xml/hostile_test.cpp's
+# inputs, timed here because the test asserts no wall time.
+if [[ -x $BIN/rscene-xml-hostile-bench ]]; then
+  echo
+  "$BIN/rscene-xml-hostile-bench" || status=1
+fi
 exit $status

@@ -11,10 +11,8 @@
 # family; a failure lists the disagreeing scenes.  The catalogue is
 # generated and run once, in setup_file (about two minutes on two cores).
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-AGREE="$BATS_TEST_DIRNAME/../tests/agreement"
-
-bats_require_minimum_version 1.5.0
+load helpers
+AGREE="$ROOT/tests/agreement"
 
 setup_file() {
   export CAT="$BATS_FILE_TMPDIR/catalogue" TABLE="$BATS_FILE_TMPDIR/table.txt"

@@ -3,19 +3,14 @@
 # statuses like diff(1), and git's external diff driver in a real
 # temporary repository (`git diff` and `git log -p --ext-diff`).
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
+load helpers
 DIFF="$BIN/rscene-diff"
 OLD="$DATA/diff_old.rscene"
 NEW="$DATA/diff_new.rscene"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$DIFF" ] || skip "rscene-diff not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-diff
+  in_workdir
 }
 
 expected_blocks() {
@@ -123,7 +118,7 @@ EOF2
   [ -x "$BIN/rscene-fmt" ] || skip "rscene-fmt not built"
   n=0
   # tests/data/**, examples/ and ../shared/corpus/ (which may be absent)
-  for f in $(find "$DATA" -name '*.rscene') "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene; do
+  for f in $(find "$DATA" -name '*.rscene') "$ROOT"/examples/*.rscene "$CORPUS"/*.rscene; do
     [ -f "$f" ] || continue
     "$BIN/rscene-fmt" "$f" >formatted.rscene 2>/dev/null || continue  # fixtures of parse errors
     run "$DIFF" "$f" formatted.rscene
@@ -289,10 +284,10 @@ walker() {  # $1: the knee value of the left leg; $2: the robot file
 }
 
 @test "robots: the ANYmal C's 19 coordinates keep the summary line, the changed entry named" {
-  [ -d "$ROOT/../shared/corpus/robots/anymal_c" ] || skip "no ../shared corpus"
+  needs_shared corpus/robots/anymal_c
   anymal() {
     printf '%s\n' "raisim_engine_scene 1" \
-      "articulated_resource anymal_res ANYmal $ROOT/../shared/corpus/robots/anymal_c/urdf/anymal.urdf" \
+      "articulated_resource anymal_res ANYmal $CORPUS/robots/anymal_c/urdf/anymal.urdf" \
       "articulated /World/Anymal anymal_res 0 0 0.54 1 0 0 0 true true generalizedCoordinate=0,0,0.54,1,0,0,0,0.03,0.4,$1,-0.03,0.4,-0.8,0.03,-0.4,0.8,-0.03,-0.4,0.8"
   }
   anymal -0.8 > a.rscene

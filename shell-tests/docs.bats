@@ -4,10 +4,7 @@
 # three shell completions and the tool's shell test.  A new tool is checked
 # as soon as its binary exists in $BIN; nothing here names a tool.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-
-bats_require_minimum_version 1.5.0
+load helpers
 
 setup() {
   command -v mandoc >/dev/null || skip "mandoc not installed"

@@ -3,9 +3,7 @@
 # without ../shared, so every file a scene of examples/ names must be in
 # the repository, and the demo must copy it next to the scenes it runs.
 
-ROOT="$BATS_TEST_DIRNAME/.."
-
-bats_require_minimum_version 1.5.0
+load helpers
 
 setup() {
   cd "$BATS_TEST_TMPDIR"

@@ -2,19 +2,12 @@
 # End-to-end tests of rscene-fmt: every flag and exit status, exact
 # messages for bad input, and the formatter's invariants on real files.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
-SHARED="$ROOT/../shared"
+load helpers
 FMT="$BIN/rscene-fmt"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$FMT" ] || skip "rscene-fmt not built in $BIN"
-  # A folder of its own: bats keeps files of its own in BATS_TEST_TMPDIR.
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-fmt
+  in_workdir
 }
 
 # The canonical text of tests/data/fmt_messy.rscene.  The compound_child
@@ -402,8 +395,8 @@ EOF
 }
 
 @test "the Engine 2 corpus file is a fixed point" {
-  f="$SHARED/corpus/rayrai_forest_head.rscene"
-  [ -f "$f" ] || skip "../shared/corpus not present"
+  needs_shared corpus/rayrai_forest_head.rscene
+  f="$CORPUS/rayrai_forest_head.rscene"
   "$FMT" "$f" | cmp - "$f"
   run "$FMT" --check "$f"
   [ "$status" -eq 0 ]

@@ -5,13 +5,9 @@
 # parse, binary junk, a rename with a change, and a deletion.  Before the
 # fix, git stopped at the broken commit with exit 128.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
+load helpers
 FMT="$BIN/rscene-fmt"
 DIFF="$BIN/rscene-diff"
-
-bats_require_minimum_version 1.5.0
 
 SUBJECTS="good one
 good two
@@ -29,7 +25,7 @@ commit() {
 
 setup() {
   command -v git >/dev/null || skip "git not installed"
-  [ -x "$FMT" ] && [ -x "$DIFF" ] || skip "rscene-fmt or rscene-diff not built in $BIN"
+  needs_tools rscene-fmt rscene-diff
   cd "$BATS_TEST_TMPDIR"
   git init -q repo
   cd repo

@@ -3,19 +3,13 @@
 # round trip through `jq .` on every scene we have, every flag, exit
 # statuses, and exact messages for bad input.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
-SHARED="$ROOT/../shared"
+load helpers
 TO="$BIN/rscene-to-json"
 FROM="$BIN/rscene-from-json"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$TO" ] && [ -x "$FROM" ] || skip "rscene-to-json/rscene-from-json not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-to-json rscene-from-json
+  in_workdir
 }
 
 header_json='{"tag":"raisim_engine_scene","fields":{"version":1}}'

@@ -6,17 +6,12 @@
 # symlink, /dev/null, a FIFO, a read-only or hard-linked file, /dev/full,
 # and an interrupted write.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
+load helpers
 FMT="$BIN/rscene-fmt"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$FMT" ] || skip "rscene-fmt not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-fmt
+  in_workdir
 }
 
 teardown() {

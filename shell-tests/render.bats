@@ -2,26 +2,12 @@
 # End-to-end tests of rscene-render on the CPU backend: every flag, exit
 # statuses, exact messages for bad input, and baseline comparison.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
+load helpers
 RENDER="$BIN/rscene-render"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$RENDER" ] || skip "rscene-render not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
-}
-
-# Width and height from a PNG's IHDR.
-png_size() {
-  od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%dx%d\n", $1*16777216+$2*65536+$3*256+$4, $5*16777216+$6*65536+$7*256+$8 }'
-}
-
-is_png() {
-  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]
+  needs_tools rscene-render
+  in_workdir
 }
 
 @test "--help lists every flag" {
@@ -268,23 +254,16 @@ is_png() {
 }
 
 @test "real corpus scenes render with --allow-missing-assets" {
-  SHARED="$ROOT/../shared/corpus"
-  [ -f "$SHARED/rayrai_warehouse.rscene" ] || skip "no corpus in ../shared"
-  run "$RENDER" "$SHARED/rayrai_warehouse.rscene" --allow-missing-assets --width 160 --height 100 -o out.png
+  needs_shared corpus/rayrai_warehouse.rscene
+  run "$RENDER" "$CORPUS/rayrai_warehouse.rscene" --allow-missing-assets --width 160 --height 100 -o out.png
   [ "$status" -eq 0 ]
   is_png out.png
 }
 
 # --- Resource limits (README, "Resource limits: rscene-render") ---------
 # Each reproducer of issue 10 item 5 runs under a memory and time bound
-# (GL start-up alone needs ~1 GB of address space) and asserts the
-# documented outcome.
-
-bounded() {  # bounded KB SECONDS cmd...: ulimit -v and timeout
-  local kb=$1 secs=$2
-  shift 2
-  ( ulimit -v "$kb" && exec timeout "$secs" "$@" )
-}
+# (bounded, helpers.bash; GL start-up alone needs ~1 GB of address space)
+# and asserts the documented outcome.
 
 BOX='object /World/B box 3 0 0 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615'
 
@@ -522,8 +501,8 @@ SCENE
 }
 
 @test "robots: ANYmal C from ../shared renders standing, with its meshes and textures" {
-  urdf="$ROOT/../shared/corpus/robots/anymal_c/urdf/anymal.urdf"
-  [ -f "$urdf" ] || skip "no ../shared corpus"
+  needs_shared corpus/robots/anymal_c/urdf/anymal.urdf
+  urdf="$CORPUS/robots/anymal_c/urdf/anymal.urdf"
   bash "$ROOT/bench/render/robots.sh" "$urdf" 1 > anymal.rscene
   # From 1.7 m front-right, 0.8 m up, looking at the robot.
   echo "camera /World/Cam 1.2 -1.2 0.8 0.37947 -0.11947 0.04949 0.91612 50 0.05 100 160 120 rgb true id=cam" >> anymal.rscene

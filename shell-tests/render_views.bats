@@ -4,16 +4,13 @@
 # writes, collisions found before drawing, and --trajectory frames (from
 # rscene-sim, and a camera on a robot link that moves between frames).
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+load helpers
 RENDER="$BIN/rscene-render"
 SIM="$BIN/rscene-sim"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$RENDER" ] || skip "rscene-render not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-render
+  in_workdir
   cat > s.rscene << 'EOF'
 raisim_engine_scene 2
 light /World/Sun -0.3 0.4 -1.0 3.5 id=sun type=directional position=0,0,5 color=1,1,1
@@ -26,17 +23,9 @@ sensor /World/Imu imu box 0 0 0 1 0 0 0 id=imu
 EOF
 }
 
-png_size() {
-  od -An -tu1 -j16 -N8 "$1" | awk '{ printf "%dx%d\n", $1*16777216+$2*65536+$3*256+$4, $5*16777216+$6*65536+$7*256+$8 }'
-}
-
 # Bit depth and color type of a PNG (IHDR bytes 24 and 25): "16 0" is 16-bit gray.
 png_format() {
   od -An -tu1 -j24 -N2 "$1" | awk '{ print $1, $2 }'
-}
-
-is_png() {
-  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]
 }
 
 # The shape in a NumPy .npy header.
@@ -269,8 +258,8 @@ EOF
 }
 
 @test "ANYmal C's URDF sensor sets are views: --all-cameras and --camera ROBOT/SET/SENSOR" {
-  urdf="$BATS_TEST_DIRNAME/../../shared/corpus/robots/anymal_c/urdf/anymal_sensored.urdf"
-  [ -f "$urdf" ] || skip "no ../shared corpus"
+  needs_shared corpus/robots/anymal_c/urdf/anymal_sensored.urdf
+  urdf="$CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf"
   urdf=$(cd "$(dirname "$urdf")" && pwd)/anymal_sensored.urdf
   { printf 'raisim_engine_scene 2\n'
     printf 'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615 id=ground\n'

@@ -5,11 +5,9 @@
 # They skip while rscene-validate does not read robot models (the robot
 # checks of issue 11 land on another branch).
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+load helpers
 MJCF="$BATS_TEST_DIRNAME/../tests/data/robots/mjcf"
 V="$BIN/rscene-validate"
-
-bats_require_minimum_version 1.5.0
 
 # scene FILE Q: a scene with one articulated system of FILE, q = Q.
 scene() {
@@ -18,7 +16,7 @@ scene() {
 }
 
 setup() {
-  [ -x "$V" ] || skip "rscene-validate not built in $BIN"
+  needs_tools rscene-validate
   export NO_COLOR=1
   cd "$BATS_TEST_TMPDIR"
   scene "$MJCF/unknown_attribute.xml" 0 > probe.rscene

@@ -5,14 +5,12 @@
 # a chain of N boxes, each 1 m along its parent's +x, the last one dynamic,
 # so its world position in rscene-sim's trajectory is N metres out.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+load helpers
 SIM="$BIN/rscene-sim"
 V="$BIN/rscene-validate"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
+  needs_tools rscene-sim
   cd "$BATS_TEST_TMPDIR"
 }
 
@@ -59,14 +57,14 @@ first_x() { head -n 1 traj.jsonl | sed -n 's/.*"position":\[\([^,]*\),.*/\1/p'; 
 @test "a 200000-deep chain: linear, in bounded memory, no stack overflow" {
   chain 200000 > deep.rscene
   # 2 GB of address space and 60 s: the run takes about 2.5 s and 350 MB.
-  run bash -c 'ulimit -v 2000000; exec timeout 60 "$0" --steps 1 --trajectory traj.jsonl -o out.rscene deep.rscene' "$SIM"
+  run bounded 2000000 60 "$SIM" --steps 1 --trajectory traj.jsonl -o out.rscene deep.rscene
   [ "$status" -eq 0 ]
   [ "$(first_x)" = "2e+05" ]
 }
 
 @test "a 200000-deep chain of groups under a hidden one resolves in bounded time and memory" {
   hidden_chain 200000 > hidden.rscene
-  run bash -c 'ulimit -v 2000000; exec timeout 60 "$0" --steps 1 --trajectory traj.jsonl -o out.rscene hidden.rscene' "$SIM"
+  run bounded 2000000 60 "$SIM" --steps 1 --trajectory traj.jsonl -o out.rscene hidden.rscene
   [ "$status" -eq 0 ]
   [ "$(first_x)" = "0" ]
 }

@@ -2,22 +2,14 @@
 # End-to-end tests of rscene-sim: every flag, exit statuses, exact
 # messages for bad physics input, determinism and the batch recipe.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
+load helpers
 SIM="$BIN/rscene-sim"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-sim
+  in_workdir
   cp "$DATA"/sim_*.rscene .
 }
-
-# z of object PATH in scene text on stdin.
-zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 @test "--help lists every option" {
   run -0 "$SIM" --help
@@ -151,8 +143,6 @@ zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 # --- missing assets and bodies leaving the world ---
 
-CORPUS="$ROOT/../shared/corpus"
-
 @test "--allow-missing-assets leaves out a body whose mesh is missing and simulates the rest" {
   run -0 "$SIM" --help
   [[ $output == *"--allow-missing-assets"* ]]
@@ -248,7 +238,7 @@ SCENE
 }
 
 @test "corpus: the warehouse and the city simulate with --allow-missing-assets" {
-  [ -d "$CORPUS" ] || skip "no ../shared/corpus"
+  needs_shared corpus
   for scene in rayrai_warehouse rayrai_city; do
     run -2 "$SIM" --steps 1 "$CORPUS/$scene.rscene"
     run -0 --separate-stderr "$SIM" --allow-missing-assets --duration 1 --report -o out.rscene "$CORPUS/$scene.rscene"
@@ -283,15 +273,9 @@ SCENE
 }
 
 # --- Resource limits (README "Resource limits", rscene-sim(1) LIMITS) ---
-# Each reproducer runs under a time and address-space bound, so a
-# regression fails here instead of hanging or swapping the test machine.
-
-# Runs the simulator with at most $1 KB of address space and $2 seconds.
-bounded() {
-  local kb=$1 secs=$2
-  shift 2
-  ( ulimit -v "$kb" && exec timeout "$secs" "$SIM" "$@" )
-}
+# Each reproducer runs under a time and address-space bound (bounded,
+# helpers.bash), so a regression fails here instead of hanging or swapping
+# the test machine.
 
 # A scene of: header, time_step $1, then object lines from stdin.
 scene() { printf 'raisim_engine_scene 1\ntime_step %s\n' "$1"; cat; }
@@ -303,34 +287,34 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
 
 @test "limits: a dynamic mass of 4.9e-324 is refused up front (RS7020), nothing written" {
   { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 4.9e-324 dynamic; } | scene 0.001 > tiny.rscene
-  run -2 --separate-stderr bounded 500000 10 -o out.rscene tiny.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" -o out.rscene tiny.rscene
   [ "${stderr_lines[0]}" = "tiny.rscene:4:55: error: dynamic body '/World/Box' has mass 4.94066e-324, which cannot be simulated [RS7020]" ]
   [ ! -e out.rscene ]
   # A light body simulates ...
   { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1e-300 dynamic; } | scene 0.001 > light.rscene
-  run -0 bounded 500000 10 --steps 100 light.rscene
+  run -0 bounded 500000 10 "$SIM" --steps 100 light.rscene
   [[ $output != *nan* ]]
   # ... and one whose inertia underflows passes the up-front check but is
   # stopped at its first step by the state check, with nothing written.
   { echo "$GROUND"; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 2.2250738585072014e-308 dynamic; } | scene 0.001 > normal.rscene
-  run -2 --separate-stderr bounded 500000 10 --steps 10 normal.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 10 normal.rscene
   [[ ${stderr_lines[0]} == "normal.rscene:4:1: error: the angular velocity of body '/World/Box' is no longer finite at step 1 "*"[RS7024]" ]]
   [ -z "$output" ]
 }
 
 @test "limits: orientation 1e308 1e308 0 0 is refused (RS7021), even with --steps 0" {
   { echo "$GROUND"; obj /World/Box "0 0 1" "1e308 1e308 0 0" "0.4 0.4 0.4" 2 dynamic; } | scene 0.001 > q.rscene
-  run -2 --separate-stderr bounded 500000 10 --steps 0 q.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 0 q.rscene
   [ "${stderr_lines[0]}" = "q.rscene:4:29: error: body '/World/Box': orientation does not normalise to a unit quaternion [RS7021]" ]
   [ -z "$output" ]
 }
 
 @test "limits: time_step 1e-12 and 5e-324 are refused at the time_step (RS7022)" {
   echo "$GROUND" | scene 1e-12 > fine.rscene
-  run -2 --separate-stderr bounded 500000 10 fine.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" fine.rscene
   [ "${stderr_lines[0]}" = "fine.rscene:2:11: error: time_step 1e-12 is below the smallest simulated step, 1e-09 s [RS7022]" ]
   echo "$GROUND" | scene 5e-324 > denormal.rscene
-  run -2 --separate-stderr bounded 500000 10 denormal.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" denormal.rscene
   [ "${stderr_lines[0]}" = "denormal.rscene:2:11: error: time_step 4.94066e-324 is below the smallest simulated step, 1e-09 s [RS7022]" ]
 }
 
@@ -346,7 +330,7 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
     echo 'object /World/A box 1e308 0 1 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1 parentGroupId=c'
   } | scene 0.001 > chain.rscene
   for f in heavy longstep wire chain; do
-    run -2 --separate-stderr bounded 500000 10 --steps 10 -o out.rscene $f.rscene
+    run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 10 -o out.rscene $f.rscene
     sim=${stderr_lines[0]}
     [ ! -e out.rscene ]
     run -1 --separate-stderr "$VALIDATE" $f.rscene
@@ -364,7 +348,7 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
 @test "limits: a body Bullet drops has left the world (RS7012), even with no static geometry" {
   # Bullet silently freezes a dynamic body whose swept bounds pass 10^6 m.
   { echo 'gravity 0 0 -1e12'; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; } | scene 1 > away.rscene
-  run -0 --separate-stderr bounded 500000 10 --steps 5 -o out.rscene away.rscene
+  run -0 --separate-stderr bounded 500000 10 "$SIM" --steps 5 -o out.rscene away.rscene
   [[ ${stderr_lines[0]} == "away.rscene:4: warning: dynamic body '/World/Box' left the world at step "*": moved more than 1e+06 m in one step (Bullet drops such a body); "*"[RS7012]" ]]
   grep -q '^object /World/Box box 0 0 -' out.rscene
   ! grep -qi 'nan\|inf' out.rscene
@@ -375,7 +359,7 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
     echo 'object /World/B box 0 0 3 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 1 id=b parentGroupId=a'
   } | scene 0.001 > cycle.rscene
   # A scene with errors gets validate's list (its RS3007 warnings too).
-  run -2 --separate-stderr bounded 500000 10 -o out.rscene cycle.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" -o out.rscene cycle.rscene
   sim=$(grep -m1 ': error: ' <<<"$stderr")
   [[ $sim == "cycle.rscene:3:"*": error: node '/World/A' is its own ancestor [RS3017]" ]]
   [ ! -e out.rscene ]
@@ -387,14 +371,14 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
 }
 
 @test "limits: --duration 1e300 and --steps past --max-steps are refused (RS7023); --max-steps raises the cap" {
-  run -2 --separate-stderr bounded 500000 10 --duration 1e300 sim_drop.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --duration 1e300 sim_drop.rscene
   [ "${stderr_lines[0]}" = "sim_drop.rscene:2:11: error: --duration 1e+300 at time_step 0.001 is 1e+303 steps, more than the limit of 10000000 steps [RS7023]" ]
   [ "${stderr_lines[3]}" = "  hint: raise the limit with --max-steps N, or simulate less time" ]
-  run -2 --separate-stderr bounded 500000 10 --steps 10000001 sim_drop.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 10000001 sim_drop.rscene
   [[ ${stderr_lines[0]} == *"--steps 10000001, more than the limit of 10000000 steps [RS7023]" ]]
-  run -2 --separate-stderr bounded 500000 10 --max-steps 99 --duration 0.1 sim_drop.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --max-steps 99 --duration 0.1 sim_drop.rscene
   [[ ${stderr_lines[0]} == *"--duration 0.1 at time_step 0.001 is 100 steps, more than the limit of 99 steps [RS7023]" ]]
-  run -0 --separate-stderr bounded 500000 10 --max-steps 100 --duration 0.1 --report sim_drop.rscene
+  run -0 --separate-stderr bounded 500000 10 "$SIM" --max-steps 100 --duration 0.1 --report sim_drop.rscene
   jq -e '.steps == 100' <<<"${stderr_lines[-1]}"
 }
 
@@ -403,14 +387,14 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   # finite); its inertia's inverse is not, which only stepping finds.
   { echo "$GROUND"; obj /World/Heavy "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 2.2250738585072014e-308 dynamic; } | scene 0.001 > heavy.rscene
   echo old > t.jsonl
-  run -2 --separate-stderr bounded 500000 10 --steps 2000 --trajectory t.jsonl -o out.rscene heavy.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 2000 --trajectory t.jsonl -o out.rscene heavy.rscene
   [[ ${stderr_lines[0]} == "heavy.rscene:4:1: error: the "*" of body '/World/Heavy' is no longer finite at step "*"; the simulation stopped and nothing was written [RS7024]" ]]
   [ "${stderr_lines[-1]}" = "rscene-sim: error: t.jsonl: write cancelled" ]
   [ "$(cat t.jsonl)" = old ]
   [ ! -e out.rscene ]
   [ -z "$output" ]
   # Written through a pipe: the lines before the failure, none of them NaN or infinite.
-  run -2 --separate-stderr bounded 500000 10 --steps 2000 --trajectory - heavy.rscene
+  run -2 --separate-stderr bounded 500000 10 "$SIM" --steps 2000 --trajectory - heavy.rscene
   [[ $output != *nan* && $output != *inf* ]]
 }
 
@@ -418,30 +402,30 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   for i in $(seq 12000); do obj "/World/S$i" "0 0 0" "1 0 0 0" "1 1 1" 1 static; done | scene 0.001 > statics.rscene
   # Before: the pair cache held 72 million static-static pairs (segfault, or
   # still running after 60 s at 1.8 GB).  Now about 4 s and 60 MB.
-  run -0 --separate-stderr bounded 2000000 60 --steps 1 --report -o out.rscene statics.rscene
+  run -0 --separate-stderr bounded 2000000 60 "$SIM" --steps 1 --report -o out.rscene statics.rscene
   jq -e '.steps == 1 and .contactsPerStep == 0' <<<"${stderr_lines[-1]}"
   [ -s out.rscene ]
 }
 
 @test "limits: --max-pairs stops co-located dynamic bodies (RS7025); 0 lifts the cap" {
   for i in $(seq 100); do obj "/World/D$i" "0 0 0" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > pile.rscene
-  run -2 --separate-stderr bounded 1000000 30 --steps 1 --max-pairs 1000 -o out.rscene pile.rscene
+  run -2 --separate-stderr bounded 1000000 30 "$SIM" --steps 1 --max-pairs 1000 -o out.rscene pile.rscene
   [[ ${stderr_lines[0]} =~ ^pile\.rscene:[0-9]+:1:\ error:\ more\ than\ 1000\ overlapping\ body\ pairs\ at\ step\ 0,\ this\ body\ in\ one\ of\ them\;\ the\ simulation\ stopped\ and\ nothing\ was\ written\ \[RS7025\]$ ]]
   [[ ${stderr_lines[1]} == "  object /World/D"* ]]
   [ ! -e out.rscene ]
-  run -0 bounded 1000000 30 --steps 1 --max-pairs 4950 pile.rscene
-  run -0 bounded 1000000 30 --steps 1 --max-pairs 0 pile.rscene
+  run -0 bounded 1000000 30 "$SIM" --steps 1 --max-pairs 4950 pile.rscene
+  run -0 bounded 1000000 30 "$SIM" --steps 1 --max-pairs 0 pile.rscene
   # 500 in one spot are 124,750 pairs, past the default cap: refused before
   # they cost 1 GB (before: 2,000 of them segfaulted at 3.8 GB).
   for i in $(seq 500); do obj "/World/D$i" "0 0 0" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > crowd.rscene
-  run -2 --separate-stderr bounded 1000000 30 --steps 1 crowd.rscene
+  run -2 --separate-stderr bounded 1000000 30 "$SIM" --steps 1 crowd.rscene
   [[ ${stderr_lines[0]} == *"more than 100000 overlapping body pairs at step 0"*"[RS7025]" ]]
 }
 
 @test "limits: --trajectory is streamed: 200 bodies x 5,000 steps in 150 MB of address space" {
   for i in $(seq 200); do obj "/World/B$i" "$((2 * i)) 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; done | scene 0.001 > many.rscene
   # Held in memory, this trajectory (250 MB) did not fit.
-  bounded 150000 60 --steps 5000 --trajectory /dev/stdout -o out.rscene many.rscene | wc -l > lines
+  bounded 150000 60 "$SIM" --steps 5000 --trajectory /dev/stdout -o out.rscene many.rscene | wc -l > lines
   [ "$(cat lines)" = $((200 * 5001)) ]
   [ -s out.rscene ]
 }
@@ -477,7 +461,7 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
       echo "object /World/b$i box 0 0 1 1 0 0 0 0 1 1 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615"
     done
   } > zero.rscene
-  run -2 --separate-stderr bash -c "ulimit -v 1000000; timeout 20 '$SIM' --steps 1 zero.rscene"
+  run -2 --separate-stderr bounded 1000000 20 "$SIM" --steps 1 zero.rscene
   [ "$(grep -c 'RS7003' <<<"$stderr")" -eq 50000 ]
   [[ ${stderr_lines[-4]} == "zero.rscene:50001:40: error: box with a zero or negative side "*"[RS7003]" ]]
 }
@@ -501,7 +485,7 @@ wire /World/W compliant object_box object_b2 1 stiffness=1e308|RS7027"
   )
   for c in "${cases[@]}"; do
     { echo "$GROUND"; echo "$base"; echo "${c%|*}"; } | scene 0.001 > h.rscene
-    run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene h.rscene
+    run -2 --separate-stderr bounded 2000000 20 "$SIM" --steps 1 -o out.rscene h.rscene
     sim=${stderr_lines[0]}
     [[ $sim == *"error: "*"[${c##*|}]" ]]
     run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" h.rscene
@@ -514,7 +498,7 @@ wire /World/W compliant object_box object_b2 1 stiffness=1e308|RS7027"
   { echo "$GROUND"; echo "$base parentGroupId=object_box"; } | scene 0.001 > self.rscene
   { echo "$GROUND"; echo "${base/0.5 1 0 0 0/0.5 1e-13 1e-13 1e-13 1e-13}"; } | scene 0.001 > tiny.rscene
   for f in self tiny; do
-    run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene $f.rscene
+    run -2 --separate-stderr bounded 2000000 20 "$SIM" --steps 1 -o out.rscene $f.rscene
     sim=$(grep -m1 ': error: ' <<<"$stderr")  # validate's list: its warnings may come first
     run -1 --separate-stderr "$RSCENE_BIN/rscene-validate" $f.rscene
     v=$(printf '%s\n' "${lines[@]}" | grep -m1 ': error: ')
@@ -653,7 +637,7 @@ URDF
       printf "<joint name=\"j%d\" type=\"revolute\"><origin xyz=\"0 0 0.05\"/><parent link=\"%s\"/><child link=\"l%d\"/><axis xyz=\"1 0 0\"/></joint>\n", i, p, i; p = "l" i }
     print "</robot>" }' > deep.urdf
   printf 'raisim_engine_scene 1\ntime_step 0.001\narticulated_resource res R deep.urdf\narticulated /World/R res 0 0 1 1 0 0 0 true true id=r\n' > deep.rscene
-  run -2 --separate-stderr bounded 2000000 20 --steps 1 -o out.rscene deep.rscene
+  run -2 --separate-stderr bounded 2000000 20 "$SIM" --steps 1 -o out.rscene deep.rscene
   [[ $stderr == *"deep.rscene:4:22: error: articulated system '/World/R' has 1101 bodies; rscene-sim simulates at most 1000 per robot [RS7052]"* ]]
   # An inertia of 1e308: validate --check-files and sim both refuse it, in the URDF.
   printf '<robot name="b"><link name="world"/><link name="l1"><inertial><mass value="1"/>\n<inertia ixx="1e308" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>\n<joint name="j1" type="revolute"><parent link="world"/><child link="l1"/><axis xyz="1 0 0"/></joint></robot>\n' > big.urdf

@@ -3,11 +3,8 @@
 # trajectory, the record written back unchanged, pinned vertices held,
 # identical runs, and hostile records refused at their key.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
+load helpers
 SIM="$BIN/rscene-sim"
-
-bats_require_minimum_version 1.5.0
 
 # A 9 x 9 vertex cloth 2 m a side (bench/soft/cloth_gen.sh), 0.7 m above a
 # sphere on the ground; EXTRA goes on its deformable line.
@@ -17,9 +14,8 @@ scene() {
 }
 
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-sim
+  in_workdir
 }
 
 @test "the trajectory carries the cloth's particles and the record is written back unchanged" {

@@ -4,10 +4,8 @@
 # written-back explicit positions that reload as they were left, the
 # trajectory's points, --report's granular figures, determinism.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
+load helpers
 SIM="$BIN/rscene-sim"
-
-bats_require_minimum_version 1.5.0
 
 # A 3 x 3 x 2 box fill of RaiSim's example material over the ground;
 # EXTRA appends keys (tests change a written key with sed).
@@ -21,7 +19,7 @@ EOF2
 }
 
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
+  needs_tools rscene-sim
   cd "$BATS_TEST_TMPDIR"
 }
 

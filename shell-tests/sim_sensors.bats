@@ -3,11 +3,8 @@
 # --pcd-encoding): the files, their formats, closed-form readings in a box
 # room, refused outputPath values, the output rules, determinism.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
+load helpers
 SIM="$BIN/rscene-sim"
-
-bats_require_minimum_version 1.5.0
 
 # A closed room (inside x -4..4, y -3..3, z 0..2), a crate resting on its
 # floor carrying an IMU, and a 1 x 4 LiDAR at its centre, 1 m up.
@@ -28,9 +25,8 @@ EOF2
 }
 
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-sim
+  in_workdir
   room > room.rscene
 }
 
@@ -176,8 +172,8 @@ setup() {
 }
 
 @test "ANYmal C's URDF sensor sets (corpus): its IMUs and Ouster LiDAR are recorded under the robot's path" {
-  urdf="$ROOT/../shared/corpus/robots/anymal_c/urdf/anymal_sensored.urdf"
-  [ -f "$urdf" ] || skip "../shared/corpus/robots/anymal_c is absent"
+  needs_shared corpus/robots/anymal_c/urdf/anymal_sensored.urdf
+  urdf="$CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf"
   cat > anymal.rscene <<EOF2
 raisim_engine_scene 1
 time_step 0.002

@@ -6,8 +6,7 @@
 # what is written back, what the trajectory carries, determinism, refusals,
 # and what the physics must do.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
+load helpers
 SIM="$BIN/rscene-sim"
 EXAMPLE="$ROOT/examples/soft_bodies.rscene"
 
@@ -15,8 +14,6 @@ EXAMPLE="$ROOT/examples/soft_bodies.rscene"
 # 27 x 18 x 6 grains (1.2 x 0.8 x 0.28 m at spacing 0.043, radius 0.02).
 CLOTH_VERTICES=576
 GRAINS=2916
-
-bats_require_minimum_version 1.5.0
 
 # The example simulated once for every test: 2 s (2000 steps), a sample
 # every 100 steps, the report on stderr.
@@ -29,11 +26,10 @@ setup_file() {
 }
 
 setup() {
-  [ -x "$SIM" ] || skip "rscene-sim not built in $BIN"
+  needs_tools rscene-sim
   command -v jq >/dev/null || skip "jq not installed"
   RUN="$BATS_FILE_TMPDIR"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  in_workdir
 }
 
 # The behavioural tests need the real solvers (XPBD cloth, DEM grains) and
@@ -57,9 +53,6 @@ points() {
   jq -r --arg p "$1" --argjson t "$2" 'select(.path == $p and .time == $t) | .points[] | "\(.[0]) \(.[1]) \(.[2])"' \
     "$RUN/run.jsonl"
 }
-
-# The z of object PATH in the scene text on stdin.
-zof() { awk -v p="$1" '$1 == "object" && $2 == p { print $6 }'; }
 
 # The value of key KEY of the record at path PATH in the scene text on stdin.
 keyof() { awk -v p="$1" -v k="$2=" '$2 == p { for (i = 3; i <= NF; i++) if (index($i, k) == 1) print substr($i, length(k) + 1) }'; }
@@ -185,17 +178,14 @@ granular /World/Sand particles 0 0 0 1 0 0 0 1 1 1 ${2:-boxMin=0,0,0 boxMax=0.2,
 EOF
 }
 
-# Runs rscene-sim on h.rscene with both outputs and checks that it refused
-# the scene: exit 2, an error at line:column $1 with code $2 (and, when
-# given, exactly the message $3), and neither output written.
-refused() {
-  run -2 --separate-stderr "$SIM" --steps 10 -o out.rscene --trajectory t.jsonl h.rscene
-  [ -z "$output" ]
-  [[ ${stderr_lines[0]} == "h.rscene:$1: error: "*" [$2]" ]]
+# sim_refused LINE:COL CODE [MESSAGE]: rscene-sim with both outputs
+# refuses h.rscene (refused, helpers.bash: exit 2, nothing written, no
+# temporary file left) with its first error at LINE:COL, code CODE and,
+# when given, exactly the message MESSAGE.
+sim_refused() {
+  refused "h.rscene:$1: error: " "$SIM" --steps 10 -o out.rscene --trajectory t.jsonl h.rscene
+  [[ ${stderr_lines[0]} == *" [$2]" ]]
   [ -z "${3:-}" ] || [ "${stderr_lines[0]}" = "h.rscene:$1: error: $3 [$2]" ]
-  [ ! -e out.rscene ]
-  [ ! -e t.jsonl ]
-  [ -z "$(ls -A | grep -v '^h.rscene$\|^meshes$')" ]  # no temporary file left either
 }
 
 @test "the hostile scene's template itself simulates (so the refusals below are the keys')" {
@@ -206,7 +196,7 @@ refused() {
 
 @test "a deformable whose mesh is missing: RS5001 at meshPath as validate --check-files says, exit 2, nothing written" {
   hostile "meshes/none.obj 0 0 1 1 0 0 0 1 1 1"
-  refused 5:31 RS5001 "mesh file 'meshes/none.obj' does not exist"
+  sim_refused 5:31 RS5001 "mesh file 'meshes/none.obj' does not exist"
   run -1 "$BIN/rscene-validate" --check-files h.rscene
   [[ $output == "h.rscene:5:31: error: "*"[RS5001]"* ]]
 }
@@ -214,25 +204,25 @@ refused() {
 @test "a deformable whose mesh is not an OBJ: RS7080 at meshPath, exit 2, nothing written" {
   hostile "meshes/cloth.stl 0 0 1 1 0 0 0 1 1 1"
   printf 'solid x\0\1\2' > meshes/cloth.stl
-  refused 5:31 RS7080 "deformable '/World/Cloth': mesh meshes/cloth.stl: not an OBJ file (it holds binary data)"
+  sim_refused 5:31 RS7080 "deformable '/World/Cloth': mesh meshes/cloth.stl: not an OBJ file (it holds binary data)"
 }
 
 @test "a pinned vertex the mesh does not have: RS7081 at pinnedVertices, exit 2, nothing written" {
   needs_solvers
   hostile "meshes/cloth.obj 0 0 1 1 0 0 0 1 1 1 pinnedVertices=0,576"
-  refused 5:83 RS7081  # the solver's wording: any message, at the key's value
+  sim_refused 5:83 RS7081  # the solver's wording: any message, at the key's value
 }
 
 @test "a box fill past maxParticles: RS7082 at maxParticles, exit 2, nothing written" {
   # 46 x 46 x 46 = 97336 grains
   hostile "" "boxMin=0,0,0 boxMax=2,2,2 radius=0.02 spacing=0.043 maxParticles=20000"
-  refused 6:117 RS7082 "granular /World/Sand has 97336 particles, more than its maxParticles 20000"
+  sim_refused 6:117 RS7082 "granular /World/Sand has 97336 particles, more than its maxParticles 20000"
 }
 
 @test "a box fill past the hard limit is refused before it is allocated, whatever maxParticles says" {
   hostile "" "boxMin=0,0,0 boxMax=1000,1000,1000 radius=0.001 spacing=0.002 maxParticles=2147483647"
   # 5e5 grains a side: 1.25e17 (1e19 bytes) if it were allocated
-  refused 6:127 RS7082 "granular /World/Sand has 125000000000000000 particles, more than the limit of 2000000"
+  sim_refused 6:127 RS7082 "granular /World/Sand has 125000000000000000 particles, more than the limit of 2000000"
 }
 
 # --- What the physics must do (the example after 2 s) ---

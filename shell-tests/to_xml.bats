@@ -3,18 +3,12 @@
 # to well-formed XML, every flag, asset paths relative and absolute, the
 # one warning line, and what is refused.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
-SHARED="$ROOT/../shared"
+load helpers
 TOOL="$BIN/rscene-to-xml"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$TOOL" ] || skip "rscene-to-xml not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-to-xml
+  in_workdir
 }
 
 # Fails unless file $1 is well-formed XML with a <raisim> root (python3's

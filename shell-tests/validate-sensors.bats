@@ -4,14 +4,11 @@
 # line:col (scene/sensor_check.hpp); URDF sensor sets (<link sensor=>)
 # are read with --check-files, their findings in their own file.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-CORPUS="$BATS_TEST_DIRNAME/../../shared/corpus"
+load helpers
 V="$BIN/rscene-validate"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$V" ] || skip "rscene-validate not built in $BIN"
+  needs_tools rscene-validate
   export NO_COLOR=1
   cd "$BATS_TEST_TMPDIR"
   cat >bad.rscene <<'EOF'
@@ -137,7 +134,7 @@ EOF
 }
 
 @test "ANYmal C with its sensor sets validates (only the ouster's missing visual mesh is said)" {
-  [ -f "$CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf" ] || skip "../shared/corpus is absent"
+  needs_shared corpus/robots/anymal_c/urdf/anymal_sensored.urdf
   cat >anymal.rscene <<EOF
 raisim_engine_scene 2
 articulated_resource anymal ANYmal $CORPUS/robots/anymal_c/urdf/anymal_sensored.urdf
@@ -287,7 +284,7 @@ robot/sensors/cam.xml:5 [RS7066]" ]
 }
 
 @test "ANYmal C's sensor sets with bad numbers: plain validate says what sim says, at the XML lines" {
-  [ -d "$CORPUS/robots/anymal_c" ] || skip "../shared/corpus is absent"
+  needs_shared corpus/robots/anymal_c
   cp -r "$CORPUS/robots/anymal_c" anymal_c
   sed -i 's/<image width="640" height="480"\/>/<image width="100000" height="480"\/>/' anymal_c/sensors/realsense435.xml
   sed -i 's/samples="512"/samples="1000000000"/' anymal_c/sensors/ouster1-64.xml

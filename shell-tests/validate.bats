@@ -1,15 +1,11 @@
 #!/usr/bin/env bats
 # End-to-end tests of rscene-validate: output, exit status, every flag.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-DATA="$BATS_TEST_DIRNAME/../tests/data"
-CORPUS="$BATS_TEST_DIRNAME/../../shared/corpus"
+load helpers
 V="$BIN/rscene-validate"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$V" ] || skip "rscene-validate not built in $BIN"
+  needs_tools rscene-validate
   export NO_COLOR=1
   cd "$BATS_TEST_TMPDIR"
 }
@@ -186,7 +182,7 @@ setup() {
 }
 
 @test "the real corpus has no errors" {
-  [ -d "$CORPUS" ] || skip "no corpus"
+  needs_shared corpus
   run --separate-stderr "$V" "$CORPUS"/*.rscene
   [ "$status" -eq 0 ]
   [[ "$stderr" == "no issues in "* ]]
@@ -401,7 +397,7 @@ walker_scene() {  # $1: extra records and keys, appended; URDF by absolute path
 }
 
 @test "robots: the corpus ANYmal C in its standing pose, with its meshes, passes --check-files" {
-  [ -d "$CORPUS/robots/anymal_c" ] || skip "no ../shared corpus"
+  needs_shared corpus/robots/anymal_c
   anymal() {
     printf '%s\n' "raisim_engine_scene 1" \
       "articulated_resource anymal_res ANYmal $CORPUS/robots/anymal_c/urdf/anymal.urdf" \
@@ -416,7 +412,7 @@ walker_scene() {  # $1: extra records and keys, appended; URDF by absolute path
 }
 
 @test "robots: the corpus chain (three spherical joints): 12 coordinates and 9 velocities pass" {
-  [ -d "$CORPUS/robots/chain" ] || skip "no ../shared corpus"
+  needs_shared corpus/robots/chain
   chain() {
     printf '%s\n' "raisim_engine_scene 1" "articulated_resource c C $CORPUS/robots/chain/robot.urdf" \
       "articulated /World/C c 0 0 0 1 0 0 0 true true generalizedCoordinate=1,0,0,0,1,0,0,0,1,0,0,0 generalizedVelocity=$1" > chain.rscene

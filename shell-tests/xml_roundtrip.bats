@@ -11,20 +11,14 @@
 #  - the templated world: sphere_count=20 gives 20 spheres where the
 #    expressions put them, exist=false removes them.
 
-BIN="${RSCENE_BIN:-$BATS_TEST_DIRNAME/../build/bin}"
-ROOT="$BATS_TEST_DIRNAME/.."
-DATA="$ROOT/tests/data"
-SHARED="$ROOT/../shared"
+load helpers
 EXAMPLES="$SHARED/spec/raisim/xml-examples"
 TO="$BIN/rscene-to-xml"
 FROM="$BIN/rscene-from-xml"
 
-bats_require_minimum_version 1.5.0
-
 setup() {
-  [ -x "$TO" ] && [ -x "$FROM" ] || skip "rscene-to-xml/rscene-from-xml not built in $BIN"
-  mkdir "$BATS_TEST_TMPDIR/w"
-  cd "$BATS_TEST_TMPDIR/w"
+  needs_tools rscene-to-xml rscene-from-xml
+  in_workdir
 }
 
 # The parameters an example needs (spheres.xml uses four it does not set).

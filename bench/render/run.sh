@@ -7,7 +7,8 @@
 # camera's 1280x800, (c) examples/gallery.rscene at 1280x720 when the
 # repository has it, (d) one and sixteen ANYmal C robots of
 # bench/render/robots.sh (../shared's URDF, meshes and textures); then
-# bench/render/views.sh (many views and trajectory frames).  Prints
+# bench/render/views.sh (many views and trajectory frames) and
+# rscene-render-passes-bench (one view's passes on ANYmal C).  Prints
 # rscene-render -v's split (start-up = EGL context, scene build, upload,
 # shadow passes, drawing, post-processing, PNG encoding), the process's
 # wall and CPU time, best of RUNS, and the targets' verdicts (issue 13:
@@ -124,4 +125,9 @@ s="$DIR/objects5000.rscene"
 # Many views (issue 12): ANYmal C's sensor cameras along 100 frames, 8 views in one run against 8 runs.
 echo
 bash "$HERE/views.sh" "$BIN" || status=1
+# One view's passes on ANYmal C (render_tests' PassesRobot scene): where a frame's time goes.
+if [[ -x $BIN/rscene-render-passes-bench ]]; then
+  echo
+  "$BIN/rscene-render-passes-bench" || status=1
+fi
 exit $status
