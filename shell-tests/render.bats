@@ -644,6 +644,20 @@ SCENE
   cmp j/000001.png c/000001.png
 }
 
+@test "trajectory: bodies named with a newline or a byte that is not UTF-8 go from rscene-sim to rscene-render in both formats" {
+  printf 'raisim_engine_scene 1\ntime_step 0.0025\n' > odd.rscene
+  printf 'object /World/x%%FF sphere 0 0 1 1 0 0 0 1 1 1 0.2 0 1 default - false true false - dynamic true 1 18446744073709551615\n' >> odd.rscene
+  printf 'object /World/nl%%0Aline sphere 2 0 1 1 0 0 0 1 1 1 0.2 0 1 default - false true false - dynamic true 1 18446744073709551615\n' >> odd.rscene
+  for format in jsonl csv; do
+    run -0 "$BIN/rscene-sim" --steps 2 --trajectory "t.$format" --trajectory-format "$format" -o /dev/null odd.rscene
+    [ "$(ls -A | grep -c tmp)" -eq 0 ]
+    run -0 "$RENDER" --width 32 --height 24 --trajectory "t.$format" -o "$format/{frame}.png" odd.rscene
+    is_png "$format/000002.png"
+  done
+  # the quoted newline makes the CSV record two lines long
+  [ "$(grep -c '^0,' t.csv)" -eq 2 ]
+}
+
 @test "particles: a frame with a point too few or a malformed point stops at its line and column" {
   particle_scene
   echo '{"time":0,"path":"/World/Cloth","points":[[0,0,1]]}' > few.jsonl

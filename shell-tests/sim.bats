@@ -184,6 +184,10 @@ setup() {
   grep -v '^ ' <<<"$stderr" > sim.err
   run -0 --separate-stderr "$BIN/rscene-render" --allow-missing-assets --width 64 --height 48 -o cell.png cell.rscene
   diff sim.err <(grep -v '^ ' <<<"$stderr" | grep -v '^rscene-render:')
+  # a view riding on the robot left out is no view, even when asked for by name
+  run -2 --separate-stderr "$BIN/rscene-render" --allow-missing-assets --camera /World/Robot/HeadCam -o cam.png cell.rscene
+  [[ $stderr == *"/World/Robot/HeadCam"* ]]
+  [ ! -e cam.png ]
 }
 
 @test "--allow-missing-assets drops a robot's missing or unreadable collision mesh with a warning" {
@@ -202,9 +206,9 @@ setup() {
   # a file that is there but no mesh: sim drops it too (render draws no collisions)
   head -c 3000 /dev/urandom > robots/quadruped/gone.obj
   run -2 --separate-stderr "$SIM" --steps 5 cell.rscene
-  [[ $stderr == *"link 'base': cannot read mesh 'robots/quadruped/gone.obj'"*"[RS7007]"* ]]
+  [[ $stderr == *"cell.rscene:8:26: error: body '/World/Robot': link 'base': cannot read mesh 'robots/quadruped/gone.obj'"*"[RS7007]"* ]]
   run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 cell.rscene
-  [[ ${stderr_lines[0]} == "cell.rscene:5:51: warning: articulated system '/World/Robot': cannot read mesh 'robots/quadruped/gone.obj': "*"; that collision is left out [RS7007]" ]]
+  [[ ${stderr_lines[0]} == "cell.rscene:8:26: warning: articulated system '/World/Robot': cannot read mesh 'robots/quadruped/gone.obj': "*"; that collision is left out [RS7007]" ]]
 }
 
 @test "a wire end names a body by id first, then by path: the scene model's one rule" {
@@ -574,7 +578,11 @@ qof() {
     "$ROOT/examples/robot_cell.rscene" > w.rscene
   sed -i "s|robots/quadruped|$ROOT/examples/robots/quadruped|g" w.rscene
   run -2 --separate-stderr "$SIM" --steps 1 w.rscene
-  [[ "$stderr" == *"w.rscene:14:"*": error: body '/World/Tether': localIndexB 13 is not a body of articulated system 'articulated_quadruped' (it has 13, 0 to 12) [RS7046]"* ]]
+  [[ "$stderr" == *"w.rscene:14:"*": error: wire '/World/Tether': localIndexB 13 is not a body of articulated system 'articulated_quadruped' (it has 13, 0 to 12) [RS7046]"* ]]
+  # at the localIndexB key, the column validate gives
+  at=$(grep -o 'w.rscene:14:[0-9]*' <<<"$stderr" | head -1)
+  run "$BIN/rscene-validate" --check-files w.rscene
+  [[ $output == *"$at: error: "*"[RS7046]"* ]]
 }
 
 @test "robots: a mesh collision is a convex hull; convexifyCollisionMeshes=false says so (RS7051)" {

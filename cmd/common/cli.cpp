@@ -10,6 +10,7 @@
 #include <iostream>
 #include <tuple>
 
+#include "core/codes.hpp"
 #include "core/io.hpp"
 #include "core/output_file.hpp"
 #include "core/report.hpp"
@@ -190,7 +191,7 @@ void printDiagnostics(const Diagnostics& found, std::string_view display, std::s
 void hintStdinPaths(const Input& in, const std::string& baseDir, Diagnostics& ds) {
   if (!in.isStdin || !in.path.empty() || !baseDir.empty()) return;
   for (Diagnostic& d : ds)
-    if (d.code == "RS5001" && d.hint.empty())
+    if (d.code == rs::RS5001 && d.hint.empty())
       d.hint = "standard input has no folder, so relative paths resolve against the current one: "
                "name the scene with --stdin-filename PATH or give --base-dir DIR";
 }

@@ -7,6 +7,7 @@
 #include <map>
 #include <iostream>
 
+#include "core/codes.hpp"
 #include "common/cli.hpp"
 #include "core/io.hpp"
 #include "xml/from_xml.hpp"
@@ -77,7 +78,7 @@ int main(int argc, char** argv) {
   // 100 MiB world is refused, not read whole.
   if (std::string why; !readFile(in.isStdin ? "/dev/stdin" : file, in.text, &why, loadOptions.limits.maxFileBytes)) {
     Diagnostic d;
-    d.code = "RS8101";
+    d.code = rs::RS8101;
     d.file = in.display;
     d.message = "cannot read: " + why;
     cli::printDiagnostics({d}, in.display, "", cli::colorFor(2));

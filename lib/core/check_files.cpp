@@ -1,5 +1,6 @@
 // RS5001 (--check-files): every asset path names an existing file, found
 // by the rule of compat-notes.md ("Asset path resolution").
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "core/check_context.hpp"
 #include "core/text.hpp"
@@ -17,7 +18,7 @@ void checkFiles(Context& ctx, const Record& r) {
     if (path.empty()) return;
     std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.index.assetRoot, path, ctx.opt.fileExists);
     if (ctx.opt.fileExists(resolved)) return;
-    ctx.report("RS5001", r, f.value, def.name, "file '" + path + "' " + whyNotAFile(resolved) + " (resolved to '" + resolved + "')",
+    ctx.report(rs::RS5001, r, f.value, def.name, "file '" + path + "' " + whyNotAFile(resolved) + " (resolved to '" + resolved + "')",
                "paths resolve against the scene's directory, then against asset_root");
   });
 }

@@ -2,6 +2,7 @@
 // child records and repeated singletons.
 #include <algorithm>
 
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "core/check_context.hpp"
 #include "core/suggest.hpp"
@@ -104,7 +105,7 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
     auto slot = parseInteger(raw);
     if (!slot || (*slot >= 0 && *slot < kDefaultTextureSlots)) return;
     if (std::find(ix.textureSlots.begin(), ix.textureSlots.end(), *slot) != ix.textureSlots.end()) return;
-    ctx.report("RS3011", r, f.value, def.name, "terrain texture slot " + std::to_string(*slot) + " does not exist",
+    ctx.report(rs::RS3011, r, f.value, def.name, "terrain texture slot " + std::to_string(*slot) + " does not exist",
                "slots 0 and 1 exist by default; add a terrain_texture record for others");
     return;
   }
@@ -123,23 +124,23 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
   };
   if (what == "material") {
     if (name != kDefaultMaterial && !ix.materials.count(name))
-      missing("RS3008", "material", "engine_default always exists; other names need a material record");
+      missing(rs::RS3008, "material", "engine_default always exists; other names need a material record");
   } else if (what == "contact") {
     if (name != kDefaultContact && !ix.contacts.count(name))
-      missing("RS3009", "contact material",
+      missing(rs::RS3009, "contact material",
               "the default contact properties apply; name it in a contact_material record to set its own");
   } else if (what == "resource") {
-    if (!ix.resources.count(name)) missing("RS3010", "articulated resource");
+    if (!ix.resources.count(name)) missing(rs::RS3010, "articulated resource");
   } else if (what == "terrain") {
-    if (!ctx.terrain(name)) missing("RS3013", "terrain");
+    if (!ctx.terrain(name)) missing(rs::RS3013, "terrain");
   } else if (what == "body") {
-    if (!ctx.node(name)) missing("RS3012", "body", "name a node by its id or path");
+    if (!ctx.node(name)) missing(rs::RS3012, "body", "name a node by its id or path");
   } else if (what == "node") {
     const Record* target = ctx.node(name);
     bool parentField = def.name == "parentGroupId" || def.name == "parentId";
     if (parentField) {
       if (!target) {
-        missing("RS3006", "parent", "name a group by its id or path");
+        missing(rs::RS3006, "parent", "name a group by its id or path");
         return;
       }
       auto targetIndex = static_cast<std::uint32_t>(target - doc.records.data());
@@ -152,10 +153,10 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
         // meant, documented, no mistake to warn of.
         bool cameraOnBody = r.kind->tag == "camera" && (k == "object" || k == "compound" || k == "articulated");
         if (ctx.raisim())
-          ctx.report("RS6004", r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
+          ctx.report(rs::RS6004, r, f.value, def.name, msg + "; RaiSim refuses inherited transforms",
                      "parent the node to a group, or set scene_graph inheritedTransforms=false");
         else if (!cameraOnBody)
-          ctx.report("RS3007", r, f.value, def.name, msg + "; the node inherits its transform",
+          ctx.report(rs::RS3007, r, f.value, def.name, msg + "; the node inherits its transform",
                      "parent the node to a group if it should stay in the world frame");
       }
       return;
@@ -163,7 +164,7 @@ void resolve(Context& ctx, std::size_t i, const FieldDef& def, const Field& f, s
     // A child names its parent record kind (compound_child -> compound ...).
     const std::string& want = r.kind->parentTag;
     if (!target || (!want.empty() && target->kind->tag != want))
-      missing("RS3014", want.empty() ? "node" : want, {}, want.empty() ? "node" : "node:" + want);
+      missing(rs::RS3014, want.empty() ? "node" : want, {}, want.empty() ? "node" : "node:" + want);
   }
 }
 
@@ -233,11 +234,11 @@ void checkRefs(Context& ctx, std::size_t i) {
     std::string_view path = ix.pathOf[i];
     Span at = doc.positional(r, 0)->value;
     if (!isUnderWorld(path))
-      ctx.report("RS3005", r, at, "path", "path '" + std::string(path) + "' is not under /World",
+      ctx.report(rs::RS3005, r, at, "path", "path '" + std::string(path) + "' is not under /World",
                  "node paths start with /World/");
     // buildIndex noted the first node with each path.
     if (std::uint32_t first = ix.firstWithPath[i]; first != Context::kNoRecord && first != index)
-      ctx.report("RS3003", r, at, "path", "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, first));
+      ctx.report(rs::RS3003, r, at, "path", "duplicate path '" + std::string(path) + "'; first used on " + lineRef(doc, first));
     // An id is taken when another node has it as id= or as its default id.
     // Two default ids collide only with a duplicate path (reported above).
     bool explicitId = ctx.hasExplicitId(r);
@@ -254,7 +255,7 @@ void checkRefs(Context& ctx, std::size_t i) {
     }
     if (other && other != &r) {
       const FieldRef idField = ctx.get(r, "id");
-      ctx.report("RS3004", r, idField ? idField.first->value : at, "id",
+      ctx.report(rs::RS3004, r, idField ? idField.first->value : at, "id",
                  std::string(explicitId ? "duplicate id '" : "duplicate default id '") + id + "'; first used on " +
                      lineRef(doc, static_cast<std::uint32_t>(other - doc.records.data())),
                  explicitId ? "" : "set a distinct id= on one of them");
@@ -263,20 +264,20 @@ void checkRefs(Context& ctx, std::size_t i) {
     std::string id = nodeId(doc, r);
     if (auto it = ix.materials.find(id); it != ix.materials.end() && it->second != index &&
                                          nodeId(doc, doc.records[it->second]) == id)
-      ctx.report("RS3004", r, doc.positional(r, 0)->value, "id",
+      ctx.report(rs::RS3004, r, doc.positional(r, 0)->value, "id",
                  "duplicate material id '" + id + "'; first used on " + lineRef(doc, it->second));
   }
 
   const std::size_t k = Context::kindIndex(kind);
   if (kind.role == Role::Singleton) {
     if (std::uint32_t last = ix.lastOfKind[k]; last != Context::kNoRecord)
-      ctx.report("RS3016", r, r.tag, {}, "repeated " + kind.tag + " replaces the one on " + lineRef(doc, last),
+      ctx.report(rs::RS3016, r, r.tag, {}, "repeated " + kind.tag + " replaces the one on " + lineRef(doc, last),
                  "remove the earlier record; it is ignored");
   }
   if (kind.role == Role::Child) {
     const KindDef* parent = Schema::get().kind(kind.parentTag);
     if (!parent || ix.lastOfKind[Context::kindIndex(*parent)] == Context::kNoRecord)
-      ctx.report("RS3015", r, r.tag, {}, kind.tag + " has no " + kind.parentTag + " record before it",
+      ctx.report(rs::RS3015, r, r.tag, {}, kind.tag + " has no " + kind.parentTag + " record before it",
                  "place it after the " + kind.parentTag + " it belongs to");
   }
   ix.lastOfKind[k] = index;
@@ -303,7 +304,7 @@ void checkParentCycles(Context& ctx) {
       const Record& r = ctx.doc.records[n];
       FieldRef f = ctx.get(r, r.kind->tag == "group" ? "parentId" : "parentGroupId");
       if (!f) f = ctx.get(r, "parentGroupId");
-      ctx.report("RS3017", r, ctx.spanOf(r, f), f.def ? f.def->name : "",
+      ctx.report(rs::RS3017, r, ctx.spanOf(r, f), f.def ? f.def->name : "",
                  "node '" + nodePath(ctx.doc, r) + "' is its own ancestor", "break the cycle of parents");
     }
     for (std::uint32_t w : walk) state[w] = 2;

@@ -3,6 +3,7 @@
 // record claims.
 #include <cmath>
 
+#include "core/codes.hpp"
 #include "core/check_context.hpp"
 #include "core/text.hpp"
 
@@ -37,7 +38,7 @@ void perSampleLists(Context& ctx, const Record& r, std::int64_t samples) {
     if (!colors && def->type != ValueType::NumberList && def->type != ValueType::IntegerList) continue;
     std::size_t n = itemCount(v, colors);
     if (n == 0 || static_cast<std::int64_t>(n) == samples) continue;
-    ctx.report(colors ? "RS4006" : "RS4003", r, f.value, def->name,
+    ctx.report(colors ? rs::RS4006 : rs::RS4003, r, f.value, def->name,
                def->name + " has " + std::to_string(n) + (colors ? " colors" : " values") + " for " +
                    std::to_string(samples) + " samples",
                "give one entry per sample (xSamples * ySamples), or none");
@@ -49,19 +50,19 @@ void terrain(Context& ctx, const Record& r) {
   bool countsOk = xs && ys;
   for (auto [name, v] : {std::pair{"xSamples", xs}, std::pair{"ySamples", ys}}) {
     if (v && (*v < kMinSamples || *v > kMaxSamples)) {
-      ctx.report("RS4001", r, ctx.spanOf(r, ctx.get(r, name)), name,
+      ctx.report(rs::RS4001, r, ctx.spanOf(r, ctx.get(r, name)), name,
                  std::string(name) + " is " + std::to_string(*v) + ", outside 2..16384");
       countsOk = false;
     }
   }
   for (const char* name : {"xSize", "ySize"}) {
     if (auto v = ctx.number(r, name); v && !(*v > 0))
-      ctx.report("RS4014", r, ctx.spanOf(r, ctx.get(r, name)), name, std::string(name) + " is " + numberText(*v) + ", not positive");
+      ctx.report(rs::RS4014, r, ctx.spanOf(r, ctx.get(r, name)), name, std::string(name) + " is " + numberText(*v) + ", not positive");
   }
   if (!countsOk) return;
   std::int64_t total = *xs * *ys;
   if (total > kMaxTotalSamples) {
-    ctx.report("RS4002", r, ctx.spanOf(r, ctx.get(r, "xSamples")), "xSamples",
+    ctx.report(rs::RS4002, r, ctx.spanOf(r, ctx.get(r, "xSamples")), "xSamples",
                "terrain has " + std::to_string(total) + " samples, more than 64 Mi");
     return;
   }
@@ -84,7 +85,7 @@ void instances(Context& ctx, const Record& r) {
   std::size_t numbers = inst ? itemCount(ctx.doc.text(inst.first->value)) : 0;
   std::size_t w = itemCount(ctx.doc.text(weights.first->value));
   if (numbers % 10 != 0 || w == 0 || w == numbers / 10) return;
-  ctx.report("RS4005", r, weights.first->value, "colorWeights",
+  ctx.report(rs::RS4005, r, weights.first->value, "colorWeights",
              "colorWeights has " + std::to_string(w) + " weights for " + std::to_string(numbers / 10) + " instances",
              "give one weight per instance");
 }
@@ -97,7 +98,7 @@ void articulated(Context& ctx, const Record& r) {
   // coordinate more than its velocities (6 and 3 of them): q = u + k with
   // 3k <= u.  The robot model gives the exact lengths (RS7040, RS7041).
   if (q == 0 || u == 0 || (q >= u && 3 * (q - u) <= u)) return;
-  ctx.report("RS4007", r, gv.first->value, "generalizedVelocity",
+  ctx.report(rs::RS4007, r, gv.first->value, "generalizedVelocity",
              "generalizedVelocity has " + std::to_string(u) + " values for " + std::to_string(q) + " coordinates",
              "each quaternion (a floating base, a spherical joint) is one coordinate more than its velocities; "
              "no robot has these lengths");
@@ -127,7 +128,7 @@ void negativeSizes(Context& ctx, const Record& r) {
     if (!ctx.vector(r, f, v, n)) continue;
     for (int c = 0; c < n; ++c) {
       if (v[c] >= 0) continue;
-      ctx.report("RS4011", r, f.first->value, name, std::string(name) + " is negative (" + numberText(v[c]) + ")");
+      ctx.report(rs::RS4011, r, f.first->value, name, std::string(name) + " is negative (" + numberText(v[c]) + ")");
       break;
     }
   }
@@ -136,17 +137,17 @@ void negativeSizes(Context& ctx, const Record& r) {
 void camera(Context& ctx, const Record& r) {
   auto nearPlane = ctx.number(r, "nearPlane"), farPlane = ctx.number(r, "farPlane");
   if (nearPlane && !(*nearPlane > 0))
-    ctx.report("RS4012", r, ctx.spanOf(r, ctx.get(r, "nearPlane")), "nearPlane",
+    ctx.report(rs::RS4012, r, ctx.spanOf(r, ctx.get(r, "nearPlane")), "nearPlane",
                "near plane " + numberText(*nearPlane) + " is not positive");
   else if (nearPlane && farPlane && *nearPlane >= *farPlane)
-    ctx.report("RS4012", r, ctx.spanOf(r, ctx.get(r, "farPlane")), "farPlane",
+    ctx.report(rs::RS4012, r, ctx.spanOf(r, ctx.get(r, "farPlane")), "farPlane",
                "far plane " + numberText(*farPlane) + " is not beyond the near plane " + numberText(*nearPlane));
   if (r.kind->tag != "camera") return;
   if (auto fov = ctx.number(r, "verticalFov"); fov && (*fov < kMinFov || *fov > kMaxFov))
-    ctx.report("RS4013", r, ctx.spanOf(r, ctx.get(r, "verticalFov")), "verticalFov",
+    ctx.report(rs::RS4013, r, ctx.spanOf(r, ctx.get(r, "verticalFov")), "verticalFov",
                "vertical field of view " + numberText(*fov) + " is outside 1..175 degrees", "it is clamped to that range");
   if (auto fov = ctx.number(r, "horizontalFov"); fov && (*fov < 0 || *fov >= 180))
-    ctx.report("RS4013", r, ctx.spanOf(r, ctx.get(r, "horizontalFov")), "horizontalFov",
+    ctx.report(rs::RS4013, r, ctx.spanOf(r, ctx.get(r, "horizontalFov")), "horizontalFov",
                "horizontal field of view " + numberText(*fov) + " is outside 0..180 degrees",
                "0 means the vertical field of view decides");
 }
@@ -158,10 +159,10 @@ void checkQuaternion(Context& ctx, const Record& r, Span at, std::string_view fi
   // Below 1e-12 the direction of a quaternion is rounding noise: the scene
   // model (sim, render) refuses it as zero, and so does the validator.
   if (!(norm >= 1e-12))
-    ctx.report("RS4009", r, at, field, std::string(field) + " is the zero quaternion",
+    ctx.report(rs::RS4009, r, at, field, std::string(field) + " is the zero quaternion",
                "the identity rotation is 1,0,0,0 (w,x,y,z)");
   else if (std::fabs(norm - 1) > kUnitTolerance)
-    ctx.report("RS4010", r, at, field, std::string(field) + " has length " + numberText(norm) + ", not 1",
+    ctx.report(rs::RS4010, r, at, field, std::string(field) + " has length " + numberText(norm) + ", not 1",
                "readers normalise it; write a unit quaternion (w,x,y,z)");
 }
 

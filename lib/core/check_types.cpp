@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/codes.hpp"
 #include "core/check_context.hpp"
 #include "core/suggest.hpp"
 #include "core/text.hpp"
@@ -26,11 +27,11 @@ void badNumber(Context& ctx, const Record& r, Span at, std::string_view field, s
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   bool parsed = p == s.data() + s.size() && !s.empty();
   if (parsed && (ec == std::errc::result_out_of_range || !std::isfinite(v)))
-    ctx.report("RS2002", r, at, field, "number " + quoted(s) + " is not finite", "numbers must be finite decimals");
+    ctx.report(rs::RS2002, r, at, field, "number " + quoted(s) + " is not finite", "numbers must be finite decimals");
   else if (s.empty())
-    ctx.report("RS2001", r, at, field, "expected a number, found nothing");
+    ctx.report(rs::RS2001, r, at, field, "expected a number, found nothing");
   else
-    ctx.report("RS2001", r, at, field, "expected a number, found " + quoted(s),
+    ctx.report(rs::RS2001, r, at, field, "expected a number, found " + quoted(s),
                s.find(',') != std::string_view::npos ? "decimals use `.`; `,` separates list items" : "");
 }
 
@@ -75,9 +76,9 @@ class TypeChecker {
       std::string_view name = doc_.text(f.key);
       if (ctx_.repeatedKey(j)) {
         if (ctx_.raisim())
-          ctx_.report("RS6002", r_, f.key, name, "key '" + std::string(name) + "' repeated; RaiSim refuses the record");
+          ctx_.report(rs::RS6002, r_, f.key, name, "key '" + std::string(name) + "' repeated; RaiSim refuses the record");
         else
-          ctx_.report("RS1101", r_, f.key, name, "key '" + std::string(name) + "' repeated; the last value wins",
+          ctx_.report(rs::RS1101, r_, f.key, name, "key '" + std::string(name) + "' repeated; the last value wins",
                       "remove the earlier one");
       }
       const FieldDef* def = ctx_.defOf(j);
@@ -96,7 +97,7 @@ class TypeChecker {
 
   void unknownKey(const KindDef& kind, Span at, std::string_view name) {
     const std::string& best = ctx_.suggestion(&kind, name);
-    ctx_.report("RS3002", r_, at, name, "unknown key '" + std::string(name) + "' for " + kind.tag,
+    ctx_.report(rs::RS3002, r_, at, name, "unknown key '" + std::string(name) + "' for " + kind.tag,
                 best.empty() ? std::string() : "did you mean `" + best + "`?");
   }
 
@@ -122,20 +123,20 @@ class TypeChecker {
         if (auto v = parseInteger(raw); v && *v >= INT32_MIN && *v <= INT32_MAX) return;
         s = decode(raw);
         if (auto v = parseInteger(s); !v || *v < INT32_MIN || *v > INT32_MAX)
-          ctx_.report("RS2003", r_, at, def.name, "expected a 32-bit integer, found " + quoted(s));
+          ctx_.report(rs::RS2003, r_, at, def.name, "expected a 32-bit integer, found " + quoted(s));
         return;
       case ValueType::Group:
         if (parseGroup(raw)) return;
         s = decode(raw);
         if (!parseGroup(s))
-          ctx_.report("RS2004", r_, at, def.name, "expected an unsigned 64-bit integer, found " + quoted(s),
+          ctx_.report(rs::RS2004, r_, at, def.name, "expected an unsigned 64-bit integer, found " + quoted(s),
                       "all bits is 18446744073709551615");
         return;
       case ValueType::Flag:
         if (parseFlag(raw)) return;
         s = decode(raw);
         if (!parseFlag(s))
-          ctx_.report("RS2005", r_, at, def.name, "expected a flag, found " + quoted(s),
+          ctx_.report(rs::RS2005, r_, at, def.name, "expected a flag, found " + quoted(s),
                       "write true or false");
         return;
       case ValueType::Name:
@@ -166,11 +167,11 @@ class TypeChecker {
     std::string best = closestName(s, names);
     std::string hint = best.empty() ? "known names: " + all : "did you mean `" + best + "`?";
     if (!e.open)
-      ctx_.report("RS2006", r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
+      ctx_.report(rs::RS2006, r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
     else if (ctx_.raisim())
-      ctx_.report("RS6009", r_, at, field, "RaiSim does not know " + e.name + " " + quoted(s), hint);
+      ctx_.report(rs::RS6009, r_, at, field, "RaiSim does not know " + e.name + " " + quoted(s), hint);
     else
-      ctx_.report("RS2007", r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
+      ctx_.report(rs::RS2007, r_, at, field, "unknown " + e.name + " " + quoted(s), hint);
   }
 
   // The span of item [offset, offset+len) of a value, for the caret.
@@ -208,7 +209,7 @@ class TypeChecker {
         while (q != e && *q != ',' && *q != ';') ++q;
       std::string_view part(p, static_cast<std::size_t>(q - p));
       if (part.empty()) {
-        ctx_.report("RS2009", r_, at, def.name, def.name + " has an empty entry",
+        ctx_.report(rs::RS2009, r_, at, def.name, def.name + " has an empty entry",
                     "separate numbers with single `,` or `;` and end without one");
         return -1;
       }
@@ -216,7 +217,7 @@ class TypeChecker {
       if (!bad && !(plain && part.size() <= (integers ? 18u : 100u))) {
         if (integers) {
           if (!parseInteger(part)) {
-            ctx_.report("RS2003", r_, item(at, s, part), def.name, "expected an integer, found " + quoted(part));
+            ctx_.report(rs::RS2003, r_, item(at, s, part), def.name, "expected an integer, found " + quoted(part));
             bad = true;
           }
         } else if (!parseNumber(part)) {
@@ -236,11 +237,11 @@ class TypeChecker {
     int per = def.type == ValueType::Vec3List ? 3 : def.type == ValueType::TransformList ? 10 : 1;
     if (n % per == 0) return;
     if (per == 10)
-      ctx_.report("RS4004", r_, at, def.name,
+      ctx_.report(rs::RS4004, r_, at, def.name,
                   def.name + " has " + std::to_string(n) + " numbers, not a multiple of 10",
                   "each instance is position (3), quaternion w,x,y,z (4) and scale (3)");
     else
-      ctx_.report("RS2008", r_, at, def.name, def.name + " has " + std::to_string(n) + " numbers, not a multiple of 3");
+      ctx_.report(rs::RS2008, r_, at, def.name, def.name + " has " + std::to_string(n) + " numbers, not a multiple of 3");
   }
 
   // Colors of 3 or 4 numbers separated by `;` (numbers by `,`); reports
@@ -275,7 +276,7 @@ class TypeChecker {
       }
       if (!good || n < 3 || n > 4) {
         std::string_view part(start, static_cast<std::size_t>(p - start));
-        ctx_.report("RS2008", r_, item(at, s, part), def.name,
+        ctx_.report(rs::RS2008, r_, item(at, s, part), def.name,
                     def.name + " entry " + quoted(part) + " is not a color of 3 or 4 numbers",
                     "colors are r,g,b or r,g,b,a separated by `;`");
         return;
@@ -304,7 +305,7 @@ class TypeChecker {
     bool countOk = def.type == ValueType::Color ? (n == 3 || n == 4) : n == want;
     if (!ok || !countOk) {
       std::string expect = def.type == ValueType::Color ? "3 or 4" : std::to_string(want);
-      ctx_.report("RS2008", r_, at, def.name,
+      ctx_.report(rs::RS2008, r_, at, def.name,
                   def.name + " has " + (ok ? std::to_string(n) : "an empty") + " component" + (n == 1 && ok ? "" : "s") +
                       ", expected " + expect,
                   "write " + expect + " numbers separated by `,`");
@@ -325,7 +326,7 @@ void checkTypes(Context& ctx, const Record& r) {
   if (!r.kind) {
     std::string_view tag = ctx.doc.tag(r);
     const std::string& best = ctx.suggestion(nullptr, tag);
-    ctx.report("RS3001", r, r.tag, {}, "unknown record tag '" + std::string(tag.substr(0, 60)) + "'",
+    ctx.report(rs::RS3001, r, r.tag, {}, "unknown record tag '" + std::string(tag.substr(0, 60)) + "'",
                best.empty() ? "newer writers may add kinds; this one is kept and ignored"
                             : "did you mean `" + best + "`?");
     return;

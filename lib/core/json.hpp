@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "core/writer.hpp"
@@ -28,8 +29,8 @@
 namespace rscene {
 
 // Diagnostic codes of the JSON passes.
-inline constexpr const char* kJsonSyntax = "RS8001";  // not JSON
-inline constexpr const char* kJsonSchema = "RS8002";  // JSON that is not a scene
+inline constexpr const char* kJsonSyntax = rs::RS8001;  // not JSON
+inline constexpr const char* kJsonSchema = rs::RS8002;  // JSON that is not a scene
 
 struct JsonStyle {
   bool pretty = true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/codes.hpp"
 #include "core/text.hpp"
 
 namespace rscene {
@@ -48,7 +49,7 @@ class Loader {
   void run() {
     const std::string& text = doc_.buffer();
     if (text.size() > kMaxInputBytes) {
-      error(0, 0, "RS1010", "input too large (" + std::to_string(text.size()) + " bytes; the limit is 4 GiB)");
+      error(0, 0, rs::RS1010, "input too large (" + std::to_string(text.size()) + " bytes; the limit is 4 GiB)");
       return;
     }
     if (byteOrderMark(text)) return;
@@ -68,7 +69,7 @@ class Loader {
     hintContinuations(out_.continuedLines, out_.diagnostics);
     if (stop_) return;
     if (doc_.records.empty()) {
-      error(line ? line : 1, 1, "RS1001", "missing raisim_engine_scene header", "the first record must be `raisim_engine_scene 1` or `raisim_engine_scene 2`");
+      error(line ? line : 1, 1, rs::RS1001, "missing raisim_engine_scene header", "the first record must be `raisim_engine_scene 1` or `raisim_engine_scene 2`");
       return;
     }
     doc_.trailingFirstComment = static_cast<std::uint32_t>(doc_.comments.size()) - pendingComment_;
@@ -85,7 +86,7 @@ class Loader {
                        : text.rfind("\xFE\xFF", 0) == 0    ? "a UTF-16 byte order mark (FE FF); save it as UTF-8"
                                                             : nullptr;
     if (!what) return false;
-    error(1, 1, "RS1001", std::string("file starts with ") + what,
+    error(1, 1, rs::RS1001, std::string("file starts with ") + what,
           "the first bytes must be the header `raisim_engine_scene 1` or `raisim_engine_scene 2`");
     stop_ = true;
     return true;
@@ -123,22 +124,22 @@ class Loader {
       if (c == '%' && !comment) {
         if (i + 2 >= end || !std::isxdigit(s[i + 1]) || !std::isxdigit(s[i + 2])) {
           std::string seq(reinterpret_cast<const char*>(s) + i, std::min<std::size_t>(3, end - i));
-          error(line, col, "RS1003", "invalid percent escape '" + seq + "'",
+          error(line, col, rs::RS1003, "invalid percent escape '" + seq + "'",
                 "write a literal % as %25; escapes are % and two hex digits");
           return false;
         }
         i += 2;
       } else if (c == 0) {
-        error(line, col, "RS1004", "NUL byte in scene text", "the file may be binary or corrupted");
+        error(line, col, rs::RS1004, "NUL byte in scene text", "the file may be binary or corrupted");
         return false;
       } else if ((c < 0x20 && !(comment && c == '\t')) || c == 0x7f) {
-        error(line, col, "RS1006", "control character 0x" + hexByte(c) + " in token",
+        error(line, col, rs::RS1006, "control character 0x" + hexByte(c) + " in token",
               "write it as %" + hexByte(c));
         return false;
       } else if (c >= 0x80) {
         std::size_t len = utf8SequenceLength(std::string_view(reinterpret_cast<const char*>(s), end), i);
         if (!len) {
-          error(line, col, "RS1005", "invalid UTF-8 byte 0x" + hexByte(c), "save the file as UTF-8");
+          error(line, col, rs::RS1005, "invalid UTF-8 byte 0x" + hexByte(c), "save the file as UTF-8");
           return false;
         }
         i += len - 1;
@@ -201,7 +202,7 @@ class Loader {
       Field f;
       if (eqPos != std::string::npos) {
         if (eqPos == tokStart) {
-          error(line, static_cast<std::uint32_t>(tokStart - lineStart + 1), "RS1009", "key=value token without a key",
+          error(line, static_cast<std::uint32_t>(tokStart - lineStart + 1), rs::RS1009, "key=value token without a key",
                 "write the key before `=`, or escape `=` as %3D");
           return;
         }
@@ -225,7 +226,7 @@ class Loader {
     if (r.kind) {
       if (misplaced) {
         doc_.fields.resize(r.firstField);
-        error(line, static_cast<std::uint32_t>(misplaced - lineStart + 1), "RS1008",
+        error(line, static_cast<std::uint32_t>(misplaced - lineStart + 1), rs::RS1008,
               "positional field after key=value fields", "move positional fields before the first key=value",
               std::string(tag));
         return;
@@ -238,7 +239,7 @@ class Loader {
                           " positional field" + (r.positionalCount == 1 ? "" : "s") + ", expected " +
                           expectedCounts(*r.kind);
         doc_.fields.resize(r.firstField);
-        error(line, col, "RS1007", msg,
+        error(line, col, rs::RS1007, msg,
               r.positionalCount < r.kind->layouts[0].tokenCount() ? "the line may be truncated" : "",
               std::string(tag));
         return;
@@ -252,7 +253,7 @@ class Loader {
 
   bool checkHeader(const Record& r, std::string_view tag, std::size_t lineStart) {
     if (tag != "raisim_engine_scene") {
-      error(r.line, static_cast<std::uint32_t>(r.tag.offset - lineStart + 1), "RS1001",
+      error(r.line, static_cast<std::uint32_t>(r.tag.offset - lineStart + 1), rs::RS1001,
             "missing raisim_engine_scene header",
             "the first record must be `raisim_engine_scene 1` or `raisim_engine_scene 2`");
       stop_ = true;
@@ -265,7 +266,7 @@ class Loader {
     }
     std::uint32_t col = r.positionalCount ? doc_.fields[r.firstField].value.offset - r.lineOffset + 1
                                           : r.tag.offset + r.tag.length - r.lineOffset + 1;
-    error(r.line, col, "RS1002",
+    error(r.line, col, rs::RS1002,
           v.empty() ? std::string("unsupported rscene version (none given)")
                     : "unsupported rscene version '" + std::string(v.substr(0, 40)) + "'",
           "this tool reads versions 1 and 2");

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <string>
 
+#include "core/codes.hpp"
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/shaders.hpp"
@@ -74,7 +75,7 @@ bool LightEffects::upload() {
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
   auto maxLights = std::size_t(std::max(maxTexels, 65536) / kLightTexels);
   if (lights_.size() > maxLights) {
-    r_.diag(Severity::Warning, "RS9004", 0,
+    r_.diag(Severity::Warning, rs::RS9004, 0,
             std::to_string(lights_.size()) + " lights; the light buffer holds " + std::to_string(maxLights) +
                 ", the rest are not drawn");
     lights_.resize(maxLights);
@@ -88,7 +89,7 @@ bool LightEffects::upload() {
   std::string log;
   depthProg_ = depthProgram(log);
   if (!depthProg_) {
-    r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
+    r_.diag(Severity::Error, rs::RS9010, 0, "shader build failed: " + log);
     return false;
   }
   if (!makeAtlas()) return false;
@@ -139,7 +140,7 @@ void LightEffects::chooseCasters() {
   budget = std::min(budget, kMaxCasters);
   if (chosen.size() > budget) {
     if (budget == kMaxCasters && (env.shadowedLightBudget <= 0 || std::size_t(env.shadowedLightBudget) > kMaxCasters))
-      r_.diag(Severity::Warning, "RS9050", 0,
+      r_.diag(Severity::Warning, rs::RS9050, 0,
               std::to_string(chosen.size()) + " lights cast shadows; the " + std::to_string(kMaxCasters) +
                   " strongest do, the others light without shadow");
     std::stable_sort(chosen.begin(), chosen.end(),
@@ -205,7 +206,7 @@ bool LightEffects::makeAtlas() {
     reduced = true;
   }
   if (reduced)
-    r_.diag(Severity::Warning, "RS9050", 0,
+    r_.diag(Severity::Warning, rs::RS9050, 0,
             std::to_string(casters_.size()) + " shadow maps reduced to fit a " + std::to_string(side) + "x" +
                 std::to_string(side) + " shadow atlas");
   for (std::size_t k = 0; k < casters_.size(); ++k) casters_[k].origin = origins[k];
@@ -230,7 +231,7 @@ bool LightEffects::makeAtlas() {
   bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (complete) return true;
-  r_.diag(Severity::Error, "RS9011", 0,
+  r_.diag(Severity::Error, rs::RS9011, 0,
           "cannot create a " + std::to_string(atlasSide_) + "x" + std::to_string(atlasSide_) + " shadow atlas");
   return false;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/codes.hpp"
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/shaders.hpp"
@@ -69,7 +70,7 @@ bool PostEffects::buildPrograms() {
     ready_ = true;
     return true;
   }
-  r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
+  r_.diag(Severity::Error, rs::RS9010, 0, "shader build failed: " + log);
   return false;
 }
 
@@ -93,7 +94,7 @@ bool PostEffects::ensure(PostTarget& t, int w, int h, GLenum internalFormat, GLe
   glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.texture, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
-  r_.diag(Severity::Error, "RS9011", 0,
+  r_.diag(Severity::Error, rs::RS9011, 0,
           "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " post-processing framebuffer");
   t.width = t.height = 0;
   return false;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/codes.hpp"
 #include "render/environment_light.hpp"
 #include "render/gl_effects.hpp"
 #include "render/gl_renderer.hpp"
@@ -136,7 +137,7 @@ bool ReflectionEffects::buildPrograms() {
   backgroundProg_ = linkProgram(shaders::kPostVertex, shaders::backgroundFaceFragment().c_str(), log);
   prefilterProg_ = linkProgram(shaders::kPostVertex, shaders::prefilterFragment().c_str(), log);
   if (backgroundProg_ && prefilterProg_) return true;
-  r_.diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
+  r_.diag(Severity::Error, rs::RS9010, 0, "shader build failed: " + log);
   return false;
 }
 
@@ -287,11 +288,11 @@ bool ReflectionEffects::upload() {
   const std::vector<RenderProbe>& probes = r_.scene_.probes;
   probeArrays_ = hasExtension("GL_ARB_texture_cube_map_array");
   if (!probes.empty() && !probeArrays_)
-    r_.diag(Severity::Warning, "RS9060", probes.front().line,
+    r_.diag(Severity::Warning, rs::RS9060, probes.front().line,
             "reflection probes are not drawn: this OpenGL has no cube map arrays (4.0 or "
             "ARB_texture_cube_map_array); surfaces reflect the environment");
   if (probeArrays_ && probes.size() > std::size_t(kMaxProbes))
-    r_.diag(Severity::Warning, "RS9061", probes[std::size_t(kMaxProbes)].line,
+    r_.diag(Severity::Warning, rs::RS9061, probes[std::size_t(kMaxProbes)].line,
             std::to_string(probes.size()) + " reflection probes; only the first " + std::to_string(kMaxProbes) +
                 " are drawn");
   return r_.glOk();

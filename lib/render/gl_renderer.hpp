@@ -18,6 +18,7 @@
 #include <tuple>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "asset/cache.hpp"
 #include "render/gl_effects.hpp"
 #include "render/gl_post.hpp"
@@ -133,7 +134,7 @@ class GlRenderer final : public Renderer {
   void diag(Severity s, const char* code, std::uint32_t line, std::string message, std::uint32_t column = 0,
             const std::string& file = {});
   bool assetProblem(std::uint32_t line, std::uint32_t column, const std::string& file, const std::string& message,
-                    const char* code = "RS9001");
+                    const char* code = rs::RS9001);
   // `usage` GL_DYNAMIC_DRAW for a deformable's surface, rewritten per frame.
   std::shared_ptr<GpuMesh> uploadMesh(const MeshData& m, const std::vector<Eigen::Vector4f>* colors = nullptr,
                                       GLenum usage = GL_STATIC_DRAW);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "render/camera.hpp"
 #include "render/gl_effects.hpp"
@@ -103,11 +104,11 @@ bool VolumeEffects::uploadDecalTextures() {
       std::string err;
       std::shared_ptr<const Image> image = r_.assets_.image(path, &err);
       if (!image || image->width <= 0 || image->height <= 0) {
-        r_.diag(Severity::Warning, "RS9002", d.line, "decal texture " + path + " is not drawn: " + err, column);
+        r_.diag(Severity::Warning, rs::RS9002, d.line, "decal texture " + path + " is not drawn: " + err, column);
         continue;
       }
       if (int(images.size()) >= maxLayers) {
-        r_.diag(Severity::Warning, "RS9055", d.line,
+        r_.diag(Severity::Warning, rs::RS9055, d.line,
                 "decal texture " + path + " is not drawn: more than " + std::to_string(maxLayers) +
                     " distinct decal textures",
                 column);
@@ -223,7 +224,7 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     if (chosen.size() > kMaxInView) {
       std::nth_element(chosen.begin(), chosen.begin() + kMaxInView, chosen.end());
       if (!warnedOverflow_)
-        r_.diag(Severity::Warning, "RS9055", 0,
+        r_.diag(Severity::Warning, rs::RS9055, 0,
                 std::to_string(chosen.size()) + " " + kind + " in view: the " + std::to_string(kMaxInView) +
                     " nearest the camera are drawn");
       warnedOverflow_ = true;
@@ -292,7 +293,7 @@ void VolumeEffects::bind(GLuint program, const View& view) {
     // Not reached in practice (llvmpipe takes 2^27 texels, 8 a decal):
     // the view draws none of them rather than part of a list.
     if (!warnedOverflow_)
-      r_.diag(Severity::Warning, "RS9055", 0,
+      r_.diag(Severity::Warning, rs::RS9055, 0,
               "decals, fog spheres and irradiance volumes in view need " + std::to_string(data_.size() / 4) +
                   " texels, more than this OpenGL's " + std::to_string(maxTexels) + ": none is drawn");
     warnedOverflow_ = true;

@@ -1,5 +1,6 @@
 #include "render/limits.hpp"
 
+#include "core/codes.hpp"
 #include "render/renderer.hpp"
 #include "scene/reader.hpp"
 
@@ -28,11 +29,11 @@ bool checkCameraImageSize(const Document& doc, const Camera& camera, std::int64_
   if (problem.empty()) return true;
   if (camera.recordIndex > 0 && std::size_t(camera.recordIndex) < doc.records.size()) {
     RecordReader r(doc, std::size_t(camera.recordIndex), diags);
-    r.error("width", "RS9013", "camera image " + problem, "give --width and --height, or raise --max-pixels");
+    r.error("width", rs::RS9013, "camera image " + problem, "give --width and --height, or raise --max-pixels");
   } else {
     Diagnostic d;
     d.severity = Severity::Error;
-    d.code = "RS9013";
+    d.code = rs::RS9013;
     d.message = "camera image " + problem;
     diags.push_back(std::move(d));
   }

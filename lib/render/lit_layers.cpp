@@ -1,6 +1,7 @@
 // The lit pass's draw calls (gl_renderer.hpp, main_pass.hpp): the layers
 // of one view into the bound framebuffer, and the jittered single-sample
 // passes a software rasteriser draws instead of MSAA on deep scenes.
+#include "core/codes.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/gl_uniforms.hpp"
 #include "render/main_pass.hpp"
@@ -88,7 +89,7 @@ bool GlRenderer::jitterTargets(int w, int h) {
   // A texture (colorTargets: the post-processing reads it), single-sample here.
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, color_.msaaDepth, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
-  diag(Severity::Error, "RS9011", 0,
+  diag(Severity::Error, rs::RS9011, 0,
        "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " framebuffer for the jittered passes");
   t.width = t.height = 0;
   return false;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/codes.hpp"
 #include "render/camera.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/main_pass.hpp"
@@ -35,7 +36,7 @@ bool GlRenderer::glOk() {
   if (e == GL_NO_ERROR) return true;
   char b[16];
   std::snprintf(b, sizeof b, "%04x", e);
-  diag(Severity::Error, "RS9012", 0, std::string("OpenGL error 0x") + b);
+  diag(Severity::Error, rs::RS9012, 0, std::string("OpenGL error 0x") + b);
   return false;
 }
 
@@ -202,7 +203,7 @@ bool GlRenderer::colorTargets(int w, int h, int samples) {
     complete = complete && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   }
   if (complete) return true;
-  diag(Severity::Error, "RS9011", 0,
+  diag(Severity::Error, rs::RS9011, 0,
        "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " framebuffer with " +
            std::to_string(samples) + " samples");
   t.width = t.height = 0;
@@ -230,7 +231,7 @@ bool GlRenderer::dataTargets(int w, int h) {
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, t.depth);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.z);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
-  diag(Severity::Error, "RS9011", 0,
+  diag(Severity::Error, rs::RS9011, 0,
        "cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " depth and segmentation framebuffer");
   t.width = t.height = 0;
   return false;
@@ -384,7 +385,7 @@ bool GlRenderer::render(const View& view, ViewImages& out, Diagnostics& diagnost
   diags_ = &diagnostics;
   out = ViewImages{};
   if (std::string problem = viewProblem(view); !problem.empty()) {
-    diag(Severity::Error, "RS9040", 0, "view '" + view.name + "': " + problem);
+    diag(Severity::Error, rs::RS9040, 0, "view '" + view.name + "': " + problem);
     return false;
   }
   out.width = view.camera.width;

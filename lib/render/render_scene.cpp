@@ -1,4 +1,5 @@
 #include "render/render_scene.hpp"
+#include "core/codes.hpp"
 #include "render/render_effects.hpp"
 
 #include "scene/reader.hpp"
@@ -510,7 +511,7 @@ class Preparer {
     }
     Diagnostic d;
     d.severity = Severity::Error;
-    d.code = "RS9014";
+    d.code = rs::RS9014;
     d.line = line;
     d.column = line ? 1 : 0;
     d.message = kind + " draws " + std::to_string(count) + " instances, more than the " + std::to_string(left) +
@@ -561,7 +562,7 @@ class Preparer {
       if (std::find(std::begin(known), std::end(known), l.primitive) == std::end(known)) {
         Diagnostic d;
         d.severity = Severity::Warning;
-        d.code = "RS9072";
+        d.code = rs::RS9072;
         d.line = b.line;
         d.column = b.line ? 1 : 0;
         d.message = "terrain_foliage_layer primitive '" + l.primitive + "' is drawn as grass_blade";
@@ -688,7 +689,7 @@ class Preparer {
       }
       Diagnostic d;
       d.severity = Severity::Error;
-      d.code = "RS9070";
+      d.code = rs::RS9070;
       d.line = lineOf(g.recordIndex);
       d.column = d.line ? 1 : 0;
       d.message = why;
@@ -876,7 +877,7 @@ class Preparer {
         // picture needs a reason.
         Diagnostic d;
         d.severity = Severity::Warning;
-        d.code = "RS9030";
+        d.code = rs::RS9030;
         d.line = lineOf(a.recordIndex);
         d.column = d.line ? 1 : 0;
         d.message = "articulated system '" + a.path + "' draws nothing: its model '" + r.model->name +

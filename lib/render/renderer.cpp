@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "render/camera.hpp"
 #include "render/deformed_surface.hpp"
@@ -279,7 +280,7 @@ bool GlRenderer::materialTexture(const RenderMaterial& m, GLuint& out) {
   std::string err;
   std::shared_ptr<const Image> image = assets_.image(m.albedoTexture, &err);
   if (!image) {
-    diag(Severity::Warning, "RS9002", m.line, "texture " + m.albedoTexture + " is not drawn: " + err, 0, m.file);
+    diag(Severity::Warning, rs::RS9002, m.line, "texture " + m.albedoTexture + " is not drawn: " + err, 0, m.file);
     return true;
   }
   out = textures_[m.albedoTexture] = texture(image);
@@ -305,7 +306,7 @@ const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, s
     failed = !assetProblem(line, column, file, "cannot read mesh " + path + ": " + err);
     return nullptr;
   }
-  for (const std::string& w : loaded->warnings) diag(Severity::Warning, "RS9002", line, w, column, file);
+  for (const std::string& w : loaded->warnings) diag(Severity::Warning, rs::RS9002, line, w, column, file);
   for (const asset::MeshPart& p : loaded->parts)
     parts.push_back({uploadMesh(interleave(p)), Eigen::Vector4f(p.material.baseColor.data()), p.material.metallic,
                      p.material.roughness, texture(p.material.texture)});
@@ -504,7 +505,7 @@ void GlRenderer::uploadBackground() {
   std::string err;
   std::shared_ptr<const FloatImage> hdr = env.hdrPath.empty() ? nullptr : assets_.floatImage(env.hdrPath, &err);
   if (!hdr) {
-    diag(Severity::Warning, "RS9003", env.hdrLine,
+    diag(Severity::Warning, rs::RS9003, env.hdrLine,
          "hdr background " + (env.hdrPath.empty() ? std::string("has no envMapPath") : env.hdrPath + ": " + err) +
              "; drawing the procedural sky");
     return;
@@ -565,7 +566,7 @@ bool GlRenderer::buildPrograms() {
   if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_ && prepassProg_ &&
       averageProg_ && idProg_ && edgeProg_ && clearProg_ && spreadProg_)
     return true;
-  diag(Severity::Error, "RS9010", 0, "shader build failed: " + log);
+  diag(Severity::Error, rs::RS9010, 0, "shader build failed: " + log);
   return false;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string_view>
 
+#include "core/codes.hpp"
 #include "core/suggest.hpp"
 #include "render/camera.hpp"
 #include "render/limits.hpp"
@@ -129,7 +130,7 @@ void sizeViews(std::vector<View>& views, const ViewRequest& request, const ViewS
         return;
       }
       RecordReader r(sources.document, static_cast<std::size_t>(v.recordIndex), findings.diagnostics);
-      r.error("width", "RS9013", "sensor image " + problem);
+      r.error("width", rs::RS9013, "sensor image " + problem);
       continue;
     }
     ImageSize size = cameraImageSize(v.camera, request.width, request.height);

@@ -132,7 +132,15 @@ std::vector<View> collectViews(const Document& doc, const Scene& scene, const Re
                                const std::vector<robot::SensorSpec>& sensors, const robot::BodyPoses& rest,
                                Diagnostics& diagnostics) {
   std::vector<View> views;
+  // A camera or sensor riding on a robot --allow-missing-assets left out
+  // gives no view, whoever asks (robot::leaveOutMissingRobots warned).
+  auto onLeftOut = [&](const Mount& m) {
+    return m.kind == Mount::Kind::Articulated && m.index >= 0 &&
+           static_cast<std::size_t>(m.index) < scene.articulated.size() &&
+           scene.articulated[static_cast<std::size_t>(m.index)].leftOut;
+  };
   for (std::size_t i = 0; i < scene.cameras.size() && i < rs.cameras.size(); ++i) {
+    if (onLeftOut(scene.cameras[i].mount)) continue;
     View v;
     v.camera = rs.cameras[i];  // near/far made usable
     v.name = v.camera.path;
@@ -148,7 +156,8 @@ std::vector<View> collectViews(const Document& doc, const Scene& scene, const Re
     views.push_back(std::move(v));
   }
   for (std::size_t i = 0; i < sensors.size(); ++i)
-    if (robot::cameraLike(sensors[i].kind)) views.push_back(sensorView(sensors[i], static_cast<int>(i)));
+    if (robot::cameraLike(sensors[i].kind) && !onLeftOut(sensors[i].mount))
+      views.push_back(sensorView(sensors[i], static_cast<int>(i)));
   poseViews(views, scene, rs, sensors, rest, rest);
   return views;
 }

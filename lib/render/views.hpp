@@ -8,6 +8,7 @@
 // parentObject/parentLink (robot::sensorPose).  poseViews() moves the views
 // with the bodies along a trajectory.
 #pragma once
+#include "core/codes.hpp"
 #include "scene/sensor_check.hpp"
 #include <cstdint>
 #include <string>
@@ -23,8 +24,8 @@
 namespace rscene::render {
 
 namespace code {
-inline constexpr const char* kRenderMode = "RS9045";  // camera renderMode not drawn as written (colour instead)
-inline constexpr const char* kOutputPath = "RS9048";  // outputPath a scene may not write (absolute, '..')
+inline constexpr const char* kRenderMode = rs::RS9045;  // camera renderMode not drawn as written (colour instead)
+inline constexpr const char* kOutputPath = rs::RS9048;  // outputPath a scene may not write (absolute, '..')
 }  // namespace code
 
 // The passes of a camera record's renderMode (canonical, as the schema

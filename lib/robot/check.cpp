@@ -1,5 +1,6 @@
 #include "robot/check.hpp"
 
+#include "core/codes.hpp"
 #include "scene/validate.hpp"
 
 #include <map>
@@ -100,7 +101,7 @@ class RobotChecker {
     Diagnostics load;
     cache_.get(a.sourcePath, loadOptionsOf(a), load);
     for (Diagnostic& d : load)
-      if (!d.file.empty() && d.code.rfind("RS706", 0) == 0 && d.code != "RS7060") found.push_back(std::move(d));
+      if (!d.file.empty() && d.code.rfind("RS706", 0) == 0 && d.code != rs::RS7060) found.push_back(std::move(d));
   }
 
   // --check-files reads a resource no articulated record instantiates too,

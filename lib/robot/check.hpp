@@ -14,6 +14,7 @@
 #pragma once
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "core/document.hpp"
 #include "robot/kinematics.hpp"
@@ -24,8 +25,8 @@
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kSensorLink = "RS7045";  // sensor parentLink that is no link of its robot
-inline constexpr const char* kWireBody = "RS7046";    // wire localIndexA/B past the robot's body count
+inline constexpr const char* kSensorLink = rs::RS7045;  // sensor parentLink that is no link of its robot
+inline constexpr const char* kWireBody = rs::RS7046;    // wire localIndexA/B past the robot's body count
 }  // namespace code
 
 struct RobotCheckOptions {

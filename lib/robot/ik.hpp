@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "robot/instance.hpp"
@@ -28,9 +29,9 @@
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kUnknownFrame = "RS7044";   // articulated_ik frame that is no joint or link of the model
-inline constexpr const char* kIkNotReached = "RS7047";   // IK target not reached within its tolerances (warning)
-inline constexpr const char* kIkSettings = "RS7048";     // articulated_ik knob that cannot be used
+inline constexpr const char* kUnknownFrame = rs::RS7044;   // articulated_ik frame that is no joint or link of the model
+inline constexpr const char* kIkNotReached = rs::RS7047;   // IK target not reached within its tolerances (warning)
+inline constexpr const char* kIkSettings = rs::RS7048;     // articulated_ik knob that cannot be used
 }  // namespace code
 
 // Iterations are capped so a hostile maxIterations cannot hang a run, and

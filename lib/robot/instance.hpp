@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "robot/kinematics.hpp"
@@ -16,12 +17,12 @@ namespace rscene::robot {
 
 // Diagnostic codes of an articulated record read against its model.
 namespace code {
-inline constexpr const char* kCoordinateLength = "RS7040";  // generalizedCoordinate length differs from the model's
-inline constexpr const char* kVelocityLength = "RS7041";    // generalizedVelocity length differs from the model's
-inline constexpr const char* kJointOrder = "RS7042";        // jointOrder names an unknown, fixed or repeated joint, or omits one
-inline constexpr const char* kQuaternion = "RS7043";        // quaternion in generalizedCoordinate not of unit length (warning) or zero
-inline constexpr const char* kStateRange = "RS7049";        // coordinate or velocity entry beyond 1e12 (or not finite)
-inline constexpr const char* kTooLarge = "RS7052";          // more than kMaxRobotBodies bodies
+inline constexpr const char* kCoordinateLength = rs::RS7040;  // generalizedCoordinate length differs from the model's
+inline constexpr const char* kVelocityLength = rs::RS7041;    // generalizedVelocity length differs from the model's
+inline constexpr const char* kJointOrder = rs::RS7042;        // jointOrder names an unknown, fixed or repeated joint, or omits one
+inline constexpr const char* kQuaternion = rs::RS7043;        // quaternion in generalizedCoordinate not of unit length (warning) or zero
+inline constexpr const char* kStateRange = rs::RS7049;        // coordinate or velocity entry beyond 1e12 (or not finite)
+inline constexpr const char* kTooLarge = rs::RS7052;          // more than kMaxRobotBodies bodies
 }  // namespace code
 
 // Most bodies (movable joints + 1) of one robot: Bullet's cost grows with

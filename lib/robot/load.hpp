@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "robot/model.hpp"
 
@@ -19,13 +20,13 @@ namespace rscene::robot {
 
 // Diagnostic codes of robot loading (registry: core/check_codes.cpp).
 namespace code {
-inline constexpr const char* kMissingFile = "RS5001";   // robot file or mesh that does not exist / is not a regular file
-inline constexpr const char* kBadFile = "RS7030";       // robot file that does not parse (XML, MJCF compile error)
-inline constexpr const char* kSkipped = "RS7031";       // element that cannot be used, skipped (warning)
-inline constexpr const char* kBadModel = "RS7032";      // not a tree: no root, two roots, unknown link, cycle
-inline constexpr const char* kNoModule = "RS7033";      // module file not found in RaiSim's search order
-inline constexpr const char* kNoResource = "RS7034";    // articulated record with no robot file to load
-inline constexpr const char* kBadNumber = "RS7035";     // mass, inertia, length or joint coefficient out of range
+inline constexpr const char* kMissingFile = rs::RS5001;   // robot file or mesh that does not exist / is not a regular file
+inline constexpr const char* kBadFile = rs::RS7030;       // robot file that does not parse (XML, MJCF compile error)
+inline constexpr const char* kSkipped = rs::RS7031;       // element that cannot be used, skipped (warning)
+inline constexpr const char* kBadModel = rs::RS7032;      // not a tree: no root, two roots, unknown link, cycle
+inline constexpr const char* kNoModule = rs::RS7033;      // module file not found in RaiSim's search order
+inline constexpr const char* kNoResource = rs::RS7034;    // articulated record with no robot file to load
+inline constexpr const char* kBadNumber = rs::RS7035;     // mass, inertia, length or joint coefficient out of range
 }  // namespace code
 
 struct LoadOptions {

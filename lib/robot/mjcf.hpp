@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "robot/model.hpp"
 
@@ -18,10 +19,10 @@ namespace rscene::robot {
 namespace code {
 // MJCF the robot model cannot hold: a free joint below the top level or
 // beside other joints, a second top-level body beside a floating base.
-inline constexpr const char* kMjcfUnsupported = "RS7036";
+inline constexpr const char* kMjcfUnsupported = rs::RS7036;
 // MJCF element converted approximately (an ellipsoid geom as a sphere), or
 // a warning of MuJoCo's compiler.
-inline constexpr const char* kMjcfApproximated = "RS7037";
+inline constexpr const char* kMjcfApproximated = rs::RS7037;
 }  // namespace code
 
 // Reads the compiled model `m` (compiled from `path`, named in

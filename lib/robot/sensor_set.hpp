@@ -34,15 +34,16 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "robot/model.hpp"
 
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kNoSensorSet = "RS7060";    // sensor set file not found in RaiSim's search order
-inline constexpr const char* kBadSensorSet = "RS7061";   // sensor set file that does not parse
-inline constexpr const char* kSensorSkipped = "RS7062";  // sensor set element skipped (warning)
+inline constexpr const char* kNoSensorSet = rs::RS7060;    // sensor set file not found in RaiSim's search order
+inline constexpr const char* kBadSensorSet = rs::RS7061;   // sensor set file that does not parse
+inline constexpr const char* kSensorSkipped = rs::RS7062;  // sensor set element skipped (warning)
 }  // namespace code
 
 // Where `file` (a <link sensor=> value) may be, in RaiSim's order: as is

@@ -31,7 +31,7 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
   }
   out += "{\"time\":";
   number(out, time);
-  out += ",\"path\":" + nlohmann::json(path).dump();
+  out += ",\"path\":" + nlohmann::json(jsonSafeText(path)).dump();
   auto vec = [&](const char* name, std::initializer_list<double> xs) {
     out += ",\"";
     out += name;
@@ -48,6 +48,34 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
 }
 
 }  // namespace
+
+std::string jsonSafeText(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  auto cont = [&](std::size_t i) { return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80; };
+  for (std::size_t i = 0; i < text.size();) {
+    auto c = static_cast<unsigned char>(text[i]);
+    std::size_t n = c < 0x80 ? 1 : (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
+    bool ok = n > 0;
+    for (std::size_t k = 1; ok && k < n; ++k) ok = cont(i + k);
+    if (ok && n == 3) {  // no overlong forms, no surrogates
+      auto c1 = static_cast<unsigned char>(text[i + 1]);
+      ok = !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 >= 0xA0);
+    }
+    if (ok && n == 4) {  // no overlong forms, nothing past U+10FFFF
+      auto c1 = static_cast<unsigned char>(text[i + 1]);
+      ok = !(c == 0xF0 && c1 < 0x90) && !(c == 0xF4 && c1 >= 0x90);
+    }
+    if (!ok) {
+      out += "\xEF\xBF\xBD";  // U+FFFD
+      ++i;
+      continue;
+    }
+    out.append(text.substr(i, n));
+    i += n;
+  }
+  return out;
+}
 
 void appendCsvField(std::string& out, std::string_view s) {
   if (s.find_first_of(",\"\n") == std::string_view::npos) {
@@ -178,7 +206,7 @@ void TrajectoryWriter::append(std::string& out, double time, const std::vector<B
       out += "\":{";
       for (std::size_t i = 0; i < cols.size(); ++i) {
         if (i) out += ',';
-        out += nlohmann::json(columns_[static_cast<std::size_t>(cols[i])].substr(2)).dump() + ':';
+        out += nlohmann::json(jsonSafeText(columns_[static_cast<std::size_t>(cols[i])].substr(2))).dump() + ':';
         number(out, v[first + static_cast<Eigen::Index>(i)]);
       }
       out += '}';
@@ -197,7 +225,7 @@ void TrajectoryWriter::append(std::string& out, double time, const std::vector<B
     } else {
       out += "{\"time\":";
       number(out, time);
-      out += ",\"path\":" + nlohmann::json(p.path).dump() + ",\"points\":[";
+      out += ",\"path\":" + nlohmann::json(jsonSafeText(p.path)).dump() + ",\"points\":[";
     }
     for (std::size_t i = 0; i < p.points->size(); ++i) {
       const Eigen::Vector3d& x = (*p.points)[i];

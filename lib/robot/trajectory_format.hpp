@@ -74,6 +74,11 @@ struct TrajectoryLimits {
 // newline goes in double quotes, a quote inside doubled.
 void appendCsvField(std::string& out, std::string_view field);
 
+// A path as a JSON line holds it: JSON text is UTF-8, so a byte that is
+// not part of a valid UTF-8 sequence (a path written %FF) becomes U+FFFD.
+// The reader matches a scene's paths in this form too.
+std::string jsonSafeText(std::string_view text);
+
 // One CSV field as read back: its decoded text and its 1-based column.
 struct CsvField {
   std::string text;

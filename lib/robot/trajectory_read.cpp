@@ -202,9 +202,12 @@ bool TrajectoryReader::fail(Diagnostics& d, std::uint32_t column, std::string me
 // over-long line: failed_ then set).
 bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
   out.clear();
+  lineNumber_ += continuedLines_;  // the lines the last record went on over
+  continuedLines_ = 0;
   std::streambuf* sb = in_.rdbuf();
   if (!sb) return false;
-  bool any = false;
+  bool any = false, quoted = false;
+  std::uint32_t continued = 0;
   for (;;) {
     int c = 0;
     // libstdc++'s filebuf throws on a read error (a directory, EIO): an
@@ -217,7 +220,11 @@ bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
     }
     if (c == std::char_traits<char>::eof()) break;
     any = true;
-    if (c == '\n') break;
+    // A quoted CSV field may hold a newline (appendCsvField's rule): the
+    // record goes on on the next line, which counts as a line of the file.
+    if (c == '"' && format_ == TrajectoryFileFormat::Csv) quoted = !quoted;
+    if (c == '\n' && !quoted) break;
+    if (c == '\n') ++continued;
     if (out.size() >= limits_.maxLineBytes) {
       ++lineNumber_;
       return fail(d, 1,
@@ -227,7 +234,8 @@ bool TrajectoryReader::readLine(std::string& out, Diagnostics& d) {
     out += static_cast<char>(c);
   }
   if (!any) return false;
-  ++lineNumber_;
+  ++lineNumber_;  // a record is reported at its first line
+  continuedLines_ = continued;
   if (!out.empty() && out.back() == '\r') out.pop_back();
   return true;
 }
@@ -492,6 +500,10 @@ bool TrajectoryReader::next(TrajectoryFrame& frame, Diagnostics& d) {
 TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models,
                                  ParticleCounts counts)
     : counts_(std::move(counts)), deformables_(scene.deformables.size()), granulars_(scene.granulars.size()) {
+  addTargets(scene, models);
+}
+
+void TrajectoryPoser::addTargets(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models) {
   for (std::size_t i = 0; i < scene.deformables.size(); ++i)
     targets_.emplace(scene.deformables[i].path,
                      Target{Mount::Kind::World, static_cast<int>(i), Particles::Deformable});
@@ -514,6 +526,12 @@ TrajectoryPoser::TrajectoryPoser(const Scene& scene, const std::vector<std::shar
       r.names.push_back(names[k]);
     }
   }
+  // A JSON line holds a path that is not UTF-8 in its JSON-safe form
+  // (jsonSafeText); a CSV line as written.  Both find the body.
+  std::vector<std::pair<std::string, Target>> safe;
+  for (const auto& [path, target] : targets_)
+    if (std::string s = jsonSafeText(path); s != path) safe.emplace_back(std::move(s), target);
+  for (auto& [path, target] : safe) targets_.emplace(std::move(path), target);
 }
 
 bool TrajectoryPoser::apply(const TrajectoryFrame& frame, const std::string& file, BodyPoses& poses,

@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "robot/kinematics.hpp"
 #include "robot/model.hpp"
@@ -25,8 +26,8 @@
 namespace rscene::robot {
 
 namespace code {
-inline constexpr const char* kTrajectorySyntax = "RS9046";  // malformed trajectory line
-inline constexpr const char* kTrajectoryTarget = "RS9047";  // body or joint the scene does not have
+inline constexpr const char* kTrajectorySyntax = rs::RS9046;  // malformed trajectory line
+inline constexpr const char* kTrajectoryTarget = rs::RS9047;  // body or joint the scene does not have
 }  // namespace code
 
 // One line: a body's pose, or a robot's base pose and joint positions, or
@@ -86,6 +87,7 @@ class TrajectoryReader {
   TrajectoryFileFormat format_ = TrajectoryFileFormat::Unknown;
   std::vector<std::string> csvJoints_;  // per CSV column past the body ones: joint name, "" when not q.*
   std::uint32_t lineNumber_ = 0;
+  std::uint32_t continuedLines_ = 0;  // lines past the first of the last CSV record (a quoted newline)
   std::uint64_t frames_ = 0;
   bool failed_ = false, ended_ = false;
   bool havePending_ = false;  // a line of the next frame, read ahead
@@ -150,6 +152,7 @@ class TrajectoryPoser {
     std::unordered_map<std::string, int> coordinate;  // q entry by name (joints only)
     std::vector<std::string> names;                   // those names in q order, from baseCoordinates
   };
+  void addTargets(const Scene& scene, const std::vector<std::shared_ptr<const Model>>& models);
   std::unordered_map<std::string, Target> targets_;
   std::vector<Robot> robots_;
   ParticleCounts counts_;

@@ -24,18 +24,19 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "scene/visual_records.hpp"
 
 namespace rscene {
 
 namespace particle_code {
-inline constexpr const char* kDeformableMesh = "RS7080";  // a deformable's mesh is not a usable OBJ surface
-inline constexpr const char* kDeformable = "RS7081";      // a deformable record that cannot be simulated
-inline constexpr const char* kGranular = "RS7082";        // a granular record whose grains cannot be made
-inline constexpr const char* kSubstepsRaised = "RS7086";  // warning: substeps raised for stability
-inline constexpr const char* kTooStiff = "RS7087";        // stability needs more than kMaxGranularSubsteps
-inline constexpr const char* kGranularValue = "RS7088";   // a granular value out of range
-inline constexpr const char* kOverlap = "RS7089";         // grains overlapping by more than half their radii
+inline constexpr const char* kDeformableMesh = rs::RS7080;  // a deformable's mesh is not a usable OBJ surface
+inline constexpr const char* kDeformable = rs::RS7081;      // a deformable record that cannot be simulated
+inline constexpr const char* kGranular = rs::RS7082;        // a granular record whose grains cannot be made
+inline constexpr const char* kSubstepsRaised = rs::RS7086;  // warning: substeps raised for stability
+inline constexpr const char* kTooStiff = rs::RS7087;        // stability needs more than kMaxGranularSubsteps
+inline constexpr const char* kGranularValue = rs::RS7088;   // a granular value out of range
+inline constexpr const char* kOverlap = rs::RS7089;         // grains overlapping by more than half their radii
 }  // namespace particle_code
 
 // A finding of a particle record's check: an error refuses the record, a

@@ -37,6 +37,11 @@ void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<int>& r
          "sensor '" + s.path + "' is not used: '" + s.parentObject + "' was left out " + why);
     s.enabled = false;
   }
+  for (Camera& c : scene.cameras) {
+    if (!c.enabled || !records.count(mountRecord(c.mount))) continue;
+    warn(c.recordIndex, "parentGroupId", "camera '" + c.path + "' is not used: the body it rides on was left out " + why);
+    c.enabled = false;
+  }
 }
 
 }  // namespace rscene

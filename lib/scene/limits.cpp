@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <unordered_map>
 
+#include "core/codes.hpp"
 #include "core/text.hpp"
 #include "scene/reader.hpp"
 
@@ -198,7 +199,7 @@ bool checkNumericLimits(const Document& doc, const Scene& scene, Diagnostics& di
   for (const Wire& w : scene.wires) {
     RecordReader r(doc, static_cast<std::size_t>(w.recordIndex), diagnostics);
     if (w.length < 0)  // lib/core's finding, in its words
-      r.error("length", "RS4011", "length is negative (" + numberText(w.length) + ")");
+      r.error("length", rs::RS4011, "length is negative (" + numberText(w.length) + ")");
     else
       checkLength(r, "length", w.length, "length of wire '" + w.path + "'");
     checkCoefficient(r, "stiffness", w.stiffness, "stiffness of wire '" + w.path + "'");

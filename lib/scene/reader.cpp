@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/codes.hpp"
 #include "scene/scene.hpp"
 #include "core/text.hpp"
 
@@ -105,6 +106,21 @@ void RecordReader::error(std::string_view name, const char* code, const std::str
   diags_.push_back(std::move(d));
 }
 
+void reportAt(const Document* doc, int recordIndex, std::string_view field, const char* code,
+              const std::string& message, Diagnostics& diagnostics, Severity severity, std::string hint) {
+  if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
+    RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics)
+        .error(field, code, message, std::move(hint), severity);
+    return;
+  }
+  Diagnostic d;
+  d.severity = severity;
+  d.code = code;
+  d.message = message;
+  d.hint = std::move(hint);
+  diagnostics.push_back(std::move(d));
+}
+
 void RecordReader::bad(std::string_view name, std::string_view value, std::string_view expected, const char* code) const {
   std::string shown(value.substr(0, 60));
   error(name, code,
@@ -119,8 +135,8 @@ const char* RecordReader::numberCode(std::string_view s) {
   double v = 0;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (!s.empty() && p == s.data() + s.size() && (ec == std::errc::result_out_of_range || !std::isfinite(v)))
-    return "RS2002";
-  return "RS2001";
+    return rs::RS2002;
+  return rs::RS2001;
 }
 
 double RecordReader::number(std::string_view name, double fallback) const {
@@ -141,7 +157,7 @@ std::int64_t RecordReader::integer(std::string_view name, std::int64_t fallback)
   Located l = locate(name);
   bool int32 = l.def && l.def->type == ValueType::Integer;
   if (v && (!int32 || (*v >= INT32_MIN && *v <= INT32_MAX))) return *v;
-  bad(name, *t, int32 ? "32-bit integer" : "integer", "RS2003");
+  bad(name, *t, int32 ? "32-bit integer" : "integer", rs::RS2003);
   return fallback;
 }
 
@@ -149,7 +165,7 @@ bool RecordReader::flag(std::string_view name, bool fallback) const {
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<bool> v = parseFlag(*t)) return *v;
-  bad(name, *t, "flag", "RS2005");
+  bad(name, *t, "flag", rs::RS2005);
   return fallback;
 }
 
@@ -157,7 +173,7 @@ std::uint64_t RecordReader::group(std::string_view name, std::uint64_t fallback)
   std::optional<std::string> t = text(name);
   if (!t || t->empty()) return fallback;
   if (std::optional<std::uint64_t> v = parseGroup(*t)) return *v;
-  bad(name, *t, "collision group", "RS2004");
+  bad(name, *t, "collision group", rs::RS2004);
   return fallback;
 }
 
@@ -172,7 +188,7 @@ std::string RecordReader::name(std::string_view field, std::string fallback) con
     for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     return lower;
   }
-  bad(field, *t, l.def->enumDef->name + " name", "RS2006");
+  bad(field, *t, l.def->enumDef->name + " name", rs::RS2006);
   return fallback;
 }
 
@@ -208,7 +224,7 @@ bool RecordReader::components(std::string_view name, std::vector<double>& out) c
     if (!item.empty() && !parseNumber(item)) code = numberCode(item);
     if (at == std::string_view::npos) break;
   }
-  if (!code) code = l.def && componentCount(l.def->type) > 0 ? "RS2008" : "RS2009";
+  if (!code) code = l.def && componentCount(l.def->type) > 0 ? rs::RS2008 : rs::RS2009;
   bad(name, *t, "numbers", code);
   return false;
 }
@@ -217,7 +233,7 @@ Eigen::Vector3d RecordReader::vec3(std::string_view name, const Eigen::Vector3d&
   std::vector<double> v;
   if (!components(name, v) || v.empty()) return fallback;
   if (v.size() != 3) {
-    bad(name, *text(name), "vector of 3 numbers", "RS2008");
+    bad(name, *text(name), "vector of 3 numbers", rs::RS2008);
     return fallback;
   }
   return {v[0], v[1], v[2]};
@@ -227,7 +243,7 @@ Eigen::Vector4d RecordReader::color(std::string_view name, const Eigen::Vector4d
   std::vector<double> v;
   if (!components(name, v) || v.empty()) return fallback;
   if (v.size() != 3 && v.size() != 4) {
-    bad(name, *text(name), "color of 3 or 4 numbers", "RS2008");
+    bad(name, *text(name), "color of 3 or 4 numbers", rs::RS2008);
     return fallback;
   }
   return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
@@ -238,12 +254,12 @@ Eigen::Vector4d RecordReader::quat(std::string_view name) const {
   Eigen::Vector4d identity(1, 0, 0, 0);
   if (!components(name, v) || v.empty()) return identity;
   if (v.size() != 4) {
-    bad(name, *text(name), "quaternion of 4 numbers", "RS2008");
+    bad(name, *text(name), "quaternion of 4 numbers", rs::RS2008);
     return identity;
   }
   Eigen::Vector4d q(v[0], v[1], v[2], v[3]);
   if (q.norm() < 1e-12) {
-    error(name, "RS4009", "zero quaternion for " + std::string(name) + " of " + kind_->tag);
+    error(name, rs::RS4009, "zero quaternion for " + std::string(name) + " of " + kind_->tag);
     return identity;
   }
   return q.normalized();
@@ -272,36 +288,36 @@ std::optional<std::string> RecordReader::defaultText(std::string_view name, std:
 }
 
 double RecordReader::number(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "number", "RS2001");
+  std::optional<std::string> d = defaultText(name, "number", rs::RS2001);
   return number(name, d ? parseNumber(*d).value_or(0) : 0);
 }
 std::int64_t RecordReader::integer(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "integer", "RS2003");
+  std::optional<std::string> d = defaultText(name, "integer", rs::RS2003);
   return integer(name, d ? parseInteger(*d).value_or(0) : 0);
 }
 bool RecordReader::flag(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "flag", "RS2005");
+  std::optional<std::string> d = defaultText(name, "flag", rs::RS2005);
   return flag(name, d ? parseFlag(*d).value_or(false) : false);
 }
 std::uint64_t RecordReader::group(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "collision group", "RS2004");
+  std::optional<std::string> d = defaultText(name, "collision group", rs::RS2004);
   return group(name, d ? parseGroup(*d).value_or(0) : 0);
 }
 std::string RecordReader::name(std::string_view field) const {
-  std::optional<std::string> d = defaultText(field, "name", "RS2006");
+  std::optional<std::string> d = defaultText(field, "name", rs::RS2006);
   if (!d) return name(field, std::string());
   Located l = locate(field);
   std::optional<std::string_view> c = l.def && l.def->enumDef ? l.def->enumDef->canonical(*d) : std::nullopt;
   return name(field, c ? std::string(*c) : *d);
 }
 Eigen::Vector3d RecordReader::vec3(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "vector of 3 numbers", "RS2008");
+  std::optional<std::string> d = defaultText(name, "vector of 3 numbers", rs::RS2008);
   std::vector<double> v;
   if (d) parseNumberList(*d, v);
   return vec3(name, v.size() == 3 ? Eigen::Vector3d(v[0], v[1], v[2]) : Eigen::Vector3d::Zero());
 }
 Eigen::Vector4d RecordReader::color(std::string_view name) const {
-  std::optional<std::string> d = defaultText(name, "color of 3 or 4 numbers", "RS2008");
+  std::optional<std::string> d = defaultText(name, "color of 3 or 4 numbers", rs::RS2008);
   std::vector<double> v;
   if (d) parseNumberList(*d, v);
   Eigen::Vector4d c(0, 0, 0, 1);

@@ -93,4 +93,13 @@ class RecordReader {
   Diagnostics& diags_;
 };
 
+// The one way a finding about a record is reported outside the readers:
+// at `field` of record `recordIndex` of `doc` (line:col; the record's
+// first column when the field is not written), or bare, with no position,
+// when there is no document or no such record (a world built without one,
+// by a test or a library caller).
+void reportAt(const Document* doc, int recordIndex, std::string_view field, const char* code,
+              const std::string& message, Diagnostics& diagnostics, Severity severity = Severity::Error,
+              std::string hint = {});
+
 }  // namespace rscene

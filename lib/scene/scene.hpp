@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/assets.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
@@ -45,25 +46,25 @@ namespace rscene {
 // field, so validate, sim and render name one problem one way (the registry
 // in core/check_codes.cpp lists every code and who emits it).
 namespace scene_code {
-inline constexpr const char* kBadValue = "RS7001";      // list whose length the type cannot hold (points, colors)
-inline constexpr const char* kZeroSize = "RS7003";      // body shape with a zero or negative physical size
-inline constexpr const char* kNoMesh = "RS7004";        // mesh body without a mesh path
-inline constexpr const char* kBadMesh = "RS7007";       // mesh file that cannot be read
-inline constexpr const char* kBadTimeStep = "RS7008";   // time_step not positive
-inline constexpr const char* kBadChildShape = "RS7009"; // compound child that is a plane (ground, half_space)
-inline constexpr const char* kUnsupported = "RS7010";   // records kept but not simulated (warning)
-inline constexpr const char* kWireSkipped = "RS7011";   // wire to a node sim does not model (warning)
-inline constexpr const char* kBadMassValue = "RS7020";  // dynamic mass not a finite normal double (scene/limits.hpp)
-inline constexpr const char* kBadPose = "RS7021";       // pose not finite, orientation not normalisable
-inline constexpr const char* kTinyTimeStep = "RS7022";  // positive time_step not finite or outside [kMinTimeStep, kMaxTimeStep]
-inline constexpr const char* kHugeValue = "RS7026";     // size, wire attachment or length, gravity beyond kMaxLength
-inline constexpr const char* kBadCoefficient = "RS7027";  // coefficient or solver iterations out of range
-inline constexpr const char* kBadCameraSize = "RS7028";   // camera width or height outside 0..16384
-inline constexpr const char* kBadInertia = "RS7090";      // custom inertia diagonal not positive, finite, within kMaxInertia
+inline constexpr const char* kBadValue = rs::RS7001;      // list whose length the type cannot hold (points, colors)
+inline constexpr const char* kZeroSize = rs::RS7003;      // body shape with a zero or negative physical size
+inline constexpr const char* kNoMesh = rs::RS7004;        // mesh body without a mesh path
+inline constexpr const char* kBadMesh = rs::RS7007;       // mesh file that cannot be read
+inline constexpr const char* kBadTimeStep = rs::RS7008;   // time_step not positive
+inline constexpr const char* kBadChildShape = rs::RS7009; // compound child that is a plane (ground, half_space)
+inline constexpr const char* kUnsupported = rs::RS7010;   // records kept but not simulated (warning)
+inline constexpr const char* kWireSkipped = rs::RS7011;   // wire to a node sim does not model (warning)
+inline constexpr const char* kBadMassValue = rs::RS7020;  // dynamic mass not a finite normal double (scene/limits.hpp)
+inline constexpr const char* kBadPose = rs::RS7021;       // pose not finite, orientation not normalisable
+inline constexpr const char* kTinyTimeStep = rs::RS7022;  // positive time_step not finite or outside [kMinTimeStep, kMaxTimeStep]
+inline constexpr const char* kHugeValue = rs::RS7026;     // size, wire attachment or length, gravity beyond kMaxLength
+inline constexpr const char* kBadCoefficient = rs::RS7027;  // coefficient or solver iterations out of range
+inline constexpr const char* kBadCameraSize = rs::RS7028;   // camera width or height outside 0..16384
+inline constexpr const char* kBadInertia = rs::RS7090;      // custom inertia diagonal not positive, finite, within kMaxInertia
 // Codes shared with lib/core's validator (same condition, same code).
-inline constexpr const char* kBadMass = "RS4008";       // dynamic body with mass <= 0
-inline constexpr const char* kMissingFile = "RS5001";   // asset file that does not exist
-inline constexpr const char* kUnknownBody = "RS3012";   // wire body that names no node
+inline constexpr const char* kBadMass = rs::RS4008;       // dynamic body with mass <= 0
+inline constexpr const char* kMissingFile = rs::RS5001;   // asset file that does not exist
+inline constexpr const char* kUnknownBody = rs::RS3012;   // wire body that names no node
 }  // namespace scene_code
 
 struct SceneOptions {

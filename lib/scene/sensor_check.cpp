@@ -6,6 +6,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "core/codes.hpp"
 #include "core/schema.hpp"
 #include "core/text.hpp"
 #include "scene/limits.hpp"
@@ -411,7 +412,7 @@ class SensorChecker {
   bool mount(const RecordReader& r, const std::string& object) {
     int target = nodeNamed(object);
     if (target < 0) {
-      r.error("parentObject", "RS3012", "body '" + object + "' does not exist", "name a node by its id or path");
+      r.error("parentObject", rs::RS3012, "body '" + object + "' does not exist", "name a node by its id or path");
       return false;
     }
     const std::string& tag = doc_.records[static_cast<std::size_t>(target)].kind->tag;

@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
@@ -50,19 +51,19 @@
 namespace rscene {
 
 namespace sensor_code {
-inline constexpr const char* kUnknownKind = "RS2007";  // lib/core's open-enumeration warning
-inline constexpr const char* kClip = "RS4012";         // lib/core's near/far check
-inline constexpr const char* kNotABody = "RS7063";
-inline constexpr const char* kImage = "RS7064";
-inline constexpr const char* kCalibration = "RS7065";
-inline constexpr const char* kLidar = "RS7066";
-inline constexpr const char* kRate = "RS7067";
-inline constexpr const char* kLinkWithoutRobot = "RS7068";
-inline constexpr const char* kOutputPath = "RS7069";
-inline constexpr const char* kSameOutput = "RS7070";
-inline constexpr const char* kFlatLidar = "RS7072";
-inline constexpr const char* kSegmentationUnused = "RS7073";
-inline constexpr const char* kOrthoScale = "RS7074";
+inline constexpr const char* kUnknownKind = rs::RS2007;  // lib/core's open-enumeration warning
+inline constexpr const char* kClip = rs::RS4012;         // lib/core's near/far check
+inline constexpr const char* kNotABody = rs::RS7063;
+inline constexpr const char* kImage = rs::RS7064;
+inline constexpr const char* kCalibration = rs::RS7065;
+inline constexpr const char* kLidar = rs::RS7066;
+inline constexpr const char* kRate = rs::RS7067;
+inline constexpr const char* kLinkWithoutRobot = rs::RS7068;
+inline constexpr const char* kOutputPath = rs::RS7069;
+inline constexpr const char* kSameOutput = rs::RS7070;
+inline constexpr const char* kFlatLidar = rs::RS7072;
+inline constexpr const char* kSegmentationUnused = rs::RS7073;
+inline constexpr const char* kOrthoScale = rs::RS7074;
 }  // namespace sensor_code
 
 // Most rays one LiDAR scan casts (2^22).  The largest spinning LiDARs sold

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include "core/codes.hpp"
 
 namespace rscene {
 namespace {
@@ -172,7 +173,7 @@ Deformable readDeformable(const Document& doc, const RecordReader& r, int idx, c
       // converting out of range).
       bool whole = p == std::floor(p) && std::abs(p) < 9007199254740992.0;
       if (!whole && !reported)  // lib/core's RS2003, so the model does not judge this record again
-        r.error("pinnedVertices", "RS2003", "pinnedVertices holds a value that is not a whole number"), reported = true;
+        r.error("pinnedVertices", rs::RS2003, "pinnedVertices holds a value that is not a whole number"), reported = true;
       bool index = whole && p >= 0;
       d.pinnedVertices.push_back(index ? static_cast<std::int64_t>(p) : -1);
     }
@@ -209,7 +210,7 @@ Granular readGranular(const Document& doc, const RecordReader& r, int idx) {
   std::vector<double> xs;
   if (r.numbers("positions", xs)) {
     if (xs.size() % 3)
-      r.error("positions", "RS2008", "positions holds " + std::to_string(xs.size()) + " numbers, not a multiple of 3");
+      r.error("positions", rs::RS2008, "positions holds " + std::to_string(xs.size()) + " numbers, not a multiple of 3");
     else
       for (std::size_t i = 0; i + 2 < xs.size(); i += 3) g.positions.emplace_back(xs[i], xs[i + 1], xs[i + 2]);
   }

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
@@ -19,9 +20,9 @@
 namespace rscene::sim {
 
 namespace limit_code {
-inline constexpr const char* kTooManySteps = "RS7023";  // run longer than --max-steps
-inline constexpr const char* kNonFinite = "RS7024";     // a body's state stopped being finite while stepping
-inline constexpr const char* kTooManyPairs = "RS7025";  // more overlapping pairs than --max-pairs
+inline constexpr const char* kTooManySteps = rs::RS7023;  // run longer than --max-steps
+inline constexpr const char* kNonFinite = rs::RS7024;     // a body's state stopped being finite while stepping
+inline constexpr const char* kTooManyPairs = rs::RS7025;  // more overlapping pairs than --max-pairs
 }  // namespace limit_code
 
 // Default cap on the steps of one run (--max-steps): a few minutes for a

@@ -11,13 +11,10 @@
 namespace rscene::sim {
 namespace {
 
-// A warning at `field` of record `recordIndex`.  RecordReader reports
-// errors only; the position is what matters, the severity is ours.
+// A warning at `field` of record `recordIndex`.
 void warn(const Document& doc, int recordIndex, const char* field, const char* code, const std::string& message,
           Diagnostics& diagnostics) {
-  RecordReader r(doc, static_cast<std::size_t>(recordIndex), diagnostics);
-  r.error(field, code, message);
-  diagnostics.back().severity = Severity::Warning;
+  reportAt(&doc, recordIndex, field, code, message, diagnostics, Severity::Warning);
 }
 
 // Why `path` gives no collision mesh ("does not exist", or the reader's

@@ -14,15 +14,7 @@ namespace {
 // diagnostic naming the record's path.
 void report(const Document* doc, int recordIndex, const std::string& field, const char* code,
             const std::string& message, Diagnostics& diagnostics, Severity severity = Severity::Error) {
-  if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
-    RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics).error(field, code, message, {}, severity);
-    return;
-  }
-  Diagnostic d;
-  d.severity = severity;
-  d.code = code;
-  d.message = message;
-  diagnostics.push_back(std::move(d));
+  reportAt(doc, recordIndex, field, code, message, diagnostics, severity);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "robot/sensors.hpp"
@@ -30,8 +31,8 @@
 namespace rscene::sim {
 
 namespace sim_code {
-inline constexpr const char* kSensorSameOutput = "RS7070";   // two sensors, one output
-inline constexpr const char* kSensorNotRecorded = "RS7071";  // a physical kind rscene-sim does not record (warning)
+inline constexpr const char* kSensorSameOutput = rs::RS7070;   // two sensors, one output
+inline constexpr const char* kSensorNotRecorded = rs::RS7071;  // a physical kind rscene-sim does not record (warning)
 }  // namespace sim_code
 
 // One physical sensor to record.

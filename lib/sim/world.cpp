@@ -155,34 +155,17 @@ void warnNotConvexified(const Document* doc, const Articulated& a, Diagnostics& 
   std::string message = "articulated system '" + a.path +
                         "': convexifyCollisionMeshes=false, but its mesh collisions are simulated as convex hulls "
                         "(Bullet collides no triangle mesh on a moving body)";
-  if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
-    robot::FieldSource at = robot::writtenBy(*doc, a, "convexifyCollisionMeshes");
-    RecordReader(*doc, static_cast<std::size_t>(at.record), diagnostics)
-        .error(at.field, sim_code::kNotConvexified, message, "", Severity::Warning);
-    return;
-  }
-  Diagnostic d;
-  d.severity = Severity::Warning;
-  d.code = sim_code::kNotConvexified;
-  d.message = message;
-  diagnostics.push_back(std::move(d));
+  robot::FieldSource at = doc ? robot::writtenBy(*doc, a, "convexifyCollisionMeshes") : robot::FieldSource{};
+  reportAt(doc, at.record, at.field ? at.field : "", sim_code::kNotConvexified, message, diagnostics,
+           Severity::Warning);
 }
 
 // --allow-missing-assets: a robot collision mesh that does not read, left
 // out of its link.
 void warnMeshLeftOut(const Document* doc, const Articulated& a, const std::string& why, Diagnostics& diagnostics) {
   std::string message = "articulated system '" + a.path + "': " + why + "; that collision is left out";
-  if (doc && a.recordIndex >= 0 && static_cast<std::size_t>(a.recordIndex) < doc->records.size()) {
-    robot::FieldSource at = robot::writtenBy(*doc, a, "sourcePath");
-    RecordReader(*doc, static_cast<std::size_t>(at.record), diagnostics)
-        .error(at.field, scene_code::kBadMesh, message, "", Severity::Warning);
-    return;
-  }
-  Diagnostic d;
-  d.severity = Severity::Warning;
-  d.code = scene_code::kBadMesh;
-  d.message = message;
-  diagnostics.push_back(std::move(d));
+  // Where the error is without --allow-missing-assets (World::create's fail).
+  reportAt(doc, a.recordIndex, "resource", scene_code::kBadMesh, message, diagnostics, Severity::Warning);
 }
 
 }  // namespace
@@ -551,118 +534,116 @@ struct World::Impl {
     world->addRigidBody(body);
     return body;
   }
-};
 
-World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-World::~World() = default;
-
-std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics, const WorldOptions& options) {
-  auto impl = std::make_unique<Impl>();
-  Impl& w = *impl;
-  w.assets = options.assets;
-  if (!w.assets) {
-    w.ownAssets = std::make_unique<asset::AssetCache>();
-    w.assets = w.ownAssets.get();
-  }
-  w.leaveMargin = options.leaveMargin;
-  w.allowMissingAssets = options.allowMissingAssets;
-  w.sleepLinear = scene.solver.sleepingLinearVelocityThreshold;
-  w.sleepAngular = scene.solver.sleepingAngularVelocityThreshold;
-  const Solver& sv = scene.solver;
-  w.bounded = sv.broadphaseUseWorldBounds;
-  w.boundsMin = bt(sv.broadphaseWorldMin);
-  w.boundsMax = bt(sv.broadphaseWorldMax);
-  // Up to four contact points between a convex body and a plane (Bullet
-  // finds one by default): a box sliding faster than its contact-breaking
-  // threshold per step otherwise keeps a single corner point, rocks and
-  // sinks millimetres into the ground.
-  w.config.setPlaneConvexMultipointIterations(3, 3);
-  w.dt = scene.timeStep;
-  if (sv.broadphaseType == "sap3_axis" && sv.broadphaseUseWorldBounds)
-    w.broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
-  else
-    w.broadphase = std::make_unique<btDbvtBroadphase>();
-  w.world = std::make_unique<btMultiBodyDynamicsWorld>(&w.dispatcher, w.broadphase.get(), &w.solver, &w.config);
-  w.world->setGravity(bt(scene.gravity));
-  // Static bodies do not move: Bullet's default re-sets every AABB each
-  // step, which keeps statics in the broadphase's dynamic tree and
-  // collides them with each other there, every step.
-  w.world->setForceUpdateAllAabbs(false);
-  btContactSolverInfo& si = w.world->getSolverInfo();
-  si.m_numIterations = std::max(1, sv.iterations);
-  si.m_erp = sv.erp;
-  if (sv.erp2 > 0) si.m_erp2 = sv.erp2;
-  si.m_leastSquaresResidualThreshold = sv.tolerance;
-  si.m_restitutionVelocityThreshold = sv.defaultRestitutionThreshold;
-  si.m_solverMode &= ~SOLVER_RANDMIZE_ORDER;  // deterministic order, always
-  si.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
-  // Bullet drops restitution on contacts older than this many steps, which
-  // loses bounces whose contact point was found before impact; the
-  // restitution velocity threshold alone decides, as in Engine 2.
-  si.m_restingContactRestitutionThreshold = 1 << 30;
-  // Penetration is always removed by split impulses, which move bodies
-  // without adding velocity (Baumgarte would add energy to bounces).
-  si.m_splitImpulse = true;
-  si.m_splitImpulsePenetrationThreshold = 0;
-  w.filter.info = &w.info;
-  w.filter.self = &w.selfPairs;
-  w.filter.cache = w.world->getPairCache();
-  w.filter.maxPairs = options.maxPairs;
-  w.world->getPairCache()->setOverlapFilterCallback(&w.filter);
-  // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
-  gDeactivationTime = std::max(1, sv.sleepingQuietSteps) * w.dt;
-
-  w.pairs.friction = sv.defaultFriction;
-  w.pairs.restitution = sv.defaultRestitution;
-  w.pairs.rolling = sv.defaultRollingFriction;
-  w.pairs.spinning = sv.defaultSpinningFriction;
-  for (const ContactMaterial& c : scene.contactMaterials) {
-    int a = w.materialOf(c.materialA), b = w.materialOf(c.materialB);
-    w.pairs.pairs[{std::min(a, b), std::max(a, b)}] = c;
+  // What create() refuses a body for (refuse() sets it).
+  struct BuildError {
+    std::string path, message;
+    const char* code = nullptr;
+    int recordIndex = -1;
+    const char* field = "";
+  } buildError;
+  bool refuse(const std::string& path, const std::string& message, const char* code, int recordIndex,
+              const char* field) {
+    buildError = {path, message, code, recordIndex, field};
+    return false;
   }
 
-  auto fail = [&](const std::string& path, const std::string& message, const char* code, int recordIndex,
-                  const char* field) -> std::unique_ptr<World> {
-    const Document* doc = options.document;
-    if (doc && recordIndex >= 0 && static_cast<std::size_t>(recordIndex) < doc->records.size()) {
-      RecordReader(*doc, static_cast<std::size_t>(recordIndex), diagnostics)
-          .error(field, code, "body '" + path + "': " + message);
-      return nullptr;
+  // The Bullet world with the scene's solver settings, broadphase, filter
+  // and contact materials; no bodies yet.
+  void configure(const Scene& scene, const WorldOptions& options) {
+    assets = options.assets;
+    if (!assets) {
+      ownAssets = std::make_unique<asset::AssetCache>();
+      assets = ownAssets.get();
     }
-    Diagnostic d;
-    d.code = code;
-    d.message = path + ": " + message;
-    diagnostics.push_back(std::move(d));
-    return nullptr;
-  };
+    leaveMargin = options.leaveMargin;
+    allowMissingAssets = options.allowMissingAssets;
+    sleepLinear = scene.solver.sleepingLinearVelocityThreshold;
+    sleepAngular = scene.solver.sleepingAngularVelocityThreshold;
+    const Solver& sv = scene.solver;
+    bounded = sv.broadphaseUseWorldBounds;
+    boundsMin = bt(sv.broadphaseWorldMin);
+    boundsMax = bt(sv.broadphaseWorldMax);
+    // Up to four contact points between a convex body and a plane (Bullet
+    // finds one by default): a box sliding faster than its contact-breaking
+    // threshold per step otherwise keeps a single corner point, rocks and
+    // sinks millimetres into the ground.
+    config.setPlaneConvexMultipointIterations(3, 3);
+    dt = scene.timeStep;
+    if (sv.broadphaseType == "sap3_axis" && sv.broadphaseUseWorldBounds)
+      broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
+    else
+      broadphase = std::make_unique<btDbvtBroadphase>();
+    world = std::make_unique<btMultiBodyDynamicsWorld>(&dispatcher, broadphase.get(), &solver, &config);
+    world->setGravity(bt(scene.gravity));
+    // Static bodies do not move: Bullet's default re-sets every AABB each
+    // step, which keeps statics in the broadphase's dynamic tree and
+    // collides them with each other there, every step.
+    world->setForceUpdateAllAabbs(false);
+    btContactSolverInfo& si = world->getSolverInfo();
+    si.m_numIterations = std::max(1, sv.iterations);
+    si.m_erp = sv.erp;
+    if (sv.erp2 > 0) si.m_erp2 = sv.erp2;
+    si.m_leastSquaresResidualThreshold = sv.tolerance;
+    si.m_restitutionVelocityThreshold = sv.defaultRestitutionThreshold;
+    si.m_solverMode &= ~SOLVER_RANDMIZE_ORDER;  // deterministic order, always
+    si.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+    // Bullet drops restitution on contacts older than this many steps, which
+    // loses bounces whose contact point was found before impact; the
+    // restitution velocity threshold alone decides, as in Engine 2.
+    si.m_restingContactRestitutionThreshold = 1 << 30;
+    // Penetration is always removed by split impulses, which move bodies
+    // without adding velocity (Baumgarte would add energy to bounces).
+    si.m_splitImpulse = true;
+    si.m_splitImpulsePenetrationThreshold = 0;
+    filter.info = &info;
+    filter.self = &selfPairs;
+    filter.cache = world->getPairCache();
+    filter.maxPairs = options.maxPairs;
+    world->getPairCache()->setOverlapFilterCallback(&filter);
+    // Bullet sleeps a body after gDeactivationTime seconds below its thresholds.
+    gDeactivationTime = std::max(1, sv.sleepingQuietSteps) * dt;
 
-  for (const Object& o : scene.objects) {
-    if (o.bodyMode == BodyMode::VisualOnly) continue;
+    pairs.friction = sv.defaultFriction;
+    pairs.restitution = sv.defaultRestitution;
+    pairs.rolling = sv.defaultRollingFriction;
+    pairs.spinning = sv.defaultSpinningFriction;
+    for (const ContactMaterial& c : scene.contactMaterials) {
+      int a = materialOf(c.materialA), b = materialOf(c.materialB);
+      pairs.pairs[{std::min(a, b), std::max(a, b)}] = c;
+    }
+  }
+
+  // One add-function per body kind, as Bullet's examples build a world.
+  bool addObject(const Object& o, const Solver& sv) {
+    if (o.bodyMode == BodyMode::VisualOnly) return true;
     BodyInfo fi{o.collisionGroup, o.collisionMask, -1, o.recordIndex};
     btRigidBody* body = nullptr;
     if (o.primitive == "ground" || o.primitive == "half_space") {
-      btCollisionShape* plane = w.keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
-      body = w.addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
-      w.floorZ = std::min(w.floorZ, o.world.position.z());  // a plane's AABB is unbounded: its height is the floor
+      btCollisionShape* plane = keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
+      body = addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
+      floorZ = std::min(floorZ, o.world.position.z());  // a plane's AABB is unbounded: its height is the floor
     } else {
       std::string error;
       bool convex = o.bodyMode != BodyMode::Static;
       Eigen::Vector3d box = o.scale;
-      btCollisionShape* shape = w.primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
+      btCollisionShape* shape = primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
                                             o.collisionMeshPath, o.meshScale(), convex, error);
-      if (!shape) return fail(o.path, error, scene_code::kBadMesh, o.recordIndex, "meshPath");
+      if (!shape) return refuse(o.path, error, scene_code::kBadMesh, o.recordIndex, "meshPath");
       // customInertia: the record's principal moments (checked by RS7090),
       // as RaiSim's <inertia> sets them; else the shape's.
       double mass = o.effectiveMass();
-      body = w.addBody(shape, bt(o.world), o.bodyMode, mass, bt(o.inertiaDiagonal), o.hasInertia, fi,
+      body = addBody(shape, bt(o.world), o.bodyMode, mass, bt(o.inertiaDiagonal), o.hasInertia, fi,
                        o.contactMaterial, sv);
-      if (o.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
+      if (o.bodyMode == BodyMode::Static) lowerFloorTo(body);
     }
-    w.registerBody(o, body);
+    registerBody(o, body);
+    return true;
   }
 
-  for (const Compound& c : scene.compounds) {
-    if (c.bodyMode == BodyMode::VisualOnly || c.children.empty()) continue;
+  // Child shapes about the centre of mass (scene/mass_properties.hpp).
+  bool addCompound(const Compound& c, const Solver& sv) {
+    if (c.bodyMode == BodyMode::VisualOnly || c.children.empty()) return true;
     // Child shapes about the centre of mass: given, or volume-weighted.
     std::vector<std::pair<btCollisionShape*, btTransform>> parts;
     std::vector<double> volumes;  // true volumes (scene/mass_properties.hpp); a mesh child's hull's
@@ -670,9 +651,9 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       Eigen::Vector3d s = ch.scale.cwiseProduct(c.scale);
       Eigen::Vector3d box = ch.size.isZero() ? s : ch.size.cwiseProduct(s);
       std::string error;
-      btCollisionShape* shape = w.primitive(ch.primitive, box, ch.radius * s.x(), ch.height * s.z(), ch.meshPath,
+      btCollisionShape* shape = primitive(ch.primitive, box, ch.radius * s.x(), ch.height * s.z(), ch.meshPath,
                                             s.mean(), true, error);
-      if (!shape) return fail(c.path, error, scene_code::kBadMesh, ch.recordIndex, "meshPath");
+      if (!shape) return refuse(c.path, error, scene_code::kBadMesh, ch.recordIndex, "meshPath");
       Pose local = ch.local;
       local.position = local.position.cwiseProduct(c.scale);
       parts.emplace_back(shape, bt(local));
@@ -683,7 +664,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     double total = 0;
     for (double v : volumes) total += v;
     auto* compound = new btCompoundShape();
-    w.keep(compound);
+    keep(compound);
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
     double mass = compoundMass(c);
     for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -701,47 +682,36 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     btVector3 diag = c.hasInertia ? bt(c.inertiaDiagonal) : btVector3(inertia(0, 0), inertia(1, 1), inertia(2, 2));
     btTransform comShift(btQuaternion::getIdentity(), bt(com));
     BodyInfo fi{c.collisionGroup, c.collisionMask, -1, c.recordIndex};
-    btRigidBody* body = w.addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
+    btRigidBody* body = addBody(compound, bt(c.world) * comShift, c.bodyMode, mass, diag, true, fi,
                                   c.contactMaterial, sv);
-    if (c.bodyMode == BodyMode::Static) w.lowerFloorTo(body);
-    w.registerBody(c, body, comShift.inverse());
+    if (c.bodyMode == BodyMode::Static) lowerFloorTo(body);
+    registerBody(c, body, comShift.inverse());
+    return true;
   }
 
-  for (const Terrain& t : scene.terrains) {
-    if (!t.collidable) continue;
-    w.heights.push_back(t.heights);
-    const std::vector<double>& h = w.heights.back();
+  void addTerrain(const Terrain& t, const Solver& sv) {
+    if (!t.collidable) return;
+    heights.push_back(t.heights);
+    const std::vector<double>& h = heights.back();
     auto [lo, hi] = std::minmax_element(h.begin(), h.end());
     double minH = *lo, maxH = *hi;
     auto* shape = new btHeightfieldTerrainShape(t.xSamples, t.ySamples, h.data(), minH, maxH, 2, false);
     shape->setLocalScaling(btVector3(t.xSize / (t.xSamples - 1), t.ySize / (t.ySamples - 1), 1));
-    w.keep(shape);
+    keep(shape);
     // Bullet centres a height field on its bounding box.
     btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
     BodyInfo fi{kTerrainGroup, kAll, -1, t.recordIndex};
-    btRigidBody* body = w.addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
-    w.lowerFloorTo(body);
-    w.byName[t.id] = body;
-    w.byName[t.path] = body;
-    w.byRecord[t.recordIndex] = body;
+    btRigidBody* body = addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
+    lowerFloorTo(body);
+    byName[t.id] = body;
+    byName[t.path] = body;
+    byRecord[t.recordIndex] = body;
   }
 
-  if (options.robots) {
-    for (const robot::RobotInstance& instance : *options.robots) {
-      w.robotMeshesLeftOut.clear();
-      if (!w.addRobot(instance, options.pd, sv)) {
-        const Articulated& a = *instance.record;
-        return fail(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
-      }
-      for (const std::string& why : w.robotMeshesLeftOut)
-        warnMeshLeftOut(options.document, *instance.record, why, diagnostics);
-      if (instance.model && !instance.record->convexifyCollisionMeshes && hasMeshCollision(*instance.model))
-        warnNotConvexified(options.document, *instance.record, diagnostics);
-    }
-  }
-
-  for (const Wire& wire : scene.wires) {
-    if (!wire.simulated()) continue;  // disabled, or to a node not modelled (RS7011)
+  // A wire between its two ends as the scene model resolved them; false
+  // with wireError set when an end is no body of its robot.
+  bool addWire(const Wire& wire) {
+    if (!wire.simulated()) return true;  // disabled, or to a node not modelled (RS7011)
     // Each end: the world (no name), a rigid body (attachment point in its
     // record frame; compounds simulate about their centre of mass), or a
     // robot's body localIndex (point in that body's frame).
@@ -750,11 +720,12 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
                       const char* field, WireAnchor& out) -> Kind {
       out.local = bt(p);
       if (ref.empty()) return Point;
-      if (auto it = w.robotByRecord.find(record); it != w.robotByRecord.end()) {
-        SimRobot* r = w.robots[static_cast<std::size_t>(it->second)].get();
+      if (auto it = robotByRecord.find(record); it != robotByRecord.end()) {
+        SimRobot* r = robots[static_cast<std::size_t>(it->second)].get();
         int bodies = static_cast<int>(r->layout().bodies.size());
         if (localIndex < 0 || localIndex >= bodies) {
-          w.wireError = {wire.recordIndex, field,
+          // At the localIndex key, where validate's RS7046 points.
+          wireError = {wire.recordIndex, field == std::string("bodyA") ? "localIndexA" : "localIndexB",
                          std::string(field == std::string("bodyA") ? "localIndexA " : "localIndexB ") +
                              std::to_string(localIndex) + " is not a body of articulated system '" + ref + "' (it has " +
                              std::to_string(bodies) + ", 0 to " + std::to_string(bodies - 1) + ")"};
@@ -764,40 +735,41 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
         out.body = localIndex;
         return Body;
       }
-      auto it = w.byRecord.find(record);
-      if (it == w.byRecord.end()) return None;  // checkPhysics reported it
+      auto it = byRecord.find(record);
+      if (it == byRecord.end()) return None;  // checkPhysics reported it
       out.rigid = it->second;
-      for (const Simulated& s : w.simulated)
+      for (const Simulated& s : simulated)
         if (s.body == out.rigid) out.local = s.toRecord.inverse() * bt(p);
       return Body;
     };
     WireAnchor a, b;
     Kind ka = anchor(wire.bodyA, wire.recordA, wire.localIndexA, wire.localPositionA, "bodyA", a);
     Kind kb = anchor(wire.bodyB, wire.recordB, wire.localIndexB, wire.localPositionB, "bodyB", b);
-    if (w.wireError.recordIndex >= 0)
-      return fail(wire.path, w.wireError.message, sim_code::kWireLocalIndex, w.wireError.recordIndex,
-                  w.wireError.field);
-    if (ka == None || kb == None || (ka == Point && kb == Point)) continue;
+    if (wireError.recordIndex >= 0) return false;
+    if (ka == None || kb == None || (ka == Point && kb == Point)) return true;
     if (wire.kind == "compliant") {
-      w.springs.push_back({a, b, wire.length, wire.stiffness, wire.damping});
-      continue;
+      springs.push_back({a, b, wire.length, wire.stiffness, wire.damping});
+      return true;
     }
     if (!a.robot && b.robot) std::swap(a, b);  // a robot end first
     if (a.robot) {
       auto* c = new MultiBodyRope(a, b, wire.length);
-      w.robotWires.emplace_back(c);
-      w.world->addMultiBodyConstraint(c);
-      continue;
+      robotWires.emplace_back(c);
+      world->addMultiBodyConstraint(c);
+      return true;
     }
     if (!a.rigid) std::swap(a, b);  // the world is end B
     auto* c = new RopeConstraint(*a.rigid, b.rigid, a.local, b.local, wire.length);
-    w.constraints.emplace_back(c);
-    w.world->addConstraint(c, true);
+    constraints.emplace_back(c);
+    world->addConstraint(c, true);
+    return true;
   }
-  if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
-  if (!w.particles.empty()) {
+
+  // Deformable and granular records collide with the bodies through
+  // Bullet's world, filtered and rubbed as the bodies are.
+  void attachParticleSurfaces() {
     SurfaceFilter filter;
-    Impl* wp = &w;
+    Impl* wp = this;
     filter.collides = [wp](const btCollisionObject& o, std::uint64_t group, std::uint64_t mask) {
       if (o.getUserIndex() < 0 || static_cast<std::size_t>(o.getUserIndex()) >= wp->info.size()) return false;
       const BodyInfo& b = wp->info[static_cast<std::size_t>(o.getUserIndex())];
@@ -811,8 +783,50 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
           return p->second.friction;
       return wp->pairs.friction;
     };
-    w.surfaces = std::make_unique<BulletSurfaces>(*w.world, std::move(filter));
+    surfaces = std::make_unique<BulletSurfaces>(*world, std::move(filter));
   }
+};
+
+World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+World::~World() = default;
+
+std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostics, const WorldOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  Impl& w = *impl;
+  w.configure(scene, options);
+  const Solver& sv = scene.solver;
+  auto fail = [&] {
+    const Impl::BuildError& e = w.buildError;
+    reportAt(options.document, e.recordIndex, e.field, e.code, "body '" + e.path + "': " + e.message, diagnostics);
+    return nullptr;
+  };
+  for (const Object& o : scene.objects)
+    if (!w.addObject(o, sv)) return fail();
+  for (const Compound& c : scene.compounds)
+    if (!w.addCompound(c, sv)) return fail();
+  for (const Terrain& t : scene.terrains) w.addTerrain(t, sv);
+  if (options.robots) {
+    for (const robot::RobotInstance& instance : *options.robots) {
+      w.robotMeshesLeftOut.clear();
+      if (!w.addRobot(instance, options.pd, sv)) {
+        const Articulated& a = *instance.record;
+        w.refuse(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
+        return fail();
+      }
+      for (const std::string& why : w.robotMeshesLeftOut)
+        warnMeshLeftOut(options.document, *instance.record, why, diagnostics);
+      if (instance.model && !instance.record->convexifyCollisionMeshes && hasMeshCollision(*instance.model))
+        warnNotConvexified(options.document, *instance.record, diagnostics);
+    }
+  }
+  for (const Wire& wire : scene.wires)
+    if (!w.addWire(wire)) {
+      reportAt(options.document, w.wireError.recordIndex, w.wireError.field, sim_code::kWireLocalIndex,
+               "wire '" + wire.path + "': " + w.wireError.message, diagnostics);
+      return nullptr;
+    }
+  if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
+  if (!w.particles.empty()) w.attachParticleSurfaces();
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 

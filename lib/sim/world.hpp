@@ -40,6 +40,7 @@
 #include <map>
 #include <utility>
 
+#include "core/codes.hpp"
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
@@ -56,10 +57,10 @@ namespace rscene::sim {
 
 // Codes of the simulator's own findings (the scene view's are scene_code).
 namespace sim_code {
-inline constexpr const char* kLeftWorld = "RS7012";  // a dynamic body left the world (warning)
+inline constexpr const char* kLeftWorld = rs::RS7012;  // a dynamic body left the world (warning)
 inline constexpr const char* kRobotTooLarge = robot::code::kTooLarge;  // more than robot::kMaxRobotBodies bodies
-inline constexpr const char* kWireLocalIndex = "RS7046";  // a wire's localIndex is not a body of its articulated system (validate's code)
-inline constexpr const char* kNotConvexified = "RS7051";  // convexifyCollisionMeshes=false: hulls all the same (warning)
+inline constexpr const char* kWireLocalIndex = rs::RS7046;  // a wire's localIndex is not a body of its articulated system (validate's code)
+inline constexpr const char* kNotConvexified = rs::RS7051;  // convexifyCollisionMeshes=false: hulls all the same (warning)
 }  // namespace sim_code
 
 // The states a trajectory line carries (robot/trajectory_format.hpp).

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/codes.hpp"
 #include "robot/load.hpp"
 #include "xml/from_xml.hpp"
 
@@ -21,12 +22,12 @@ namespace rscene::xml::detail {
 
 // Codes of the mapping (registry: core/check_codes.cpp).
 namespace code {
-inline constexpr const char* kBadValue = "RS8110";      // value that cannot become a field
-inline constexpr const char* kNotConverted = "RS8111";  // unknown element or attribute (warning)
-inline constexpr const char* kMissing = "RS8112";       // required child or attribute missing
-inline constexpr const char* kApproximate = "RS8113";   // renamed, left flat, robot not read, mesh not found (warning)
-inline constexpr const char* kBadAsset = "RS8114";      // heightmap PNG or text unreadable
-inline constexpr const char* kRefused = "RS8125";       // a record the scene checks refuse (their code in the message)
+inline constexpr const char* kBadValue = rs::RS8110;      // value that cannot become a field
+inline constexpr const char* kNotConverted = rs::RS8111;  // unknown element or attribute (warning)
+inline constexpr const char* kMissing = rs::RS8112;       // required child or attribute missing
+inline constexpr const char* kApproximate = rs::RS8113;   // renamed, left flat, robot not read, mesh not found (warning)
+inline constexpr const char* kBadAsset = rs::RS8114;      // heightmap PNG or text unreadable
+inline constexpr const char* kRefused = rs::RS8125;       // a record the scene checks refuse (their code in the message)
 }  // namespace code
 
 // One record line, tokens separated by single spaces.

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 
+#include "core/codes.hpp"
 #include "scene/mass_properties.hpp"
 #include "scene/reader.hpp"
 #include "xml/to_xml_report.hpp"
@@ -18,7 +19,7 @@ namespace rscene::xml {
 
 namespace {
 
-constexpr const char* kCannotWrite = "RS8130";
+constexpr const char* kCannotWrite = rs::RS8130;
 constexpr std::uint64_t kAllBits = ~std::uint64_t{0};
 // rscene wires resist stretch only, spelt as RaiSim's own exporter writes
 // it (rscene-from-xml also reads the enum's name STRETCH_RESISTANT_ONLY).

@@ -1,5 +1,6 @@
 #include "xml/to_xml_robot.hpp"
 
+#include "core/codes.hpp"
 #include "robot/instance.hpp"
 #include "robot/kinematics.hpp"
 #include "scene/reader.hpp"
@@ -8,7 +9,7 @@ namespace rscene::xml {
 
 namespace {
 
-constexpr const char* kRobotUnread = "RS8131";
+constexpr const char* kRobotUnread = rs::RS8131;
 
 // `v` (laid out by `from`) in the layout of `to`: the base entries stay,
 // each movable joint's entries move to where `to` puts that joint.

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/codes.hpp"
 #include "core/diagnostic.hpp"
 #include "xml/xml_tree.hpp"
 
@@ -16,15 +17,15 @@ namespace rscene::xml {
 
 // Codes of the XML front end (reading and expanding; RS8101-RS8109).
 namespace code {
-inline constexpr const char* kXmlRead = "RS8101";     // not well-formed, not <raisim>, unreadable, too large
-inline constexpr const char* kXmlEntity = "RS8102";   // DOCTYPE entities, unknown &name;
-inline constexpr const char* kXmlInclude = "RS8103";  // include: no file, unreadable, cycle, depth, place
-inline constexpr const char* kXmlParam = "RS8104";    // @@NAME unset, cyclic, bad <params> entry
-inline constexpr const char* kXmlExpr = "RS8105";     // {...} that cannot be evaluated
-inline constexpr const char* kXmlArray = "RS8106";    // array attributes
-inline constexpr const char* kXmlLimit = "RS8107";    // expansion past a LoadLimits bound
-inline constexpr const char* kXmlExist = "RS8108";    // exist neither true nor false
-inline constexpr const char* kXmlClass = "RS8109";    // object_class that cannot be used
+inline constexpr const char* kXmlRead = rs::RS8101;     // not well-formed, not <raisim>, unreadable, too large
+inline constexpr const char* kXmlEntity = rs::RS8102;   // DOCTYPE entities, unknown &name;
+inline constexpr const char* kXmlInclude = rs::RS8103;  // include: no file, unreadable, cycle, depth, place
+inline constexpr const char* kXmlParam = rs::RS8104;    // @@NAME unset, cyclic, bad <params> entry
+inline constexpr const char* kXmlExpr = rs::RS8105;     // {...} that cannot be evaluated
+inline constexpr const char* kXmlArray = rs::RS8106;    // array attributes
+inline constexpr const char* kXmlLimit = rs::RS8107;    // expansion past a LoadLimits bound
+inline constexpr const char* kXmlExist = rs::RS8108;    // exist neither true nor false
+inline constexpr const char* kXmlClass = rs::RS8109;    // object_class that cannot be used
 }  // namespace code
 
 // `value` with every "[THIS_DIR]" replaced by `thisDir`.

@@ -52,6 +52,37 @@ TEST(TrajectoryFormat, WhatTheWriterWritesTheReaderReadsBack) {
   roundTrip(TrajectoryFormat::Csv);
 }
 
+// A body path may hold any byte (percent escapes in the scene): a newline
+// is quoted in CSV and read back over two lines, counted as two; a byte
+// that is not UTF-8 becomes U+FFFD in JSON, never an exception.
+TEST(TrajectoryFormat, PathsWithNewlinesAndBytesThatAreNotUtf8) {
+  const std::string newline = "/World/nl\nline", notUtf8 = "/World/x\xFF";
+  TrajectoryWriter csv(TrajectoryFormat::Csv, {});
+  std::string text = csv.header();
+  csv.append(text, 0, {body(newline, 1), body(notUtf8, 2)}, {});
+  csv.append(text, 0.1, {body(newline, 1), body("/World/end", 2)}, {});
+  test::Read read = test::readAll(text);
+  ASSERT_FALSE(read.failed) << (read.diags.empty() ? "" : read.diags[0].message);
+  ASSERT_EQ(read.frames.size(), 2u);
+  EXPECT_EQ(read.frames[0].entries[0].path, newline);
+  EXPECT_EQ(read.frames[0].entries[1].path, notUtf8);
+  EXPECT_EQ(read.frames[0].entries[1].line, 4u);  // the header, then two lines for the first row
+  EXPECT_EQ(read.frames[1].entries[1].line, 7u);
+  test::Read bad = test::readAll(text + "0.2,/World/bad\n");  // a short row: its line counts the continued ones
+  ASSERT_TRUE(bad.failed);
+  ASSERT_FALSE(bad.diags.empty());
+  EXPECT_EQ(bad.diags[0].line, 8u);
+
+  TrajectoryWriter jsonl(TrajectoryFormat::Jsonl, {});
+  std::string lines;
+  jsonl.append(lines, 0, {body(notUtf8, 1)}, {});
+  test::Read json = test::readAll(lines);
+  ASSERT_FALSE(json.failed) << (json.diags.empty() ? "" : json.diags[0].message);
+  EXPECT_EQ(json.frames.at(0).entries.at(0).path, jsonSafeText(notUtf8));
+  EXPECT_EQ(jsonSafeText(notUtf8), "/World/x\xEF\xBF\xBD");
+  EXPECT_EQ(jsonSafeText("/World/caf\xC3\xA9"), "/World/caf\xC3\xA9");  // valid UTF-8 kept
+}
+
 TEST(TrajectoryFormat, CsvHeaderIsTheColumnTable) {
   TrajectoryWriter writer(TrajectoryFormat::Csv, {});
   EXPECT_EQ(writer.header(), "time,path,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,points\n");

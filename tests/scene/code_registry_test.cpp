@@ -1,4 +1,4 @@
-// One registry of diagnostic codes (core/check_codes.cpp): every code the
+// One registry of diagnostic codes (core/code_table.inc): every code the
 // sources emit is in it, every code the README and the man pages quote
 // exists, and rscene-validate(1) lists exactly the registry.
 #include <gtest/gtest.h>

@@ -163,7 +163,9 @@ TEST(SimAssets, WithoutTheFlagAMissingMeshStaysAnError) {
   ASSERT_EQ(ds.size(), 1u);
   EXPECT_EQ(ds[0].severity, Severity::Error);
   EXPECT_EQ(ds[0].code, "RS7007");
-  EXPECT_EQ(ds[0].message, "/World/Rock: cannot read mesh '/s/rock.obj': No such file or directory");
+  // Bare (no document), in the words a document gives it (reportAt).
+  EXPECT_EQ(ds[0].message, "body '/World/Rock': cannot read mesh '/s/rock.obj': No such file or directory");
+  EXPECT_EQ(ds[0].line, 0u);
 }
 
 TEST(SimAssets, ABodyFallingOffTheEdgeLeavesTheWorldAndTheRestComesToRest) {
