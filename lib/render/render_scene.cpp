@@ -795,6 +795,26 @@ class Preparer {
   // without that link) leaves the wire undrawn, counted as skipped.
   void wire(const Wire& w) {
     if (!w.enabled) return;
+    // A localIndex past its robot's bodies is the error validate and sim
+    // give (RS7046 at the key), not a wire left undrawn.
+    auto robotEnd = [&](int record, int localIndex, const char* key) {
+      for (std::size_t i = 0; i < s_.articulated.size() && i < out_.robotModels.size(); ++i) {
+        if (s_.articulated[i].recordIndex != record || !out_.robotModels[i]) continue;
+        if (robotBodyLink(i, localIndex) >= 0) return true;
+        int bodies = static_cast<int>(robot::defaultJointOrder(*out_.robotModels[i]).size()) + 1;
+        RecordReader(doc_, static_cast<std::size_t>(w.recordIndex), diags_)
+            .error(key, robot::code::kWireBody,
+                   std::string(key) + " is " + std::to_string(localIndex) + "; '" + s_.articulated[i].path +
+                       "' has bodies 0 to " + std::to_string(bodies - 1),
+                   "RaiSim's body index: the base is 0, then one body per movable joint in joint order");
+        ok_ = false;
+        return false;
+      }
+      return true;
+    };
+    if ((w.endA == WireEnd::Articulated && !robotEnd(w.recordA, w.localIndexA, "localIndexA")) ||
+        (w.endB == WireEnd::Articulated && !robotEnd(w.recordB, w.localIndexB, "localIndexB")))
+      return;
     WireSpan span;
     if (!wireEnd(w.bodyA, w.recordA, w.localIndexA, w.localPositionA, span.endA, span.a) ||
         !wireEnd(w.bodyB, w.recordB, w.localIndexB, w.localPositionB, span.endB, span.b)) {

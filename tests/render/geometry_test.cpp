@@ -399,7 +399,16 @@ TEST(Wire, RobotEndIsRaiSimsBodyLocalIndex) {
   ASSERT_EQ(b->render.wires.size(), 1u);
   EXPECT_TRUE((b->render.wires[0].a - Eigen::Vector3d(2, 0, 1.5)).norm() < 1e-9) << b->render.wires[0].a.transpose();
   EXPECT_TRUE(b->render.wires[0].b.isZero());
-  EXPECT_EQ(b->render.skipped.at("wire"), 1);  // body 2 does not exist
+  // Body 2 does not exist: validate's and sim's RS7046 at the key, not a
+  // wire quietly left undrawn.
+  EXPECT_FALSE(b->ok);
+  EXPECT_EQ(b->render.skipped.count("wire"), 0u);
+  ASSERT_FALSE(b->diags.empty());
+  const Diagnostic& d = b->diags.back();
+  EXPECT_EQ(d.code, "RS7046");
+  EXPECT_EQ(d.line, 5u);
+  EXPECT_EQ(d.field, "localIndexA");
+  EXPECT_EQ(d.message, "localIndexA is 2; '/World/Arm' has bodies 0 to 1");
 }
 
 TEST(Foliage, ScaleRotationAndAlignmentWithinTheirRanges) {
