@@ -207,6 +207,10 @@ setup() {
   head -c 3000 /dev/urandom > robots/quadruped/gone.obj
   run -2 --separate-stderr "$SIM" --steps 5 cell.rscene
   [[ $stderr == *"cell.rscene:8:26: error: body '/World/Robot': link 'base': cannot read mesh 'robots/quadruped/gone.obj'"*"[RS7007]"* ]]
+  # validate --check-files says the same, where sim says it
+  first=$(grep -m1 'error:' <<<"$stderr")
+  run -1 "$BIN/rscene-validate" --check-files cell.rscene
+  [[ $output == *"$first"* ]]
   run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 cell.rscene
   [[ ${stderr_lines[0]} == "cell.rscene:8:26: warning: articulated system '/World/Robot': cannot read mesh 'robots/quadruped/gone.obj': "*"; that collision is left out [RS7007]" ]]
 }

@@ -99,7 +99,7 @@ struct Run {
     // one model cache per scene, so each scene reports its robots' files.
     robot::ModelCache models;
     asset::AssetCache meshes;  // --check-files reads each mesh once, as sim would
-    robot::RobotCheckOptions ro{co.checkFiles, co.fileExists};
+    robot::RobotCheckOptions ro{co.checkFiles, co.fileExists, meshes.meshReader(asset::MeshContent::Geometry)};
     validateScene(std::move(in.text), co, doc, keep,
                   [&](const Document& d, const Scene& s, std::vector<SceneFinding>& out) {
                     robot::checkRobots(d, s, ro, models, out);

@@ -86,8 +86,26 @@ class RobotChecker {
                   (ik.enabled ? "" : " (the target is disabled)"),
               frameHint(model, ik.frame), ik.enabled ? Severity::Error : Severity::Warning);
     }
+    if (options_.checkFiles && options_.readMesh) collisionMeshes(a, model, found);
     take(found, 0);
     robots_[a.recordIndex] = {&a, instance.model, instance.coordinates};
+  }
+
+  // --check-files: every collision mesh reads, or rscene-sim refuses the
+  // robot (RS7007 at the record's resource field, sim's words).  A mesh
+  // that was not found is the loader's RS5001 in the robot file.
+  void collisionMeshes(const Articulated& a, const Model& model, Diagnostics& found) {
+    for (const Link& link : model.links)
+      for (const Collision& c : link.collisions) {
+        if (c.geometry.kind != GeometryKind::Mesh) continue;
+        std::string why;
+        if (options_.readMesh(c.geometry.meshPath, why)) continue;
+        RecordReader(doc_, static_cast<std::size_t>(a.recordIndex), found)
+            .error("resource", rscene::scene_code::kBadMesh,
+                   "body '" + a.path + "': link '" + link.name + "': cannot read mesh '" + c.geometry.meshPath +
+                       "': " + why);
+        return;  // sim stops at the first
+      }
   }
 
   // What is wrong inside a robot's sensor-set files is said without

@@ -20,6 +20,7 @@
 #include "robot/kinematics.hpp"
 #include "robot/load.hpp"
 #include "scene/scene.hpp"
+#include "scene/triangle_surface.hpp"
 #include "scene/validate.hpp"
 
 namespace rscene::robot {
@@ -32,6 +33,10 @@ inline constexpr const char* kWireBody = rs::RS7046;    // wire localIndexA/B pa
 struct RobotCheckOptions {
   bool checkFiles = false;
   FileExists exists = fileExistsOnDisk;
+  // With checkFiles: reads a collision mesh as rscene-sim builds it (a
+  // mesh that does not read is RS7007 at the articulated record's resource
+  // field, where sim says it); empty: not read.
+  MeshReader readMesh;
 };
 
 // RaiSim's body count of a robot: every movable body, the base included
