@@ -22,6 +22,7 @@
 #include "core/writer.hpp"
 #include "sensor_files.hpp"
 #include "sim/limits.hpp"
+#include "sim/prepare.hpp"
 #include "sim/run.hpp"
 #include "sim/sensor_recorder.hpp"
 #include "sim/world.hpp"
@@ -61,69 +62,33 @@ int run(const Options& opt) {
   };
   if (!loaded.ok()) return print(loaded.diagnostics), cli::kTrouble;
 
-  SceneOptions so;
-  so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
-  so.baseDir = opt.baseDir;
-  Scene scene;
+  sim::PrepareOptions po;
+  po.scene.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  po.scene.baseDir = opt.baseDir;
+  po.allowMissingAssets = opt.allowMissing;
+  if (opt.steps >= 0) po.steps = static_cast<std::uint64_t>(opt.steps);
+  po.duration = opt.duration;
+  po.maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
+  po.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
+  po.pdGains = opt.pdGains;
+  po.recordSensors = !opt.sensors.empty();
+  po.imuFormat = opt.imuFormat == "jsonl" ? sim::ImuFormat::Jsonl : sim::ImuFormat::Csv;
   Diagnostics ds = loaded.diagnostics;
   asset::AssetCache assets;
-  // lib/core's verdict first, as validate gives it; the model is built
-  // only from a document that has none.
-  bool ok = robot::checkDocument(doc, so.baseDir.empty() ? so.sceneDir : so.baseDir, ds) && buildScene(doc, so, scene, ds);
-  if (ok && opt.allowMissing) {
-    sim::skipBodiesWithMissingMeshes(doc, scene, assets, ds);
-    robot::leaveOutMissingRobots(doc, scene, ds);
-  }
-  ok = ok && sim::checkPhysics(doc, scene, ds, assets.fileSystem(), assets.meshReader(asset::MeshContent::Geometry));
-  // The step count, before anything is built: --max-steps bounds the run.
-  auto maxSteps = static_cast<std::uint64_t>(opt.maxSteps);
-  std::uint64_t total = 0;
-  if (ok && opt.steps >= 0) {
-    total = static_cast<std::uint64_t>(opt.steps);
-    if (total > maxSteps) ds.push_back(sim::tooManySteps(doc, "--steps " + std::to_string(total), maxSteps)), ok = false;
-  } else if (ok) {
-    std::optional<std::uint64_t> n = sim::stepsFor(opt.duration, scene.timeStep, maxSteps);
-    if (n) total = *n;
-    else {
-      char what[128];
-      std::snprintf(what, sizeof what, "--duration %g at time_step %g is %.3g steps", opt.duration, scene.timeStep,
-                    opt.duration / scene.timeStep);
-      ds.push_back(sim::tooManySteps(doc, what, maxSteps));
-      ok = false;
-    }
-  }
-  sim::WorldOptions wo;
-  wo.assets = &assets;
-  wo.maxPairs = static_cast<std::uint64_t>(opt.maxPairs);
-  wo.document = &doc;
-  wo.allowMissingAssets = opt.allowMissing;
-  std::vector<robot::RobotInstance> robots;
-  ok = ok && sim::makeRobots(doc, scene, robots, ds, opt.allowMissing);
-  wo.robots = &robots;
-  std::string pdError;
-  if (!sim::parsePdGains(opt.pdGains, wo.pd, pdError)) {
-    cli::error(pdError);
+  sim::Prepared prepared;
+  std::string usage;
+  bool ok = sim::prepareSimulation(doc, po, assets, prepared, ds, usage);
+  if (!usage.empty()) {
+    cli::error(usage);
     return cli::kTrouble;
   }
-  if (ok)
-    for (const std::string& name : sim::unknownPdJoints(wo.pd, robots)) {
-      std::vector<std::string_view> movable;  // every robot's movable joints, for the suggestion
-      for (const robot::RobotInstance& r : robots)
-        if (r.model)
-          for (int j : r.coordinates.joints) movable.push_back(r.model->joints[static_cast<std::size_t>(j)].name);
-      std::string close = closestName(name, movable);
-      cli::error("--pd-gains names joint '" + name + "', which no articulated system has as a movable joint" +
-                 (close.empty() ? std::string() : "; did you mean '" + close + "'?"));
-      return cli::kTrouble;
-    }
-  // --sensors: what will be recorded, checked before anything is built.
-  std::vector<sim::RecordedSensor> sensors;
-  if (ok && !opt.sensors.empty()) ok = simcmd::planSensors(doc, scene, robots, opt.imuFormat, sensors, ds);
-  else if (ok) ok = simcmd::checkSensorMounts(doc, scene, robots, ds);  // RS7045, as validate and render say
-  std::unique_ptr<sim::World> world = ok ? sim::World::create(scene, ds, wo) : nullptr;
-  if (auto w = sim::unsupportedWarning(scene)) ds.push_back(*w);
   print(ds);
-  if (!world) return cli::kTrouble;
+  if (!ok) return cli::kTrouble;
+  const Scene& scene = prepared.scene;
+  const std::vector<sim::RecordedSensor>& sensors = prepared.sensors;
+  std::unique_ptr<sim::World>& world = prepared.world;
+  const sim::WorldOptions& wo = prepared.worldOptions;
+  const std::uint64_t total = prepared.steps;
   simcmd::SensorFiles files(opt.sensors, sensors,
                             opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary);
   if (!opt.sensors.empty() && !files.prepare({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) {

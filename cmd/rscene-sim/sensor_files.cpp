@@ -42,26 +42,6 @@ bool makeFolder(const fs::path& p, std::vector<std::string>& created) {
 
 }  // namespace
 
-bool planSensors(const Document& doc, const Scene& scene, const std::vector<robot::RobotInstance>& robots,
-                 const std::string& imuFormat, std::vector<sim::RecordedSensor>& out, Diagnostics& ds) {
-  std::vector<std::shared_ptr<const robot::Model>> models;  // indexed like Scene::articulated, as robots are
-  for (const robot::RobotInstance& r : robots) models.push_back(r.model);
-  sim::SensorPlanOptions po;
-  po.imuFormat = imuFormat == "jsonl" ? sim::ImuFormat::Jsonl : sim::ImuFormat::Csv;
-  std::size_t before = ds.size();
-  out = sim::planSensors(doc, robot::collectSensors(doc, scene, models, ds), po, ds);
-  return !hasErrors(Diagnostics(ds.begin() + static_cast<std::ptrdiff_t>(before), ds.end()));
-}
-
-bool checkSensorMounts(const Document& doc, const Scene& scene, const std::vector<robot::RobotInstance>& robots,
-                       Diagnostics& ds) {
-  std::vector<std::shared_ptr<const robot::Model>> models;
-  for (const robot::RobotInstance& r : robots) models.push_back(r.model);
-  std::size_t before = ds.size();
-  robot::collectSensors(doc, scene, models, ds);
-  return !hasErrors(Diagnostics(ds.begin() + static_cast<std::ptrdiff_t>(before), ds.end()));
-}
-
 SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>& sensors, sim::PcdEncoding encoding)
     : dir_(std::move(dir)), sensors_(sensors), encoding_(encoding) {
   for (const sim::RecordedSensor& s : sensors_) {

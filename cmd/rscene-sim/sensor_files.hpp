@@ -21,15 +21,6 @@
 
 namespace rscene::simcmd {
 
-// The sensors to record (sim::planSensors over robot::collectSensors of
-// the scene and its robots).  False when that added an error.
-// Without --sensors: the sensors' mounts only (a parentLink its robot does
-// not have is RS7045, as rscene-validate and rscene-render refuse it).
-bool checkSensorMounts(const Document& doc, const Scene& scene, const std::vector<robot::RobotInstance>& robots,
-                       Diagnostics& ds);
-bool planSensors(const Document& doc, const Scene& scene, const std::vector<robot::RobotInstance>& robots,
-                 const std::string& imuFormat, std::vector<sim::RecordedSensor>& out, Diagnostics& diagnostics);
-
 class SensorFiles : public sim::SensorOutput {
  public:
   SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>& sensors, sim::PcdEncoding encoding);
