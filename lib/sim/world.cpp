@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/text.hpp"
 #include "scene/mass_properties.hpp"
@@ -186,8 +187,7 @@ struct World::Impl {
   // pose is written back (objects and compounds alike).
   template <class Node>
   void registerBody(const Node& n, btRigidBody* body, const btTransform& toRecord = btTransform::getIdentity()) {
-    byName[n.id] = body;
-    byName[n.path] = body;
+    name(byName, n.id, n.path, body);
     byRecord[n.recordIndex] = body;
     if (n.bodyMode != BodyMode::Dynamic && n.bodyMode != BodyMode::Kinematic) return;
     Simulated s;
@@ -239,6 +239,17 @@ struct World::Impl {
   std::vector<SelfPairs> selfPairs;  // per robot
   double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
+  // Names a node by the scene model's rule: an id wins over another node's
+  // path, whichever was added first.
+  std::unordered_set<std::string> ids;
+  template <class T>
+  void name(std::unordered_map<std::string, T>& by, const std::string& id, const std::string& path, T value) {
+    if (!id.empty()) {
+      by[id] = value;
+      ids.insert(id);
+    }
+    if (!ids.count(path)) by[path] = value;
+  }
   std::unordered_map<int, btRigidBody*> byRecord;       // record index -> body (wire ends: Wire::recordA/B)
   std::unordered_map<std::string, int> robotByName;      // id and path -> index into robots (sensor mounts)
   std::unordered_map<int, int> robotByRecord;           // articulated record index -> index into robots
@@ -446,8 +457,7 @@ struct World::Impl {
     }
     world->addMultiBody(mb);
     for (auto& c : r->constraints()) world->addMultiBodyConstraint(c.get());
-    robotByName[a.id] = index;
-    robotByName[a.path] = index;
+    name(robotByName, a.id, a.path, index);
     robotByRecord[a.recordIndex] = index;
     robots.push_back(std::move(r));
     return true;
@@ -703,8 +713,7 @@ struct World::Impl {
     BodyInfo fi{kTerrainGroup, kAll, -1, t.recordIndex};
     btRigidBody* body = addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
     lowerFloorTo(body);
-    byName[t.id] = body;
-    byName[t.path] = body;
+    name(byName, t.id, t.path, body);
     byRecord[t.recordIndex] = body;
   }
 
