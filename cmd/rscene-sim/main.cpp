@@ -12,13 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.hpp"
-#include "core/suggest.hpp"
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
-#include "robot/check.hpp"
-#include "robot/instance.hpp"
 #include "robot/trajectory_format.hpp"
-#include "scene/validate.hpp"
 #include "core/writer.hpp"
 #include "sensor_files.hpp"
 #include "sim/limits.hpp"
@@ -87,7 +83,6 @@ int run(const Options& opt) {
   const Scene& scene = prepared.scene;
   const std::vector<sim::RecordedSensor>& sensors = prepared.sensors;
   std::unique_ptr<sim::World>& world = prepared.world;
-  const sim::WorldOptions& wo = prepared.worldOptions;
   const std::uint64_t total = prepared.steps;
   simcmd::SensorFiles files(opt.sensors, sensors,
                             opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary);
@@ -112,7 +107,7 @@ int run(const Options& opt) {
   ro.steps = total;
   ro.every = static_cast<std::uint64_t>(opt.every);
   ro.untilRest = opt.untilRest;
-  ro.maxPairs = wo.maxPairs;
+  ro.maxPairs = po.maxPairs;
   ro.interrupted = &gInterrupted;
   ro.sample = record;
   if (isatty(2)) {

@@ -182,6 +182,8 @@ void Preparer::robots() {
   robot::ModelCache models;
   out_.robotModels.assign(s_.articulated.size(), nullptr);
   robotLinks_.assign(s_.articulated.size(), {});
+  robot::InstanceOptions io;
+  io.allowMissingMeshes = limits_.allowMissingAssets;
   for (std::size_t i = 0; i < s_.articulated.size(); ++i) {
     const Articulated& a = s_.articulated[i];
     if (a.leftOut) continue;  // --allow-missing-assets: robot::leaveOutMissingRobots warned
@@ -192,15 +194,13 @@ void Preparer::robots() {
     robot::RobotInstance r;
     // An error (a model that does not load, a coordinate of the wrong
     // length) fails the render; what could be read is still drawn.
-    robot::InstanceOptions io;
-    io.allowMissingMeshes = limits_.allowMissingAssets;
     if (!robot::makeInstance(doc_, a, models, r, diags_, io)) ok_ = false;
     if (!r.model) continue;
     out_.robotModels[i] = r.model;
     robotLinks_[i] = robot::linkPoses(r);
     if (!a.visible || a.hiddenByGroup) continue;
     int seg = segment("articulated", a.recordIndex, a.path, a.id, a.semanticClass, -1);
-    if (drawer.add(*r.model, robot::linkPoses(r), static_cast<int>(i), seg) == 0) {
+    if (drawer.add(*r.model, robotLinks_[i], static_cast<int>(i), seg) == 0) {
       // Not an error (a collision-only model simulates), but an empty
       // picture needs a reason.
       Diagnostic d;

@@ -9,6 +9,37 @@
 namespace rscene::robot {
 namespace {
 
+// The length of the valid UTF-8 sequence at text[i], 0 when there is none
+// (no overlong forms, no surrogates, nothing past U+10FFFF).
+std::size_t utf8Length(std::string_view text, std::size_t i) {
+  auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
+  auto cont = [&](std::size_t k) { return (byte(k) & 0xC0) == 0x80; };
+  unsigned c = byte(i), c1 = byte(i + 1);
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) return cont(i + 1) ? 2 : 0;
+  if (c >= 0xE0 && c <= 0xEF) {
+    bool ok = cont(i + 1) && cont(i + 2) && !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 >= 0xA0);
+    return ok ? 3 : 0;
+  }
+  if (c >= 0xF0 && c <= 0xF4) {
+    bool ok = cont(i + 1) && cont(i + 2) && cont(i + 3) && !(c == 0xF0 && c1 < 0x90) && !(c == 0xF4 && c1 >= 0x90);
+    return ok ? 4 : 0;
+  }
+  return 0;
+}
+
+bool validUtf8(std::string_view text) {
+  for (std::size_t i = 0, n = 0; i < text.size(); i += n)
+    if ((n = utf8Length(text, i)) == 0) return false;
+  return true;
+}
+
+// A JSON string for `text`; the copy only when it is not UTF-8 already.
+std::string jsonString(const std::string& text) {
+  return nlohmann::json(validUtf8(text) ? text : jsonSafeText(text)).dump();
+}
+
+
 void number(std::string& out, double v) { appendNumber(out, v == 0 ? 0.0 : v); }
 
 void numbers(std::string& out, std::initializer_list<double> values, char sep) {
@@ -31,7 +62,7 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
   }
   out += "{\"time\":";
   number(out, time);
-  out += ",\"path\":" + nlohmann::json(jsonSafeText(path)).dump();
+  out += ",\"path\":" + jsonString(path);
   auto vec = [&](const char* name, std::initializer_list<double> xs) {
     out += ",\"";
     out += name;
@@ -52,27 +83,14 @@ void poseLine(std::string& out, TrajectoryFormat format, double time, const std:
 std::string jsonSafeText(std::string_view text) {
   std::string out;
   out.reserve(text.size());
-  auto cont = [&](std::size_t i) { return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80; };
   for (std::size_t i = 0; i < text.size();) {
-    auto c = static_cast<unsigned char>(text[i]);
-    std::size_t n = c < 0x80 ? 1 : (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
-    bool ok = n > 0;
-    for (std::size_t k = 1; ok && k < n; ++k) ok = cont(i + k);
-    if (ok && n == 3) {  // no overlong forms, no surrogates
-      auto c1 = static_cast<unsigned char>(text[i + 1]);
-      ok = !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 >= 0xA0);
-    }
-    if (ok && n == 4) {  // no overlong forms, nothing past U+10FFFF
-      auto c1 = static_cast<unsigned char>(text[i + 1]);
-      ok = !(c == 0xF0 && c1 < 0x90) && !(c == 0xF4 && c1 >= 0x90);
-    }
-    if (!ok) {
+    if (std::size_t n = utf8Length(text, i)) {
+      out.append(text.substr(i, n));
+      i += n;
+    } else {
       out += "\xEF\xBF\xBD";  // U+FFFD
       ++i;
-      continue;
     }
-    out.append(text.substr(i, n));
-    i += n;
   }
   return out;
 }
@@ -206,7 +224,7 @@ void TrajectoryWriter::append(std::string& out, double time, const std::vector<B
       out += "\":{";
       for (std::size_t i = 0; i < cols.size(); ++i) {
         if (i) out += ',';
-        out += nlohmann::json(jsonSafeText(columns_[static_cast<std::size_t>(cols[i])].substr(2))).dump() + ':';
+        out += jsonString(columns_[static_cast<std::size_t>(cols[i])].substr(2)) + ':';
         number(out, v[first + static_cast<Eigen::Index>(i)]);
       }
       out += '}';
@@ -225,7 +243,7 @@ void TrajectoryWriter::append(std::string& out, double time, const std::vector<B
     } else {
       out += "{\"time\":";
       number(out, time);
-      out += ",\"path\":" + nlohmann::json(jsonSafeText(p.path)).dump() + ",\"points\":[";
+      out += ",\"path\":" + jsonString(p.path) + ",\"points\":[";
     }
     for (std::size_t i = 0; i < p.points->size(); ++i) {
       const Eigen::Vector3d& x = (*p.points)[i];

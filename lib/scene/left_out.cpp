@@ -1,5 +1,7 @@
 #include "scene/left_out.hpp"
 
+#include "scene/mounted_node.hpp"
+
 #include "scene/reader.hpp"
 
 namespace rscene {
@@ -21,16 +23,7 @@ void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<int>& r
     w.enabled = false;
   }
   if (!sensors) return;
-  auto mountRecord = [&](const Mount& m) {
-    auto at = static_cast<std::size_t>(m.index);
-    switch (m.kind) {
-      case Mount::Kind::Object: return scene.objects[at].recordIndex;
-      case Mount::Kind::Compound: return scene.compounds[at].recordIndex;
-      case Mount::Kind::Articulated: return scene.articulated[at].recordIndex;
-      case Mount::Kind::World: break;
-    }
-    return -1;
-  };
+  auto mountRecord = [&](const Mount& m) { return mountedNode(scene, m).recordIndex; };
   for (Sensor& s : scene.sensors) {
     if (!s.enabled || !records.count(mountRecord(s.mount))) continue;
     warn(s.recordIndex, "parentObject",

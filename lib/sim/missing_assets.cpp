@@ -11,12 +11,6 @@
 namespace rscene::sim {
 namespace {
 
-// A warning at `field` of record `recordIndex`.
-void warn(const Document& doc, int recordIndex, const char* field, const char* code, const std::string& message,
-          Diagnostics& diagnostics) {
-  reportAt(&doc, recordIndex, field, code, message, diagnostics, Severity::Warning);
-}
-
 // Why `path` gives no collision mesh ("does not exist", or the reader's
 // reason), with its code; empty when it does.
 std::pair<std::string, const char*> meshProblem(const std::string& path, asset::AssetCache& assets) {
@@ -82,7 +76,8 @@ int skipBodiesWithMissingMeshes(const Document& doc, Scene& scene, asset::AssetC
     std::string who = m.bodies == 1 ? "body '" + m.firstBody + "' is"
                                     : "bodies '" + m.firstBody + "' and " + std::to_string(m.bodies - 1) +
                                           (m.bodies == 2 ? " other are" : " others are");
-    warn(doc, m.recordIndex, m.field, m.code, m.problem + "; " + who + " not simulated", diagnostics);
+    reportAt(&doc, m.recordIndex, m.field, m.code, m.problem + "; " + who + " not simulated", diagnostics,
+             Severity::Warning);
   }
   detachFromLeftOut(doc, scene, skipped, false, "for its mesh", diagnostics);
   return count;

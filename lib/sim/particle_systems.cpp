@@ -8,16 +8,6 @@
 #include "scene/reader.hpp"
 
 namespace rscene::sim {
-namespace {
-
-// An error at the record's key when the scene has a document, else a
-// diagnostic naming the record's path.
-void report(const Document* doc, int recordIndex, const std::string& field, const char* code,
-            const std::string& message, Diagnostics& diagnostics, Severity severity = Severity::Error) {
-  reportAt(doc, recordIndex, field, code, message, diagnostics, severity);
-}
-
-}  // namespace
 
 bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::AssetCache& assets,
                              Diagnostics& diagnostics) {
@@ -26,14 +16,14 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
     asset::ObjSurface surface;
     std::string error, field;
     if (!asset::loadObjSurface(assets.fileSystem(), d.meshPath, surface, &error)) {
-      report(doc, d.recordIndex, "meshPath", particle_code::kDeformableMesh,
+      reportAt(doc, d.recordIndex, "meshPath", particle_code::kDeformableMesh,
              "deformable '" + d.path + "': mesh " + d.meshPath + ": " + error, diagnostics);
       ok = false;
       continue;
     }
     std::unique_ptr<DeformableBody> body = DeformableBody::create(d, surface, error, field);
     if (!body) {
-      report(doc, d.recordIndex, field, particle_code::kDeformable, "deformable '" + d.path + "': " + error,
+      reportAt(doc, d.recordIndex, field, particle_code::kDeformable, "deformable '" + d.path + "': " + error,
              diagnostics);
       ok = false;
       continue;
@@ -46,7 +36,7 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
     // Its warnings (RS7086) are checkScene()'s to report, which ran the
     // same granularSetup() before the world was built.
     for (const GranularFinding& f : findings)
-      if (f.error) report(doc, g.recordIndex, f.field, f.code, f.message, diagnostics);
+      if (f.error) reportAt(doc, g.recordIndex, f.field, f.code, f.message, diagnostics);
     if (!body) {
       ok = false;
       continue;

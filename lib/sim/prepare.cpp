@@ -72,7 +72,7 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
   }
   ok = ok && checkPhysics(doc, out.scene, ds, assets.fileSystem(), assets.meshReader(asset::MeshContent::Geometry));
   ok = ok && stepCount(doc, o, out.scene.timeStep, out.steps, ds);
-  WorldOptions& wo = out.worldOptions;
+  WorldOptions wo;
   wo.assets = &assets;
   wo.maxPairs = o.maxPairs;
   wo.document = &doc;

@@ -44,7 +44,6 @@ struct Prepared {
   std::vector<robot::RobotInstance> robots;
   std::vector<RecordedSensor> sensors;  // with recordSensors
   std::uint64_t steps = 0;
-  WorldOptions worldOptions;
   std::unique_ptr<World> world;  // last: destroyed first
 };
 

@@ -1,5 +1,7 @@
 #include "sim/sensor_recorder.hpp"
 
+#include "scene/mounted_node.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -167,24 +169,13 @@ struct SensorRecorder::State {
 
 namespace {
 
-// The path of the body a sensor rides on, for World's lookups (empty: the world).
 // The name the world knows the mounted node by: its id (the world looks
 // names up as the scene model does, an id first, so an id names one node),
-// else its path.
+// else its path; nullptr for the world.
 const std::string* mountPath(const Scene& scene, const Mount& m) {
-  auto at = [](const auto& list, int i) { return i >= 0 && std::size_t(i) < list.size(); };
-  auto name = [](const auto& node) { return node.id.empty() ? &node.path : &node.id; };
-  switch (m.kind) {
-    case Mount::Kind::Object:
-      return at(scene.objects, m.index) ? name(scene.objects[std::size_t(m.index)]) : nullptr;
-    case Mount::Kind::Compound:
-      return at(scene.compounds, m.index) ? name(scene.compounds[std::size_t(m.index)]) : nullptr;
-    case Mount::Kind::Articulated:
-      return at(scene.articulated, m.index) ? name(scene.articulated[std::size_t(m.index)]) : nullptr;
-    case Mount::Kind::World:
-      break;
-  }
-  return nullptr;
+  MountedNode n = mountedNode(scene, m);
+  if (!n.id) return nullptr;
+  return n.id->empty() ? n.path : n.id;
 }
 
 }  // namespace

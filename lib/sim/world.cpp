@@ -231,11 +231,6 @@ struct World::Impl {
   std::vector<std::unique_ptr<MultiBodyRope>> robotWires;
   ParticleSystems particles;                 // deformables and granular media
   std::unique_ptr<BulletSurfaces> surfaces;  // what their particles touch (null when there are none)
-  struct {
-    int recordIndex = -1;
-    const char* field = "";
-    std::string message;
-  } wireError;  // a wire create() refuses
   std::vector<SelfPairs> selfPairs;  // per robot
   double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
@@ -545,16 +540,17 @@ struct World::Impl {
     return body;
   }
 
-  // What create() refuses a body for (refuse() sets it).
+  // What create() refuses a body or a wire for (refuse() sets it): the
+  // whole message, its code and where it points.
   struct BuildError {
-    std::string path, message;
+    std::string message;
     const char* code = nullptr;
     int recordIndex = -1;
     const char* field = "";
   } buildError;
-  bool refuse(const std::string& path, const std::string& message, const char* code, int recordIndex,
+  bool refuse(const std::string& what, const std::string& message, const char* code, int recordIndex,
               const char* field) {
-    buildError = {path, message, code, recordIndex, field};
+    buildError = {what + ": " + message, code, recordIndex, field};
     return false;
   }
 
@@ -639,7 +635,7 @@ struct World::Impl {
       Eigen::Vector3d box = o.scale;
       btCollisionShape* shape = primitive(o.primitive, box, o.physicsRadius(), o.physicsHeight(),
                                             o.collisionMeshPath, o.meshScale(), convex, error);
-      if (!shape) return refuse(o.path, error, scene_code::kBadMesh, o.recordIndex, "meshPath");
+      if (!shape) return refuse("body '" + o.path + "'", error, scene_code::kBadMesh, o.recordIndex, "meshPath");
       // customInertia: the record's principal moments (checked by RS7090),
       // as RaiSim's <inertia> sets them; else the shape's.
       double mass = o.effectiveMass();
@@ -663,7 +659,7 @@ struct World::Impl {
       std::string error;
       btCollisionShape* shape = primitive(ch.primitive, box, ch.radius * s.x(), ch.height * s.z(), ch.meshPath,
                                             s.mean(), true, error);
-      if (!shape) return refuse(c.path, error, scene_code::kBadMesh, ch.recordIndex, "meshPath");
+      if (!shape) return refuse("body '" + c.path + "'", error, scene_code::kBadMesh, ch.recordIndex, "meshPath");
       Pose local = ch.local;
       local.position = local.position.cwiseProduct(c.scale);
       parts.emplace_back(shape, bt(local));
@@ -718,7 +714,7 @@ struct World::Impl {
   }
 
   // A wire between its two ends as the scene model resolved them; false
-  // with wireError set when an end is no body of its robot.
+  // with buildError set when an end is no body of its robot.
   bool addWire(const Wire& wire) {
     if (!wire.simulated()) return true;  // disabled, or to a node not modelled (RS7011)
     // Each end: the world (no name), a rigid body (attachment point in its
@@ -734,10 +730,11 @@ struct World::Impl {
         int bodies = static_cast<int>(r->layout().bodies.size());
         if (localIndex < 0 || localIndex >= bodies) {
           // At the localIndex key, where validate's RS7046 points.
-          wireError = {wire.recordIndex, field == std::string("bodyA") ? "localIndexA" : "localIndexB",
-                         std::string(field == std::string("bodyA") ? "localIndexA " : "localIndexB ") +
-                             std::to_string(localIndex) + " is not a body of articulated system '" + ref + "' (it has " +
-                             std::to_string(bodies) + ", 0 to " + std::to_string(bodies - 1) + ")"};
+          const char* key = field == std::string("bodyA") ? "localIndexA" : "localIndexB";
+          refuse("wire '" + wire.path + "'",
+                 std::string(key) + " " + std::to_string(localIndex) + " is not a body of articulated system '" +
+                     ref + "' (it has " + std::to_string(bodies) + ", 0 to " + std::to_string(bodies - 1) + ")",
+                 sim_code::kWireLocalIndex, wire.recordIndex, key);
           return None;
         }
         out.robot = r;
@@ -754,7 +751,7 @@ struct World::Impl {
     WireAnchor a, b;
     Kind ka = anchor(wire.bodyA, wire.recordA, wire.localIndexA, wire.localPositionA, "bodyA", a);
     Kind kb = anchor(wire.bodyB, wire.recordB, wire.localIndexB, wire.localPositionB, "bodyB", b);
-    if (wireError.recordIndex >= 0) return false;
+    if (buildError.code) return false;
     if (ka == None || kb == None || (ka == Point && kb == Point)) return true;
     if (wire.kind == "compliant") {
       springs.push_back({a, b, wire.length, wire.stiffness, wire.damping});
@@ -806,7 +803,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   const Solver& sv = scene.solver;
   auto fail = [&] {
     const Impl::BuildError& e = w.buildError;
-    reportAt(options.document, e.recordIndex, e.field, e.code, "body '" + e.path + "': " + e.message, diagnostics);
+    reportAt(options.document, e.recordIndex, e.field, e.code, e.message, diagnostics);
     return nullptr;
   };
   for (const Object& o : scene.objects)
@@ -819,7 +816,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
       w.robotMeshesLeftOut.clear();
       if (!w.addRobot(instance, options.pd, sv)) {
         const Articulated& a = *instance.record;
-        w.refuse(a.path, w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
+        w.refuse("body '" + a.path + "'", w.robotError, scene_code::kBadMesh, a.recordIndex, "resource");
         return fail();
       }
       for (const std::string& why : w.robotMeshesLeftOut)
@@ -829,11 +826,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     }
   }
   for (const Wire& wire : scene.wires)
-    if (!w.addWire(wire)) {
-      reportAt(options.document, w.wireError.recordIndex, w.wireError.field, sim_code::kWireLocalIndex,
-               "wire '" + wire.path + "': " + w.wireError.message, diagnostics);
-      return nullptr;
-    }
+    if (!w.addWire(wire)) return fail();
   if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
   if (!w.particles.empty()) w.attachParticleSurfaces();
   return std::unique_ptr<World>(new World(std::move(impl)));
