@@ -126,7 +126,7 @@ bool loadModel(const std::string& path, const LoadOptions& options, Model& out, 
     return false;
   }
   tinyxml2::XMLDocument doc;
-  if (!readXmlFile(path, options.maxFileBytes, doc, diagnostics)) return false;
+  if (!readXmlFile(options.fileSystem(), path, options.maxFileBytes, doc, diagnostics)) return false;
   const tinyxml2::XMLElement* root = doc.RootElement();
   std::string kind = root ? root->Name() : "";
   Model model;

@@ -14,6 +14,7 @@
 
 #include "core/codes.hpp"
 #include "core/diagnostic.hpp"
+#include "core/filesystem.hpp"
 #include "robot/model.hpp"
 
 namespace rscene::robot {
@@ -40,6 +41,11 @@ struct LoadOptions {
   // warning and that <collision> is left out (as a visual mesh always is),
   // not an error.  MJCF files are compiled by MuJoCo, which needs them all.
   bool allowMissingMeshes = false;
+  // Where URDF files, modules and sensor sets are read from (nullptr: the
+  // disk), so tests can load a robot from memory.  MJCF files are read by
+  // MuJoCo itself, from the disk.
+  const FileSystem* files = nullptr;
+  const FileSystem& fileSystem() const { return files ? *files : diskFileSystem(); }
 };
 
 // Reads `path` by its root element (<robot>: URDF, <mujoco>: MJCF), then

@@ -272,11 +272,11 @@ std::vector<std::string> sensorSetCandidates(const std::string& dir, const std::
           join(dir, "../sensors/" + file)};
 }
 
-bool openSensorSet(const std::string& urdfDirectory, const std::string& file, const std::string& urdfFile, int line,
+bool openSensorSet(const FileSystem& files, const std::string& urdfDirectory, const std::string& file, const std::string& urdfFile, int line,
                    std::size_t maxBytes, SensorSetFile& out, Diagnostics& diagnostics) {
   std::vector<std::string> tried = sensorSetCandidates(urdfDirectory, file);
   for (const std::string& c : tried)
-    if (fileExistsOnDisk(c)) {
+    if (files.stat(c).kind == FileKind::Regular) {
       out.path = c;
       break;
     }
@@ -287,7 +287,7 @@ bool openSensorSet(const std::string& urdfDirectory, const std::string& file, co
                                           "sensor set '" + file + "' not found (tried " + list + ")"));
     return false;
   }
-  if (!readXmlFile(out.path, maxBytes, out.doc, diagnostics, "sensor set file", code::kBadSensorSet)) return false;
+  if (!readXmlFile(files, out.path, maxBytes, out.doc, diagnostics, "sensor set file", code::kBadSensorSet)) return false;
   const XMLElement* root = out.doc.RootElement();
   if (!root || std::string(root->Name()) != "sensor_set") {
     diagnostics.push_back(robotDiagnostic(

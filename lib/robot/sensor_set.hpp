@@ -36,6 +36,7 @@
 
 #include "core/codes.hpp"
 #include "core/diagnostic.hpp"
+#include "core/filesystem.hpp"
 #include "robot/model.hpp"
 
 namespace rscene::robot {
@@ -62,7 +63,7 @@ struct SensorSetFile {
 
 // Finds (RS7060 at the URDF link's `line` of `urdfFile`, listing the
 // places searched) and parses (RS7061) the set `file`.  False after an error.
-bool openSensorSet(const std::string& urdfDirectory, const std::string& file, const std::string& urdfFile, int line,
+bool openSensorSet(const FileSystem& files, const std::string& urdfDirectory, const std::string& file, const std::string& urdfFile, int line,
                    std::size_t maxBytes, SensorSetFile& out, Diagnostics& diagnostics);
 
 // The <sensor> elements of `set` (inside its <link>, or directly in the

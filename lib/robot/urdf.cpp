@@ -401,7 +401,7 @@ void UrdfReader::readSensorSet(const Source& src, const XMLElement* e, Link& lin
     }
   } dedupe{*this, before};
   SensorSetFile set;
-  if (!openSensorSet(sensorDirectory_, link.sensorSet, src.file, e->GetLineNum(), options_.maxFileBytes, set,
+  if (!openSensorSet(options_.fileSystem(), sensorDirectory_, link.sensorSet, src.file, e->GetLineNum(), options_.maxFileBytes, set,
                      diagnostics_)) {
     ok_ = false;
     return;
@@ -578,7 +578,7 @@ bool UrdfReader::loadModules(const std::string& path,
     std::string found;
     std::vector<std::string> tried = moduleCandidates(paths_, module);
     for (const std::string& candidate : tried)
-      if (fileExistsOnDisk(candidate)) {
+      if (options_.fileSystem().stat(candidate).kind == FileKind::Regular) {
         found = candidate;
         break;
       }
@@ -594,7 +594,7 @@ bool UrdfReader::loadModules(const std::string& path,
     src.file = found;
     src.directory = parentDirectory(found);
     src.isModule = true;
-    if (!readXmlFile(found, options_.maxFileBytes, doc, diagnostics_)) ok_ = false;
+    if (!readXmlFile(options_.fileSystem(), found, options_.maxFileBytes, doc, diagnostics_)) ok_ = false;
   }
   return ok_;
 }
@@ -651,7 +651,7 @@ bool loadDocument(const std::string& path, const tinyxml2::XMLDocument& doc, con
 
 bool loadUrdf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics) {
   tinyxml2::XMLDocument doc;
-  if (!readXmlFile(path, options.maxFileBytes, doc, diagnostics)) return false;
+  if (!readXmlFile(options.fileSystem(), path, options.maxFileBytes, doc, diagnostics)) return false;
   return urdf::loadDocument(path, doc, options, out, diagnostics);
 }
 

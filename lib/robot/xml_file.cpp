@@ -22,10 +22,9 @@ Diagnostic robotDiagnostic(Severity severity, const char* code, const std::strin
   return d;
 }
 
-bool readXmlFile(const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
+bool readXmlFile(const FileSystem& disk, const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
                  Diagnostics& diagnostics, const char* what, const char* badFileCode) {
   const char* bad = badFileCode ? badFileCode : code::kBadFile;
-  const FileSystem& disk = diskFileSystem();
   FileStatus status = disk.stat(path);
   if (status.kind != FileKind::Regular) {
     diagnostics.push_back(robotDiagnostic(Severity::Error, code::kMissingFile, path, 0,

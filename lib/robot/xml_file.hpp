@@ -5,6 +5,8 @@
 #pragma once
 #include <tinyxml2.h>
 
+#include "core/filesystem.hpp"
+
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <string>
@@ -23,7 +25,7 @@ Diagnostic robotDiagnostic(Severity severity, const char* code, const std::strin
 // RS5001 (missing, not a regular file) or RS7030 (too large, unreadable,
 // not well-formed XML) error.  A file that is not the robot file itself (a
 // sensor set) names itself `what` and takes its own code for the second.
-bool readXmlFile(const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
+bool readXmlFile(const FileSystem& files, const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
                  Diagnostics& diagnostics, const char* what = "robot file", const char* badFileCode = nullptr);
 
 // True when `text` holds something a preprocessor should have replaced:

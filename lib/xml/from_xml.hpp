@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/diagnostic.hpp"
+#include "core/filesystem.hpp"
 #include "xml/xml_tree.hpp"
 
 namespace rscene::xml {
@@ -19,6 +20,9 @@ struct FromXmlOptions {
   // directory for standard output), or absolute when `absolutePaths`.
   std::string outputDir = ".";
   bool absolutePaths = false;
+  // Where height-map PNGs and text files are read from (nullptr: the disk).
+  const FileSystem* files = nullptr;
+  const FileSystem& fileSystem() const { return files ? *files : diskFileSystem(); }
 };
 
 struct FromXmlResult {

@@ -65,7 +65,7 @@ std::size_t byteLimit() { return static_cast<std::size_t>(kMaxTerrainSamples) * 
 // height-1-y.
 bool readPng(Context& ctx, const Element& e, const Attribute& png, double scale, double offset, Grid& g) {
   std::string bytes, why;
-  if (!diskFileSystem().read(png.value, bytes, &why, byteLimit())) {
+  if (!ctx.options.fileSystem().read(png.value, bytes, &why, byteLimit())) {
     ctx.error(code::kBadAsset, e, png, "cannot read '" + png.value + "': " + why);
     return false;
   }
@@ -97,7 +97,7 @@ bool readPng(Context& ctx, const Element& e, const Attribute& png, double scale,
 // line breaks.
 bool readText(Context& ctx, const Element& e, const Attribute& text, Grid& g) {
   std::string body, why;
-  if (!diskFileSystem().read(text.value, body, &why, byteLimit())) {
+  if (!ctx.options.fileSystem().read(text.value, body, &why, byteLimit())) {
     ctx.error(code::kBadAsset, e, text, "cannot read '" + text.value + "': " + why);
     return false;
   }

@@ -208,7 +208,7 @@ class WorldReader {
       return;
     }
     std::string text, readError;
-    if (!diskFileSystem().read(file.name, text, &readError, options_.limits.maxFileBytes)) {
+    if (!options_.fileSystem().read(file.name, text, &readError, options_.limits.maxFileBytes)) {
       error(attributeDiagnostic(Severity::Error, code::kXmlInclude, inc, *named,
                                 "cannot read '" + file.name + "': " + readError));
       return;
@@ -328,7 +328,7 @@ LoadResult loadWorldText(std::string_view text, const std::string& displayName, 
 
 LoadResult loadWorld(const std::string& path, const LoadOptions& options) {
   std::string text, error;
-  if (!diskFileSystem().read(path, text, &error, options.limits.maxFileBytes)) {
+  if (!options.fileSystem().read(path, text, &error, options.limits.maxFileBytes)) {
     LoadResult result;
     result.diagnostics.push_back(fileError(code::kXmlRead, path, "cannot read: " + error));
     return result;

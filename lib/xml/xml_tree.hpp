@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/diagnostic.hpp"
+#include "core/filesystem.hpp"
 
 namespace rscene::xml {
 
@@ -85,6 +86,9 @@ struct LoadOptions {
   // --param NAME=VALUE: set or override a `params` entry (name without @@).
   std::map<std::string, std::string> params;
   LoadLimits limits;
+  // Where the world file and its includes are read from (nullptr: the disk).
+  const FileSystem* files = nullptr;
+  const FileSystem& fileSystem() const { return files ? *files : diskFileSystem(); }
 };
 
 struct LoadResult {

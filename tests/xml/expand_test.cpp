@@ -386,3 +386,26 @@ TEST(Expand, RaisimTemplatedWorldForm) {
 
 }  // namespace
 }  // namespace rscene::xml
+
+namespace rscene::xml {
+namespace {
+
+// The world file and its includes come through LoadOptions::files: a world
+// held in memory loads, and a file only on the disk is not seen.
+TEST(Expand, WorldAndIncludesReadThroughTheInjectedFiles) {
+  MemoryFileSystem files;
+  files.addFile("/mem/world.xml", "<raisim>\n  <objects>\n    <include file=\"[THIS_DIR]/part.xml\"/>\n  </objects>\n</raisim>\n");
+  files.addFile("/mem/part.xml",
+                "<raisim><objects><sphere name=\"s\" mass=\"1\"><dim radius=\"0.5\"/></sphere></objects></raisim>\n");
+  LoadOptions options;
+  options.files = &files;
+  LoadResult r = loadWorld("/mem/world.xml", options);
+  ASSERT_TRUE(r.ok()) << errors(r);
+  EXPECT_EQ(objects(r).children.size(), 1u);
+  EXPECT_EQ(r.files, (std::vector<std::string>{"/mem/world.xml", "/mem/part.xml"}));
+  r = loadWorld(kData + "/include_top.xml", options);
+  EXPECT_FALSE(r.ok());
+}
+
+}  // namespace
+}  // namespace rscene::xml
