@@ -5,6 +5,7 @@
 
 #include "common/cli.hpp"
 #include "render/image.hpp"
+#include "render/output_plan.hpp"
 #include "render/view_output.hpp"
 
 namespace rscene::render_cli {
@@ -17,24 +18,11 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // 640x480 views, or one 4096x4096 one.
 constexpr std::size_t kQueueBytes = std::size_t{256} << 20;
 
-std::string sibling(const std::string& path, const char* extension) {
-  std::size_t slash = path.find_last_of('/');
-  std::size_t dot = path.find_last_of('.');
-  bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
-  return (hasExtension ? path.substr(0, dot) : path) + extension;
-}
-
 std::size_t bytesOf(const render::ViewImages& i) {
   return i.color.rgba.size() + i.segmentation.rgba.size() + i.depth.size() * sizeof(float);
 }
 
 }  // namespace
-
-std::vector<std::string> filesOf(const std::string& image, render::Pass pass) {
-  if (pass == render::Pass::Depth) return {image, sibling(image, ".npy")};
-  if (pass == render::Pass::Segmentation) return {image, sibling(image, ".json")};
-  return {image};
-}
 
 ImageWriter::ImageWriter(unsigned threads, std::string legend) : legend_(std::move(legend)) {
   for (unsigned i = 0; i < std::max(1u, threads); ++i) workers_.emplace_back([this] { work(); });
@@ -89,7 +77,7 @@ bool ImageWriter::run(const ImageJob& job) {
   const render::ViewImages& im = job.images;
   for (const auto& [path, pass] : job.outputs) {
     auto t = Clock::now();
-    std::vector<std::string> files = filesOf(path, pass);
+    std::vector<std::string> files = render::filesOf(path, pass);
     std::vector<std::string> bytes;
     if (pass == render::Pass::Color)
       bytes = {render::encodePng(im.color)};

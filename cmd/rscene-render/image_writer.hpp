@@ -22,11 +22,6 @@ struct ImageJob {
   std::vector<std::pair<std::string, render::Pass>> outputs;  // image path and pass
 };
 
-// The files one image becomes: the image, then its .npy (depth) or legend
-// .json (segmentation), the extension replaced ("cam.depth.png" ->
-// "cam.depth.npy"), else appended.
-std::vector<std::string> filesOf(const std::string& image, render::Pass pass);
-
 class ImageWriter {
  public:
   // `legend`: the segmentation legend JSON written beside every

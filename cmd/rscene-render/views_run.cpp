@@ -17,6 +17,7 @@
 
 #include "core/text.hpp"
 #include "render/image.hpp"
+#include "render/output_plan.hpp"
 #include "render/view.hpp"
 #include "render/view_output.hpp"
 #include "render/view_select.hpp"
@@ -37,23 +38,6 @@ using render::View;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 volatile std::sig_atomic_t interrupted = 0;
-
-// One image a view writes per frame: the pattern its path comes from.
-struct Output {
-  std::size_t view = 0;
-  Pass pass = Pass::Color;
-  std::string pattern;
-};
-
-render::OutputFields fieldsOf(const View& v, Pass pass, std::uint64_t frame, double time) {
-  render::OutputFields f;
-  f.name = render::fileNameOf(v.name);
-  f.id = v.id.empty() ? "" : render::fileNameOf(v.id);
-  f.kind = render::passName(pass);
-  f.frame = frame;
-  appendNumber(f.time, time);
-  return f;
-}
 
 class ViewsRun {
  public:
@@ -236,114 +220,22 @@ class ViewsRun {
     return print(found);
   }
 
-  // Every image's pattern, then every file of the first frame checked
-  // before anything is drawn: no two the same, none writeOutput() would
-  // refuse, none a scene's outputPath may not name.
+  // Where every image goes (render::planOutputs()), checked before
+  // anything is drawn; then the folders they go in, and the files as
+  // writeOutput() would see them.
   bool planOutputs() {
-    const bool frames = !opt_.trajectory.empty();
-    if (!opt_.output.empty()) {
-      // Frames have increasing times: {time} names each one once too.
-      if (frames && !render::patternHas(opt_.output, "frame") && !render::patternHas(opt_.output, "time")) {
-        cli::error("-o '" + opt_.output +
-                   "' has no {frame} or {time}: every frame of --trajectory would write the same file");
-        return false;
-      }
-    }
-    Diagnostics diags;
-    for (std::size_t i = 0; i < views_.size(); ++i) {
-      const View& v = views_[i];
-      std::string pattern = opt_.output;
-      if (pattern.empty()) {
-        if (reference()) continue;  // --reference alone writes only a missing baseline
-        if (v.outputPath.empty() || v.outputPath == "-") {
-          cli::error("nothing to write: '" + v.name + "' has no outputPath; give -o FILE (-o - for standard output)" +
-                     (v.sensor ? std::string() : ", --reference FILE") + " or -o PATTERN such as '{name}.{kind}.png'");
-          return false;
-        }
-        if (std::string why = outputPathProblem(v.outputPath); !why.empty()) {
-          RecordReader r(p_.document, static_cast<std::size_t>(v.recordIndex), diags);
-          r.error("outputPath", render::code::kOutputPath,
-                  "outputPath '" + v.outputPath + "' " + why + ": a scene may only write below the current folder",
-                  "give -o PATTERN to write elsewhere");
-          continue;
-        }
-        pattern = render::outputPathPattern(v.outputPath, v.passes.size() > 1, frames);
-      }
-      for (Pass pass : v.passes) outputs_.push_back({i, pass, pattern});
-    }
-    if (!print(diags)) return false;
-    if (opt_.output == "-" && (outputs_.size() != 1 || outputs_[0].pass != Pass::Color)) {
-      if (outputs_.size() == 1) {
-        cli::error("-o - writes one color image; '" + views_[0].name + "' makes a " +
-                   render::passName(outputs_[0].pass) + " image and its " +
-                   (outputs_[0].pass == Pass::Depth ? ".npy" : ".json") + " beside it: give -o FILE or -o PATTERN");
-        return false;
-      }
-      cli::error("-o - writes one color image; these views make " + std::to_string(outputs_.size()) +
-                 " images and their files: give -o PATTERN such as 'out/{name}.{kind}.png'");
+    render::ViewFindings found;
+    render::OutputRequest request{opt_.output, !opt_.trajectory.empty(), reference()};
+    if (!render::planOutputs(views_, request, sources(), plan_, found)) {
+      print(found);
       return false;
     }
     std::vector<cli::NamedOutput> named;
-    std::map<std::string, std::size_t> owners;  // path -> the output (index) writing it
-    for (std::size_t k = 0; k < outputs_.size(); ++k) {
-      const Output& o = outputs_[k];
-      std::string path, err;
-      if (!render::expandPattern(o.pattern, fieldsOf(views_[o.view], o.pass, 0, 0), path, &err)) {
-        cli::error(err);
-        return false;
-      }
-      if (std::string why = render::imageExtensionProblem(path); !why.empty()) {
-        if (!opt_.output.empty()) {
-          cli::error("-o '" + opt_.output + "': " + why + "; end -o with .png");
-          return false;
-        }
-        if (views_[o.view].recordIndex < 0) {
-          cli::error("'" + views_[o.view].name + "': " + why);
-          return false;
-        }
-        RecordReader r(p_.document, static_cast<std::size_t>(views_[o.view].recordIndex), diags);
-        r.error("outputPath", render::code::kOutputPath, "outputPath: " + why, "end outputPath with .png");
-        return print(diags);
-      }
-      for (const std::string& file : filesOf(path, o.pass)) {
-        auto [it, added] = owners.emplace(file, k);
-        if (!added) {
-          cli::error(collision(file, outputs_[it->second], o));
-          return false;
-        }
-        named.push_back({"-o", file});
-      }
+    for (const std::string& file : plan_.files) {
+      makeParentFolder(file);
+      named.push_back({"-o", file});
     }
-    for (const auto& [file, who] : owners) makeParentFolder(file);
     return cli::checkOutputs(named);
-  }
-
-  // Why two images would go to one file, and what to change: one view's
-  // several passes, two views of one name, or a pattern without {name}.
-  std::string collision(const std::string& file, const Output& first, const Output& second) const {
-    const View& a = views_[first.view];
-    const View& b = views_[second.view];
-    std::string head = "two images would go to '" + file + "': ";
-    if (&first == &second)  // the image and the .npy or .json written beside it
-      return head + "the " + std::string(render::passName(first.pass)) + " image of '" + a.name +
-             "' is PNG and its companion file goes beside it under the same name; end the pattern with .png [RS9048]";
-    if (first.view == second.view) {
-      std::string kinds;
-      for (Pass p : a.passes) kinds += (kinds.empty() ? "" : ", ") + std::string(render::passName(p));
-      return head + "view '" + a.name + "' makes several images (" + kinds + "); put {kind} in -o, such as '" +
-             render::outputPathPattern(first.pattern, true, false) + "' [RS9048]";
-    }
-    if (a.name == b.name) {
-      bool ids = !a.id.empty() || !b.id.empty();
-      return head + "two views are named '" + a.name + "': " + render::declaredAt(a, sources()) + " and " +
-             render::declaredAt(b, sources()) +
-             "; rename the record" + (ids && !render::patternHas(opt_.output, "id") ? ", or use {id} in -o" : "") +
-             " [RS9048]";
-    }
-    std::string fix = opt_.output.empty() ? "give the records different outputPath, or -o PATTERN with {name}"
-                                          : "use {name} and {kind} in -o, or give the records different outputPath";
-    return head + "'" + a.name + "' (" + render::passName(first.pass) + ") and '" + b.name + "' (" +
-           render::passName(second.pass) + "); " + fix + " [RS9048]";
   }
 
   static void makeParentFolder(const std::string& file) {
@@ -370,11 +262,9 @@ class ViewsRun {
       if (!print(diags)) return false;
       drawSeconds_ += since(t);
       if (reference()) referenceImage_ = job.images.color;
-      for (; next < outputs_.size() && outputs_[next].view == i; ++next) {
-        const Output& o = outputs_[next];
-        std::string path, err;
-        render::expandPattern(o.pattern, fieldsOf(v, o.pass, frame, time), path, &err);  // checked by planOutputs
-        job.outputs.emplace_back(std::move(path), o.pass);
+      for (; next < plan_.outputs.size() && plan_.outputs[next].view == i; ++next) {
+        const render::PlannedOutput& o = plan_.outputs[next];
+        job.outputs.emplace_back(render::outputPathAt(o, v, frame, time), o.pass);
       }
       if (!writer.submit(std::move(job))) return false;
     }
@@ -414,7 +304,7 @@ class ViewsRun {
   std::vector<robot::SensorSpec> sensors_;
   robot::BodyPoses rest_;
   std::vector<View> views_;
-  std::vector<Output> outputs_;  // grouped by view, in view order
+  render::OutputPlan plan_;
   render::Image referenceImage_;  // the color image --reference compares
   double drawSeconds_ = 0;
 };

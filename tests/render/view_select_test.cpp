@@ -7,6 +7,7 @@
 
 #include "core/loader.hpp"
 #include "render/limits.hpp"
+#include "render/output_plan.hpp"
 #include "render/views.hpp"
 
 using namespace rscene;
@@ -127,4 +128,61 @@ TEST(ViewSelect, UnknownAndAmbiguousNamesAreErrors) {
   EXPECT_EQ(again.error.rfind("--camera '/World/Cam' names 2 views: '/World/Cam' (id cam), the camera record at s.rscene:3", 0),
             0u)
       << again.error;
+}
+
+// Where the images go (render/output_plan): decided from the views alone,
+// before anything is drawn, with one message per way two images collide.
+TEST(OutputPlan, PatternsFilesAndCollisions) {
+  Built b;
+  build(b,
+        "camera /World/Depth -4 0 1 1 0 0 0 60 0.05 100 64 48 depth true id=d outputPath=shots/d.png\n"
+        "camera /World/Both -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb_depth true id=both outputPath=shots/both.png\n");
+  ViewFindings found;
+  std::vector<View> views = select(b, "", found, true);
+  ASSERT_EQ(views.size(), 2u);
+  OutputPlan plan;
+  // The records' outputPath: a one-pass view keeps it, a two-pass one gains {kind}.
+  ASSERT_TRUE(planOutputs(views, {}, b.sources(), plan, found)) << found.error;
+  EXPECT_EQ(plan.files, (std::vector<std::string>{"shots/d.png", "shots/d.npy", "shots/both.rgb.png",
+                                                  "shots/both.depth.png", "shots/both.depth.npy"}));
+  ASSERT_EQ(plan.outputs.size(), 3u);
+  EXPECT_EQ(outputPathAt(plan.outputs[2], views[1], 3, 0.5), "shots/both.depth.png");
+  // A trajectory: every frame its own file.
+  ASSERT_TRUE(planOutputs(views, {"out/{name}.{kind}.{frame}.png", true, false}, b.sources(), plan, found));
+  EXPECT_EQ(outputPathAt(plan.outputs[0], views[0], 7, 0.5), "out/World_Depth.depth.000007.png");
+  // Without {frame} or {time} every frame writes one file.
+  EXPECT_FALSE(planOutputs(views, {"out/{name}.{kind}.png", true, false}, b.sources(), plan, found));
+  EXPECT_EQ(found.error, "-o 'out/{name}.{kind}.png' has no {frame} or {time}: every frame of --trajectory would "
+                         "write the same file");
+  // Two views to one file, and one view's two passes to one file.
+  found = {};
+  EXPECT_FALSE(planOutputs(views, {"out/{kind}.png", false, false}, b.sources(), plan, found));
+  EXPECT_EQ(found.error, "two images would go to 'out/depth.png': '/World/Depth' (depth) and '/World/Both' (depth); "
+                         "use {name} and {kind} in -o, or give the records different outputPath [RS9048]");
+  found = {};
+  EXPECT_FALSE(planOutputs(views, {"out/{name}.png", false, false}, b.sources(), plan, found));
+  EXPECT_NE(found.error.find("view '/World/Both' makes several images (rgb, depth); put {kind} in -o"),
+            std::string::npos)
+      << found.error;
+  // Standard output takes one color image.
+  found = {};
+  EXPECT_FALSE(planOutputs(views, {"-", false, false}, b.sources(), plan, found));
+  EXPECT_EQ(found.error.rfind("-o - writes one color image; these views make 3 images", 0), 0u) << found.error;
+}
+
+TEST(OutputPlan, AnOutputPathASceneMayNotWriteIsAnErrorAtTheField) {
+  Built b;
+  build(b, "camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb true id=cam outputPath=x.png\n");
+  ViewFindings found;
+  std::vector<View> views = select(b, "cam", found);
+  ASSERT_EQ(views.size(), 1u);
+  // The scene model refuses it first (RS4xxx); a view's path is checked
+  // again where it becomes a file name.
+  views[0].outputPath = "../x.png";
+  OutputPlan plan;
+  EXPECT_FALSE(planOutputs(views, {}, b.sources(), plan, found));
+  ASSERT_EQ(found.diagnostics.size(), 1u);
+  EXPECT_EQ(found.diagnostics[0].code, std::string("RS9048"));
+  EXPECT_EQ(found.diagnostics[0].line, 3u);
+  EXPECT_TRUE(plan.files.empty());
 }
