@@ -64,10 +64,13 @@ class Checker {
       if (judged(d.recordIndex)) deformable(d);
     for (const Granular& g : s_.granulars)  // their substeps depend on the time step too
       if (judged(g.recordIndex) && !stepUnparsed) granular(g);
-    if (opt_.visualAssets)
+    if (opt_.visualAssets) {
       for (const Terrain& t : s_.terrains)
         for (const FoliageLayer& l : t.foliageLayers)
           if (judged(l.recordIndex)) foliage(l);
+      for (const InstancedVisual& v : s_.instancedVisuals)
+        if (judged(v.recordIndex)) instanced(v);
+    }
   }
 
   bool judged(int recordIndex) const {
@@ -111,6 +114,13 @@ class Checker {
 
   void foliage(const FoliageLayer& l) {
     if (l.enabled && l.primitive == "mesh") readable(reader(l.recordIndex), l.meshPath, "meshPath", "foliage layer '" + l.name + "': ");
+  }
+
+  // An enabled mesh with instances (shown or hidden by its group: the
+  // file is judged the same in validate's build, which resolves no groups).
+  void instanced(const InstancedVisual& v) {
+    if (v.enabled && !v.instances.empty() && v.primitive == "mesh")
+      readable(reader(v.recordIndex), v.meshPath, "meshPath", "instanced visual '" + v.path + "': ");
   }
 
   void object(const Object& o) {

@@ -26,7 +26,7 @@ struct SceneCheckOptions {
   SurfaceReader readSurface;
   // When set, a mesh file that exists must read as a mesh (RS7007): a
   // body's collision mesh and compound child meshes, and with
-  // visualAssets a foliage layer's mesh.  The tools pass lib/asset's
+  // visualAssets a foliage layer's and an instanced visual's mesh.  The tools pass lib/asset's
   // reader (asset::meshReader); validate only with --check-files.
   MeshReader readMesh;
   // Also judge the meshes only drawn (foliage): validate and rscene-render;

@@ -46,11 +46,12 @@ inline bool modelled(std::string_view tag) {
   return std::find(std::begin(kModelled), std::end(kModelled), tag) != std::end(kModelled);
 }
 
-// Record kinds SceneOptions::bodiesOnly builds.
+// Record kinds SceneOptions::bodiesOnly builds: what checkScene() judges.
 inline bool forBodies(std::string_view tag) {
   return tag == "time_step" || tag == "group" || tag == "object" || tag == "compound" || tag == "compound_child" ||
          tag == "terrain_region" || tag == "wire" || tag == "point_cloud" || tag == "articulated_resource" ||
-         tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular" || tag == "terrain_foliage_layer";
+         tag == "articulated" || tag == "articulated_ik" || tag == "deformable" || tag == "granular" || tag == "terrain_foliage_layer" ||
+         tag == "instanced_visual";
 }
 
 inline Eigen::Quaterniond toQuat(const Eigen::Vector4d& wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
