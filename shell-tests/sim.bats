@@ -190,6 +190,17 @@ setup() {
   [ ! -e cam.png ]
 }
 
+@test "--allow-missing-assets: a left-out robot's IK targets and --pd-gains joints are warnings, not silence or a usage error" {
+  cp "$ROOT/examples/robot_cell.rscene" cell.rscene
+  echo 'articulated_ik /World/Robot LF_FOOT 0.3,0.2,0.05' >> cell.rscene
+  run -0 --separate-stderr "$SIM" --allow-missing-assets --steps 5 --pd-gains LF_KFE=50,1 cell.rscene
+  [[ $stderr == *"cell.rscene:20:29: warning: IK target of frame 'LF_FOOT' is not solved: '/World/Robot' was left out for its missing robot file [RS5001]"* ]]
+  [[ $stderr == *"warning: --pd-gains names joint 'LF_KFE', which no articulated system loaded has as a movable joint; its gains are not used (1 left out by --allow-missing-assets) [RS5001]"* ]]
+  # without a robot left out, an unknown joint stays a usage error
+  run -2 --separate-stderr "$SIM" --steps 5 --pd-gains NO_SUCH=50,1 "$ROOT/examples/robot_cell.rscene"
+  [[ $stderr == *"--pd-gains names joint 'NO_SUCH', which no articulated system has as a movable joint"* ]]
+}
+
 @test "--allow-missing-assets drops a robot's missing or unreadable collision mesh with a warning" {
   mkdir -p robots/quadruped
   cp "$ROOT/examples/robot_cell.rscene" cell.rscene

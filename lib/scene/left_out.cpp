@@ -22,6 +22,16 @@ void detachFromLeftOut(const Document& doc, Scene& scene, const std::set<int>& r
          "wire '" + w.path + "' is not attached: '" + body + "' was left out " + why);
     w.enabled = false;
   }
+  // A robot left out is not posed: its IK targets are not solved.
+  for (Articulated& a : scene.articulated) {
+    if (!records.count(a.recordIndex)) continue;
+    for (ArticulatedIk& ik : a.ik) {
+      if (!ik.enabled) continue;
+      warn(ik.recordIndex, "frame",
+           "IK target of frame '" + ik.frame + "' is not solved: '" + a.path + "' was left out " + why);
+      ik.enabled = false;
+    }
+  }
   if (!sensors) return;
   auto mountRecord = [&](const Mount& m) { return mountedNode(scene, m).recordIndex; };
   for (Sensor& s : scene.sensors) {

@@ -57,6 +57,12 @@ std::string unknownJoint(const PdGains& pd, const std::vector<robot::RobotInstan
   return {};
 }
 
+int leftOut(const Scene& scene) {
+  int n = 0;
+  for (const Articulated& a : scene.articulated) n += a.leftOut;
+  return n;
+}
+
 }  // namespace
 
 bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::AssetCache& assets, Prepared& out,
@@ -80,7 +86,21 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
   ok = ok && makeRobots(doc, out.scene, out.robots, ds, o.allowMissingAssets);
   wo.robots = &out.robots;
   if (!parsePdGains(o.pdGains, wo.pd, usageError)) return false;
-  if (ok) usageError = unknownJoint(wo.pd, out.robots);
+  if (ok && leftOut(out.scene) > 0) {
+    // The joint may be one of a robot left out, whose joints are not known:
+    // a warning, not a usage error.
+    for (const std::string& name : unknownPdJoints(wo.pd, out.robots)) {
+      Diagnostic d;
+      d.severity = Severity::Warning;
+      d.code = scene_code::kMissingFile;
+      d.message = "--pd-gains names joint '" + name +
+                  "', which no articulated system loaded has as a movable joint; its gains are not used (" +
+                  std::to_string(leftOut(out.scene)) + " left out by --allow-missing-assets)";
+      ds.push_back(std::move(d));
+    }
+  } else if (ok) {
+    usageError = unknownJoint(wo.pd, out.robots);
+  }
   if (!usageError.empty()) return false;
   if (ok) {
     // --sensors: what will be recorded, checked before anything is built;
