@@ -243,3 +243,12 @@ EOF2
   run -0 "$SIM" --steps 1 --sensors out -o /dev/null slash.rscene
   [ -f out/scans/scans.csv ]
 }
+
+@test "a sensor position past 1e12 m is refused at the field by validate and sim alike; no file holds inf or NaN" {
+  sed 's|^sensor /World/Imu imu crate 0 0 0.25|sensor /World/Imu imu crate 1.5e308 1.5e308 0.25|' room.rscene > far.rscene
+  run -1 --separate-stderr "$BIN/rscene-validate" far.rscene
+  [[ ${lines[0]} == "far.rscene:10:29: error: sensor '/World/Imu': position is more than 1e+12 m from its frame's origin [RS7021]" ]]
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null far.rscene
+  [[ ${stderr_lines[0]} == "far.rscene:10:29: error: sensor '/World/Imu': position is more than 1e+12 m from its frame's origin [RS7021]" ]]
+  [ ! -e out ]
+}

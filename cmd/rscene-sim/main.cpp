@@ -92,9 +92,14 @@ int run(const Options& opt) {
   }
   std::unique_ptr<sim::SensorRecorder> recorder;
   if (!sensors.empty()) recorder = std::make_unique<sim::SensorRecorder>(scene, *world, sensors);
-  bool sensorsFailed = false;  // a sensor file could not be written (the message is printed)
+  bool sensorsFailed = false;  // a sensor file could not be written, or a reading was not finite (printed)
   auto record = [&] {
-    if (recorder && !recorder->sample(files)) sensorsFailed = true;
+    if (recorder && !recorder->sample(files)) {
+      sensorsFailed = true;
+      Diagnostics fault;
+      recorder->faultDiagnostic(doc, fault);
+      print(fault);
+    }
     return !sensorsFailed;
   };
   Clock::time_point loadedAt = Clock::now();

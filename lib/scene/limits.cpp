@@ -102,8 +102,15 @@ void checkRecords(const Document& doc, const Scene& scene, Diagnostics& diagnost
       RecordReader r(doc, i, diagnostics);
       for (const char* field : {"friction", "restitution", "staticFriction", "rollingFriction", "spinningFriction"})
         if (r.has(field)) checkCoefficient(r, field, r.number(field, 0), std::string("contact ") + field);
-    } else if (tag == "camera") {
+    } else if (tag == "sensor" || tag == "camera") {
+      // Poses as bodies have them: a sensor's readings and a view's
+      // matrices are computed from it, and 1.5e308 makes them inf or NaN.
       RecordReader r(doc, i, diagnostics);
+      if (tooLarge(r.vec3("position", Eigen::Vector3d::Zero())))
+        r.error("position", scene_code::kBadPose,
+                tag + " '" + r.text("path").value_or("") + "': position is more than " + number(kMaxLength) +
+                    " m from its frame's origin");
+      if (tag == "sensor") continue;
       for (const char* field : {"width", "height"}) {
         std::int64_t n = r.integer(field, 0);
         if (n < 0 || n > kMaxCameraSide)

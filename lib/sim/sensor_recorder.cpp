@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 
+#include "core/text.hpp"
 #include "robot/kinematics.hpp"
 #include "scene/reader.hpp"
 #include "scene/sensor_check.hpp"
@@ -208,6 +209,25 @@ bool SensorRecorder::due(State& s, double time, bool first) const {
   return true;
 }
 
+bool SensorRecorder::finite(std::size_t sensor, double time, const Pose& pose, const Eigen::Vector3d* a,
+                            const Eigen::Vector3d* b) {
+  bool ok = pose.position.allFinite() && pose.orientation.coeffs().allFinite() && (!a || a->allFinite()) &&
+            (!b || b->allFinite());
+  if (!ok) fault_ = Fault{sensor, time};
+  return ok;
+}
+
+void SensorRecorder::faultDiagnostic(const Document& doc, Diagnostics& diagnostics) const {
+  if (!fault_) return;
+  const robot::SensorSpec& s = sensors_[fault_->sensor].spec;
+  std::string time;
+  appendNumber(time, fault_->time);
+  reportAt(&doc, s.recordIndex, "position", rs::RS7024,
+           "sensor '" + s.name + "' has a reading that is not finite at time " + time +
+               " s: the body it rides on left the range a pose may have; nothing of it is written",
+           diagnostics, Severity::Error, "look for a body thrown away or a spring too stiff for the time step");
+}
+
 bool SensorRecorder::sample(SensorOutput& out) {
   if (sensors_.empty()) return true;
   const double time = world_.time(), dt = world_.timeStep();
@@ -242,12 +262,14 @@ bool SensorRecorder::sample(SensorOutput& out) {
       }
       if (due(st, time, false)) {
         ImuReading reading = imuReading(time, pose, st.velocity, v, w, scene_.gravity, dt, s.params, st.readings++);
-        if (!out.imuReading(i, reading)) return false;
+        if (!finite(i, time, pose, &reading.specificForce, &reading.angularVelocity) || !out.imuReading(i, reading))
+          return false;
       }
       st.velocity = v;
       continue;
     }
     if (!due(st, time, first)) continue;
+    if (!finite(i, time, pose)) return false;
     auto start = std::chrono::steady_clock::now();
     if (!geometryFresh) geometry_->update(world_), geometryFresh = true;
     LidarScanOptions o;

@@ -17,6 +17,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,16 @@ class SensorRecorder {
   // motion at every step): hands the readings due now to `out`.
   bool sample(SensorOutput& out);
 
+  // Why sample() returned false without `out` refusing: a reading or a
+  // sensor pose that was not finite (handed to nobody, so no file holds
+  // it).  faultDiagnostic() says it: RS7024 at the sensor's record.
+  struct Fault {
+    std::size_t sensor = 0;
+    double time = 0;
+  };
+  const std::optional<Fault>& fault() const { return fault_; }
+  void faultDiagnostic(const Document& doc, Diagnostics& diagnostics) const;
+
   const std::vector<RecordedSensor>& sensors() const { return sensors_; }
   std::uint64_t scans() const { return scans_; }
   double scanSeconds() const { return scanSeconds_; }  // wall time spent casting rays
@@ -87,11 +98,14 @@ class SensorRecorder {
  private:
   struct State;
   bool due(State& s, double time, bool first) const;
+  bool finite(std::size_t sensor, double time, const Pose& pose, const Eigen::Vector3d* a = nullptr,
+              const Eigen::Vector3d* b = nullptr);
 
   const Scene& scene_;
   const World& world_;
   std::vector<RecordedSensor> sensors_;
   std::vector<State> states_;
+  std::optional<Fault> fault_;
   std::unique_ptr<RayGeometry> geometry_;
   int threads_;
   std::uint64_t scans_ = 0;

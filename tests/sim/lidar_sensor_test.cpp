@@ -330,3 +330,27 @@ TEST(Lidar, TheHierarchyFindsWhatTestingEveryPrimitiveFinds) {
   }
   EXPECT_GT(hits, 300);  // the rays do meet things
 }
+
+// A sensor whose pose is not finite (the scene model refuses 1.5e308 as a
+// sensor position, RS7021; this builds past that check) hands nothing to
+// the output: sample() stops with a fault at the sensor's record.
+TEST(SensorFault, ANonFinitePoseIsAFaultAndNothingIsWritten) {
+  auto r = makeSensorRun(
+      "object /World/Box box 0 0 0.5 0.9238795 0 0 0.3826834 1 1 1 0 0 1 default - false true false - static true 1 "
+      "18446744073709551615 id=box1\n"
+      "sensor /World/Lidar lidar box1 1.5e308 1.5e308 1 1 0 0 0 id=s1 lidarChannels=4 lidarSamples=36 "
+      "lidarMinRange=0.1 lidarMaxRange=50 lidarVerticalFov=30 updateRate=10\n");
+  ASSERT_EQ(r->sensors.size(), 1u);
+  SensorRecorder rec(r->scene, *r->world, r->sensors);
+  Collected c;
+  EXPECT_FALSE(rec.sample(c));
+  EXPECT_TRUE(c.scans.empty());
+  ASSERT_TRUE(rec.fault().has_value());
+  Diagnostics d;
+  rec.faultDiagnostic(r->doc, d);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].code, std::string("RS7024"));
+  EXPECT_EQ(d[0].line, 4u);  // after the header and the gravity line
+  EXPECT_NE(d[0].message.find("sensor '/World/Lidar' has a reading that is not finite at time 0 s"), std::string::npos)
+      << d[0].message;
+}
