@@ -218,6 +218,16 @@ EOF2
   [ ! -e scene.out ]
 }
 
+@test "every signal that ends a run (TERM, HUP, PIPE, ALRM, QUIT, USR1, USR2) leaves nothing, and ends the tool by that signal" {
+  for sig in TERM HUP PIPE ALRM QUIT USR1 USR2; do
+    mkdir "k_$sig"
+    run timeout --preserve-status -s "$sig" 1 "$SIM" --duration 100000 --sensors "k_$sig/out" \
+      --trajectory "k_$sig/t.jsonl" -o "k_$sig/scene.out" room.rscene
+    [ "$status" -eq $((128 + $(kill -l "$sig"))) ] || { echo "$sig: status $status"; false; }
+    [ -z "$(ls -A "k_$sig")" ] || { echo "$sig left: $(ls -A "k_$sig")"; false; }
+  done
+}
+
 @test "--sensors '' is a usage error" {
   run -2 "$SIM" --sensors '' -o /dev/null room.rscene
   [[ $output == *"--sensors"* ]]
@@ -251,4 +261,17 @@ EOF2
   run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null far.rscene
   [[ ${stderr_lines[0]} == "far.rscene:10:29: error: sensor '/World/Imu': position is more than 1e+12 m from its frame's origin [RS7021]" ]]
   [ ! -e out ]
+}
+
+@test "--trajectory or -o inside a LiDAR's scan folder is refused before any work; no scan replaced" {
+  mkdir -p out/World+Lidar
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out --trajectory out/World+Lidar/scan_000000.pcd -o /dev/null room.rscene
+  [[ $stderr == *"rscene-sim: error: --trajectory 'out/World+Lidar/scan_000000.pcd' is inside the scan folder 'out/World+Lidar' of LiDAR '/World/Lidar', where its scans are written"* ]]
+  [ -z "$(ls out/World+Lidar)" ]
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o out/World+Lidar/x.rscene room.rscene
+  [[ $stderr == *"-o 'out/World+Lidar/x.rscene' is inside the scan folder"* ]]
+  [ -z "$(ls out/World+Lidar)" ]
+  # beside the folder is fine
+  run -0 "$SIM" --duration 1 --sensors out --trajectory out/traj.jsonl -o /dev/null room.rscene
+  [ -s out/traj.jsonl ]
 }

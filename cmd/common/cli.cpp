@@ -24,9 +24,11 @@ std::string gTool = "rscene";
 volatile std::sig_atomic_t gWriting = 0;             // inside writeOutput()
 volatile std::sig_atomic_t* gStopFlag = nullptr;     // stopOnInterrupt()
 
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGALRM, SIGQUIT, SIGUSR1, SIGUSR2};
+
 extern "C" void onTerminatingSignal(int sig) {
-  if (sig == SIGINT && gStopFlag && !gWriting) {
-    *gStopFlag = 1;
+  if (gStopFlag && !gWriting) {
+    if (!*gStopFlag) *gStopFlag = sig;
     return;
   }
   removeTemporaryFiles();
@@ -45,13 +47,12 @@ extern "C" void onTerminatingSignal(int sig) {
 }
 
 void installSignalHandlers() {
-  static const int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
   struct sigaction action {};
   action.sa_handler = onTerminatingSignal;
   action.sa_flags = SA_RESTART;
   sigemptyset(&action.sa_mask);
-  for (int sig : kSignals) sigaddset(&action.sa_mask, sig);
-  for (int sig : kSignals) {
+  for (int sig : kStopSignals) sigaddset(&action.sa_mask, sig);
+  for (int sig : kStopSignals) {
     struct sigaction old {};
     if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     ::sigaction(sig, &action, nullptr);
@@ -157,6 +158,28 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
 }
 
 void stopOnInterrupt(volatile std::sig_atomic_t* flag) { gStopFlag = flag; }
+
+sigset_t stopSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : kStopSignals) sigaddset(&set, sig);
+  return set;
+}
+
+int endBySignal(int sig) {
+  if (sig == SIGINT || sig <= 0) return kInterrupted;
+  std::fflush(nullptr);
+  struct sigaction fallback {};
+  fallback.sa_handler = SIG_DFL;
+  sigemptyset(&fallback.sa_mask);
+  ::sigaction(sig, &fallback, nullptr);
+  sigset_t only;
+  sigemptyset(&only);
+  sigaddset(&only, sig);
+  ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
+  ::raise(sig);
+  return 128 + sig;
+}
 
 InterruptibleScope::InterruptibleScope() : saved_(gWriting) { gWriting = 0; }
 InterruptibleScope::~InterruptibleScope() { gWriting = saved_; }

@@ -62,15 +62,25 @@ struct NamedOutput {
 // refuse, so a run never fails after replacing some of its outputs.
 bool checkOutputs(const std::vector<NamedOutput>& outputs);
 
-// setup() makes SIGINT, SIGTERM and SIGHUP remove the temporary file of an
-// output being written, then end the tool by that signal (a shell reports
-// 128+signal, 130 for SIGINT); signals that
-// were ignored when the tool started stay ignored (nohup, `cmd &`).  A tool
-// with a long loop of its own passes a flag here: SIGINT then only sets it,
-// except while an output is being written.
+// setup() makes every signal that ends a run (INT, TERM, HUP, PIPE, ALRM,
+// QUIT, USR1, USR2) remove the temporary file of an output being written,
+// then end the tool by that signal (a shell reports 128+signal, 130 for
+// SIGINT); signals that were ignored when the tool started stay ignored
+// (nohup, `cmd &`).  A tool with a long loop of its own passes a flag
+// here: such a signal then only sets it (to the signal's number), except
+// while an output is being written; the tool cleans up what its run made
+// and calls endBySignal().
 void stopOnInterrupt(volatile std::sig_atomic_t* flag);
 
-// While one lives, SIGINT only sets stopOnInterrupt()'s flag even inside a
+// The signals above, for a tool that blocks them around a write.
+sigset_t stopSignals();
+
+// Ends the tool by signal `sig` (the flag stopOnInterrupt() set), after its
+// cleanup: a script sees the status it would have seen without the flag.
+// SIGINT returns kInterrupted instead, as the tools always have.
+int endBySignal(int sig);
+
+// While one lives, a stop signal only sets stopOnInterrupt()'s flag even inside a
 // writeOutput() (a tool whose long loop runs inside the callback of the
 // outputs it streams, as rscene-sim's does): the loop then stops and
 // cancels its outputs itself.  Restores the previous state when it ends.

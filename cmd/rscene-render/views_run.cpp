@@ -106,7 +106,7 @@ class ViewsRun {
     for (;;) {
       if (interrupted) {
         writer.finish();
-        return cli::kInterrupted;
+        return cli::endBySignal(interrupted);
       }
       double time = 0;
       if (reader) {

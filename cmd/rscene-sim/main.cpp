@@ -28,7 +28,7 @@ namespace {
 using namespace rscene;
 using Clock = std::chrono::steady_clock;
 
-volatile std::sig_atomic_t gInterrupted = 0;  // set by SIGINT between outputs (cli::stopOnInterrupt)
+volatile std::sig_atomic_t gInterrupted = 0;  // the stop signal's number (cli::stopOnInterrupt)
 
 struct Options {
   std::string file = "-", output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
@@ -139,7 +139,7 @@ int run(const Options& opt) {
   bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
   if (!simulated || gInterrupted) {
     files.discard();  // a failed or interrupted run leaves no sensor files
-    return gInterrupted ? cli::kInterrupted : cli::kTrouble;
+    return gInterrupted ? cli::endBySignal(gInterrupted) : cli::kTrouble;
   }
   Diagnostics departures;
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));

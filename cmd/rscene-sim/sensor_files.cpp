@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 
+#include <algorithm>
 #include <cctype>
 #include <csignal>
 #include <charconv>
@@ -40,6 +41,19 @@ bool makeFolder(const fs::path& p, std::vector<std::string>& created) {
   return true;
 }
 
+// Whether `path` names something below `folder` (both as they resolve;
+// a path that does not exist yet resolves through its existing parents).
+bool inside(const std::string& path, const fs::path& folder) {
+  if (path.empty() || path == "-") return false;
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  fs::path f = fs::weakly_canonical(folder, ec);
+  if (ec) return false;
+  auto [fi, pi] = std::mismatch(f.begin(), f.end(), p.begin(), p.end());
+  return fi == f.end() && pi != p.end();
+}
+
 }  // namespace
 
 SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>& sensors, sim::PcdEncoding encoding)
@@ -54,10 +68,21 @@ SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>
 
 bool SensorFiles::prepare(std::vector<cli::NamedOutput> outputs) {
   if (!makeFolder(dir_, created_)) return false;
+  const std::size_t given = outputs.size();  // -o, --trajectory
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     bool lidar = sensors_[i].spec.kind == robot::SensorKind::Lidar;
     fs::path folder = lidar ? fs::path(dir_) / sensors_[i].output : fs::path(paths_[i]).parent_path();
     if (!makeFolder(folder, created_)) return false;
+    // A LiDAR's folder is its own: scan_NNNNNN.pcd files appear there as
+    // the run goes, so no other output may be inside it.
+    if (lidar)
+      for (std::size_t k = 0; k < given; ++k)
+        if (inside(outputs[k].path, folder)) {
+          cli::error(std::string(outputs[k].flag) + " '" + outputs[k].path + "' is inside the scan folder '" + folder.string() +
+                     "' of LiDAR '" + sensors_[i].spec.name +
+                     "', where its scans are written: give a path outside --sensors' sensor folders");
+          return false;
+        }
     outputs.push_back({"--sensors", paths_[i]});
   }
   return cli::checkOutputs(outputs);
@@ -92,12 +117,10 @@ bool SensorFiles::lidarScan(std::size_t sensor, std::uint64_t index, double time
   char name[40];
   std::snprintf(name, sizeof name, "scan_%06llu.pcd", static_cast<unsigned long long>(index));
   fs::path file = fs::path(dir_) / sensors_[sensor].output / name;
-  // SIGINT waits while a scan is written (it would end the tool there,
-  // leaving the scans before it): the stepping loop then sees the flag,
-  // stops, and discard() removes them.
-  sigset_t interrupt, previous;
-  sigemptyset(&interrupt);
-  sigaddset(&interrupt, SIGINT);
+  // A stop signal waits while a scan is written (it would end the tool
+  // there, leaving the scans before it): the stepping loop then sees the
+  // flag, stops, and discard() removes them.
+  sigset_t interrupt = cli::stopSignals(), previous;
   pthread_sigmask(SIG_BLOCK, &interrupt, &previous);
   bool written = cli::writeOutput(file.string(), [&](Sink& s) {
     sim::writePcd(s, points, pose, time, encoding_);
