@@ -452,3 +452,24 @@ XML
   cmp n/000001.depth.npy m/000001.depth.npy        # the same sequence on every run
   cmp n/000000.depth.npy one.depth.npy             # frame 0: the record's seed, as a single render
 }
+
+@test "a robot's sensor-set camera past --max-pixels is an error at its <sensor> element, with a code" {
+  cat > r.urdf <<'XML'
+<?xml version="1.0"?>
+<robot name="r">
+<link name="base" sensor="cam.set.xml"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+</robot>
+XML
+  cat > cam.set.xml <<'XML'
+<?xml version="1.0"?>
+<sensor_set name="s1">
+  <link>
+    <sensor name="c" type="rgb"><camera horizontal_fov="1.5"><image width="4096" height="4096"/></camera></sensor>
+  </link>
+</sensor_set>
+XML
+  printf 'raisim_engine_scene 1\narticulated_resource res R r.urdf resourceDirectory=.\narticulated /World/Robot res 0 0 1 1 0 0 0 true true id=art1\n' > s.rscene
+  run -2 --separate-stderr "$RENDER" --all-cameras --max-pixels 1000000 -o 'out/{name}.{kind}.png' s.rscene
+  [[ $stderr == *"cam.set.xml:4: error: sensor '/World/Robot/base/c': image 4096x4096 is 16777216 pixels, more than --max-pixels 1000000 [RS9013]"* ]]
+  [ ! -e out ]
+}

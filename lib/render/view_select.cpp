@@ -126,8 +126,19 @@ void sizeViews(std::vector<View>& views, const ViewRequest& request, const ViewS
       std::string problem = imageSizeProblem(v.camera.width, v.camera.height, request.maxPixels);
       if (problem.empty()) continue;
       if (v.recordIndex < 0) {
-        findings.error = "sensor '" + v.name + "': image " + problem;
-        return;
+        // A robot's sensor-set sensor: at its <sensor> element.
+        Diagnostic d;
+        d.severity = Severity::Error;
+        d.code = rs::RS9013;
+        d.message = "sensor '" + v.name + "': image " + problem;
+        d.hint = "raise --max-pixels, or give the sensor a smaller resolution";
+        if (v.sensorIndex >= 0 && static_cast<std::size_t>(v.sensorIndex) < sources.sensors.size()) {
+          const robot::SensorSpec& spec = sources.sensors[static_cast<std::size_t>(v.sensorIndex)];
+          d.file = spec.file;
+          d.line = spec.line > 0 ? static_cast<std::uint32_t>(spec.line) : 0;
+        }
+        findings.diagnostics.push_back(std::move(d));
+        continue;
       }
       RecordReader r(sources.document, static_cast<std::size_t>(v.recordIndex), findings.diagnostics);
       r.error("width", rs::RS9013, "sensor image " + problem);
