@@ -699,3 +699,25 @@ URDF
   run -1 "$BIN/rscene-validate" zero.rscene
   [[ $output == *"[RS7090]"* ]]
 }
+
+@test "bodies that start inside the ground are warned about, pushed out before they may sleep, and --until-rest waits for it" {
+  cat > sink.rscene <<'SCENE'
+raisim_engine_scene 1
+time_step 0.0025
+gravity 0 0 -9.81
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Cube box 0 0 0.2 1 0 0 0 1 1 1 0.5 1 10 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Crate box 3 0 0.2 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Deep box -3 0 -5 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Resting box 6 0 0.25 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  run -0 --separate-stderr "$SIM" --duration 5 --until-rest -o out.rscene sink.rscene
+  [ "${stderr_lines[0]}" = "sink.rscene:5:24: warning: dynamic body '/World/Cube' starts 0.3 m inside '/World/Ground'; the solver pushes it out over the first steps, which moves it and what it touches [RS7013]" ]
+  [[ $stderr == *"sink.rscene:7:24: warning: dynamic body '/World/Deep' starts 5.25 m inside '/World/Ground'"* ]]
+  [[ $stderr == *"sink.rscene:6:25: warning: dynamic body '/World/Crate' starts 0.05 m inside '/World/Ground'"* ]]
+  [[ $stderr != *"/World/Resting' starts"* ]]  # resting contact is no overlap
+  # each rests on the ground (half its height up, within 2 mm)
+  awk '$1 == "object" && $2 != "/World/Ground" {
+         h = $2 == "/World/Cube" ? 0.5 : 0.25; d = $6 - h; if (d < 0) d = -d
+         if (d > 0.002) { print $2, $6; bad = 1 } } END { exit bad }' out.rscene
+}

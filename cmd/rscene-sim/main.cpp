@@ -142,6 +142,7 @@ int run(const Options& opt) {
     return gInterrupted ? cli::endBySignal(gInterrupted) : cli::kTrouble;
   }
   Diagnostics departures;
+  for (const sim::StartOverlap& o : world->startOverlaps()) departures.push_back(sim::startOverlapWarning(doc, o));
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
   print(departures);
   Clock::time_point steppedAt = Clock::now();

@@ -220,6 +220,8 @@ struct World::Impl {
   bool bounded = false;
   btVector3 boundsMin, boundsMax;
   std::vector<Departure> departures;
+  std::vector<StartOverlap> startOverlaps;
+  bool penetrating = false;  // a contact of a dynamic body deeper than kRestPenetration after the last step
 
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::unique_ptr<btMotionState>> motion;
@@ -302,6 +304,29 @@ struct World::Impl {
 
   // Takes `s` out of the world where it is now: no more steps, contacts,
   // wires or springs; its pose stays what it was.
+  // One entry per dynamic body of a pair (a body inside another dynamic
+  // one is named once, by the first of the pair).
+  void noteStartOverlap(const btPersistentManifold& m, double depth) {
+    const btCollisionObject* a = m.getBody0();
+    const btCollisionObject* b = m.getBody1();
+    auto record = [&](const btCollisionObject* o) {
+      const BodyInfo& bi = info[static_cast<std::size_t>(o->getUserIndex())];
+      return bi.robot >= 0 ? -1 : bi.recordIndex;
+    };
+    auto dynamic = [](const btCollisionObject* o) {
+      const btRigidBody* rb = btRigidBody::upcast(o);
+      return rb && !rb->isStaticOrKinematicObject();
+    };
+    if (!dynamic(a)) std::swap(a, b);
+    if (!dynamic(a) || record(a) < 0) return;
+    for (StartOverlap& o : startOverlaps)
+      if (o.recordIndex == record(a) && o.otherRecordIndex == record(b)) {
+        o.depth = std::max(o.depth, depth);
+        return;
+      }
+    startOverlaps.push_back({record(a), record(b), depth});
+  }
+
   void depart(Simulated& s, std::string reason) {
     btRigidBody* body = s.body;
     for (auto& c : constraints)
@@ -863,8 +888,26 @@ void World::step() {
     if (!why.empty()) w.depart(s, std::move(why));
   }
   int n = 0;
-  for (int i = 0, m = w.dispatcher.getNumManifolds(); i < m; ++i)
-    n += w.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
+  w.penetrating = false;
+  for (int i = 0, m = w.dispatcher.getNumManifolds(); i < m; ++i) {
+    const btPersistentManifold* manifold = w.dispatcher.getManifoldByIndexInternal(i);
+    n += manifold->getNumContacts();
+    double depth = 0;  // as the step's collision detection found it, before the solver moved anything
+    for (int k = 0; k < manifold->getNumContacts(); ++k)
+      depth = std::max(depth, -double(manifold->getContactPoint(k).getDistance()));
+    if (!(depth > kRestPenetration)) continue;
+    // Split impulses push such a body out a little each step without
+    // giving it speed: it must not fall asleep (or count as at rest) half
+    // inside another, where Bullet's sleep test alone would freeze it.
+    bool dynamic = false;
+    for (const btCollisionObject* o : {manifold->getBody0(), manifold->getBody1()})
+      if (const btRigidBody* rb = btRigidBody::upcast(o); rb && !rb->isStaticOrKinematicObject()) {
+        const_cast<btRigidBody*>(rb)->activate();
+        dynamic = true;
+      }
+    w.penetrating = w.penetrating || dynamic;
+    if (w.stepCount == 1 && depth > kStartOverlap) w.noteStartOverlap(*manifold, depth);
+  }
   w.contacts = n;
 }
 
@@ -877,6 +920,7 @@ int World::contactCount() const { return impl_->contacts; }
 bool World::atRest() const {
   for (const Simulated& s : impl_->simulated)
     if (s.dynamic && !s.departed && s.body->isActive()) return false;
+  if (impl_->penetrating) return false;  // still being pushed out of another body
   if (!impl_->particles.atRest(impl_->sleepLinear)) return false;
   if (impl_->robots.empty()) return true;
   for (const RobotState& r : robotStates()) {
@@ -980,6 +1024,26 @@ std::optional<NonFinite> World::nonFinite() const {
     return bad;
   }
   return std::nullopt;
+}
+
+const std::vector<StartOverlap>& World::startOverlaps() const { return impl_->startOverlaps; }
+
+Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
+  Diagnostic w;
+  auto pathOf = [&](int recordIndex) -> std::string {
+    if (recordIndex < 0 || static_cast<std::size_t>(recordIndex) >= doc.records.size()) return "a robot's link";
+    Diagnostics unused;
+    RecordReader r(doc, static_cast<std::size_t>(recordIndex), unused);
+    return "'" + r.text("path").value_or("") + "'";
+  };
+  char depth[48];
+  std::snprintf(depth, sizeof depth, "%.3g m", o.depth);
+  Diagnostics one;
+  reportAt(&doc, o.recordIndex, "position", rs::RS7013,
+           "dynamic body " + pathOf(o.recordIndex) + " starts " + depth + " inside " + pathOf(o.otherRecordIndex) +
+               "; the solver pushes it out over the first steps, which moves it and what it touches",
+           one, Severity::Warning, "place it clear of what it starts inside");
+  return one.empty() ? w : one.front();
 }
 
 Diagnostic departureWarning(const Document& doc, const Departure& d) {

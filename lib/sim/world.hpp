@@ -171,6 +171,21 @@ struct Departure {
 // The warning (RS7012) for a departure, at its record's line.
 Diagnostic departureWarning(const Document& doc, const Departure& departure);
 
+// A dynamic body that started inside another (or inside the ground) by
+// more than kStartOverlap, as the first step's contacts found it.
+struct StartOverlap {
+  int recordIndex = -1;       // the dynamic body's record
+  int otherRecordIndex = -1;  // what it is inside (-1: a robot's link)
+  double depth = 0;           // m
+};
+inline constexpr double kStartOverlap = 0.01;  // m: closer than this is contact, not a mistake
+// Penetration the solver is still removing: no body in such a contact may
+// sleep, and the world is not at rest, until it is below this.
+inline constexpr double kRestPenetration = 0.005;  // m
+
+// The warning (RS7013) for a start overlap, at the body record's position.
+Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& overlap);
+
 class World {
  public:
   // Builds the Bullet world; mesh files are read here (RS5001/RS7007 on
@@ -195,6 +210,7 @@ class World {
   std::vector<ParticleState> particleStates() const;
   const ParticleSystems& particleSystems() const;  // counts and time spent (rscene-sim --report)
   const std::vector<Departure>& departures() const;  // in the order they happened
+  const std::vector<StartOverlap>& startOverlaps() const;  // found by the first step
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
   std::optional<NonFinite> nonFinite() const;
