@@ -5,7 +5,8 @@
 # ../shared/corpus when present:
 #   fuzz_loader     the .rscene loader, writer and validator
 #   fuzz_from_json  rscene-from-json's reader (seeds: the scenes as JSON)
-#   fuzz_sim        rscene-sim's world build and 20 steps (meshes missing)
+#   fuzz_sim        rscene-sim's world build, 200 steps with grains, deformables
+#                   and sensor readings (meshes missing)
 #   fuzz_render_scene  rscene-render's scene preparation, without GL
 #   fuzz_urdf       the URDF reader (seeds: tests/data/robots/urdf, examples/robots)
 #   fuzz_trajectory rscene-render --trajectory's reader (seeds: a JSON Lines and a CSV trajectory)
@@ -36,9 +37,13 @@ cmake --build "$BUILD" -j "${FUZZ_JOBS:-2}" --target "${TARGETS[@]}" make_json_s
 ARTIFACTS=$BUILD/fuzz-artifacts
 mkdir -p "$ARTIFACTS" "$BUILD/fuzz-corpus" "$BUILD/fuzz-corpus-json" "$BUILD/fuzz-corpus-sim" "$BUILD/fuzz-corpus-render"
 shopt -s nullglob
-seeds=("$ROOT"/tests/data/*.rscene "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene)
+# The hostile-input review's reproducers (../shared/repro) seed them too.
+seeds=("$ROOT"/tests/data/*.rscene "$ROOT"/examples/*.rscene "$ROOT"/../shared/corpus/*.rscene
+  "$ROOT"/../shared/repro/*/*.rscene)
 for f in "${seeds[@]}"; do
-  for dir in fuzz-corpus fuzz-corpus-sim fuzz-corpus-render; do cp -f "$f" "$BUILD/$dir/seed_$(basename "$f")"; done
+  for dir in fuzz-corpus fuzz-corpus-sim fuzz-corpus-render; do
+    cp -f "$f" "$BUILD/$dir/seed_$(basename "$(dirname "$f")")_$(basename "$f")"
+  done
 done
 "$BUILD/bin/make_json_seeds" "$BUILD/fuzz-corpus-json" "${seeds[@]}"
 mkdir -p "$BUILD/fuzz-corpus-urdf"
