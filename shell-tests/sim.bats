@@ -721,3 +721,16 @@ SCENE
          h = $2 == "/World/Cube" ? 0.5 : 0.25; d = $6 - h; if (d < 0) d = -d
          if (d > 0.002) { print $2, $6; bad = 1 } } END { exit bad }' out.rscene
 }
+
+@test "what rscene-sim writes, rscene-sim reads: examples and corpus settle, are written, validate clean, and settle again" {
+  local scenes=("$ROOT"/examples/*.rscene)
+  [ -d "$CORPUS" ] && scenes+=("$CORPUS"/*.rscene)
+  for f in "${scenes[@]}"; do
+    n=$(basename "$f" .rscene)
+    d=$(dirname "$f")
+    run -0 "$SIM" --allow-missing-assets --base-dir "$d" --duration 1 -o "$n.1.rscene" "$f"
+    run -0 "$BIN/rscene-validate" --base-dir "$d" "$n.1.rscene"
+    run -0 "$SIM" --allow-missing-assets --base-dir "$d" --duration 1 -o "$n.2.rscene" "$n.1.rscene" ||
+      { echo "$n: its own output refused"; false; }
+  done
+}
