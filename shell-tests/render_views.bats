@@ -473,3 +473,21 @@ XML
   [[ $stderr == *"cam.set.xml:4: error: sensor '/World/Robot/base/c': image 4096x4096 is 16777216 pixels, more than --max-pixels 1000000 [RS9013]"* ]]
   [ ! -e out ]
 }
+
+@test "a signal that stops a --trajectory render leaves every frame whole (an image with its .json) and ends the tool by that signal" {
+  needs_tools rscene-sim
+  cat > drop.rscene <<'SCENE'
+raisim_engine_scene 1
+time_step 0.0025
+gravity 0 0 -9.81
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Box box 0 0 2 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+camera /World/Seg -4 0 1 1 0 0 0 60 0.05 100 32 24 segmentation true id=seg
+SCENE
+  "$BIN/rscene-sim" --duration 20 --trajectory t.jsonl -o /dev/null drop.rscene
+  run timeout --preserve-status -s TERM 2 "$RENDER" --all-cameras --trajectory t.jsonl -o 'f/{name}.{kind}.{frame}.png' drop.rscene
+  [ "$status" -eq 143 ]
+  ls f/*.png > /dev/null  # some frames were written before the signal
+  for png in f/*.png; do [ -s "${png%.png}.json" ] || { echo "no legend for $png"; false; }; done
+  [ -z "$(find f -name '.*tmp*')" ]
+}

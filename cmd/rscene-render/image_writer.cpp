@@ -1,6 +1,9 @@
 #include "rscene-render/image_writer.hpp"
 
+#include <pthread.h>
+
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 
 #include "common/cli.hpp"
@@ -53,6 +56,11 @@ bool ImageWriter::finish() {
 }
 
 void ImageWriter::work() {
+  // Stop signals go to the drawing thread, which only sets the stop flag:
+  // a job here is written whole (an image with its .npy or .json), never
+  // cut between its files by a signal that ends the tool.
+  sigset_t stop = cli::stopSignals();
+  pthread_sigmask(SIG_BLOCK, &stop, nullptr);
   for (;;) {
     std::pair<ImageJob, std::size_t> job;
     {

@@ -137,6 +137,7 @@ class ViewsRun {
     }
     bool ok = writer.finish();
     if (progress) std::fputc('\n', stderr);
+    if (interrupted) return cli::endBySignal(interrupted);  // the frames written stay, each one whole
     double encodeSeconds = writer.encodeSeconds();
     std::string referencePng;
     if (ok && reference()) {
