@@ -49,3 +49,12 @@ setup() {
   [ "$status" -ne 0 ]
   [[ "$output" == *"composite.xml:7"*"[RS7036]"* ]]
 }
+
+@test "mjcf: <size nuser_body=400000000> is refused at its line before MuJoCo allocates [RS7053]" {
+  cp "$SHARED/repro/03-mjcf-size-unbounded-alloc/nuser_body.xml" .
+  scene nuser_body.xml 0 > s.rscene
+  # 9.4 GB before: under a 1 GiB address-space limit it must still answer.
+  run bash -c 'ulimit -v 1048576; exec "$1" --check-files s.rscene' _ "$V"
+  [ "$status" -eq 1 ]
+  [[ "$output" == *"nuser_body.xml:2: error: <size nuser_body=\"400000000\"> is over the cap of 1000"*"[RS7053]"* ]]
+}

@@ -140,6 +140,10 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
   for (const MjcfFiles::Named& f : named.files)
     if (!check(f.path, f.from, f.line, "file")) return false;
   if (named.tooDeep) return fail(code::kBadFile, path, 0, "includes nested too deep or too many included files");
+  if (!named.overCaps.empty()) {
+    for (const MjcfFiles::OverCap& o : named.overCaps) fail(code::kMjcfOverCap, o.file, o.line, o.message);
+    return false;
+  }
   if (named.compositeLine > 0)
     return fail(code::kMjcfUnsupported, named.compositeFile, named.compositeLine,
                 "<composite> is not read: MuJoCo expands it into as many bodies as its count asks, "
