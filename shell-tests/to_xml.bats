@@ -177,3 +177,12 @@ EOF
   [ ! -e x.xml ]
   run -2 "$BIN/rscene-to-xml" "$ROOT/examples/robot_cell.rscene" --relative-to out --absolute-paths
 }
+
+@test "names the XML template language would read (@@, {}, [THIS_DIR]) or control characters: refused at the record [RS8132]" {
+  cp "$SHARED/repro/13-to-xml-template-names/scene.rscene" names.rscene
+  refused "names.rscene:8:8: error:" "$BIN/rscene-to-xml" -o w.xml names.rscene
+  [[ $stderr == *"'@@', which rscene-from-xml reads as a parameter"*"[RS8132]"* ]]
+  [[ $stderr == *"names.rscene:9:8:"*"expression"*"names.rscene:10:8:"*"[THIS_DIR]"* ]]
+  printf 'raisim_engine_scene 1\nobject /World/a%%01b box 0 0 0.5 1 0 0 0 1 1 1 0 0 1 default - false true false - dynamic true 1 18446744073709551615\n' > ctrl.rscene
+  refused "ctrl.rscene:2:8: error: the name cannot be written to a world XML: it holds a control character" "$BIN/rscene-to-xml" -o c.xml ctrl.rscene
+}
