@@ -121,10 +121,10 @@ EOF
   [[ $output == *'<state qpos="0 0 1 1 0 0 0"/>'* ]]
 }
 
-@test "a name XML cannot hold is refused (RS8130)" {
+@test "a name XML cannot hold is refused at its record (RS8132)" {
   printf 'raisim_engine_scene 1\nobject /World/a%%01b box 0 0 0 1 0 0 0 1 1 1 0 0 1 default - false true false - dynamic true 1 18446744073709551615\n' > bad.rscene
   run --separate-stderr -2 "$TOOL" bad.rscene
-  [[ $stderr == *"<box> name: a value XML cannot hold"*"[RS8130]"* ]]
+  [[ $stderr == "bad.rscene:2:8: error: the name cannot be written to a world XML: it holds a control character"*"[RS8132]"* ]]
 }
 
 @test "usage and input errors exit 2" {
