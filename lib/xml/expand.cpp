@@ -130,6 +130,15 @@ bool Expander::reportUnsetParameters(const Element& raw) {
   loopNames.erase(std::remove(loopNames.begin(), loopNames.end(), std::string()), loopNames.end());
   std::vector<std::string> reported;
   std::function<void(const Element&)> visit = [&](const Element& e) {
+    // An element that exist removes needs none of its values (its exist
+    // known now: no loop variable in it).
+    if (const Attribute* exist = e.attribute("exist")) {
+      std::string substituted, value, why;
+      ExpressionLimits limits{limits_.maxExpressionLength, limits_.maxExpressionDepth};
+      if (params_.substitute(exist->value, substituted, &why, limits_.maxFileBytes) &&
+          evaluateExpressions(substituted, limits, value, &why) && (value == "false" || value == "0"))
+        return;
+    }
     for (const Attribute& a : e.attributes) {
       if (e.name == "array" && a.name == "idx") continue;
       for (const std::string& name : params_.unsetNames(a.value, loopNames)) {

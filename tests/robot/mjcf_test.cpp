@@ -533,6 +533,50 @@ TEST(Mjcf, MissingDirectoryAndOversizeFilesAreRefusedBeforeMuJoCo) {
   EXPECT_NE(diags[0].message.find("over the cap"), std::string::npos) << diags[0].message;
 }
 
+TEST(Mjcf, MissingMeshesFollowTheUrdfRule) {
+  // A mesh only drawn (contype = conaffinity = 0) that is not there: a
+  // warning at its <mesh>, the geom left out, the robot loads.  A colliding
+  // one: RS5001 there, a warning with --allow-missing-assets.
+  fs::path dir = fs::temp_directory_path() / ("rscene_mjcf_missing_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "model.xml").string();
+  auto write = [&](const char* contype) {
+    std::ofstream f(path);
+    f << "<mujoco>\n  <asset>\n    <mesh name=\"gone\" file=\"gone.stl\"/>\n  </asset>\n"
+         "  <worldbody><body name=\"b\"><freejoint/><geom name=\"hull\" type=\"box\" size=\"0.1 0.1 0.1\"/>\n"
+         "    <geom name=\"look\" type=\"mesh\" mesh=\"gone\" contype=\""
+      << contype << "\" conaffinity=\"0\"/></body></worldbody>\n</mujoco>\n";
+  };
+  write("0");
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(path, LoadOptions{}, model, diags)) << dump(diags);
+  ASSERT_FALSE(diags.empty());
+  EXPECT_EQ(diags[0].code, std::string(code::kSkipped)) << dump(diags);
+  EXPECT_EQ(diags[0].severity, Severity::Warning);
+  EXPECT_EQ(diags[0].line, 3u);
+  EXPECT_NE(diags[0].message.find("visual mesh"), std::string::npos) << diags[0].message;
+  EXPECT_FALSE(hasErrors(diags)) << dump(diags);
+  ASSERT_EQ(model.links.size(), 1u);
+  ASSERT_EQ(model.links[0].visuals.size(), 1u);  // the box stays, the mesh is left out
+  EXPECT_EQ(model.links[0].visuals[0].name, "hull");
+
+  write("1");
+  diags.clear();
+  EXPECT_FALSE(loadMjcf(path, LoadOptions{}, model, diags));
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, std::string(code::kMissingFile));
+  EXPECT_EQ(diags[0].line, 3u);
+  LoadOptions allow;
+  allow.allowMissingMeshes = true;
+  diags.clear();
+  ASSERT_TRUE(loadMjcf(path, allow, model, diags)) << dump(diags);
+  EXPECT_EQ(diags[0].code, std::string(code::kMissingFile));
+  EXPECT_EQ(diags[0].severity, Severity::Warning);
+  ASSERT_EQ(model.links[0].collisions.size(), 1u);  // only the box collides
+  fs::remove_all(dir);
+}
+
 TEST(Mjcf, AllocationsPastTheCapsAreRefusedWhereTheyAreWrittenBeforeMuJoCo) {
   // 400 bytes asking MuJoCo for 9.4 GB (nuser_body), a dense njmax x njmax
   // matrix, a 20000 x 20000 height field, a 10000-wide skybox, and a PNG

@@ -80,11 +80,11 @@ TEST(Expand, EveryUnsetParameterIsNamedAtOnce) {
   </array></objects></raisim>)");
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(errors(r),
-            "w.xml:2:45: <array> end: @@sphere_count is not set: define it in <params> or give --param "
+            "w.xml:2:32: <array> end: @@sphere_count is not set: define it in <params> or give --param "
             "sphere_count=VALUE [RS8104]\n"
-            "w.xml:3:35: <sphere> exist: @@spawn_sphere is not set: define it in <params> or give --param "
+            "w.xml:3:36: <sphere> exist: @@spawn_sphere is not set: define it in <params> or give --param "
             "spawn_sphere=VALUE [RS8104]\n"
-            "w.xml:4:55: <box> exist: @@spawn_box is not set: define it in <params> or give --param "
+            "w.xml:4:46: <box> exist: @@spawn_box is not set: define it in <params> or give --param "
             "spawn_box=VALUE [RS8104]\n");
 }
 

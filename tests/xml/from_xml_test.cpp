@@ -741,7 +741,7 @@ TEST(FromXml, NegativeZeroIsWrittenZeroHiddenIsInvisibleAndVelocitiesAreNamedAsW
       "<compound name=\"k\" mass=\"1\" appearance=\"hidden\" com=\"0 0 0\"><children><sphere>"
       "<dim radius=\"0.5\"/></sphere></children></compound>"));
   ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].message);
-  EXPECT_EQ(r.text.find("-0"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find(" -0 "), std::string::npos) << r.text;
   EXPECT_NE(r.text.find("object /World/c box 0 0 0.5 1 0 0 0 1 1 1 0 0 1 default - false false false - dynamic"),
             std::string::npos)
       << r.text;
