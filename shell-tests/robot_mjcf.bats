@@ -49,3 +49,25 @@ setup() {
   [ "$status" -ne 0 ]
   [[ "$output" == *"composite.xml:7"*"[RS7036]"* ]]
 }
+
+@test "mjcf: <size nuser_body=400000000> is refused at its line before MuJoCo allocates [RS7053]" {
+  cp "$SHARED/repro/03-mjcf-size-unbounded-alloc/nuser_body.xml" .
+  scene nuser_body.xml 0 > s.rscene
+  # 9.4 GB before: under a 1 GiB address-space limit it must still answer.
+  run bash -c 'ulimit -v 1048576; exec "$1" --check-files s.rscene' _ "$V"
+  [ "$status" -eq 1 ]
+  [[ "$output" == *"nuser_body.xml:2: error: <size nuser_body=\"400000000\"> is over the cap of 1000"*"[RS7053]"* ]]
+}
+
+@test "mjcf: a missing visual-only mesh is a warning as in a URDF (RS7031); a missing colliding one RS5001" {
+  mkdir meshes
+  printf '<mujoco>\n  <compiler meshdir="meshes"/>\n  <asset>\n    <mesh name="gone" file="gone.stl"/>\n  </asset>\n  <worldbody><body name="b"><freejoint/><geom type="box" size="0.1 0.1 0.1"/>\n    <geom type="mesh" mesh="gone" contype="%s" conaffinity="0"/></body></worldbody>\n</mujoco>\n' 0 > look.xml
+  sed 's/contype="0"/contype="1"/' look.xml > hit.xml
+  scene "$PWD/look.xml" 0,0,1,1,0,0,0 > look.rscene
+  run -0 "$V" --check-files look.rscene
+  [[ "$output" == *"look.xml:4: warning: visual mesh '"*"gone.stl' not found (mesh 'gone'): its geoms are left out [RS7031]"* ]]
+  [[ "$output" != *RS7030* ]]
+  scene "$PWD/hit.xml" 0,0,1,1,0,0,0 > hit.rscene
+  run -1 "$V" --check-files hit.rscene
+  [[ "$output" == *"hit.xml:4: error: collision mesh '"*"gone.stl' not found (mesh 'gone') [RS5001]"* ]]
+}

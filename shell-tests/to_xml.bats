@@ -121,10 +121,10 @@ EOF
   [[ $output == *'<state qpos="0 0 1 1 0 0 0"/>'* ]]
 }
 
-@test "a name XML cannot hold is refused (RS8130)" {
+@test "a name XML cannot hold is refused at its record (RS8132)" {
   printf 'raisim_engine_scene 1\nobject /World/a%%01b box 0 0 0 1 0 0 0 1 1 1 0 0 1 default - false true false - dynamic true 1 18446744073709551615\n' > bad.rscene
   run --separate-stderr -2 "$TOOL" bad.rscene
-  [[ $stderr == *"<box> name: a value XML cannot hold"*"[RS8130]"* ]]
+  [[ $stderr == "bad.rscene:2:8: error: the name cannot be written to a world XML: it holds a control character"*"[RS8132]"* ]]
 }
 
 @test "usage and input errors exit 2" {
@@ -176,4 +176,13 @@ EOF
   [ "$stderr" = "rscene-to-xml: error: --relative-to is for standard output: with -o FILE, paths are relative to FILE's folder" ]
   [ ! -e x.xml ]
   run -2 "$BIN/rscene-to-xml" "$ROOT/examples/robot_cell.rscene" --relative-to out --absolute-paths
+}
+
+@test "names the XML template language would read (@@, {}, [THIS_DIR]) or control characters: refused at the record [RS8132]" {
+  cp "$SHARED/repro/13-to-xml-template-names/scene.rscene" names.rscene
+  refused "names.rscene:8:8: error:" "$BIN/rscene-to-xml" -o w.xml names.rscene
+  [[ $stderr == *"'@@', which rscene-from-xml reads as a parameter"*"[RS8132]"* ]]
+  [[ $stderr == *"names.rscene:9:8:"*"expression"*"names.rscene:10:8:"*"[THIS_DIR]"* ]]
+  printf 'raisim_engine_scene 1\nobject /World/a%%01b box 0 0 0.5 1 0 0 0 1 1 1 0 0 1 default - false true false - dynamic true 1 18446744073709551615\n' > ctrl.rscene
+  refused "ctrl.rscene:2:8: error: the name cannot be written to a world XML: it holds a control character" "$BIN/rscene-to-xml" -o c.xml ctrl.rscene
 }

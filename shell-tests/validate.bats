@@ -423,3 +423,16 @@ walker_scene() {  # $1: extra records and keys, appended; URDF by absolute path
   run -1 "$V" chain.rscene
   [[ "$output" == *"generalizedVelocity has 12 numbers; the model '2DrobotArm' has 9 [RS7041]"* ]]
 }
+
+@test "robots: a URDF whose <?xml?> follows a comment is read with a warning (RS7054); a mismatched end tag is named at its line" {
+  { echo '<!-- exported by an old tool -->'; cat "$ROBOTS/walker.urdf"; } > commented.urdf
+  grep -q '^<?xml' "$ROBOTS/walker.urdf" || sed -i '1a <?xml version="1.0" ?>' commented.urdf
+  walker_scene "articulated /World/C walker_res 0 0 0 1 0 0 0 true true sourcePath=$PWD/commented.urdf" > c.rscene
+  run -0 "$V" --check-files c.rscene
+  [[ "$output" == *"commented.urdf:2: warning: the <?xml ...?> declaration comes after a comment"*"[RS7054]"* ]]
+  [[ "$output" != *RS7030* ]]
+  printf '<robot name="r">\n  <link name="a">\n\n  </lnk>\n</robot>\n' > bad.urdf
+  walker_scene "articulated /World/D walker_res 0 0 0 1 0 0 0 true true sourcePath=$PWD/bad.urdf" > d.rscene
+  run -1 "$V" --check-files d.rscene
+  [[ "$output" == *"bad.urdf:4: error: robot file is not well-formed XML (mismatched element: </lnk> does not close <link> (opened at line 2))"*"[RS7030]"* ]]
+}

@@ -416,3 +416,35 @@ EOF
   run -2 --separate-stderr "$TO" "$ROOT/examples/robot_cell.rscene" --relative-to . --absolute-paths
   [[ $stderr == *"--absolute-paths excludes --relative-to"* ]]
 }
+
+@test "-0.000000 and appearance=hidden (RaiSim's office1.xml): from-xml | to-xml | from-xml is byte-identical, hidden stays hidden" {
+  cat > office.xml <<'XML'
+<?xml version="1.0" ?>
+<raisim version="1.0">
+    <objects>
+        <box name="wall" mass="1" body_type="static" appearance="hidden">
+            <dim x="2" y="0.1" z="1"/>
+            <state pos="1 -0.000000 0.5" quat="-0.000000 0.000000 -0.000000 1.000000"/>
+        </box>
+        <sphere name="ball" mass="1"><dim radius="0.2"/><state pos="0 0 1" quat="1 -0 0 0"/></sphere>
+    </objects>
+</raisim>
+XML
+  "$FROM" -q -o first.rscene office.xml
+  ! grep -q -- ' -0 ' first.rscene
+  grep -q '^object /World/wall box .* false false false - static' first.rscene  # visible false
+  "$TO" -q -o back.xml first.rscene
+  grep -q 'appearance="hidden"' back.xml
+  ! grep -q -- '-0' back.xml
+  "$FROM" -q -o second.rscene back.xml
+  cmp first.rscene second.rscene
+}
+
+@test "spheres.xml without parameters: every unset parameter is named at once [RS8104]" {
+  [ -d "$EXAMPLES" ] || skip "no $EXAMPLES"
+  run -2 --separate-stderr "$FROM" -o s.rscene "$EXAMPLES/spheres.xml"
+  for p in sphere_count spawn_sphere spawn_box sphere_height_offset; do
+    [[ $stderr == *"@@$p is not set"*"[RS8104]"* ]] || { echo "$p not named"; echo "$stderr"; return 1; }
+  done
+  [ ! -e s.rscene ]
+}

@@ -10,6 +10,8 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <cstring>
+#include <memory>
 #include <cctype>
 #include <filesystem>
 #include <mutex>
@@ -101,6 +103,34 @@ std::uint32_t lineOf(const std::string& text) {
   return static_cast<std::uint32_t>(std::stoul(m[1].str()));
 }
 
+// A stand-in for a mesh file that is not there: a tetrahedron of 1 mm
+// edges (MuJoCo needs a volume), in the file's format by its extension;
+// empty for a format MuJoCo 2.2.2 reads that has none here (.msh).
+std::string placeholderMesh(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const float v[4][3] = {{0, 0, 0}, {1e-3f, 0, 0}, {0, 1e-3f, 0}, {0, 0, 1e-3f}};
+  static const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  if (ext == ".stl") {
+    std::string stl(84 + 4 * 50, '\0');
+    const std::uint32_t n = 4;
+    std::memcpy(&stl[80], &n, 4);
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) std::memcpy(&stl[84 + i * 50 + 12 + k * 12], v[f[i][k]], 12);
+    return stl;
+  }
+  if (ext == ".obj")
+    return "v 0 0 0\nv 0.001 0 0\nv 0 0.001 0\nv 0 0 0.001\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  return {};
+}
+
+struct VfsDeleter {
+  void operator()(mjVFS* v) const {
+    mj_deleteVFS(v);
+    delete v;
+  }
+};
+
 }  // namespace
 
 bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, Diagnostics& diagnostics) {
@@ -139,7 +169,40 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
   const MjcfFiles named = scanMjcf(path, options.maxFileBytes);
   for (const MjcfFiles::Named& f : named.files)
     if (!check(f.path, f.from, f.line, "file")) return false;
+  // Mesh files that do not exist: as in a URDF, a mesh only drawn is left
+  // out with a warning, and one that collides is an error (a warning with
+  // --allow-missing-assets, and it is left out).  MuJoCo needs every file
+  // to compile, so each gets a stand-in in a virtual file system; the
+  // geoms using it are skipped by the conversion (the file cannot be read).
+  struct Missing {
+    std::string name;  // the mesh's name
+    const MjcfFiles::Named* named;
+  };
+  std::vector<Missing> missing;
+  std::unique_ptr<mjVFS, VfsDeleter> vfs;
+  for (const auto& [mesh, file] : named.meshes) {
+    if (fileExistsOnDisk(file) || whyNotAFile(file) != "does not exist") continue;
+    std::string stand = placeholderMesh(file);
+    if (stand.empty()) continue;  // MuJoCo's own message names it
+    const MjcfFiles::Named* where = nullptr;
+    for (const MjcfFiles::Named& f : named.files)
+      if (f.path == file) where = &f;
+    if (!vfs) {
+      vfs.reset(new mjVFS);
+      mj_defaultVFS(vfs.get());
+    }
+    const std::string base = std::filesystem::path(file).filename().string();
+    if (mj_findFileVFS(vfs.get(), base.c_str()) < 0) {
+      if (mj_makeEmptyFileVFS(vfs.get(), base.c_str(), static_cast<int>(stand.size())) != 0) continue;
+      std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), base.c_str())], stand.data(), stand.size());
+    }
+    missing.push_back({mesh, where});
+  }
   if (named.tooDeep) return fail(code::kBadFile, path, 0, "includes nested too deep or too many included files");
+  if (!named.overCaps.empty()) {
+    for (const MjcfFiles::OverCap& o : named.overCaps) fail(code::kMjcfOverCap, o.file, o.line, o.message);
+    return false;
+  }
   if (named.compositeLine > 0)
     return fail(code::kMjcfUnsupported, named.compositeFile, named.compositeLine,
                 "<composite> is not read: MuJoCo expands it into as many bodies as its count asks, "
@@ -151,7 +214,7 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
   std::array<char, 2048> error{};
   mjModel* m = nullptr;
   try {
-    m = mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+    m = mj_loadXML(path.c_str(), vfs.get(), error.data(), static_cast<int>(error.size()));
   } catch (const std::exception& e) {
     if (m) mj_deleteModel(m);
     return fail(code::kBadFile, path, 0, "mujoco failed on the model: " + oneLine(e.what()));
@@ -179,6 +242,34 @@ bool loadMjcf(const std::string& path, const LoadOptions& options, Model& out, D
     d.message = "modules= are URDF fragments; they are not inserted into an MJCF model";
     d.file = path;
     diagnostics.push_back(std::move(d));
+  }
+  bool missingCollision = false;
+  for (const Missing& x : missing) {
+    const int id = mj_name2id(m, mjOBJ_MESH, x.name.c_str());
+    bool collides = false;
+    for (int g = 0; g < m->ngeom; ++g)
+      collides = collides || (m->geom_type[g] == mjGEOM_MESH && m->geom_dataid[g] == id &&
+                              (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0));
+    const std::string file = named.meshes.at(x.name);
+    Diagnostic d;
+    d.file = x.named ? x.named->from : path;
+    d.line = x.named ? static_cast<std::uint32_t>(x.named->line) : 0;
+    if (collides && !options.allowMissingMeshes) {
+      d.severity = Severity::Error;
+      d.code = code::kMissingFile;
+      d.message = "collision mesh '" + file + "' not found (mesh '" + x.name + "')";
+      missingCollision = true;
+    } else {
+      d.severity = Severity::Warning;
+      d.code = collides ? code::kMissingFile : code::kSkipped;
+      d.message = std::string(collides ? "collision" : "visual") + " mesh '" + file + "' not found (mesh '" + x.name +
+                  "'): its geoms are left out";
+    }
+    diagnostics.push_back(std::move(d));
+  }
+  if (missingCollision) {
+    mj_deleteModel(m);
+    return false;
   }
   bool ok = convertMjcf(*m, path, named.meshes, out, diagnostics);
   mj_deleteModel(m);

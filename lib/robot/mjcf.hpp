@@ -20,6 +20,8 @@ namespace code {
 // MJCF the robot model cannot hold: a free joint below the top level or
 // beside other joints, a second top-level body beside a floating base.
 inline constexpr const char* kMjcfUnsupported = rs::RS7036;
+// MJCF value that would make MuJoCo allocate past a cap (MjcfFiles::overCaps).
+inline constexpr const char* kMjcfOverCap = rs::RS7053;
 // MJCF element converted approximately (an ellipsoid geom as a sphere), or
 // a warning of MuJoCo's compiler.
 inline constexpr const char* kMjcfApproximated = rs::RS7037;
@@ -48,11 +50,23 @@ struct MjcfFiles {
   std::string compositeFile;                   // the first <composite>, if any
   int compositeLine = 0;                       // 0: none
   bool tooDeep = false;                        // includes past the scan's depth or count cap
+  // Values that would make MuJoCo allocate past the caps (RS7053), each
+  // where it is written: <size> counts, height field and texture samples.
+  struct OverCap {
+    std::string file;
+    int line = 0;
+    std::string message;
+  };
+  std::vector<OverCap> overCaps;
 };
 
 // Scans the MJCF file `path` (a regular file the caller has checked) and
 // its includes (tinyxml2; an include that is not a regular file of at most
-// `maxFileBytes` is listed, not read).
+// `maxFileBytes` is listed, not read).  MuJoCo 2.2.2 allocates what <size>
+// asks for while it compiles (its mjData included: njmax x njmax dense),
+// and a height field or texture as its sizes say, so these are capped
+// before it reads anything (kMjcfSizeCaps; a PNG file's size is read from
+// its header).
 MjcfFiles scanMjcf(const std::string& path, std::uintmax_t maxFileBytes);
 
 // Where the vertices of mesh `file` lie in the frame of MuJoCo's compiled

@@ -27,6 +27,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -55,6 +57,101 @@ struct Scan {
 // itself; these only bound this scan.
 constexpr int kMaxIncludeDepth = 16;
 constexpr int kMaxIncludedFiles = 256;
+
+// MuJoCo 2.2.2's allocations that a few bytes of XML can ask for (RS7053).
+// <size>: nuser_* values per element (x elements), nkey keyframes (MuJoCo
+// takes time quadratic in them: 100000 took 30 s), njmax (mjData holds a
+// dense njmax x njmax matrix: 8000 took 764 MB), nconmax contacts (~600
+// bytes each), nstack and nuserdata numbers (8 bytes each).  Height fields
+// and textures: samples (4096 x 4096 = 16.8 M; a 20000 x 20000 height
+// field took 3 GB and 16 s, a cube texture counts six faces).
+struct SizeCap {
+  const char* attribute;
+  double cap;
+};
+constexpr SizeCap kSizeCaps[] = {
+    {"nuser_body", 1000},  {"nuser_jnt", 1000},   {"nuser_geom", 1000},      {"nuser_site", 1000},
+    {"nuser_cam", 1000},   {"nuser_tendon", 1000}, {"nuser_actuator", 1000}, {"nuser_sensor", 1000},
+    {"nkey", 1000},        {"njmax", 4000},        {"nconmax", 100000},      {"nstack", 1e7},
+    {"nuserdata", 1e6},
+};
+constexpr double kMaxSamples = 4096.0 * 4096.0;
+
+std::string whole(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f", v);
+  return buf;
+}
+
+// A number MuJoCo would read as a count (it reads a leading integer; a
+// value that is not one is left to its own message).
+bool countOf(const tinyxml2::XMLElement* e, const char* attribute, double& out) {
+  const char* text = e->Attribute(attribute);
+  if (!text) return false;
+  char* end = nullptr;
+  out = std::strtod(text, &end);
+  return end != text && std::isfinite(out);
+}
+
+// Width and height from a PNG file's header; false when it is not a PNG.
+bool pngSize(const fs::path& file, double& width, double& height) {
+  std::FILE* f = std::fopen(file.string().c_str(), "rb");
+  if (!f) return false;
+  unsigned char h[24];
+  std::size_t n = std::fread(h, 1, sizeof h, f);
+  std::fclose(f);
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (n < sizeof h || std::memcmp(h, kSignature, 8) != 0) return false;
+  auto be32 = [&](int at) {
+    return double((std::uint32_t(h[at]) << 24) | (std::uint32_t(h[at + 1]) << 16) | (std::uint32_t(h[at + 2]) << 8) |
+                  std::uint32_t(h[at + 3]));
+  };
+  width = be32(16);
+  height = be32(20);
+  return true;
+}
+
+void overCap(Scan& scan, const std::string& file, const tinyxml2::XMLElement* e, std::string message);
+
+void checkSize(const tinyxml2::XMLElement* e, const std::string& file, Scan& scan) {
+  for (const SizeCap& c : kSizeCaps) {
+    double v = 0;
+    if (countOf(e, c.attribute, v) && v > c.cap)
+      overCap(scan, file, e,
+              std::string("<size ") + c.attribute + "=\"" + e->Attribute(c.attribute) + "\"> is over the cap of " +
+                  whole(c.cap) + ": MuJoCo would allocate it while it compiles the model");
+  }
+}
+
+// A height field's nrow x ncol, a builtin texture's width x height (a cube
+// or skybox: six width x width faces).
+void checkSamples(const tinyxml2::XMLElement* e, const std::string& file, Scan& scan) {
+  const std::string tag = e->Name();
+  double a = 0, b = 0, samples = 0;
+  std::string what;
+  if (tag == "hfield" && countOf(e, "nrow", a) && countOf(e, "ncol", b)) {
+    samples = a * b;
+    what = "nrow x ncol = " + whole(a) + " x " + whole(b);
+  } else if (tag == "texture" && e->Attribute("builtin") && std::strcmp(e->Attribute("builtin"), "none") != 0) {
+    const char* type = e->Attribute("type");
+    const bool cube = type && (std::strcmp(type, "cube") == 0 || std::strcmp(type, "skybox") == 0);
+    if (!countOf(e, "width", a)) return;
+    if (cube) {
+      samples = 6 * a * a;
+      what = "6 faces of width x width = " + whole(a) + " x " + whole(a);
+    } else if (countOf(e, "height", b)) {
+      samples = a * b;
+      what = "width x height = " + whole(a) + " x " + whole(b);
+    }
+  }
+  if (samples > kMaxSamples)
+    overCap(scan, file, e,
+            "<" + tag + "> " + what + " samples is over the cap of 4096 x 4096: MuJoCo would allocate them");
+}
+
+void overCap(Scan& scan, const std::string& file, const tinyxml2::XMLElement* e, std::string message) {
+  scan.out.overCaps.push_back({file, e->GetLineNum(), std::move(message)});
+}
 
 void scanElement(const tinyxml2::XMLElement* e, const std::string& file, const fs::path& modelDir, Scan& scan,
                  int depth);
@@ -92,12 +189,15 @@ void scanElement(const tinyxml2::XMLElement* e, const std::string& file, const f
         if (fileExistsOnDisk(included.string()) && fs::file_size(included, ec) <= scan.maxFileBytes && !ec)
           scanFile(included, modelDir, scan, depth + 1);
       }
+    } else if (tag == "size") {
+      checkSize(c, file, scan);
     } else if (tag == "composite") {
       if (scan.out.compositeLine == 0) {
         scan.out.compositeFile = file;
         scan.out.compositeLine = c->GetLineNum();
       }
     } else {
+      if (std::strcmp(e->Name(), "asset") == 0) checkSamples(c, file, scan);
       if (const char* name = c->Attribute("file"); name && std::strcmp(e->Name(), "asset") == 0) {
         const char* given = c->Attribute("name");
         scan.assets.push_back({tag, given ? given : fs::path(name).stem().string(), name, file, c->GetLineNum()});
@@ -130,6 +230,14 @@ MjcfFiles scanMjcf(const std::string& path, std::uintmax_t maxFileBytes) {
     if (p.is_relative()) p = modelDir / (a.tag == "texture" ? texturedir : meshdir) / p;
     const std::string resolved = p.lexically_normal().string();
     scan.out.files.push_back({resolved, a.from, a.line});
+    // A PNG texture or height field: its header's size, before MuJoCo
+    // decodes it (a few kilobytes can say 100000 x 100000).
+    double w = 0, h = 0;
+    if ((a.tag == "texture" || a.tag == "hfield") && fileExistsOnDisk(resolved) && pngSize(p, w, h) &&
+        w * h > kMaxSamples)
+      scan.out.overCaps.push_back({a.from, a.line,
+                                   "<" + a.tag + "> file '" + a.file + "' is a PNG of " + whole(w) + " x " + whole(h) +
+                                       " pixels, over the cap of 4096 x 4096: MuJoCo would decode it whole"});
     if (a.tag == "mesh") scan.out.meshes[a.name] = resolved;
   }
   return std::move(scan.out);

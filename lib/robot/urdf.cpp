@@ -22,6 +22,7 @@
 // would not collide as written.  Unknown elements inside a link or joint
 // (<self_filter>, <calibration>, <safety_controller>) are ignored silently,
 // as every URDF reader does.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <list>
@@ -93,6 +94,24 @@ class UrdfReader {
   }
 
   // Values -----------------------------------------------------------------
+  // <color rgba>: four numbers in 0..1; one outside (a colour written in
+  // 0..255) is clamped, with a warning (RS7055).
+  template <class Color>
+  void color(const Source& src, const XMLElement* c, Color& out) {
+    std::vector<double> rgba;
+    if (numbers(src, c, "rgba", 4, 4, rgba, "the color is not used") != Read::Ok) return;
+    bool outside = false;
+    for (double& x : rgba)
+      if (x < 0 || x > 1) {
+        outside = true;
+        x = std::clamp(x, 0.0, 1.0);
+      }
+    if (outside)
+      report(Severity::Warning, rs::RS7055, src, c,
+             std::string("<color rgba=\"") + c->Attribute("rgba") +
+                 "\"> has a component outside 0..1 (a colour in 0..255?); it is clamped to 0..1");
+    out = Eigen::Vector4d(rgba[0], rgba[1], rgba[2], rgba[3]);
+  }
   Read numbers(const Source& src, const XMLElement* e, const char* attr, std::size_t minCount, std::size_t maxCount,
                std::vector<double>& out, const std::string& skipping);
   Read number(const Source& src, const XMLElement* e, const char* attr, double& out, const std::string& skipping);
@@ -179,9 +198,7 @@ void UrdfReader::readMaterial(const Source& src, const XMLElement* e) {
   m.line = e->GetLineNum();
   m.source = &src;
   if (const XMLElement* c = e->FirstChildElement("color")) {
-    std::vector<double> rgba;
-    if (numbers(src, c, "rgba", 4, 4, rgba, "the color is not used") == Read::Ok)
-      m.color = Eigen::Vector4d(rgba[0], rgba[1], rgba[2], rgba[3]);
+    color(src, c, m.color);
   }
   if (const XMLElement* t = e->FirstChildElement("texture"))
     if (const char* file = t->Attribute("filename")) m.texture = file;
@@ -305,9 +322,7 @@ void UrdfReader::readVisualMaterial(const Source& src, const XMLElement* e, Visu
   // that name.  A name with neither (ANYmal's "orange") keeps the mesh's or
   // the renderer's default colour, as rviz does.
   if (const XMLElement* c = m->FirstChildElement("color")) {
-    std::vector<double> rgba;
-    if (numbers(src, c, "rgba", 4, 4, rgba, "the color is not used") == Read::Ok)
-      v.color = Eigen::Vector4d(rgba[0], rgba[1], rgba[2], rgba[3]);
+    color(src, c, v.color);
   }
   if (const XMLElement* t = m->FirstChildElement("texture"))
     if (const char* file = t->Attribute("filename")) texture = file;

@@ -28,6 +28,14 @@ Diagnostic robotDiagnostic(Severity severity, const char* code, const std::strin
 bool readXmlFile(const FileSystem& files, const std::string& path, std::size_t maxBytes, tinyxml2::XMLDocument& doc,
                  Diagnostics& diagnostics, const char* what = "robot file", const char* badFileCode = nullptr);
 
+// An XML declaration (<?xml ...?>) after a comment or another node of the
+// prolog is not well-formed and tinyxml2 refuses it; RaiSim's parser reads
+// such files (its ANYmal and cart-pole URDFs start with a comment).  Each
+// such declaration is blanked in `text` (spaces, newlines kept, so lines
+// stay) and its line returned, for a warning (RS7054).  Declarations before
+// anything else, repeated or not, tinyxml2 reads itself.
+std::vector<int> blankMisplacedDeclarations(std::string& text);
+
 // True when `text` holds something a preprocessor should have replaced:
 // xacro's ${...} and $(...), RaiSim template variables @@NAME.
 bool looksLikeTemplate(const char* text);

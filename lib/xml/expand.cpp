@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <functional>
 #include <limits>
 
 #include "xml/expression.hpp"
@@ -112,7 +113,49 @@ std::optional<bool> Expander::exists(const Element& element) {
   return std::nullopt;
 }
 
+// Every parameter set nowhere, each at its first use, before anything is
+// expanded: an unset loop bound or `exist` would otherwise hide the
+// parameters used inside it until it is given (RS8104).
+bool Expander::reportUnsetParameters(const Element& raw) {
+  std::vector<std::string> loopNames;
+  std::vector<const Element*> roots{&raw};
+  for (const auto& [name, cls] : classes_) roots.push_back(&cls);
+  std::function<void(const Element&)> loops = [&](const Element& e) {
+    if (e.name == "array")
+      if (const Attribute* idx = e.attribute("idx"))
+        loopNames.push_back(idx->value.rfind("@@", 0) == 0 ? idx->value.substr(2) : idx->value);
+    for (const Element& c : e.children) loops(c);
+  };
+  for (const Element* r : roots) loops(*r);
+  loopNames.erase(std::remove(loopNames.begin(), loopNames.end(), std::string()), loopNames.end());
+  std::vector<std::string> reported;
+  std::function<void(const Element&)> visit = [&](const Element& e) {
+    // An element that exist removes needs none of its values (its exist
+    // known now: no loop variable in it).
+    if (const Attribute* exist = e.attribute("exist")) {
+      std::string substituted, value, why;
+      ExpressionLimits limits{limits_.maxExpressionLength, limits_.maxExpressionDepth};
+      if (params_.substitute(exist->value, substituted, &why, limits_.maxFileBytes) &&
+          evaluateExpressions(substituted, limits, value, &why) && (value == "false" || value == "0"))
+        return;
+    }
+    for (const Attribute& a : e.attributes) {
+      if (e.name == "array" && a.name == "idx") continue;
+      for (const std::string& name : params_.unsetNames(a.value, loopNames)) {
+        if (std::find(reported.begin(), reported.end(), name) != reported.end()) continue;
+        reported.push_back(name);
+        fail(attributeDiagnostic(Severity::Error, code::kXmlParam, e, a,
+                                 "@@" + name + " is not set: define it in <params> or give --param " + name + "=VALUE"));
+      }
+    }
+    for (const Element& c : e.children) visit(c);
+  };
+  for (const Element* r : roots) visit(*r);
+  return reported.empty();
+}
+
 bool Expander::expandWorld(const Element& raw, Element& out) {
+  if (!reportUnsetParameters(raw)) return false;
   if (!expandElement(raw, out, Context::Raisim, 1) && !hasErrors(diagnostics_))
     fail(elementDiagnostic(Severity::Error, code::kXmlExist, raw, "exist removes the whole world"));
   return !hasErrors(diagnostics_);

@@ -39,6 +39,7 @@ class Expander {
   bool expandWorld(const Element& raw, Element& out);
 
  private:
+  bool reportUnsetParameters(const Element& raw);
   enum class Context { Raisim, Objects, Other };
   struct Cost;
 

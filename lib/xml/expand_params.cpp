@@ -52,6 +52,23 @@ bool Parameters::substitute(std::string_view in, std::string& out, std::string* 
   return expandInto(in, out, chain, error, maxBytes);
 }
 
+std::vector<std::string> Parameters::unsetNames(std::string_view in, const std::vector<std::string>& loopNames) const {
+  std::vector<std::string> out;
+  for (std::size_t at = in.find("@@"); at != std::string_view::npos; at = in.find("@@", at + 2)) {
+    std::size_t start = at + 2, end = start;
+    while (end < in.size() && isNameChar(in[end])) ++end;
+    std::string_view run = in.substr(start, end - start);
+    if (run.empty()) continue;  // substitute() says what is wrong
+    bool set = false;
+    for (std::size_t len = std::min(run.size(), longestName_); len > 0 && !set; --len)
+      set = globals_.find(run.substr(0, len)) != globals_.end();
+    for (const std::string& loop : loopNames) set = set || run.substr(0, loop.size()) == loop;
+    std::string name(run.substr(0, 64));
+    if (!set && std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
+  return out;
+}
+
 bool Parameters::expandInto(std::string_view in, std::string& out, std::vector<std::string>& chain,
                             std::string* error, std::size_t maxBytes) {
   std::size_t i = 0;

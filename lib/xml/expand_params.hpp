@@ -45,6 +45,12 @@ class Parameters {
   // pass `maxBytes`.
   bool substitute(std::string_view in, std::string& out, std::string* error, std::size_t maxBytes);
 
+  // The parameter names `in` uses (after each "@@", the run of letters,
+  // digits and '_') that neither a parameter nor a name in `loopNames`
+  // starts, in order, each once: what substitute() would call unset,
+  // found without expanding anything.
+  std::vector<std::string> unsetNames(std::string_view in, const std::vector<std::string>& loopNames) const;
+
  private:
   bool expandInto(std::string_view in, std::string& out, std::vector<std::string>& chain, std::string* error,
                   std::size_t maxBytes);

@@ -36,6 +36,7 @@ struct Common {
   std::string mode = "dynamic";
   std::optional<double> mass;
   std::uint64_t group = 1, mask = kAllBits;
+  bool visible = true;  // appearance="hidden": false
   Vec3 pos{0, 0, 0};
   Quat quat{1, 0, 0, 0};
   std::optional<Vec3> inertia;  // diagonal
@@ -55,8 +56,8 @@ void readState(Context& ctx, const Element& owner, const std::string& label, Vec
       quat = *q;
   }
   for (auto [name, alias] : {std::pair{"lin_vel", "linVel"}, std::pair{"ang_vel", "angVel"}})
-    if (auto v = ctx.vec<3>(*state, state->attribute(name, alias)); v && (*v != Vec3{0, 0, 0}))
-      ctx.lost(label + ": " + name);
+    if (const Attribute* a = state->attribute(name, alias))  // named as the file spells it
+      if (auto v = ctx.vec<3>(*state, a); v && (*v != Vec3{0, 0, 0})) ctx.lost(label + ": " + a->name);
 }
 
 // <inertia xx xy xz yy yz zz>: the diagonal; off-diagonal terms have no field.
@@ -85,6 +86,7 @@ bool readCommon(Context& ctx, const Element& e, Common& c) {
   std::size_t before = errorCount(ctx);
   c.path = ctx.takePath(e);
   c.label = labelOf(e);
+  c.visible = ctx.visible(e, c.label);
   if (const Attribute* m = e.attribute("material"); m && !m->value.empty()) c.material = m->value;
   if (const Attribute* t = e.attribute("body_type", "bodyType")) {
     if (t->value == "dynamic" || t->value == "kinematic" || t->value == "static")
@@ -117,7 +119,8 @@ Line objectLine(const Common& c, std::string_view primitive, const Vec3& scale, 
                 const std::string& meshPath) {
   Line l("object");
   l.text(c.path).raw(primitive).nums(c.pos).nums(c.quat).nums(scale).num(radius).num(height);
-  l.num(c.mass.value_or(0)).text(c.material).text("").raw("false").raw("true").raw("false").text(meshPath);
+  l.num(c.mass.value_or(0)).text(c.material).text("").raw("false").raw(c.visible ? "true" : "false").raw("false");
+  l.text(meshPath);
   l.raw(c.mode).raw("true").u64(c.group).u64(c.mask);
   return l;
 }
@@ -130,11 +133,11 @@ void convertSingleBody(Context& ctx, const Element& e) {
                       mesh ? std::initializer_list<std::string_view>{"name", "mass", "material", "body_type", "bodyType",
                                                                      "collision_group", "collisionGroup",
                                                                      "collision_mask", "collisionMask", "com",
-                                                                     "file_name", "fileName", "scale"}
+                                                                     "file_name", "fileName", "scale", "appearance"}
                            : std::initializer_list<std::string_view>{"name", "mass", "material", "body_type", "bodyType",
                                                                      "collision_group", "collisionGroup",
-                                                                     "collision_mask", "collisionMask", "com"},
-                      {"appearance"});
+                                                                     "collision_mask", "collisionMask", "com",
+                                                                     "appearance"});
   ctx.checkChildren(e, labelOf(e), {"dim", "state", "inertia"});
   Common c;
   bool ok = readCommon(ctx, e, c);
@@ -194,12 +197,12 @@ void convertGround(Context& ctx, const Element& e) {
   std::string label = labelOf(e);
   ctx.checkAttributes(e, label,
                       {"name", "height", "material", "collision_mask", "collisionMask", "collision_group",
-                       "collisionGroup", "body_type", "bodyType"},
-                      {"appearance"});
+                       "collisionGroup", "body_type", "bodyType", "appearance"});
   ctx.checkChildren(e, label, {"dim", "state"});
   std::size_t before = errorCount(ctx);
   Common c;
   c.path = ctx.takePath(e);
+  c.visible = ctx.visible(e, label);
   c.mode = "static";
   c.mass = 0;
   if (const Attribute* t = e.attribute("body_type", "bodyType"); t && t->value != "static")
@@ -223,8 +226,8 @@ void convertGround(Context& ctx, const Element& e) {
     if (pos && *pos != Vec3{0, 0, 0}) ctx.lost(label + " <state>: pos (a ground's height is its height)");
     if (quat && *quat != Quat{1, 0, 0, 0}) ctx.lost(label + " <state>: quat (a ground is level)");
     for (auto [name, alias] : {std::pair{"lin_vel", "linVel"}, std::pair{"ang_vel", "angVel"}})
-      if (auto v = ctx.vec<3>(*state, state->attribute(name, alias)); v && (*v != Vec3{0, 0, 0}))
-        ctx.lost(label + " <state>: " + name);
+      if (const Attribute* a = state->attribute(name, alias))
+        if (auto v = ctx.vec<3>(*state, a); v && (*v != Vec3{0, 0, 0})) ctx.lost(label + " <state>: " + a->name);
   }
   if (auto g = ctx.group(e, e.attribute("collision_group", "collisionGroup"))) c.group = *g;
   if (auto m = ctx.group(e, e.attribute("collision_mask", "collisionMask"))) c.mask = *m;
@@ -280,8 +283,7 @@ bool compoundChild(Context& ctx, const std::string& compound, const std::string&
 void convertCompound(Context& ctx, const Element& e) {
   ctx.checkAttributes(e, labelOf(e),
                       {"name", "mass", "material", "body_type", "bodyType", "collision_group", "collisionGroup",
-                       "collision_mask", "collisionMask", "com"},
-                      {"appearance"});
+                       "collision_mask", "collisionMask", "com", "appearance"});
   ctx.checkChildren(e, labelOf(e), {"children", "state", "inertia"});
   Common c;
   bool ok = readCommon(ctx, e, c);
@@ -301,7 +303,7 @@ void convertCompound(Context& ctx, const Element& e) {
   // compound PATH pos quat scale mass bodyMode visible collidable
   Line l("compound");
   l.text(c.path).nums(c.pos).nums(c.quat).nums(Vec3{1, 1, 1}).num(c.mass.value_or(0)).raw(c.mode);
-  l.raw("true").raw("true");
+  l.raw(c.visible ? "true" : "false").raw("true");
   // Without `com` the record has no centerOfMass either: rscene-sim then
   // puts it at the children's volume-weighted centroid, and rscene-to-xml
   // writes no `com` for such a record, so the two stay inverse.

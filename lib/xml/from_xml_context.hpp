@@ -100,6 +100,10 @@ struct Context {
   void warning(const char* code, const Element& e, std::string message);
   // Lists what the XML says that the scene cannot hold (the one warning line).
   void lost(std::string what);
+  // appearance="hidden" (RaiSim's way to keep a body out of the picture):
+  // the record's visible field, false.  Any other appearance (a colour or
+  // material name) has no field and is listed as not converted.
+  bool visible(const Element& e, const std::string& label);
 
   // --- attribute readers: nullopt after an error at the attribute ---
   // A finite number; absent: nullopt without an error.

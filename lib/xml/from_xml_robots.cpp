@@ -45,8 +45,8 @@ void convertArticulated(Context& ctx, const Element& e) {
   std::string label = labelOf(e);
   ctx.checkAttributes(e, label,
                       {"name", "urdf_path", "urdfPath", "res_dir", "resDir", "modules", "collision_group",
-                       "collisionGroup", "collision_mask", "collisionMask"},
-                      {"appearance"});
+                       "collisionGroup", "collision_mask", "collisionMask", "appearance"});
+  const bool visible = ctx.visible(e, label);
   // RaiSim's exporter writes an empty <dim/> in every articulatedSystem.
   ctx.checkChildren(e, label, {"state", "dim"});
   if (const Element* dim = e.child("dim")) ctx.checkAttributes(*dim, label + " <dim>", {});
@@ -100,7 +100,7 @@ void convertArticulated(Context& ctx, const Element& e) {
   std::string resource = resourceFor(ctx, urdf->value, e);
   // articulated PATH resource pos quat visible collidable
   Line l("articulated");
-  l.text(path).text(resource).nums(pos).nums(quat).raw("true").raw("true");
+  l.text(path).text(resource).nums(pos).nums(quat).raw(visible ? "true" : "false").raw("true");
   if (resDir) l.keyText("resourceDirectory", ctx.assetPath(resDir->value));
   if (modules && !words(modules->value).empty()) l.keyList("modules", words(modules->value));
   // The schema's defaults (1, all bits) are left out, as rscene-to-xml

@@ -19,9 +19,14 @@ Line& Line::raw(std::string_view token) {
   s_ += token;
   return *this;
 }
+// One spelling of zero both ways: RaiSim's files write "-0.000000" (its
+// maps/office1.xml's quaternions), which is written "0" here as rscene-to-xml
+// writes it, so from-xml | to-xml | from-xml is byte-identical.
+static double oneZero(double v) { return v == 0 ? 0.0 : v; }
+
 Line& Line::num(double v) {
   s_ += ' ';
-  appendNumber(s_, v);
+  appendNumber(s_, oneZero(v));
   return *this;
 }
 Line& Line::u64(std::uint64_t v) { return raw(std::to_string(v)); }
@@ -37,14 +42,14 @@ Line& Line::keyText(std::string_view name, std::string_view value) {
   percentEncode(value, 1, v);
   return key(name, v);
 }
-Line& Line::keyNum(std::string_view name, double v) { return key(name, numberText(v)); }
+Line& Line::keyNum(std::string_view name, double v) { return key(name, numberText(oneZero(v))); }
 Line& Line::keyNums(std::string_view name, const double* v, std::size_t n) {
   s_ += ' ';
   s_ += name;
   s_ += '=';
   for (std::size_t i = 0; i < n; ++i) {
     if (i) s_ += ',';
-    appendNumber(s_, v[i]);
+    appendNumber(s_, oneZero(v[i]));
   }
   return *this;
 }
@@ -202,6 +207,14 @@ void Context::checkAttributes(const Element& e, const std::string& label,
           attributeDiagnostic(Severity::Warning, code::kNotConverted, e, a, "unknown attribute, not converted"));
     lost(label + ": " + a.name);
   }
+}
+
+bool Context::visible(const Element& e, const std::string& label) {
+  const Attribute* a = e.attribute("appearance");
+  if (!a) return true;
+  if (a->value == "hidden") return false;
+  lost(label + ": appearance");
+  return true;
 }
 
 void Context::checkChildren(const Element& e, const std::string& label,

@@ -121,6 +121,12 @@ class Exporter {
     if (mask != kAllBits) e.text("collision_mask", collisionBits(mask));
   }
 
+  // A body that is not drawn: RaiSim's appearance="hidden" (from-xml reads
+  // it back as visible=false).
+  static void hidden(OutElement& e, bool visible) {
+    if (!visible) e.text("appearance", "hidden");
+  }
+
   static OutElement state(const Pose& p) {
     const Eigen::Quaterniond& q = p.orientation;
     double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
@@ -146,6 +152,7 @@ class Exporter {
       g.text("name", o.path).number("height", o.world.position.z()).text("material", materialName(o.contactMaterial));
       if (o.collisionGroup != 1) g.text("collision_group", collisionBits(o.collisionGroup));
       if (o.collisionMask != kAllBits) g.text("collision_mask", collisionBits(o.collisionMask));
+      hidden(g, o.visible);
       return g;
     }
     const std::string& tag = o.primitive;  // sphere, box, capsule, cylinder, mesh: RaiSim's element names
@@ -153,6 +160,7 @@ class Exporter {
     e.text("name", o.path).number("mass", o.mass).text("material", materialName(o.contactMaterial));
     e.text("body_type", bodyModeName(o.bodyMode));
     groups(e, o.collisionGroup, o.collisionMask);
+    hidden(e, o.visible);
     if (tag == "mesh") {
       e.text("file_name", assetPath(o.collisionMeshPath));
       e.vec3("scale", o.scale);
@@ -173,6 +181,7 @@ class Exporter {
     e.text("name", c.path).number("mass", c.mass).text("material", materialName(c.contactMaterial));
     e.text("body_type", bodyModeName(c.bodyMode));
     groups(e, c.collisionGroup, c.collisionMask);
+    hidden(e, c.visible);
     // RaiSim's compound requires `com`: where rscene-sim puts it
     // (scene/mass_properties.hpp), so both engines turn the compound about
     // the same point.  Only the children the XML holds count: a mesh child
@@ -246,6 +255,7 @@ class Exporter {
   OutElement articulated(const Articulated& a) {
     OutElement e("articulatedSystem");
     e.text("name", a.path).text("urdf_path", assetPath(a.sourcePath));
+    hidden(e, a.visible);
     if (!a.resourceDirectory.empty()) e.text("res_dir", assetPath(a.resourceDirectory));
     if (!a.modules.empty()) {
       std::string list;
@@ -297,10 +307,57 @@ class Exporter {
   robot::ModelCache robots_;
 };
 
+// Why `text` cannot be written as an XML value that rscene-from-xml reads
+// back unchanged, or "" when it can: from-xml substitutes @@NAME and
+// [THIS_DIR] and evaluates {...} in every attribute (a lone '}' is an
+// error there), and XML holds no C0 control other than tab and newline,
+// and only UTF-8.  Refused rather than escaped: RaiSim's template language
+// has no escape for them, so no spelling would load in RaiSim as written.
+std::string unwritable(std::string_view text) {
+  if (text.find("@@") != std::string_view::npos) return "'@@', which rscene-from-xml reads as a parameter";
+  if (text.find("[THIS_DIR]") != std::string_view::npos)
+    return "'[THIS_DIR]', which rscene-from-xml replaces with the XML's directory";
+  if (text.find_first_of("{}") != std::string_view::npos)
+    return "'{' or '}', which rscene-from-xml evaluates as an expression";
+  std::string escaped;
+  if (!escapeAttribute(text, escaped)) return "a control character or a byte that is not UTF-8, which XML cannot hold";
+  return {};
+}
+
+// Every name the XML writes (bodies, wires, contact materials), checked
+// where the scene writes it, before anything is exported (RS8132).
+void checkNames(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
+  auto check = [&](int recordIndex, const char* field, const std::string& value, const char* what) {
+    if (std::string why = unwritable(value); !why.empty())
+      reportAt(&doc, recordIndex, field, rs::RS8132,
+               std::string(what) + " cannot be written to a world XML: it holds " + why, diagnostics,
+               Severity::Error, "rename it");
+  };
+  auto body = [&](int recordIndex, const std::string& path, const std::string& material) {
+    check(recordIndex, "path", path, "the name");
+    check(recordIndex, "contactMaterial", material, "the contact material");
+  };
+  for (const Object& o : scene.objects)
+    if (simulated(o)) body(o.recordIndex, o.path, o.contactMaterial);
+  for (const Compound& c : scene.compounds)
+    if (simulated(c)) body(c.recordIndex, c.path, c.contactMaterial);
+  for (const Terrain& t : scene.terrains)
+    if (simulated(t)) body(t.recordIndex, t.path, t.contactMaterial);
+  for (const Articulated& a : scene.articulated) check(a.recordIndex, "path", a.path, "the name");
+  for (const Wire& w : scene.wires)
+    if (w.simulated()) check(w.recordIndex, "path", w.path, "the name");
+  for (const ContactMaterial& m : scene.contactMaterials) {
+    check(m.recordIndex, "materialA", m.materialA, "the material name");
+    check(m.recordIndex, "materialB", m.materialB, "the material name");
+  }
+}
+
 }  // namespace
 
 ToXmlResult sceneToXml(const Document& doc, const Scene& scene, const ToXmlOptions& options) {
   ToXmlResult result;
+  checkNames(doc, scene, result.diagnostics);
+  if (!result.ok()) return result;
   Exporter exporter(doc, scene, options, result);
   OutElement root = exporter.run();
   if (std::string problem = root.firstProblem(); !problem.empty()) {

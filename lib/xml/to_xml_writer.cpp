@@ -35,7 +35,7 @@ OutElement& OutElement::numbers(std::string_view attribute, const double* values
       bad = true;  // a non-finite number is never written (DESIGN.md, Resources)
       badWhat = std::string(attribute);
     }
-    appendNumber(s, values[i]);
+    appendNumber(s, values[i] == 0 ? 0.0 : values[i]);  // one zero: "-0" is written "0" (as from-xml writes it)
   }
   attributes.emplace_back(std::string(attribute), std::move(s));
   return *this;

@@ -533,5 +533,101 @@ TEST(Mjcf, MissingDirectoryAndOversizeFilesAreRefusedBeforeMuJoCo) {
   EXPECT_NE(diags[0].message.find("over the cap"), std::string::npos) << diags[0].message;
 }
 
+TEST(Mjcf, MissingMeshesFollowTheUrdfRule) {
+  // A mesh only drawn (contype = conaffinity = 0) that is not there: a
+  // warning at its <mesh>, the geom left out, the robot loads.  A colliding
+  // one: RS5001 there, a warning with --allow-missing-assets.
+  fs::path dir = fs::temp_directory_path() / ("rscene_mjcf_missing_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "model.xml").string();
+  auto write = [&](const char* contype) {
+    std::ofstream f(path);
+    f << "<mujoco>\n  <asset>\n    <mesh name=\"gone\" file=\"gone.stl\"/>\n  </asset>\n"
+         "  <worldbody><body name=\"b\"><freejoint/><geom name=\"hull\" type=\"box\" size=\"0.1 0.1 0.1\"/>\n"
+         "    <geom name=\"look\" type=\"mesh\" mesh=\"gone\" contype=\""
+      << contype << "\" conaffinity=\"0\"/></body></worldbody>\n</mujoco>\n";
+  };
+  write("0");
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(path, LoadOptions{}, model, diags)) << dump(diags);
+  ASSERT_FALSE(diags.empty());
+  EXPECT_EQ(diags[0].code, std::string(code::kSkipped)) << dump(diags);
+  EXPECT_EQ(diags[0].severity, Severity::Warning);
+  EXPECT_EQ(diags[0].line, 3u);
+  EXPECT_NE(diags[0].message.find("visual mesh"), std::string::npos) << diags[0].message;
+  EXPECT_FALSE(hasErrors(diags)) << dump(diags);
+  ASSERT_EQ(model.links.size(), 1u);
+  ASSERT_EQ(model.links[0].visuals.size(), 1u);  // the box stays, the mesh is left out
+  EXPECT_EQ(model.links[0].visuals[0].name, "hull");
+
+  write("1");
+  diags.clear();
+  EXPECT_FALSE(loadMjcf(path, LoadOptions{}, model, diags));
+  ASSERT_EQ(diags.size(), 1u) << dump(diags);
+  EXPECT_EQ(diags[0].code, std::string(code::kMissingFile));
+  EXPECT_EQ(diags[0].line, 3u);
+  LoadOptions allow;
+  allow.allowMissingMeshes = true;
+  diags.clear();
+  ASSERT_TRUE(loadMjcf(path, allow, model, diags)) << dump(diags);
+  EXPECT_EQ(diags[0].code, std::string(code::kMissingFile));
+  EXPECT_EQ(diags[0].severity, Severity::Warning);
+  ASSERT_EQ(model.links[0].collisions.size(), 1u);  // only the box collides
+  fs::remove_all(dir);
+}
+
+TEST(Mjcf, AllocationsPastTheCapsAreRefusedWhereTheyAreWrittenBeforeMuJoCo) {
+  // 400 bytes asking MuJoCo for 9.4 GB (nuser_body), a dense njmax x njmax
+  // matrix, a 20000 x 20000 height field, a 10000-wide skybox, and a PNG
+  // whose header says 100000 x 100000: each refused at its line, quickly.
+  fs::path dir = fs::temp_directory_path() / ("rscene_mjcf_caps_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "model.xml").string();
+  {
+    std::ofstream png(dir / "big.png", std::ios::binary);
+    const unsigned char header[24] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                      0, 1, 0x86, 0xa0, 0, 1, 0x86, 0xa0};
+    png.write(reinterpret_cast<const char*>(header), sizeof header);
+    std::ofstream f(path);
+    f << "<mujoco>\n"
+         "  <size nuser_body=\"400000000\" nkey=\"5\" njmax=\"8000\"/>\n"
+         "  <asset>\n"
+         "    <hfield name=\"h\" nrow=\"20000\" ncol=\"20000\" size=\"1 1 1 1\"/>\n"
+         "    <texture name=\"sky\" builtin=\"checker\" type=\"skybox\" width=\"10000\"/>\n"
+         "    <texture name=\"t\" type=\"2d\" file=\"big.png\"/>\n"
+         "    <texture name=\"small\" builtin=\"checker\" width=\"512\" height=\"512\"/>\n"
+         "  </asset>\n"
+         "  <worldbody><body><freejoint/><geom type=\"box\" size=\"0.1 0.1 0.1\"/></body></worldbody>\n"
+         "</mujoco>\n";
+  }
+  Model model;
+  Diagnostics diags;
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(loadMjcf(path, LoadOptions{}, model, diags));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  ASSERT_EQ(diags.size(), 5u) << dump(diags);
+  const unsigned lines[5] = {2, 2, 4, 5, 6};
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(diags[i].code, std::string(code::kMjcfOverCap)) << dump(diags);
+    EXPECT_EQ(diags[i].file, path);
+    EXPECT_EQ(diags[i].line, lines[i]) << diags[i].message;
+  }
+  EXPECT_NE(diags[0].message.find("nuser_body=\"400000000\"> is over the cap of 1000"), std::string::npos)
+      << diags[0].message;
+  EXPECT_NE(diags[1].message.find("njmax"), std::string::npos) << diags[1].message;
+  EXPECT_NE(diags[4].message.find("100000 x 100000"), std::string::npos) << diags[4].message;
+
+  // At the caps, the same model compiles.
+  {
+    std::ofstream f(path);
+    f << "<mujoco>\n  <size nuser_body=\"1000\" nkey=\"1000\" njmax=\"1000\"/>\n"
+         "  <worldbody><body><freejoint/><geom type=\"box\" size=\"0.1 0.1 0.1\"/></body></worldbody>\n</mujoco>\n";
+  }
+  diags.clear();
+  EXPECT_TRUE(loadMjcf(path, LoadOptions{}, model, diags)) << dump(diags);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rscene::robot

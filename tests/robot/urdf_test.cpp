@@ -217,7 +217,8 @@ struct ErrorCase {
 
 TEST(Urdf, ErrorsNameTheFileAndLine) {
   const ErrorCase cases[] = {
-      {"bad_xml.urdf", "RS7030", 3, "not well-formed XML (mismatched element)"},  // tinyxml2 names the unclosed element
+      // At the end tag that does not match (tinyxml2 names the line of <visual>).
+      {"bad_xml.urdf", "RS7030", 4, "(mismatched element: </link> does not close <visual> (opened at line 3))"},
       {"unknown_link.urdf", "RS7032", 8, "child link 'c' that does not exist"},
       {"two_parents.urdf", "RS7032", 13, "link 'c' has two parent joints: 'ac' (line 9) and 'bc'"},
       {"cycle.urdf", "RS7032", 9, "closes a cycle"},

@@ -70,6 +70,24 @@ TEST(Expand, UnsetParameterNamesItAndHowToSetIt) {
   EXPECT_EQ(errors(r), "w.xml:3:11: <sphere> mass: @@m is not set: define it in <params> or give --param m=VALUE [RS8104]\n");
 }
 
+TEST(Expand, EveryUnsetParameterIsNamedAtOnce) {
+  // RaiSim's spheres.xml: sphere_count bounds the array, so its children's
+  // spawn_sphere and spawn_box were only reported once it was given.
+  LoadResult r = loadText(R"(<raisim><params><sphere_height_offset value="1"/></params><objects>
+  <array idx="@@idx" start="0" end="@@sphere_count" increment="1">
+    <sphere name="s@@idx" mass="1" exist="@@spawn_sphere"><dim radius="{0.5+@@idx*0.001}"/></sphere>
+    <box name="b@@idx" mass="@@spawn_sphere" exist="@@spawn_box"><dim x="1" y="1" z="{@@sphere_height_offset}"/></box>
+  </array></objects></raisim>)");
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(errors(r),
+            "w.xml:2:32: <array> end: @@sphere_count is not set: define it in <params> or give --param "
+            "sphere_count=VALUE [RS8104]\n"
+            "w.xml:3:36: <sphere> exist: @@spawn_sphere is not set: define it in <params> or give --param "
+            "spawn_sphere=VALUE [RS8104]\n"
+            "w.xml:4:46: <box> exist: @@spawn_box is not set: define it in <params> or give --param "
+            "spawn_box=VALUE [RS8104]\n");
+}
+
 TEST(Expand, LongestNameIsSubstituted) {
   std::string xml = R"(<raisim><params><idx value="1"/><idx2 value="22"/></params>
   <objects><box name="@@idx2 @@idx @@idx_x @@idx3"/></objects></raisim>)";

@@ -51,6 +51,12 @@ const Diagnostic* find(const FromXmlResult& r, const std::string& code) {
 
 constexpr const char* kAll = "18446744073709551615";
 
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += x + "; ";
+  return s;
+}
+
 TEST(FromXml, EmptyWorldGetsRaisimDefaultsWrittenExplicitly) {
   FromXmlResult r = convert("<raisim version=\"1.0\"><objects/></raisim>");
   ASSERT_TRUE(r.ok());
@@ -724,6 +730,25 @@ TEST(FromXml, MissingMeshFileIsAWarning) {
   EXPECT_EQ(d->line, 3u);
   EXPECT_EQ(d->column, 16u);
   EXPECT_EQ(d->message, "<mesh> file_name: mesh file '/nonexistent/m.obj' not found: rscene-sim will refuse the body until it exists");
+}
+
+TEST(FromXml, NegativeZeroIsWrittenZeroHiddenIsInvisibleAndVelocitiesAreNamedAsWritten) {
+  // RaiSim's maps/office1.xml writes quaternions with -0.000000 and hides
+  // its colliders with appearance="hidden".
+  FromXmlResult r = convert(world(
+      "<box name=\"c\" mass=\"1\" appearance=\"hidden\"><dim x=\"1\" y=\"1\" z=\"1\"/>"
+      "<state pos=\"-0.000000 0 0.5\" quat=\"1 -0.000000 0 -0\" linVel=\"1 0 0\"/></box>"
+      "<compound name=\"k\" mass=\"1\" appearance=\"hidden\" com=\"0 0 0\"><children><sphere>"
+      "<dim radius=\"0.5\"/></sphere></children></compound>"));
+  ASSERT_TRUE(r.ok()) << (r.diagnostics.empty() ? "" : r.diagnostics[0].message);
+  EXPECT_EQ(r.text.find(" -0 "), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("object /World/c box 0 0 0.5 1 0 0 0 1 1 1 0 0 1 default - false false false - dynamic"),
+            std::string::npos)
+      << r.text;
+  EXPECT_NE(r.text.find("compound /World/k 0 0 0 1 0 0 0 1 1 1 1 dynamic false true"), std::string::npos) << r.text;
+  EXPECT_NE(std::find(r.notConverted.begin(), r.notConverted.end(), "box 'c': linVel"), r.notConverted.end())
+      << joined(r.notConverted);
+  for (const std::string& n : r.notConverted) EXPECT_EQ(n.find("appearance"), std::string::npos) << n;
 }
 
 }  // namespace

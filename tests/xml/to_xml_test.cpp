@@ -527,13 +527,50 @@ TEST(ToXml, EscapesAndRefusesWhatXmlCannotHold) {
   EXPECT_EQ(out, "caf?");
   out.clear();
   EXPECT_FALSE(escapeAttribute("\xEF\xBF\xBF", out));
-  // A name with a control character (a percent-encoded byte) is refused.
+  // A name with a control character (a percent-encoded byte) is refused
+  // where the record writes it (RS8132, line and column of the path).
   Exported e = exportScene(H + object("/World/a%01b", "box", "0 0 0", "1 1 1", "0", "0", "1"));
   ASSERT_FALSE(e.result.ok());
-  EXPECT_EQ(e.result.diagnostics[0].code, "RS8130");
-  EXPECT_EQ(e.result.diagnostics[0].message,
-            "<box> name: a value XML cannot hold (not finite, a control character, or not UTF-8)");
+  ASSERT_EQ(e.result.diagnostics.size(), 1u);
+  EXPECT_EQ(e.result.diagnostics[0].code, "RS8132");
+  EXPECT_EQ(e.result.diagnostics[0].line, 2u);
+  EXPECT_EQ(e.result.diagnostics[0].column, 8u);
+  EXPECT_TRUE(contains(e.result.diagnostics[0].message, "control character")) << e.result.diagnostics[0].message;
   EXPECT_TRUE(e.result.xml.empty());
+}
+
+TEST(ToXml, NamesTheTemplateLanguageWouldReadAreRefusedAtTheirRecord) {
+  // @@ (a parameter), {...} (an expression), [THIS_DIR] (a folder): from-xml
+  // would fail or rename the body, so each is an error at its record's path.
+  Exported e = exportScene(H + object("/World/ok", "box", "0 0 0", "1 1 1", "0", "0", "1") +
+                           object("/World/@@p", "box", "2 0 0", "1 1 1", "0", "0", "1") +
+                           object("/World/{1+1}", "box", "4 0 0", "1 1 1", "0", "0", "1") +
+                           object("/World/[THIS_DIR]", "box", "6 0 0", "1 1 1", "0", "0", "1") +
+                           object("/World/b}", "box", "8 0 0", "1 1 1", "0", "0", "1") +
+                           object("/World/m", "box", "10 0 0", "1 1 1", "0", "0", "1", "dynamic", "", "1", kAll,
+                                  "rubber@@x"));
+  ASSERT_FALSE(e.result.ok());
+  EXPECT_TRUE(e.result.xml.empty());
+  ASSERT_EQ(e.result.diagnostics.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(e.result.diagnostics[i].code, "RS8132");
+    EXPECT_EQ(e.result.diagnostics[i].line, i + 3) << e.result.diagnostics[i].message;
+    EXPECT_GT(e.result.diagnostics[i].column, 0u);
+  }
+  EXPECT_TRUE(contains(e.result.diagnostics[0].message, "'@@'")) << e.result.diagnostics[0].message;
+  EXPECT_TRUE(contains(e.result.diagnostics[1].message, "expression")) << e.result.diagnostics[1].message;
+  EXPECT_TRUE(contains(e.result.diagnostics[2].message, "[THIS_DIR]")) << e.result.diagnostics[2].message;
+  EXPECT_TRUE(contains(e.result.diagnostics[4].message, "contact material")) << e.result.diagnostics[4].message;
+}
+
+TEST(ToXml, NegativeZeroIsWrittenZeroAndHiddenBodiesKeepTheirAppearance) {
+  Exported e = exportScene(H + "object /World/b box 0 -0 0.5 -0 0 0 1 1 1 1 0 0 1 default - false false false - "
+                               "dynamic true 1 " + kAll + "\n");
+  ASSERT_TRUE(e.result.ok()) << (e.result.diagnostics.empty() ? "" : e.result.diagnostics[0].message);
+  EXPECT_FALSE(contains(e.result.xml, "\"-0") || contains(e.result.xml, " -0 ")) << e.result.xml;
+  Parsed p;
+  parseXml(e.result.xml, p);
+  EXPECT_EQ(attr(p.body("box", "/World/b"), "appearance"), "hidden");
 }
 
 }  // namespace
