@@ -829,6 +829,9 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     if (!w.addWire(wire)) return fail();
   if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
   if (!w.particles.empty()) w.attachParticleSurfaces();
+  // A deformable starting inside a body is refused, as grains starting in
+  // overlap are (RS7089): its first substep would throw it (RS7077).
+  if (w.surfaces && !w.particles.checkDeformableStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 
@@ -977,6 +980,17 @@ std::optional<NonFinite> World::nonFinite() const {
     bad.step = w.stepCount;
     bad.time = time();
     bad.what = "particle position or velocity";
+    return bad;
+  }
+  if (auto r = w.particles.deformableRunaway()) {  // finite, but gaining energy from nowhere
+    NonFinite bad;
+    bad.diverged = true;
+    bad.recordIndex = r->recordIndex;
+    bad.path = r->path;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = "kinetic energy";
+    bad.cause = r->why;
     return bad;
   }
   return std::nullopt;

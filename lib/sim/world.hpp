@@ -146,6 +146,9 @@ struct NonFinite {
   // cap (kMaxJointSpeed), or its base farther than kMaxLength.  Stiff
   // springs or gains for the time step; nothing it writes would be physics.
   bool diverged = false;
+  // A deformable whose kinetic energy ran away (diverged, what "kinetic
+  // energy"): the figures (ParticleSystems::deformableRunaway).
+  std::string cause;
 };
 
 // The joint speed cap set on every robot (btMultiBody::setMaxCoordinateVelocity):
