@@ -151,6 +151,11 @@ struct NonFinite {
   std::string cause;
 };
 
+// Most a deformable's totalMass may exceed the mass of a dynamic rigid body
+// (object or compound) of the same world (RS7078): the particles' contact
+// reactions reach Bullet as forces for the next step, stable up to about this.
+inline constexpr double kMaxDeformableMassRatio = 20;
+
 // The joint speed cap set on every robot (btMultiBody::setMaxCoordinateVelocity):
 // a joint that reaches it has diverged.
 inline constexpr double kMaxJointSpeed = 1e6;
