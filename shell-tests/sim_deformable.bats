@@ -132,7 +132,7 @@ PY
 
 @test "issue 24 (07): a cloth 100 times heavier than a dynamic box it may touch is refused at totalMass (RS7078)" {
   scene "totalMass=100"
-  sed -i 's|^object /World/Ball sphere 0 0 0.5 \(.*\) static |object /World/Ball sphere 0 0 0.5 \1 dynamic |' cloth.rscene
+  sed -i 's|^object /World/Ball sphere 0 0 0.5 1 0 0 0 1 1 1 0.5 1 0 \(.*\) static |object /World/Ball sphere 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 \1 dynamic |' cloth.rscene
   grep -q 'Ball.* dynamic ' cloth.rscene
   run -2 --separate-stderr "$SIM" --steps 100 -o out.rscene cloth.rscene
   [[ "${stderr%%$'\n'*}" == *"error: deformable '/World/Cloth': totalMass 100 kg is more than 20 times the mass of dynamic body '/World/Ball'"*"[RS7078]" ]]
