@@ -21,7 +21,9 @@ setup() {
 @test "the trajectory carries the cloth's particles and the record is written back unchanged" {
   scene "pinnedVertices=0,8"
   run -0 --separate-stderr "$SIM" --duration 0.5 --every 50 --trajectory t.jsonl cloth.rscene
-  [ -z "$stderr" ]
+  # the one message: the record keeps its start pose in the scene written (RS7079)
+  [ "$(grep -c 'warning:' <<<"$stderr")" -eq 1 ]
+  [[ "$stderr" == "cloth.rscene:6:1: warning: deformable '/World/Cloth' is written back at the start pose"*"[RS7079]"* ]]
   grep -qxF "$(grep '^deformable' cloth.rscene)" <<<"$output"
   # States at t = 0, 0.25 and 0.5 s (every 50 steps of 5 ms), 81 points each.
   [ "$(grep -c '"path":"/World/Cloth"' t.jsonl)" -eq 3 ]
@@ -91,4 +93,78 @@ PY
   # 8e9 grid points: counted column by column, refused before one is made.
   run -2 --separate-stderr timeout 20 "$SIM" --steps 1 cloth.rscene
   [ "${stderr%%$'\n'*}" = "cloth.rscene:6:206: error: deformable '/World/Cloth': a fill at this spacing makes more than 1000000 particles [RS7081]" ]
+}
+
+# --- issue 24: hostile deformables --------------------------------------
+
+@test "issue 24 (04): a run whose cloth solver work passes the cap is refused up front with its cost, at iterations" {
+  scene "iterations=2000 substeps=100"
+  # 465 x 2000 x 100 = 9.3e7 updates a step: one step is under the warning's 1e9
+  run -0 --separate-stderr "$SIM" --steps 1 -o /dev/null cloth.rscene
+  [ "$(grep -c 'RS707[56]' <<<"$stderr")" -eq 0 ]
+  # 1000 steps = 9.3e10 updates: refused at once, nothing written
+  SECONDS=0
+  run -2 --separate-stderr "$SIM" --steps 1000 -o out.rscene cloth.rscene
+  [ "$SECONDS" -lt 10 ]
+  [ ! -e out.rscene ]
+  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:"*": error: the deformables' solver work for this run is 9.3e+07 updates a step x 1000 steps = 9.3e+10 updates"*"about 31 min of one core"*"more than the limit of 3e+10"*"[RS7075]" ]]
+  [[ "$stderr" == *"hint: lower iterations or substeps"* ]]
+  # 20 steps = 1.86e9: the cost is a warning before the first step (the run itself is cut short here)
+  run --separate-stderr timeout -s INT 5 "$SIM" --steps 20 -o /dev/null cloth.rscene
+  [[ "$stderr" == *"= 1.86e+09 updates"*"about 37 s of one core"*"[RS7076]"* ]]
+}
+
+@test "issue 24 (07): a cloth starting below the ground is refused at its position (RS7077), nothing written" {
+  scene ""
+  sed -i 's|cloth.obj 0 0 1.2 |cloth.obj 0 0 -0.2 |' cloth.rscene
+  run -2 --separate-stderr "$SIM" --steps 100 --trajectory t.jsonl -o out.rscene cloth.rscene
+  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:"*": error: deformable '/World/Cloth': particle 0 at (-1, -1, -0.2) starts 0.2 m inside the ground or another body"*"[RS7077]" ]]
+  [ ! -e out.rscene ] && [ ! -e t.jsonl ]
+}
+
+@test "issue 24 (07): a thickness of 1e-300 is refused by validate and sim alike (RS7081 at thickness)" {
+  scene "youngsModulus=1e6 thickness=1e-300"
+  run -1 "$BIN/rscene-validate" cloth.rscene
+  [[ "${lines[0]}" == "cloth.rscene:6:"*": error: deformable '/World/Cloth': thickness 1e-300 m is not 0 or in [1e-06, 10] m [RS7081]" ]]
+  run -2 --separate-stderr "$SIM" --steps 1 cloth.rscene
+  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:"*"thickness 1e-300 m is not 0 or in [1e-06, 10] m [RS7081]" ]]
+}
+
+@test "issue 24 (07): a cloth 100 times heavier than a dynamic box it may touch is refused at totalMass (RS7078)" {
+  scene "totalMass=100"
+  sed -i 's|^object /World/Ball sphere 0 0 0.5 1 0 0 0 1 1 1 0.5 1 0 \(.*\) static |object /World/Ball sphere 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 \1 dynamic |' cloth.rscene
+  grep -q 'Ball.* dynamic ' cloth.rscene
+  run -2 --separate-stderr "$SIM" --steps 100 -o out.rscene cloth.rscene
+  [[ "${stderr%%$'\n'*}" == *"error: deformable '/World/Cloth': totalMass 100 kg is more than 20 times the mass of dynamic body '/World/Ball'"*"[RS7078]" ]]
+  [ ! -e out.rscene ]
+}
+
+@test "issue 24 (12): rscene-sim | rscene-render: the written scene warns once that the cloth keeps its start pose, and the README shows --trajectory" {
+  scene ""
+  run -0 --separate-stderr "$SIM" --steps 10 -o out.rscene cloth.rscene
+  [ "$(grep -c 'RS7079' <<<"$stderr")" -eq 1 ]
+  [[ "$stderr" == *"hint: to draw the simulated particles, write them with rscene-sim --trajectory t.jsonl and draw with rscene-render --trajectory t.jsonl"* ]]
+  grep -qF 'rscene-sim --trajectory t.jsonl -o out.rscene examples/soft_bodies.rscene' "$ROOT/README.md"
+  grep -qF 'rscene-render --trajectory t.jsonl out.rscene' "$ROOT/README.md"
+  # a scene without deformables says nothing of them
+  grep -v '^deformable' cloth.rscene > rigid.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 -o /dev/null rigid.rscene
+  [ -z "$stderr" ]
+}
+
+@test "issue 24: what sim writes, sim reads: the examples with deformables settle, are written, validate clean and settle again" {
+  needs_tools rscene-validate
+  cp -R "$ROOT/examples/." .
+  n=0
+  for f in soft_bodies*.rscene; do
+    grep -q '^deformable ' "$f" || continue
+    n=$((n + 1))
+    run -0 --separate-stderr "$SIM" --duration 1 -o "settled-$f" "$f"
+    run -0 "$BIN/rscene-validate" --check-files "settled-$f"
+    [ "$(grep -c 'error\|warning' <<<"$output")" -eq 0 ]
+    run -0 --separate-stderr "$SIM" --duration 1 -o "again-$f" "settled-$f"
+    # the only message is the deformables' start pose, as on the first run
+    [ -z "$(grep -v RS7079 <<<"$stderr" | grep 'error:\|warning:')" ]
+  done
+  [ "$n" -ge 1 ]
 }

@@ -148,6 +148,9 @@ int run(const Options& opt) {
   Clock::time_point steppedAt = Clock::now();
 
   world->writeBack(doc);
+  // Deformables keep their start pose in the scene written (RS7079): said
+  // once, naming them, with the way to draw the simulated cloth.
+  if (auto w = sim::deformablesAtStartPose(doc, prepared.scene)) print(Diagnostics{*w});
   if (!cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; })) return cli::kTrouble;
   Clock::time_point writtenAt = Clock::now();
   if (opt.report) {

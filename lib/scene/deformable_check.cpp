@@ -31,7 +31,8 @@ bool checkDeformableRecord(const Deformable& r, std::string& error, std::string&
                          Range{"distanceStiffness", r.distanceStiffness, -big, big},
                          Range{"bendCompliance", r.bendCompliance, -big, big},
                          Range{"bendStiffness", r.bendStiffness, -big, big},
-                         Range{"youngsModulus", r.youngsModulus, 0, big}, Range{"thickness", r.thickness, 0, 1e6},
+                         Range{"youngsModulus", r.youngsModulus, 0, kMaxYoungsModulus},
+                         Range{"thickness", r.thickness, 0, kMaxThickness},
                          Range{"damping", r.damping, 0, 1}, Range{"collisionRadius", r.collisionRadius, 0, 1e6},
                          Range{"particleSpacing", r.particleSpacing, 0, 1e6}})
     if (!(k.value >= k.lo && k.value <= k.hi))
@@ -44,6 +45,16 @@ bool checkDeformableRecord(const Deformable& r, std::string& error, std::string&
                                          num(r.distanceStiffness) + " is not positive");
   if (r.youngsModulus > 0 && !(r.thickness > 0))
     return fail("thickness", "youngsModulus > 0 derives each edge's area from thickness, which is 0");
+  // Physical ranges: a sheet thinner than a micrometre or a modulus below
+  // 1 Pa is no material; its edges' compliance L / (E A) would be so large
+  // that the cloth has no stretch resistance left and tears apart
+  // (thickness=1e-300 threw a pinned cloth 35 km).
+  if (r.thickness > 0 && r.thickness < kMinThickness)
+    return fail("thickness", "thickness " + num(r.thickness) + " m is not 0 or in [" + num(kMinThickness) + ", " +
+                                 num(kMaxThickness) + "] m");
+  if (r.youngsModulus > 0 && r.youngsModulus < kMinYoungsModulus)
+    return fail("youngsModulus", "youngsModulus " + num(r.youngsModulus) + " Pa is not 0 or in [" +
+                                     num(kMinYoungsModulus) + ", " + num(kMaxYoungsModulus) + "] Pa");
   if (r.iterations < 0 || r.iterations > kMaxDeformableIterations)
     return fail("iterations", "iterations " + std::to_string(r.iterations) + " is not in [0, " +
                                   std::to_string(kMaxDeformableIterations) + "]");

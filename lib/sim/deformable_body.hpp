@@ -47,6 +47,19 @@ class DeformableBody {
   virtual bool finite() const = 0;          // every position and velocity finite
   virtual std::size_t distanceConstraintCount() const = 0;
   virtual std::size_t bendingConstraintCount() const = 0;
+  // Solver updates one world step costs: iterations x substeps x
+  // (constraints + particles), the unit of rscene-sim's per-run cap (RS7075).
+  virtual double workPerStep() const = 0;
+  // The deepest a free particle's sphere starts inside a surface of
+  // `surfaces` (m, its radius minus the centre's distance; 0 when none
+  // overlaps), with that particle's index.  Before the first step.
+  virtual double startOverlap(SurfaceQuery& surfaces, std::size_t& particle) const = 0;
+  // Collision radius of the particles' proxy spheres (m).
+  virtual double collisionRadius() const = 0;
+  // Empty while the body's kinetic energy stays within what gravity and
+  // the surfaces it touched have given it (with a margin); else a sentence
+  // with the figures, for the divergence error (RS7024).
+  virtual std::string runaway() const = 0;
 };
 
 }  // namespace rscene::sim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 
 namespace rscene::sim {
 namespace {
@@ -47,6 +48,53 @@ XpbdDeformable::XpbdDeformable(DeformableModel model) : m_(std::move(model)) {
   v_.assign(m_.positions.size(), Eigen::Vector3d::Zero());
   lambda_.assign(m_.distances.size() + m_.bends.size(), 0.0);
   finite_ = std::all_of(m_.positions.begin(), m_.positions.end(), [](const auto& p) { return p.allFinite(); });
+  for (std::size_t i = 0; i < m_.positions.size(); ++i)
+    if (m_.inverseMass[i] != 0) {
+      startSum_ += m_.positions[i];
+      freeMass_ += m_.particleMass;
+    }
+}
+
+double XpbdDeformable::startOverlap(SurfaceQuery& surfaces, std::size_t& particle) const {
+  particle = 0;
+  if (!m_.collidable || !finite_) return 0;
+  const double r = m_.collisionRadius;
+  Eigen::AlignedBox3d region;
+  for (std::size_t i = 0; i < m_.positions.size(); ++i)
+    if (m_.inverseMass[i] != 0) region.extend(m_.positions[i]);
+  if (region.isEmpty()) return 0;
+  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(r + 1e-6);
+  surfaces.prepare(Eigen::AlignedBox3d(region.min() - grow, region.max() + grow), m_.collisionGroup,
+                   m_.collisionMask, m_.contactMaterial);
+  double deepest = 0;
+  std::vector<SurfaceContact> found;
+  for (std::size_t i = 0; i < m_.positions.size(); ++i) {
+    if (m_.inverseMass[i] == 0) continue;  // pinned: held where the user put it, pushes nothing
+    found.clear();
+    surfaces.contacts(m_.positions[i], r, 0, found);
+    for (const SurfaceContact& c : found)
+      if (c.depth > deepest) {
+        deepest = c.depth;
+        particle = i;
+      }
+  }
+  return deepest;
+}
+
+// Kinetic energy past twice what gravity and the surfaces gave the free
+// particles, plus that of the body moving at 1 m/s (the margin for a body
+// at rest): no physics makes it, a stiff or degenerate constraint for the
+// (sub)step does.
+std::string XpbdDeformable::runaway() const {
+  if (!finite_ || !(freeMass_ > 0)) return {};
+  const double given = std::max(0.0, gravityWork_) + surfaceWork_;
+  if (kinetic_ <= 2 * given + 0.5 * freeMass_) return {};
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "its kinetic energy (%.3g J, %.3g kg at up to %.3g m/s) is past what gravity (%.3g J) and the bodies "
+                "it touched (%.3g J) gave it",
+                kinetic_, freeMass_, maxSpeed_, gravityWork_, surfaceWork_);
+  return text;
 }
 
 void XpbdDeformable::step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) {
@@ -76,14 +124,20 @@ void XpbdDeformable::step(double dt, const Eigen::Vector3d& gravity, SurfaceQuer
     for (std::size_t i = 0; i < n; ++i)
       v_[i] = m_.inverseMass[i] == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d((x[i] - previous_[i]) / h * keep);
   }
-  double fastest = 0;
+  double fastest = 0, speeds2 = 0;
   bool ok = true;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n; ++i) {
     ok = ok && x[i].allFinite() && v_[i].allFinite();
     fastest = std::max(fastest, v_[i].norm());
+    if (m_.inverseMass[i] == 0) continue;
+    speeds2 += v_[i].squaredNorm();
+    sum += x[i];
   }
   finite_ = ok;
   maxSpeed_ = ok ? fastest : INFINITY;
+  kinetic_ = 0.5 * m_.particleMass * speeds2;
+  gravityWork_ = m_.particleMass * gravity.dot(sum - startSum_);
 }
 
 // Contacts of each free particle's sphere, looked for around where it
@@ -188,7 +242,8 @@ void XpbdDeformable::applyFriction(SurfaceQuery& surfaces, double h, double dt) 
     if (!(c.pushed > 0)) continue;
     Eigen::Vector3d& x = m_.positions[c.particle];
     const Eigen::Vector3d& nrm = c.surface.normal;
-    Eigen::Vector3d slip = (x - previous_[c.particle]) - surfaces.velocity(c.surface.body, c.surface.point) * h;
+    const Eigen::Vector3d surfaceVelocity = surfaces.velocity(c.surface.body, c.surface.point);
+    Eigen::Vector3d slip = (x - previous_[c.particle]) - surfaceVelocity * h;
     slip -= slip.dot(nrm) * nrm;
     const double len = slip.norm(), limit = std::max(0.0, c.surface.friction) * c.pushed;
     Eigen::Vector3d fix = len <= limit ? Eigen::Vector3d(-slip) : Eigen::Vector3d(-slip * (limit / len));
@@ -196,6 +251,8 @@ void XpbdDeformable::applyFriction(SurfaceQuery& surfaces, double h, double dt) 
     x += fix;
     if (c.surface.body >= 0) {
       const Eigen::Vector3d impulse = m_.particleMass * (nrm * c.pushed + fix) / h;
+      // What the moving surface gave the particle (J): the energy budget of runaway().
+      surfaceWork_ += std::max(0.0, impulse.dot(surfaceVelocity));
       surfaces.addForce(c.surface.body, c.surface.point, -impulse / dt);
     }
   }

@@ -7,6 +7,7 @@
 // from the positions' change, damped.  Contact reactions go back to
 // dynamic bodies as forces averaged over the world step.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "sim/deformable_body.hpp"
@@ -50,6 +51,19 @@ class XpbdDeformable final : public DeformableBody {
   bool finite() const override { return finite_; }
   std::size_t distanceConstraintCount() const override { return m_.distances.size(); }
   std::size_t bendingConstraintCount() const override { return m_.bends.size(); }
+  double workPerStep() const override {
+    return static_cast<double>(m_.distances.size() + m_.bends.size() + m_.positions.size()) *
+           static_cast<double>(m_.iterations) * static_cast<double>(m_.substeps);
+  }
+  double startOverlap(SurfaceQuery& surfaces, std::size_t& particle) const override;
+  double collisionRadius() const override { return m_.collisionRadius; }
+  std::string runaway() const override;
+  // The energy balance after the last step (J): kinetic energy of the free
+  // particles, the work gravity did on them since the start, and the work
+  // moving surfaces did through contacts.
+  double kineticEnergy() const { return kinetic_; }
+  double gravityWork() const { return gravityWork_; }
+  double surfaceWork() const { return surfaceWork_; }
 
   const std::vector<Eigen::Vector3d>& velocities() const { return v_; }
   const DeformableModel& model() const { return m_; }
@@ -73,6 +87,9 @@ class XpbdDeformable final : public DeformableBody {
   std::vector<SurfaceContact> found_;
   double maxSpeed_ = 0;
   bool finite_ = true;
+  Eigen::Vector3d startSum_ = Eigen::Vector3d::Zero();  // sum of the free particles' start positions
+  double freeMass_ = 0;                                 // kg, free particles
+  double kinetic_ = 0, gravityWork_ = 0, surfaceWork_ = 0;
 };
 
 }  // namespace rscene::sim

@@ -3,8 +3,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "scene/reader.hpp"
+#include "sim/particle_systems.hpp"
 
 namespace rscene::sim {
 
@@ -44,6 +46,14 @@ Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad) {
   }
   char at[96];
   std::snprintf(at, sizeof at, "at step %llu (t = %.6g s)", static_cast<unsigned long long>(bad.step), bad.time);
+  if (bad.diverged && !bad.cause.empty()) {
+    d.message = "deformable '" + bad.path + "' diverged " + at + ": " + bad.cause +
+                "; the simulation stopped and nothing was written";
+    d.hint = "a constraint too stiff or a triangle too thin for the time step (youngsModulus with a tiny thickness, "
+             "compliance near 0 with few iterations), or a start inside another body: raise substeps, "
+             "thickness or compliance, or shorten time_step";
+    return d;
+  }
   if (bad.diverged) {
     d.message = "the state of articulated system '" + bad.path + "' diverged " + at +
                 " (a joint reached 1e6 rad/s or m/s, or the base went past 1e12 m); the simulation stopped and "
@@ -70,6 +80,68 @@ Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step
               ", this body in one of them; the simulation stopped and nothing was written";
   d.hint = "raise the limit with --max-pairs N (each pair costs about 8.5 KB), or spread the bodies out";
   return d;
+}
+
+namespace {
+
+// Seconds of one core for `work` updates, in words ("about 8.3 h").
+std::string coreTime(double work) {
+  const double s = work / kDeformableUpdatesPerSecond;
+  char text[64];
+  if (s < 120) std::snprintf(text, sizeof text, "about %.2g s", s);
+  else if (s < 7200) std::snprintf(text, sizeof text, "about %.2g min", s / 60);
+  else if (s < 172800) std::snprintf(text, sizeof text, "about %.2g h", s / 3600);
+  else std::snprintf(text, sizeof text, "about %.2g days", s / 86400);
+  return text;
+}
+
+std::string sci(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+}  // namespace
+
+bool checkDeformableWork(const Document& doc, const World& world, std::uint64_t steps, Diagnostics& ds) {
+  std::vector<ParticleSystems::DeformableCost> costs = world.particleSystems().deformableCosts();
+  if (costs.empty()) return true;
+  double perStep = 0;
+  const ParticleSystems::DeformableCost* top = &costs.front();
+  for (const auto& c : costs) {
+    perStep += c.workPerStep;
+    if (c.workPerStep > top->workPerStep) top = &c;
+  }
+  const double total = perStep * static_cast<double>(steps);
+  if (!(total > kDeformableWorkWarning)) return true;
+  const bool refused = total > kMaxDeformableWorkPerRun;
+  std::string message = "the deformables' solver work for this run is " + sci(perStep) + " updates a step x " +
+                        std::to_string(steps) + " steps = " + sci(total) +
+                        " updates (iterations x substeps x (constraints + particles) x steps), " + coreTime(total) +
+                        " of one core; deformable '" + top->path + "' takes " + sci(top->workPerStep) + " a step";
+  if (refused)
+    message += ", more than the limit of " + sci(kMaxDeformableWorkPerRun) + " (" + coreTime(kMaxDeformableWorkPerRun) +
+               "); nothing was simulated";
+  reportAt(&doc, top->recordIndex, "iterations", refused ? rs::RS7075 : rs::RS7076, message, ds,
+           refused ? Severity::Error : Severity::Warning,
+           "lower iterations or substeps, use a coarser mesh, or simulate fewer steps (--steps, --duration)");
+  return !refused;
+}
+
+std::optional<Diagnostic> deformablesAtStartPose(const Document& doc, const Scene& scene) {
+  if (scene.deformables.empty()) return std::nullopt;
+  std::string names;
+  for (const Deformable& d : scene.deformables) names += (names.empty() ? "'" : ", '") + d.path + "'";
+  Diagnostics ds;
+  const bool one = scene.deformables.size() == 1;
+  reportAt(&doc, scene.deformables.front().recordIndex, "", rs::RS7079,
+           std::string(one ? "deformable " : "deformables ") + names + (one ? " is" : " are") +
+               " written back at the start pose: the format has no key for a deformed state, so a renderer of this "
+               "scene draws " + (one ? "it" : "them") + " undeformed while the other bodies have moved",
+           ds, Severity::Warning,
+           "to draw the simulated particles, write them with rscene-sim --trajectory t.jsonl and draw with "
+           "rscene-render --trajectory t.jsonl");
+  return ds.back();
 }
 
 }  // namespace rscene::sim

@@ -34,6 +34,14 @@ inline constexpr std::uint64_t kDefaultMaxSteps = 10'000'000;
 // dense pile; 448 boxes in one spot already make more than 100,000 pairs.
 inline constexpr std::uint64_t kDefaultMaxPairs = 100'000;
 
+// The deformables' solver work of one run, in updates (iterations x
+// substeps x (constraints + particles) x steps, summed over the
+// deformables): past kMaxDeformableWorkPerRun the run is refused before
+// its first step (RS7075), past kDeformableWorkWarning the expected cost is
+// a warning (RS7076).  One core does about kDeformableUpdatesPerSecond.
+inline constexpr double kDeformableUpdatesPerSecond = 5e7;
+inline constexpr double kMaxDeformableWorkPerRun = 3e10;  // about 10 minutes of one core
+inline constexpr double kDeformableWorkWarning = 1e9;     // about 20 s
 
 // Steps of a run of `duration` seconds at `timeStep`: round(duration /
 // timeStep), computed without overflow or undefined conversion.  nullopt
@@ -51,5 +59,17 @@ Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad);
 // The error for a world that met more overlapping pairs than its cap, at
 // the record World::pairOverflow() names.
 Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step, std::uint64_t maxPairs);
+
+// The per-run cap on the deformables' work (above) for a run of `steps`
+// steps of `world`: false after an error at the costliest deformable's
+// iterations (RS7075); a warning there (RS7076) for a run past the warning
+// threshold.
+bool checkDeformableWork(const Document& doc, const World& world, std::uint64_t steps, Diagnostics& diagnostics);
+
+// The warning (RS7079, once, at the first deformable record, naming them
+// all) for a scene written back with deformables: the format has no key
+// for a deformed state, so they stay at their start pose; nullopt when the
+// scene has none.
+std::optional<Diagnostic> deformablesAtStartPose(const Document& doc, const Scene& scene);
 
 }  // namespace rscene::sim

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/codes.hpp"
 #include "core/text.hpp"
 #include "scene/reader.hpp"
 
@@ -100,6 +101,39 @@ std::optional<std::pair<int, std::string>> ParticleSystems::nonFinite() const {
     if (!d.body->finite()) return std::pair{d.recordIndex, d.path};
   for (const GranularEntry& g : granulars_)
     if (!g.body->finite()) return std::pair{g.recordIndex, g.path};
+  return std::nullopt;
+}
+
+std::vector<ParticleSystems::DeformableCost> ParticleSystems::deformableCosts() const {
+  std::vector<DeformableCost> out;
+  for (const DeformableEntry& d : deformables_) out.push_back({d.recordIndex, d.path, d.body->workPerStep()});
+  return out;
+}
+
+bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc,
+                                            Diagnostics& diagnostics) const {
+  bool ok = true;
+  for (const DeformableEntry& d : deformables_) {
+    std::size_t particle = 0;
+    const double depth = d.body->startOverlap(surfaces, particle), r = d.body->collisionRadius();
+    if (!(depth > 0.5 * r + 1e-6)) continue;
+    const Eigen::Vector3d& at = d.body->positions()[particle];
+    reportAt(doc, d.recordIndex, "position", rs::RS7077,
+             "deformable '" + d.path + "': particle " + std::to_string(particle) + " at (" + roundedNumber(at.x(), 6) +
+                 ", " + roundedNumber(at.y(), 6) + ", " + roundedNumber(at.z(), 6) + ") starts " +
+                 roundedNumber(depth - r, 6) + " m inside the ground or another body (its sphere of collisionRadius " +
+                 roundedNumber(r, 6) + " m overlaps by " + roundedNumber(depth, 6) +
+                 " m); pushing it out in one substep would throw the body and what it touches",
+             diagnostics, Severity::Error,
+             "place the deformable clear of the other bodies (at least its collisionRadius above the ground)");
+    ok = false;
+  }
+  return ok;
+}
+
+std::optional<ParticleSystems::Runaway> ParticleSystems::deformableRunaway() const {
+  for (const DeformableEntry& d : deformables_)
+    if (std::string why = d.body->runaway(); !why.empty()) return Runaway{d.recordIndex, d.path, std::move(why)};
   return std::nullopt;
 }
 

@@ -49,6 +49,25 @@ class ParticleSystems {
   std::vector<ParticleState> states() const;  // deformables in record order, then granulars
   // The first system whose particles are no longer finite: its record and path.
   std::optional<std::pair<int, std::string>> nonFinite() const;
+  // Deformables (lib/sim/deformable_*): what each costs a world step
+  // (DeformableBody::workPerStep), in record order, for the per-run cap.
+  struct DeformableCost {
+    int recordIndex = -1;
+    std::string path;
+    double workPerStep = 0;
+  };
+  std::vector<DeformableCost> deformableCosts() const;
+  // Before the first step: false after an error (RS7077) at each deformable
+  // whose free particle starts deeper than half its collisionRadius inside
+  // a surface (pushing it out in one substep would throw it).
+  bool checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics) const;
+  // The first deformable whose kinetic energy ran away (DeformableBody::
+  // runaway): its record, path and the sentence with the figures.
+  struct Runaway {
+    int recordIndex = -1;
+    std::string path, why;
+  };
+  std::optional<Runaway> deformableRunaway() const;
   // Granular records get `positions` and `radii` (in the record's frame):
   // RaiSim reads explicit positions in place of the box fill, so the
   // settled bed loads as it was left.  Deformables keep their record (the

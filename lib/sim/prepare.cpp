@@ -116,6 +116,9 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
     ok = noNewErrors(ds, before);
   }
   if (ok) out.world = World::create(out.scene, ds, wo);
+  // The deformables' work for the whole run, now that the step count and
+  // their constraints are known: refused up front past the cap (RS7075).
+  if (out.world && !checkDeformableWork(doc, *out.world, out.steps, ds)) out.world.reset();
   if (auto w = unsupportedWarning(out.scene)) ds.push_back(*w);
   return out.world != nullptr;
 }

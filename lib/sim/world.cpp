@@ -183,6 +183,34 @@ struct Simulated {
 };
 
 struct World::Impl {
+  // A deformable far heavier than a dynamic body it may touch is refused
+  // (RS7078): its contact reactions reach Bullet as forces for the next
+  // step, an explicit coupling that holds up to about 20:1 (a 1 kg box
+  // under a 40 kg cloth starts to jump; under 1e6 kg it was thrown 716 km).
+  bool deformableMassRatios(const Scene& scene, const Document* doc, Diagnostics& ds) const {
+    const Simulated* lightest = nullptr;
+    double least = INFINITY;
+    for (const Simulated& s : simulated)
+      if (s.dynamic && s.body->getInvMass() > 0 && 1 / s.body->getInvMass() < least) {
+        least = 1 / s.body->getInvMass();
+        lightest = &s;
+      }
+    if (!lightest) return true;
+    bool ok = true;
+    for (const Deformable& d : scene.deformables) {
+      if (!d.collidable || !(d.totalMass > kMaxDeformableMassRatio * least)) continue;
+      reportAt(doc, d.recordIndex, "totalMass", rs::RS7078,
+               "deformable '" + d.path + "': totalMass " + roundedNumber(d.totalMass, 6) + " kg is more than " +
+                   roundedNumber(kMaxDeformableMassRatio, 6) + " times the mass of dynamic body '" + lightest->path +
+                   "' (" + roundedNumber(least, 6) +
+                   " kg) it may touch: its contact reactions would throw the body (they reach it as forces for the "
+                   "next step, stable up to about that ratio)",
+               ds, Severity::Error, "make the deformable lighter or the body heavier, or keep them apart with collisionGroup/collisionMask");
+      ok = false;
+    }
+    return ok;
+  }
+
   // Names a body by id and path and, when it moves, remembers where its
   // pose is written back (objects and compounds alike).
   template <class Node>
@@ -854,6 +882,10 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
     if (!w.addWire(wire)) return fail();
   if (!w.particles.create(scene, options.document, *w.assets, diagnostics)) return nullptr;
   if (!w.particles.empty()) w.attachParticleSurfaces();
+  // A deformable starting inside a body is refused, as grains starting in
+  // overlap are (RS7089): its first substep would throw it (RS7077).
+  if (w.surfaces && !w.particles.checkDeformableStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
+  if (!w.deformableMassRatios(scene, options.document, diagnostics)) return nullptr;
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 
@@ -1021,6 +1053,17 @@ std::optional<NonFinite> World::nonFinite() const {
     bad.step = w.stepCount;
     bad.time = time();
     bad.what = "particle position or velocity";
+    return bad;
+  }
+  if (auto r = w.particles.deformableRunaway()) {  // finite, but gaining energy from nowhere
+    NonFinite bad;
+    bad.diverged = true;
+    bad.recordIndex = r->recordIndex;
+    bad.path = r->path;
+    bad.step = w.stepCount;
+    bad.time = time();
+    bad.what = "kinetic energy";
+    bad.cause = r->why;
     return bad;
   }
   return std::nullopt;

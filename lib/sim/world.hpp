@@ -146,7 +146,15 @@ struct NonFinite {
   // cap (kMaxJointSpeed), or its base farther than kMaxLength.  Stiff
   // springs or gains for the time step; nothing it writes would be physics.
   bool diverged = false;
+  // A deformable whose kinetic energy ran away (diverged, what "kinetic
+  // energy"): the figures (ParticleSystems::deformableRunaway).
+  std::string cause;
 };
+
+// Most a deformable's totalMass may exceed the mass of a dynamic rigid body
+// (object or compound) of the same world (RS7078): the particles' contact
+// reactions reach Bullet as forces for the next step, stable up to about this.
+inline constexpr double kMaxDeformableMassRatio = 20;
 
 // The joint speed cap set on every robot (btMultiBody::setMaxCoordinateVelocity):
 // a joint that reaches it has diverged.

@@ -220,3 +220,27 @@ TEST(Deformable, ComplianceRulesFollowRaiSim) {
     }
   }
 }
+
+// Issue 24: the energy check.  A hanging chain's kinetic energy stays
+// within what gravity gave it (runaway() empty); a chain whose links start
+// at a tenth of their rest length is thrown apart by energy no gravity or
+// body gave it, and runaway() says so with the figures (World stops the
+// run with RS7024).
+TEST(Deformable, RunawayIsKineticEnergyPastWhatGravityAndBodiesGave) {
+  AnalyticSurfaces none;
+  XpbdDeformable hanging(chain(5, 0.1, 0.2, 1e-3, 20));
+  for (int i = 0; i < 400; ++i) {
+    hanging.step(0.005, Eigen::Vector3d(0, 0, -9.81), none);
+    ASSERT_EQ(hanging.runaway(), "") << "step " << i;
+  }
+  EXPECT_GE(hanging.gravityWork(), 0);
+  EXPECT_LE(hanging.kineticEnergy(), hanging.gravityWork() + 1e-12);
+
+  DeformableModel m = chain(5, 0.1, 0.2, 0, 20);
+  for (std::size_t i = 0; i < m.positions.size(); ++i) m.positions[i] *= 0.1;  // compressed tenfold
+  XpbdDeformable burst(std::move(m));
+  burst.step(0.005, Eigen::Vector3d::Zero(), none);
+  const std::string why = burst.runaway();
+  EXPECT_NE(why.find("is past what gravity (0 J) and the bodies it touched (0 J) gave it"), std::string::npos) << why;
+  EXPECT_GT(burst.kineticEnergy(), 0.5 * 1.0 * 1.0);  // past the 1 m/s margin for the 1 kg free
+}

@@ -9,6 +9,7 @@
 #include "core/loader.hpp"
 #include "scene/scene.hpp"
 #include "sim/deformable_test_util.hpp"
+#include "sim/limits.hpp"
 #include "sim/world.hpp"
 #include "sim/world_test_scene.hpp"
 
@@ -74,4 +75,106 @@ TEST(DeformableWorld, ARefusedRecordIsAnErrorAtItsKey) {
   EXPECT_GT(d.column, 0u);
   EXPECT_NE(d.message.find("pinnedVertices 9 is not a vertex of /s/cloth.obj (it has 9)"), std::string::npos)
       << d.message;
+}
+
+// Issue 24, case 7: a deformable starting inside the ground or a body is
+// refused as grains starting in overlap are (RS7077), at its position.
+TEST(DeformableWorld, AClothStartingBelowTheGroundIsRefusedAtItsPosition) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(5, 1));
+  asset::AssetCache cache(fs);
+  auto r = make(kGround + "deformable /World/Cloth cloth cloth.obj 0 0 -0.2 1 0 0 0 1 1 1 collisionRadius=0.01\n", cache);
+  EXPECT_FALSE(r->world);
+  ASSERT_FALSE(r->diags.empty());
+  const Diagnostic& d = r->diags.back();
+  EXPECT_EQ(d.code, "RS7077");
+  EXPECT_EQ(d.line, 4u);
+  EXPECT_NE(d.message.find("starts 0.2 m inside the ground or another body"), std::string::npos) << d.message;
+  // Resting on the ground (its centres at the radius) is no overlap.
+  auto ok = make(kGround + "deformable /World/Cloth cloth cloth.obj 0 0 0.01 1 0 0 0 1 1 1 collisionRadius=0.01\n", cache);
+  EXPECT_TRUE(ok->world) << test::firstMessage(ok->diags);
+}
+
+TEST(DeformableWorld, AClothStartingInsideABoxIsRefused) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(9, 1));
+  asset::AssetCache cache(fs);
+  auto r = make(kGround +
+                    "object /World/Box box 0.2 0.1 0.3 1 0 0 0 0.4 0.4 0.4 0 0 1 default - false true false - dynamic "
+                    "true 1 18446744073709551615\n"
+                    "deformable /World/Cloth cloth cloth.obj 0 0 0.2 1 0 0 0 1 1 1 collisionRadius=0.01\n",
+                cache);
+  EXPECT_FALSE(r->world);
+  ASSERT_FALSE(r->diags.empty());
+  EXPECT_EQ(r->diags.back().code, "RS7077");
+  EXPECT_EQ(r->diags.back().line, 5u);
+}
+
+// A deformable far heavier than a dynamic body it may touch (RS7078):
+// 100 kg of cloth landing on a 1 kg box threw it 1.4 km.
+TEST(DeformableWorld, AClothFarHeavierThanABodyIsRefusedAtTotalMass) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(9, 1));
+  asset::AssetCache cache(fs);
+  const std::string box =
+      "object /World/Box box 0.2 0.1 0.3 1 0 0 0 0.4 0.4 0.4 0 0 1 default - false true false - dynamic "
+      "true 1 18446744073709551615\n";
+  auto r = make(kGround + box + "deformable /World/Cloth cloth cloth.obj 0 0 0.6 1 0 0 0 1 1 1 totalMass=100\n", cache);
+  EXPECT_FALSE(r->world);
+  ASSERT_FALSE(r->diags.empty());
+  EXPECT_EQ(r->diags.back().code, "RS7078");
+  EXPECT_NE(r->diags.back().message.find("dynamic body '/World/Box' (1 kg)"), std::string::npos)
+      << r->diags.back().message;
+  auto ok = make(kGround + box + "deformable /World/Cloth cloth cloth.obj 0 0 0.6 1 0 0 0 1 1 1 totalMass=10\n", cache);
+  EXPECT_TRUE(ok->world) << test::firstMessage(ok->diags);
+}
+
+// The per-run cap on the deformables' work (RS7075), with the warning
+// below it (RS7076), at the record's iterations.
+TEST(DeformableWorld, TheRunsSolverWorkIsCappedUpFrontWithItsCost) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(9, 1));
+  asset::AssetCache cache(fs);
+  auto r = make(kGround + "deformable /World/Cloth cloth cloth.obj 0 0 0.5 1 0 0 0 1 1 1 iterations=1000 substeps=10\n",
+                cache);
+  ASSERT_TRUE(r->world) << test::firstMessage(r->diags);
+  const double perStep = r->world->particleSystems().deformableCosts().at(0).workPerStep;
+  // (constraints + particles) x 1000 x 10: 81 particles, 208 edges, 176 bends.
+  EXPECT_EQ(perStep, (81.0 + 208 + 176) * 1e4);
+  Diagnostics ds;
+  EXPECT_TRUE(checkDeformableWork(r->doc, *r->world, 100, ds));  // 4.65e8: nothing said
+  EXPECT_TRUE(ds.empty());
+  EXPECT_TRUE(checkDeformableWork(r->doc, *r->world, 1000, ds));  // 4.65e9: the cost, a warning
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7076");
+  EXPECT_EQ(ds[0].severity, Severity::Warning);
+  ds.clear();
+  EXPECT_FALSE(checkDeformableWork(r->doc, *r->world, 10000, ds));  // 4.65e10: refused
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7075");
+  EXPECT_EQ(ds[0].line, 4u);
+  EXPECT_NE(ds[0].message.find("= 4.65e+10 updates"), std::string::npos) << ds[0].message;
+  EXPECT_NE(ds[0].message.find("about 16 min of one core"), std::string::npos) << ds[0].message;
+}
+
+// A scene written back with deformables says once that they keep their
+// start pose (RS7079), naming each.
+TEST(DeformableWorld, WritingBackDeformablesIsOneWarningNamingThem) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(3, 1));
+  asset::AssetCache cache(fs);
+  auto r = make(kGround + "deformable /World/A cloth cloth.obj 0 0 0.5 1 0 0 0 1 1 1\n" +
+                    "deformable /World/B cloth cloth.obj 0 0 1.5 1 0 0 0 1 1 1\n",
+                cache);
+  ASSERT_TRUE(r->world);
+  std::optional<Diagnostic> w = deformablesAtStartPose(r->doc, r->scene);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->code, "RS7079");
+  EXPECT_EQ(w->severity, Severity::Warning);
+  EXPECT_EQ(w->line, 4u);
+  EXPECT_NE(w->message.find("deformables '/World/A', '/World/B' are written back at the start pose"),
+            std::string::npos)
+      << w->message;
+  auto none = make(kGround, cache);
+  EXPECT_FALSE(deformablesAtStartPose(none->doc, none->scene));
 }
