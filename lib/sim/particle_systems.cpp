@@ -12,6 +12,7 @@ namespace rscene::sim {
 bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::AssetCache& assets,
                              Diagnostics& diagnostics) {
   bool ok = true;
+  timeStep_ = scene.timeStep;
   for (const Deformable& d : scene.deformables) {
     asset::ObjSurface surface;
     std::string error, field;
@@ -41,7 +42,10 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
       ok = false;
       continue;
     }
-    granulars_.push_back({g.recordIndex, g.path, g.world, std::move(body)});
+    Granular record = g;
+    record.positions.clear();
+    record.radii.clear();
+    granulars_.push_back({g.recordIndex, g.path, g.world, std::move(body), std::move(record)});
   }
   return ok;
 }
@@ -103,24 +107,69 @@ std::optional<std::pair<int, std::string>> ParticleSystems::nonFinite() const {
   return std::nullopt;
 }
 
+std::optional<ParticleFailure> ParticleSystems::failure() const {
+  for (const GranularEntry& g : granulars_)
+    if (const auto& f = g.body->failure()) {
+      ParticleFailure out{g.recordIndex, g.path, *f};
+      out.failure.message = "granular " + g.path + ": " + out.failure.message;
+      return out;
+    }
+  return std::nullopt;
+}
+
+std::vector<Eigen::Vector3d> ParticleSystems::local(const GranularEntry& g) {
+  const Pose toRecord = g.frame.inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(g.body->positions().size());
+  for (const Eigen::Vector3d& p : g.body->positions()) {
+    Eigen::Vector3d x = (toRecord * Pose{p, Eigen::Quaterniond::Identity()}).position;
+    for (int k = 0; k < 3; ++k)
+      if (x[k] == 0) x[k] = 0.0;  // no "-0"
+    out.push_back(x);
+  }
+  return out;
+}
+
+std::optional<ParticleFailure> ParticleSystems::unwritable() const {
+  for (const GranularEntry& g : granulars_) {
+    if (g.body->positions().empty() || g.record.fixed) continue;  // written as they were read
+    Granular settled = g.record;
+    settled.positions = local(g);
+    settled.radii = g.body->radii();
+    std::vector<ParticleFinding> findings;
+    granularSetup(settled, timeStep_, findings, false);
+    for (const ParticleFinding& f : findings) {
+      if (!f.error) continue;
+      const bool overlap = f.code == std::string_view(particle_code::kOverlap);
+      GranularFailure why{particle_code::kLeftBounds, overlap ? "normalStiffness" : "",
+                          "granular " + g.path + ": at the end of the run its grains are where the scene model "
+                          "refuses them (" + f.message + " [" + f.code + "]), so the scene written would not load; "
+                          "nothing was written",
+                          overlap ? "the contact law is too soft for the bed's weight: raise normalStiffness (or "
+                                    "lower density or the bed's height)"
+                                  : "look at the record's velocity and at what launches the grains"};
+      return ParticleFailure{g.recordIndex, g.path, std::move(why)};
+    }
+  }
+  return std::nullopt;
+}
+
 void ParticleSystems::writeBack(Document& doc) const {
   std::string positions, radii;
   for (const GranularEntry& g : granulars_) {
     positions.clear();
     radii.clear();
-    const Pose toRecord = g.frame.inverse();
-    const std::vector<Eigen::Vector3d>& p = g.body->positions();
     const std::vector<double>& r = g.body->radii();
-    if (p.empty()) continue;  // an empty bed stays as written
+    if (g.body->positions().empty()) continue;  // an empty bed stays as written
+    const std::vector<Eigen::Vector3d> p = local(g);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      Eigen::Vector3d local = (toRecord * Pose{p[i], Eigen::Quaterniond::Identity()}).position;
       if (i) {
         positions += ';';
         radii += ',';
       }
       for (int k = 0; k < 3; ++k) {
         if (k) positions += ',';
-        appendNumber(positions, local[k] == 0 ? 0.0 : local[k]);  // no "-0"
+        appendNumber(positions, p[i][k]);
       }
       appendNumber(radii, r[i]);
     }

@@ -11,6 +11,8 @@
 #include <cstring>
 
 #include "sim/granular_body.hpp"
+#include "sim/granular_contact.hpp"
+#include "sim/granular_dem.hpp"
 #include "sim/granular_material.hpp"
 
 using namespace rscene;
@@ -434,7 +436,7 @@ TEST(Granular, AHugeBoxFillIsRefusedBeforeAllocating) {
   auto f = refused(g);
   ASSERT_EQ(f.size(), 1u);
   EXPECT_STREQ(f[0].code, "RS7082");
-  EXPECT_EQ(f[0].field, "maxParticles");
+  EXPECT_EQ(f[0].field, "spacing");  // what makes the count: the hard limit cannot be raised
   EXPECT_NE(f[0].message.find("more than the limit of 2000000"), std::string::npos) << f[0].message;
   g.boxMax = {1000, 1000, INFINITY};
   EXPECT_STREQ(refused(g)[0].code, "RS7082");
@@ -449,4 +451,175 @@ TEST(Granular, AnEmptyBedIsFine) {
   body->step(0.001, kGravity, ground);
   EXPECT_TRUE(body->positions().empty());
   EXPECT_EQ(body->maxSpeed(), 0);
+}
+
+// Issue 24 (01): cohesionMaxDistance=100 listed every pair of a bed.  The
+// range is at most the smallest radius: cohesion acts at contact distances.
+TEST(Granular, ACohesionRangePastTheSmallestRadiusIsRefusedAtItsKey) {
+  Granular g = record(block(3, 3, 1, 0.043, 0.5));
+  g.cohesionStiffness = 1e-9;
+  g.cohesionMaxDistance = 100;
+  auto f = refused(g);
+  ASSERT_FALSE(f.empty());
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "cohesionMaxDistance");
+  EXPECT_NE(f[0].message.find("cohesionMaxDistance 100 m is more than the smallest grain radius 0.02 m"),
+            std::string::npos)
+      << f[0].message;
+  g.cohesionMaxDistance = 0.02;  // one radius: allowed
+  EXPECT_NE(make(g, 0.001), nullptr);
+  g.cohesionStiffness = 0;  // a range without a force is nothing
+  g.cohesionMaxDistance = 100;
+  EXPECT_NE(make(g, 0.001), nullptr);
+}
+
+// Issue 24 (06): the force jumped from kc gmax to 0 at the cut-off.
+TEST(Granular, CohesionFallsContinuouslyToZeroAtItsCutOff) {
+  GranularMaterial m;
+  m.kn = 5e4;
+  m.cohesionStiffness = 5e4;
+  m.cohesionMaxDistance = 0.02;
+  GranularContact c;
+  c.n = Eigen::Vector3d::UnitX();
+  c.ra = c.rb = 0.02;
+  c.reff = 0.01;
+  c.va = c.vb = c.wa = c.wb = Eigen::Vector3d::Zero();
+  auto force = [&](double gap) {
+    GranularHistory h;
+    c.depth = -gap;
+    return granularContactForce(m, c, 1e-4, h).force.x();
+  };
+  const double eps = 1e-9;
+  EXPECT_NEAR(force(0.02 - eps), 0, 5e4 * eps * 1.01);  // nothing left to jump from
+  EXPECT_EQ(force(0.02), 0);
+  EXPECT_NEAR(force(1e-6), -5e4 * 1e-6, 1e-6);        // slope kc at contact
+  EXPECT_NEAR(force(0.01), -5e4 * 0.01 * 0.5, 1e-9);  // kc g (1 - g / gmax)
+  EXPECT_EQ(force(0.03), 0);
+}
+
+// A pair at rest in contact under cohesion, no gravity: the cohesion is
+// zero at contact, so nothing moves (closed form: rest stays rest).
+TEST(Granular, GrainsAtRestUnderCohesionStayAtRest) {
+  const double r = 0.02;
+  Granular g = record({{0, 0, 0}, {2 * r, 0, 0}, {0, 2 * r, 0}});
+  g.cohesionStiffness = 5e4;
+  g.cohesionMaxDistance = r;
+  auto body = make(g, 0.001);
+  AnalyticSurfaces none;
+  for (int k = 0; k < 1000; ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  EXPECT_EQ(body->maxSpeed(), 0);
+  EXPECT_FALSE(body->failure());
+}
+
+// Issue 24 (06): 32 grains resting on the ground, cohesion as stiff as the
+// contacts over one radius (the reproducer): they flew to 53 m.  Now they
+// either stay in a heap or the run is stopped with RS7083 at the cohesion;
+// never a grain above a metre with no error.
+TEST(Granular, ACohesiveBedDoesNotGainEnergy) {
+  const double r = 0.02;
+  for (double kc : {5e4, 2e5}) {
+    Granular g = record(block(4, 4, 2, 0.043, r + 0.003));
+    g.substeps = 3;
+    g.cohesionStiffness = kc;
+    g.cohesionMaxDistance = r;
+    auto body = make(g, 0.001);
+    AnalyticSurfaces ground;
+    ground.groundHeights = {0};
+    double top = 0;
+    for (int k = 0; k < 1000 && !body->failure(); ++k) {
+      body->step(0.001, kGravity, ground);
+      for (const auto& p : body->positions()) top = std::max(top, p.z());
+    }
+    if (body->failure()) {
+      EXPECT_STREQ(body->failure()->code, "RS7083");
+      EXPECT_EQ(body->failure()->field, "cohesionStiffness");
+    } else {
+      EXPECT_LT(top, 0.2) << "kc " << kc;  // the bed was 0.07 m tall
+    }
+  }
+}
+
+// An unstable solver is stopped: two touching grains, no damping, a
+// substep twice the critical one (built past the setup's stability rule,
+// which would have raised the substeps).  Energy from nothing is RS7083,
+// and it is caught while the grains are still near (not at 1e300 m).
+TEST(Granular, EnergyFromNothingStopsTheRun) {
+  const double r = 0.02;
+  Granular g = record({{0, 0, 0}, {2 * r - 1e-4, 0, 0}});
+  g.normalDamping = 0, g.tangentialDamping = 0;
+  std::vector<GranularFinding> findings;
+  std::optional<GranularSetup> setup = granularSetup(g, 0.001, findings);
+  ASSERT_TRUE(setup);
+  const double critical = 2 / std::sqrt(5e4 / (sphereMass(1600, r) / 2));
+  setup->substeps = 1;
+  setup->maxSubstep = 1;  // the step below is not raised
+  auto body = makeGranularDem(std::move(*setup));
+  AnalyticSurfaces none;
+  int k = 0;
+  for (; k < 200 && !body->failure(); ++k) body->step(2 * critical, Eigen::Vector3d::Zero(), none);
+  ASSERT_TRUE(body->failure()) << "max speed " << body->maxSpeed();
+  EXPECT_STREQ(body->failure()->code, "RS7083");
+  EXPECT_EQ(body->failure()->field, "substeps");  // no cohesion: the time step
+  EXPECT_LT(body->maxSpeed(), 100) << "stopped early, at step " << k;
+  // The same pair at a stable step keeps its energy and runs on.
+  setup = granularSetup(g, 0.001, findings);
+  body = makeGranularDem(std::move(*setup));
+  for (k = 0; k < 2000; ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  EXPECT_FALSE(body->failure());
+}
+
+// Issue 24 (12): grains written past 1e9 m were refused on reload.
+TEST(Granular, GrainsLeavingTheBoundsStopTheRun) {
+  Granular g = record({{0, 0, 1}});
+  g.velocity = {1e9, 0, 0};
+  auto body = make(g, 0.001);
+  AnalyticSurfaces none;
+  for (int k = 0; k < 3000 && !body->failure(); ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  ASSERT_TRUE(body->failure());
+  EXPECT_STREQ(body->failure()->code, "RS7084");
+  EXPECT_NE(body->failure()->message.find("grain 0 is past 1e9 m at step 1001"), std::string::npos)
+      << body->failure()->message;
+  for (const auto& p : body->positions()) EXPECT_LE(std::abs(p.x()), 1.001e9);
+}
+
+// Issue 24 (15): the messages point at the key that is wrong and print
+// its number as written.
+TEST(Granular, BoxFillMessagesNameTheirKeyAndNumber) {
+  Granular g = record({});
+  g.boxMin = {-0.1, -0.1, 0};
+  g.boxMax = {0.1, 0.1, 0.1};
+  g.radius = 0;
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7082");
+  EXPECT_EQ(f[0].field, "radius");
+  EXPECT_NE(f[0].message.find("radius 0:"), std::string::npos) << f[0].message;
+  EXPECT_EQ(f[0].message.find("0.000000"), std::string::npos) << f[0].message;
+  g.radius = 0.02, g.spacing = -1;
+  f = refused(g);
+  EXPECT_EQ(f[0].field, "spacing");
+  g.radius = 1e-9, g.spacing = 1e-8, g.maxParticles = 5000;
+  f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].field, "spacing");
+  EXPECT_EQ(f[0].message.find("18446744073709551615"), std::string::npos) << f[0].message;
+  EXPECT_NE(f[0].message.find("more than 1e18 particles"), std::string::npos) << f[0].message;
+}
+
+TEST(Granular, AFarGrainIsAPositionErrorNotAnOverlap) {
+  Granular g = record({{0, 0, 1}, {1e300, 0, 1}, {2e300, 0, 1}});
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "positions");
+}
+
+TEST(Granular, APosePastTheBoundIsAPositionErrorAtThePose) {
+  Granular g = record(block(3, 3, 1, 0.043, 0.5));
+  g.world.position = {1e300, 0, 0};
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "position");
+  EXPECT_EQ(f[0].message.find("overlap"), std::string::npos) << f[0].message;
 }
