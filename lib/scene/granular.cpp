@@ -168,7 +168,7 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
     if (!finiteVector(w, kMaxCoordinate)) {
       findings.push_back({true, kGranularValue, "position",
                           "granular " + g.path + ": its pose puts particle " + std::to_string(k) + " at " +
-                              number(w.cwiseAbs().maxCoeff()) + " m, past 1e9 m"});
+                              exact(w.cwiseAbs().maxCoeff()) + " m, past 1e9 m"});
       return std::nullopt;
     }
   }

@@ -141,9 +141,12 @@ std::optional<ParticleFailure> ParticleSystems::unwritable() const {
     for (const ParticleFinding& f : findings) {
       if (!f.error) continue;
       const bool overlap = f.code == std::string_view(particle_code::kOverlap);
+      std::string rule = f.message;
+      const std::string prefix = "granular " + g.path + ": ";
+      if (rule.compare(0, prefix.size(), prefix) == 0) rule.erase(0, prefix.size());
       GranularFailure why{particle_code::kLeftBounds, overlap ? "normalStiffness" : "",
                           "granular " + g.path + ": at the end of the run its grains are where the scene model "
-                          "refuses them (" + f.message + " [" + f.code + "]), so the scene written would not load; "
+                          "refuses them (" + rule + " [" + f.code + "]), so the scene written would not load; "
                           "nothing was written",
                           overlap ? "the contact law is too soft for the bed's weight: raise normalStiffness (or "
                                     "lower density or the bed's height)"
