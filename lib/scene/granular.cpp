@@ -136,10 +136,10 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
   }
   std::string error = granularParticles(g, kMaxGranularParticles, s.positions, s.radii);
   if (!error.empty()) {
-    // A box fill's count comes from its spacing (and radius and box).
+    // A box fill's count is weighed against its maxParticles (README).
     findings.push_back({true, kGranular,
                         !g.positions.empty() ? (error.find(" radii for ") != std::string::npos ? "radii" : "positions")
-                                             : "spacing",
+                                             : "maxParticles",
                         error});
     return std::nullopt;
   }
