@@ -83,8 +83,8 @@ class GranularDem final : public GranularBody {
     for (std::size_t i = 0; i < x_.size(); ++i)
       if (!(x_[i].cwiseAbs().maxCoeff() <= kMaxGranularCoordinate)) {
         fail(particle_code::kLeftBounds, "",
-             "grain " + std::to_string(i) + " is past 1e9 m " + when() + " (at " + numberText(x_[i].norm()) +
-                 " m, " + numberText(v_[i].norm()) +
+             "grain " + std::to_string(i) + " is past 1e9 m " + when() + " (at " + roundedNumber(x_[i].norm(), 4) +
+                 " m, " + roundedNumber(v_[i].norm(), 4) +
                  " m/s): a scene written with it would be refused",
              "grains this fast or this far are not a scene: look at the record's velocity, or at forces that "
              "launch them (cohesion, starting overlaps, the time step)");
