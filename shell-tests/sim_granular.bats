@@ -88,3 +88,65 @@ setup() {
   [ "$(jq '.granular.substepsPerStep' <<< "$stderr")" -eq 2 ]
   jq -e '.granular | (.neighbourTime >= 0 and .contactTime >= 0 and .surfaceTime >= 0 and .integrationTime >= 0 and .neighbourBuilds >= 1)' <<< "$stderr"
 }
+
+# Issue 24 (12): what rscene-sim writes, rscene-sim reads and validate
+# passes clean: settle, write, reload, settle again.
+@test "a settled bed is written, validates clean and settles again (examples and cohesive beds)" {
+  bed > bed.rscene
+  EXTRA=" cohesionStiffness=2e4 cohesionMaxDistance=0.01" bed > sticky.rscene
+  cp -R "$ROOT/examples" ex  # the written scenes keep the examples' relative asset paths
+  for f in ex/gallery.rscene ex/soft_bodies.rscene bed.rscene sticky.rscene; do
+    name=ex/$(basename "$f" .rscene)
+    run -0 "$SIM" --duration 0.5 -o "$name.1.rscene" "$f"
+    grep -q ' positions=' "$name.1.rscene"
+    run -0 "$BIN/rscene-validate" "$name.1.rscene"
+    [[ $output != *RS708* ]]
+    run -0 "$SIM" --duration 0.5 -o "$name.2.rscene" "$name.1.rscene"
+    run -0 "$BIN/rscene-validate" "$name.2.rscene"
+  done
+}
+
+@test "a bed too soft for its weight stops with RS7084 at normalStiffness instead of writing what would not load" {
+  EXTRA=" normalStiffness=100 normalDamping=1" bed | sed 's/boxMax=0.13,0.13,0.09/boxMax=0.2,0.2,0.3/; s/tangentialStiffness=2.5e4 tangentialDamping=6 //' > soft.rscene
+  run -2 --separate-stderr "$SIM" --duration 2 -o out.rscene soft.rscene
+  [[ $stderr =~ soft\.rscene:4:[0-9]+:\ error:\ granular\ /World/Sand:\ at\ the\ end\ of\ the\ run ]]
+  [[ $stderr == *"overlap by more than half their radii"*"[RS7084]"* ]]
+  [ ! -e out.rscene ]
+}
+
+@test "grains thrown past 1e9 m stop the run with RS7084, nothing written" {
+  EXTRA=" velocity=1e9,0,0" bed > fast.rscene
+  run -2 --separate-stderr "$SIM" --duration 2 -o out.rscene fast.rscene
+  [[ $stderr == *"fast.rscene:4:1: error: granular /World/Sand: grain "*" is past 1e9 m at step "*"[RS7084]"* ]]
+  [ ! -e out.rscene ]
+}
+
+# Issue 24 (01): every pair of 19k grains was listed (std::bad_alloc).
+@test "a cohesion range past the grain radius is refused at cohesionMaxDistance by validate and sim (RS7088)" {
+  EXTRA=" cohesionStiffness=1e-9 cohesionMaxDistance=100" bed > far.rscene
+  col=$(awk 'NR==4 { print index($0, "cohesionMaxDistance=100") + 20 }' far.rscene)
+  run -2 --separate-stderr "$SIM" --steps 2 -o out.rscene far.rscene
+  [[ $stderr == *"far.rscene:4:$col: error: granular /World/Sand: cohesionMaxDistance 100 m is more than the smallest grain radius 0.02 m"*"[RS7088]"* ]]
+  run -1 "$BIN/rscene-validate" far.rscene
+  [[ $output == *"far.rscene:4:$col: error:"*"[RS7088]"* ]]
+}
+
+# Issue 24 (06): 32 grains at rest with cohesion flew to 53 m at 63 m/s.
+@test "a cohesive bed at rest stays a heap (the cut-off is continuous, the energy checked)" {
+  EXTRA=" cohesionStiffness=5e4 cohesionMaxDistance=0.02" bed | sed 's/substeps=2/substeps=3/' > coh.rscene
+  run -0 "$SIM" --duration 1 --every 50 --trajectory traj.jsonl -o out.rscene coh.rscene
+  # No grain centre ever above 0.5 m (the bed starts below 0.2 m).
+  ! grep -Eq '"points":\[[^]]*\[[-0-9.e]+,[-0-9.e]+,([1-9]|0\.[5-9])' traj.jsonl
+}
+
+# Issue 24 (15)
+@test "box-fill messages point at the key that is wrong, in the number as written" {
+  EXTRA=" radius=0" bed > r0.rscene
+  col=$(awk 'NR==4 { print match($0, / radius=0$/) + 8 }' r0.rscene)
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene r0.rscene
+  [[ $stderr == *"r0.rscene:4:$col: error: granular /World/Sand fills its box with radius 0: it must be positive and finite [RS7082]"* ]]
+  EXTRA=" radius=1e-9 spacing=1e-8 maxParticles=5000" bed > tiny.rscene
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene tiny.rscene
+  [[ $stderr == *"more than 1e18 particles"*"[RS7082]"* ]]
+  [[ $stderr != *18446744073709551615* ]]
+}

@@ -18,13 +18,14 @@ namespace {
 constexpr double kHuge = 1e12;
 // Coordinates past this are hostile, not a scene (and would lose every
 // digit of a grain's radius).
-constexpr double kMaxCoordinate = 1e9;
+constexpr double kMaxCoordinate = kMaxGranularCoordinate;
 // Largest over smallest radius of one record (polydisperse sand spans 2 to 5).
 constexpr double kMaxRadiusRatio = 10;
 
 using namespace particle_code;
 
 std::string number(double v) { return roundedNumber(v, 3); }  // a message, not data
+std::string exact(double v) { return numberText(v); }          // a value as the user wrote it
 std::string seconds(double s) { return number(s) + " s"; }
 
 bool finiteVector(const Eigen::Vector3d& v, double limit) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= limit; }
@@ -36,7 +37,11 @@ bool deepOverlap(const std::vector<Eigen::Vector3d>& x, const std::vector<double
                  std::size_t& b) {
   NeighbourGrid grid;
   std::vector<std::uint32_t> is, js;
-  grid.pairs(x, r, rMax, 0, is, js);
+  // Touching pairs of grains that do not overlap that deep are a dozen per
+  // grain: past the solver's cap some must (grains written at one point
+  // would otherwise list every pair before the first is looked at).
+  const std::size_t cap = kMaxGranularPairsPerGrain * x.size() + kGranularPairSlack;
+  const bool all = grid.pairs(x, r, rMax, 0, is, js, cap);
   for (std::size_t k = 0; k < is.size(); ++k) {
     std::size_t i = is[k], j = js[k];
     double limit = 0.5 * (r[i] + r[j]);
@@ -45,7 +50,8 @@ bool deepOverlap(const std::vector<Eigen::Vector3d>& x, const std::vector<double
       return true;
     }
   }
-  return false;
+  if (!all) a = b = 0;  // crowded: no one pair to name
+  return !all;
 }
 
 }  // namespace
@@ -118,9 +124,23 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
       findings.push_back({true, kGranularValue, key, "granular " + g.path + ": " + key + " must be finite and at most 1e9"});
   if (failed()) return std::nullopt;
 
+  if (g.positions.empty()) {
+    // The box fill's own numbers first, each at its key.
+    for (auto [key, v] : {std::pair{"radius", g.radius}, std::pair{"spacing", g.spacing}})
+      if (!(v > 0) || !std::isfinite(v)) {
+        findings.push_back({true, kGranular, key,
+                            "granular " + g.path + " fills its box with " + key + " " + exact(v) +
+                                ": it must be positive and finite"});
+        return std::nullopt;
+      }
+  }
   std::string error = granularParticles(g, kMaxGranularParticles, s.positions, s.radii);
   if (!error.empty()) {
-    findings.push_back({true, kGranular, g.positions.empty() ? "maxParticles" : "positions", error});
+    // A box fill's count is weighed against its maxParticles (README).
+    findings.push_back({true, kGranular,
+                        !g.positions.empty() ? (error.find(" radii for ") != std::string::npos ? "radii" : "positions")
+                                             : "maxParticles",
+                        error});
     return std::nullopt;
   }
   const char* radiusKey = g.radii.empty() ? "radius" : "radii";
@@ -140,6 +160,19 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
     }
   }
 
+  // Where the record's pose (and its parents') puts the grains: a grain
+  // past 1e9 m is a position error, at the pose, whatever else it meets
+  // there (at 1e300 every grain rounds to one point: not an overlap).
+  for (std::size_t k = 0; k < s.positions.size(); ++k) {
+    const Eigen::Vector3d w = g.world.position + g.world.orientation * s.positions[k];
+    if (!finiteVector(w, kMaxCoordinate)) {
+      findings.push_back({true, kGranularValue, "position",
+                          "granular " + g.path + ": its pose puts particle " + std::to_string(k) + " at " +
+                              exact(w.cwiseAbs().maxCoeff()) + " m, past 1e9 m"});
+      return std::nullopt;
+    }
+  }
+
   s.fixed = g.fixed;
   s.substeps = static_cast<int>(g.substeps);
   s.maxSubstep = std::numeric_limits<double>::infinity();
@@ -155,10 +188,25 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
                               " m span more than a factor of " + number(kMaxRadiusRatio)});
       return std::nullopt;
     }
+    // Cohesion acts at contact distances: RaiSim keeps its range "small
+    // relative to particle radius".  At most the smallest radius, a grain's
+    // cohesion partners are its neighbours (9 pairs a grain at most), not
+    // the whole bed (cohesionMaxDistance=100 listed every pair).
+    if (s.material.cohesionStiffness > 0 && s.material.cohesionMaxDistance > rMin) {
+      findings.push_back({true, kGranularValue, "cohesionMaxDistance",
+                          "granular " + g.path + ": cohesionMaxDistance " + exact(g.cohesionMaxDistance) +
+                              " m is more than the smallest grain radius " + exact(rMin) +
+                              " m: cohesion acts at contact distances (a surface gap of at most one radius), "
+                              "and a longer range makes every grain pull on grains it does not touch"});
+      return std::nullopt;
+    }
     std::size_t a = 0, b = 0;
     if (deepOverlap(s.positions, s.radii, rMax, a, b)) {
       findings.push_back({true, kOverlap, g.positions.empty() ? "spacing" : "positions",
-                          "granular " + g.path + ": particles " + std::to_string(a) + " and " + std::to_string(b) +
+                          "granular " + g.path + ": " +
+                              (a == b ? "more than " + std::to_string(kMaxGranularPairsPerGrain) +
+                                            " touching pairs per grain: grains" 
+                                      : "particles " + std::to_string(a) + " and " + std::to_string(b)) +
                               " overlap by more than half their radii (spacing at least 2 x radius keeps a box "
                               "fill apart)"});
       return std::nullopt;

@@ -16,7 +16,14 @@
 //                    a solid sphere the same normal and tangential frequency)
 //   rolling          a spring kr = kt Reff^2 on the relative rolling angle,
 //                    |M| <= mur Reff fn (elastic-plastic, with history)
-//   cohesion         attraction kc g for a surface gap 0 < g <= gmax
+//   cohesion         attraction kc g (1 - g / gmax) for a surface gap
+//                    0 < g < gmax: slope kc at contact and no jump at the
+//                    cut-off (a force that jumps from kc gmax to 0 there
+//                    pumps energy into a bed every time a pair crosses it);
+//                    gmax at most the smallest grain's radius (RaiSim:
+//                    "small relative to particle radius"; cohesion acts at
+//                    contact distances, and a longer range makes the pair
+//                    list grow with its cube)
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>
@@ -37,6 +44,9 @@ inline constexpr const char* kSubstepsRaised = rs::RS7086;  // warning: substeps
 inline constexpr const char* kTooStiff = rs::RS7087;        // stability needs more than kMaxGranularSubsteps
 inline constexpr const char* kGranularValue = rs::RS7088;   // a granular value out of range
 inline constexpr const char* kOverlap = rs::RS7089;         // grains overlapping by more than half their radii
+inline constexpr const char* kEnergy = rs::RS7083;          // sim: energy grew, the solver is unstable
+inline constexpr const char* kLeftBounds = rs::RS7084;      // sim: grains past 1e9 m or settled into a refused state
+inline constexpr const char* kTooManyGrainPairs = rs::RS7085;  // sim: pair list past its cap
 }  // namespace particle_code
 
 // A finding of a particle record's check: an error refuses the record, a
@@ -61,6 +71,17 @@ inline constexpr double kStableFraction = 0.6;
 // The Hertz overlap, as a fraction of Reff, at which the stability bound
 // takes the stiffness: 5 %, deeper than a usable bed sinks into itself.
 inline constexpr double kHertzOverlap = 0.05;
+// Grain coordinates (and record velocities) past this are hostile, not a
+// scene; a run whose grains get past it stops (RS7084) rather than write them.
+inline constexpr double kMaxGranularCoordinate = 1e9;
+// The granular solver's candidate pairs (grains within the contact range,
+// the cohesion range and a skin) are at most this many per grain, plus
+// kGranularPairSlack: about 3.6 KB a grain.  Equal grains that do not
+// overlap by more than half their radii have at most 9 per grain with
+// the longest cohesion range allowed (one radius); past the cap the grains
+// are pressed into each other and the run stops (RS7085).
+inline constexpr std::size_t kMaxGranularPairsPerGrain = 32;
+inline constexpr std::size_t kGranularPairSlack = 4096;
 
 struct GranularMaterial {
   double density = 0;

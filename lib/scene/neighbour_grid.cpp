@@ -7,80 +7,79 @@
 namespace rscene {
 namespace {
 
-// 21 bits per axis in a 63-bit key (z, y, x from the high bits).  A grain
-// farther than 2^21 cells from the lowest one shares the last cell of its
-// axis: clamping is monotonic, so grains in touch stay in neighbouring
+// 62 bits per axis: the cell numbers of spheres 1e9 m apart in cells of
+// a nanometre still fit.  Past it a sphere shares the last cell of its
+// axis: clamping is monotonic, so spheres in touch stay in neighbouring
 // cells, and only the (far, rare) clamped ones cost extra distance tests.
-constexpr std::uint64_t kAxisCells = 1u << 21;
+constexpr std::uint64_t kLastCell = std::uint64_t{1} << 62;
 
 std::uint64_t axisCell(double coordinate, double origin, double inverseCell) {
   double c = std::floor((coordinate - origin) * inverseCell);
   if (!(c > 0)) return 0;  // NaN too: such a run is stopped as non-finite after the step
-  return c >= double(kAxisCells - 1) ? kAxisCells - 1 : static_cast<std::uint64_t>(c);
+  return c >= double(kLastCell) ? kLastCell : static_cast<std::uint64_t>(c);
 }
-
-std::uint64_t pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (z << 42) | (y << 21) | x; }
 
 }  // namespace
 
-void NeighbourGrid::pairs(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax,
-                          double reach, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j) {
+bool NeighbourGrid::pairs(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax,
+                          double reach, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
+                          std::size_t maxPairs) {
   const std::size_t n = x.size();
   Eigen::Vector3d origin = Eigen::Vector3d::Constant(INFINITY);
   for (const Eigen::Vector3d& p : x) origin = origin.cwiseMin(p);
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(origin[a])) origin[a] = 0;
   const double inverse = 1 / (2 * rMax + reach);
-  keyOf_.resize(n);
+  cellOf_.resize(n);
   std::uint64_t top[3] = {0, 0, 0};
   for (std::size_t k = 0; k < n; ++k) {
     std::uint64_t c[3];
     for (int a = 0; a < 3; ++a) c[a] = axisCell(x[k][a], origin[a], inverse), top[a] = std::max(top[a], c[a]);
-    keyOf_[k] = pack(c[0], c[1], c[2]);
+    cellOf_[k] = {c[2], c[1], c[0]};
   }
   i.clear();
   j.clear();
+  tests_ = 0;
   // A bed fills its bounding box: a dense grid of cells (a counting sort,
   // O(1) per neighbour cell) costs memory in proportion to the grains.
   // Grains flung far apart do not: then the sorted occupied cells.
   const double cells = double(top[0] + 1) * double(top[1] + 1) * double(top[2] + 1);
-  if (cells <= 4.0 * double(n) + 1024)
-    denseCandidates(x, r, reach, {top[0] + 1, top[1] + 1, top[2] + 1}, i, j);
-  else
-    sparseCandidates(x, r, reach, i, j);
-
+  if (cells <= 4.0 * double(n) + 1024) return denseCandidates(x, r, reach, {top[0] + 1, top[1] + 1, top[2] + 1}, i, j, maxPairs);
+  return sparseCandidates(x, r, reach, i, j, maxPairs);
 }
 
 // Every pair (a < b) within reach, for a in index order, b ascending.
-void NeighbourGrid::emit(std::uint32_t a, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j) {
+bool NeighbourGrid::emit(std::uint32_t a, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
+                         std::size_t maxPairs) {
   std::sort(candidates_.begin(), candidates_.end());
   for (std::uint32_t b : candidates_) {
+    if (i.size() >= maxPairs) return false;
     i.push_back(a);
     j.push_back(b);
   }
+  return true;
 }
 
-void NeighbourGrid::denseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double reach,
+bool NeighbourGrid::denseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double reach,
                                     std::array<std::uint64_t, 3> dims, std::vector<std::uint32_t>& i,
-                                    std::vector<std::uint32_t>& j) {
+                                    std::vector<std::uint32_t>& j, std::size_t maxPairs) {
   const std::size_t n = x.size();
   auto index = [&](std::uint64_t cx, std::uint64_t cy, std::uint64_t cz) { return cx + dims[0] * (cy + dims[1] * cz); };
   const std::size_t cells = dims[0] * dims[1] * dims[2];
   cellStart_.assign(cells + 1, 0);
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint64_t key = keyOf_[k];
-    ++cellStart_[index(key & (kAxisCells - 1), (key >> 21) & (kAxisCells - 1), key >> 42) + 1];
+    const Cell& c = cellOf_[k];
+    ++cellStart_[index(c[2], c[1], c[0]) + 1];
   }
   for (std::size_t c = 0; c < cells; ++c) cellStart_[c + 1] += cellStart_[c];
   order_.resize(n);
   cursor_.assign(cellStart_.begin(), cellStart_.end() - 1);
   for (std::uint32_t k = 0; k < n; ++k) {  // stable: by cell, then index
-    const std::uint64_t key = keyOf_[k];
-    order_[cursor_[index(key & (kAxisCells - 1), (key >> 21) & (kAxisCells - 1), key >> 42)]++] = k;
+    const Cell& c = cellOf_[k];
+    order_[cursor_[index(c[2], c[1], c[0])]++] = k;
   }
   for (std::uint32_t a = 0; a < n; ++a) {
-    const std::uint64_t key = keyOf_[a];
-    const std::uint64_t cx = key & (kAxisCells - 1), cy = (key >> 21) & (kAxisCells - 1), cz = key >> 42;
+    const std::uint64_t cx = cellOf_[a][2], cy = cellOf_[a][1], cz = cellOf_[a][0];
     candidates_.clear();
     for (std::uint64_t z = cz ? cz - 1 : 0; z <= std::min(cz + 1, dims[2] - 1); ++z)
       for (std::uint64_t y = cy ? cy - 1 : 0; y <= std::min(cy + 1, dims[1] - 1); ++y) {
@@ -90,23 +89,26 @@ void NeighbourGrid::denseCandidates(const std::vector<Eigen::Vector3d>& x, const
         for (std::size_t k = lo; k < hi; ++k) {
           const std::uint32_t b = order_[k];
           if (b <= a) continue;
+          ++tests_;
           const double limit = r[a] + r[b] + reach;
           if ((x[a] - x[b]).squaredNorm() < limit * limit) candidates_.push_back(b);
         }
       }
-    emit(a, i, j);
+    if (!emit(a, i, j, maxPairs)) return false;
   }
   // The sparse path's nearly-sorted order is gone: it sorts afresh.
   keys_.clear();
+  return true;
 }
 
-void NeighbourGrid::sparseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r,
-                                     double reach, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j) {
+bool NeighbourGrid::sparseCandidates(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r,
+                                     double reach, std::vector<std::uint32_t>& i, std::vector<std::uint32_t>& j,
+                                     std::size_t maxPairs) {
   const std::size_t n = x.size();
   // Grains move little between builds, so the last order is nearly sorted
   // and an insertion sort is linear; past a budget of moves, std::sort.
   // Either gives the one order sorted by (key, index).
-  auto less = [&](std::uint32_t a, std::uint32_t b) { return keyOf_[a] != keyOf_[b] ? keyOf_[a] < keyOf_[b] : a < b; };
+  auto less = [&](std::uint32_t a, std::uint32_t b) { return cellOf_[a] != cellOf_[b] ? cellOf_[a] < cellOf_[b] : a < b; };
   if (order_.size() != n || keys_.size() != n) {
     order_.resize(n);
     std::iota(order_.begin(), order_.end(), 0u);
@@ -122,27 +124,28 @@ void NeighbourGrid::sparseCandidates(const std::vector<Eigen::Vector3d>& x, cons
     if (moves > budget) std::sort(order_.begin(), order_.end(), less);
   }
   keys_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) keys_[k] = keyOf_[order_[k]];
+  for (std::size_t k = 0; k < n; ++k) keys_[k] = cellOf_[order_[k]];
 
   for (std::uint32_t a = 0; a < n; ++a) {
-    const std::uint64_t key = keyOf_[a];
-    const std::uint64_t cx = key & (kAxisCells - 1), cy = (key >> 21) & (kAxisCells - 1), cz = key >> 42;
-    const std::uint64_t x0 = cx ? cx - 1 : 0, x1 = std::min(cx + 1, kAxisCells - 1);
+    const std::uint64_t cx = cellOf_[a][2], cy = cellOf_[a][1], cz = cellOf_[a][0];
+    const std::uint64_t x0 = cx ? cx - 1 : 0, x1 = std::min(cx + 1, kLastCell);
     candidates_.clear();
-    for (std::uint64_t z = cz ? cz - 1 : 0; z <= std::min(cz + 1, kAxisCells - 1); ++z)
-      for (std::uint64_t y = cy ? cy - 1 : 0; y <= std::min(cy + 1, kAxisCells - 1); ++y) {
+    for (std::uint64_t z = cz ? cz - 1 : 0; z <= std::min(cz + 1, kLastCell); ++z)
+      for (std::uint64_t y = cy ? cy - 1 : 0; y <= std::min(cy + 1, kLastCell); ++y) {
         // The three cells along x of one (y, z) row are one run of keys.
-        auto lo = std::lower_bound(keys_.begin(), keys_.end(), pack(x0, y, z));
-        auto hi = std::upper_bound(lo, keys_.end(), pack(x1, y, z));
+        auto lo = std::lower_bound(keys_.begin(), keys_.end(), Cell{z, y, x0});
+        auto hi = std::upper_bound(lo, keys_.end(), Cell{z, y, x1});
         for (auto it = lo; it != hi; ++it) {
           const std::uint32_t b = order_[static_cast<std::size_t>(it - keys_.begin())];
           if (b <= a) continue;
+          ++tests_;
           const double limit = r[a] + r[b] + reach;
           if ((x[a] - x[b]).squaredNorm() < limit * limit) candidates_.push_back(b);
         }
       }
-    emit(a, i, j);
+    if (!emit(a, i, j, maxPairs)) return false;
   }
+  return true;
 }
 
 }  // namespace rscene

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include "core/codes.hpp"
+#include "core/text.hpp"
 
 namespace rscene {
 namespace {
@@ -245,8 +246,12 @@ std::string granularParticles(const Granular& g, std::uint64_t hardLimit, std::v
   radii.clear();
   std::uint64_t limit = hardLimit;
   if (g.maxParticles > 0) limit = std::min<std::uint64_t>(limit, static_cast<std::uint64_t>(g.maxParticles));
+  // A count past 1e18 (or one that would wrap) is said as such, never as
+  // the 2^64 - 1 it was clamped to.
   auto tooMany = [&](std::uint64_t n) {
-    return "granular " + g.path + " has " + std::to_string(n) + " particles, more than " +
+    return "granular " + g.path + " has " +
+           (n >= std::uint64_t{1'000'000'000'000'000'000} ? std::string("more than 1e18") : std::to_string(n)) +
+           " particles, more than " +
            (g.maxParticles > 0 && static_cast<std::uint64_t>(g.maxParticles) <= hardLimit
                 ? "its maxParticles " + std::to_string(g.maxParticles)
                 : "the limit of " + std::to_string(hardLimit));
@@ -263,8 +268,8 @@ std::string granularParticles(const Granular& g, std::uint64_t hardLimit, std::v
     return {};
   }
   if (!(g.radius > 0) || !(g.spacing > 0) || !std::isfinite(g.radius) || !std::isfinite(g.spacing))
-    return "granular " + g.path + " fills its box with radius " + std::to_string(g.radius) + " and spacing " +
-           std::to_string(g.spacing) + ": both must be positive";
+    return "granular " + g.path + " fills its box with radius " + numberText(g.radius) + " and spacing " +
+           numberText(g.spacing) + ": both must be positive";
   // Counts per axis, computed before anything is allocated.
   std::uint64_t count[3];
   std::uint64_t total = 1;

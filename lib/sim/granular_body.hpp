@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,16 @@ struct GranularStats {
   double maxPenetration = 0;          // deepest overlap at the last substep, m
 };
 
+// Why a granular body stopped (scene/granular.hpp's particle_code: RS7083
+// energy, RS7084 bounds, RS7085 pairs): reported at the record's `field`
+// ("" for the record).  A stopped body steps no more.
+struct GranularFailure {
+  const char* code = "";
+  std::string field;
+  std::string message;
+  std::string hint;
+};
+
 class GranularBody {
  public:
   static constexpr std::uint64_t kMaxParticles = kMaxGranularParticles;
@@ -57,6 +68,7 @@ class GranularBody {
   virtual double maxSpeed() const = 0;
   virtual bool finite() const = 0;
   virtual const GranularStats& stats() const = 0;
+  virtual const std::optional<GranularFailure>& failure() const = 0;
 };
 
 }  // namespace rscene::sim

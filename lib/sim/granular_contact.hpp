@@ -53,8 +53,10 @@ inline GranularContactForce granularContactForce(const GranularMaterial& m, cons
   if (c.depth <= 0) {
     history = {};
     double gap = -c.depth;
-    if (m.cohesionStiffness > 0 && gap <= m.cohesionMaxDistance) {
-      out.force = -m.cohesionStiffness * gap * c.n;
+    // kc g (1 - g / gmax): slope kc at contact, zero again at the cut-off,
+    // so no force jumps as a pair crosses gmax (scene/granular.hpp).
+    if (m.cohesionStiffness > 0 && gap < m.cohesionMaxDistance) {
+      out.force = -m.cohesionStiffness * gap * (1 - gap / m.cohesionMaxDistance) * c.n;
       out.cohesive = true;
     }
     return out;

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
+#include "core/text.hpp"
 #include "sim/granular_contact.hpp"
 #include "sim/granular_pairs.hpp"
 
@@ -55,10 +57,15 @@ class GranularDem final : public GranularBody {
     stats_.substepsPerStep = substeps_;
     surfaceStart_.assign(n + 1, 0);
     speed_ = fixed_ ? 0 : p.velocity.norm();
+    maxPairs_ = kMaxGranularPairsPerGrain * n + kGranularPairSlack;
+    // Energy the check lets pass on top of the budget (see checkEnergy()):
+    // every grain a rise of its own radius.
+    for (std::size_t i = 0; i < n; ++i) energyFloor_ += r_[i] / invMass_[i];
+    if (fixed_) energyFloor_ = 0;
   }
 
   void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) override {
-    if (x_.empty() || !(dt > 0)) return;
+    if (x_.empty() || !(dt > 0) || failure_) return;
     // create() chose substeps_ for the scene's time step; a caller stepping
     // longer steps gets what stability needs for them (the same rule).
     int n = substeps_;
@@ -66,10 +73,23 @@ class GranularDem final : public GranularBody {
     if (needed > n) n = static_cast<int>(std::min<double>(kMaxSubsteps, needed));
     stats_.substepsPerStep = n;
     const double h = dt / n;
-    for (int s = 0; s < n; ++s) substep(h, h / dt, gravity, surfaces);
+    ++steps_;  // this one, for the messages
+    time_ += dt;
+    for (int s = 0; s < n && !failure_; ++s) substep(h, h / dt, gravity, surfaces, s == n - 1 || (steps_ == 1 && s == 0));
     finite_ = true;
     for (std::size_t i = 0; i < x_.size() && finite_; ++i)
       finite_ = x_[i].allFinite() && v_[i].allFinite() && w_[i].allFinite();
+    if (!finite_ || failure_ || fixed_) return;  // not finite: RS7024
+    for (std::size_t i = 0; i < x_.size(); ++i)
+      if (!(x_[i].cwiseAbs().maxCoeff() <= kMaxGranularCoordinate)) {
+        fail(particle_code::kLeftBounds, "",
+             "grain " + std::to_string(i) + " is past 1e9 m " + when() + " (at " + roundedNumber(x_[i].norm(), 4) +
+                 " m, " + roundedNumber(v_[i].norm(), 4) +
+                 " m/s): a scene written with it would be refused",
+             "grains this fast or this far are not a scene: look at the record's velocity, or at forces that "
+             "launch them (cohesion, starting overlaps, the time step)");
+        return;
+      }
   }
 
   const std::vector<Eigen::Vector3d>& positions() const override { return x_; }
@@ -79,28 +99,94 @@ class GranularDem final : public GranularBody {
   double maxSpeed() const override { return speed_; }
   bool finite() const override { return finite_; }
   const GranularStats& stats() const override { return stats_; }
+  const std::optional<GranularFailure>& failure() const override { return failure_; }
 
  private:
-  void substep(double h, double share, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) {
+  // `measure`: the mechanical energy of the state this substep starts from
+  // is added up on the way (the first substep of the run and the last of
+  // every step) and checked against the budget.
+  void substep(double h, double share, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces, bool measure) {
     Clock::time_point t = Clock::now();
     if (!fixed_ && (!built_ || drift_ > 0.5 * skin_)) rebuild();
+    if (failure_) return;
     stats_.neighbourSeconds += since(t);
+    measure = measure && !fixed_;
+    potential_ = 0, elastic_ = 0;
 
     for (std::size_t i = 0; i < x_.size(); ++i) f_[i].setZero(), t_[i].setZero();
     stats_.maxPenetration = 0;
-    pairForces(h);
+    pairForces(h, measure);
     stats_.contactSeconds += since(t);
 
-    surfaceForces(h, share, surfaces);
+    surfaceForces(h, share, surfaces, measure);
     stats_.surfaceSeconds += since(t);
 
+    if (measure) checkEnergy(gravity);
     integrate(h, gravity);
     stats_.integrateSeconds += since(t);
     stats_.particleSubsteps += x_.size();
   }
 
+  std::string when() const {
+    char at[96];
+    std::snprintf(at, sizeof at, "at step %llu (t = %.6g s)", static_cast<unsigned long long>(steps_), time_);
+    return at;
+  }
+
+  void fail(const char* code, std::string field, std::string message, std::string hint) {
+    failure_ = GranularFailure{code, std::move(field), std::move(message) + "; the simulation stopped and nothing was written",
+                               std::move(hint)};
+  }
+
+  // Kinetic energy (translation and rotation), gravity's potential and the
+  // potential_ of the contacts' springs and the cohesion wells: what a
+  // stable solver can only lose (damping, friction) unless a body works on
+  // the grains (bodyWork_, counted from the surfaces' velocities).  A
+  // solver past its stability limit gains it from nothing: past the start
+  // plus the work plus half the energy in motion now (the integrator's own
+  // oscillation about the true energy) plus every grain rising its own
+  // radius, the run stops naming the likely cause.
+  void checkEnergy(const Eigen::Vector3d& gravity) {
+    double kinetic = 0, height = 0;
+    for (std::size_t i = 0; i < x_.size(); ++i) {
+      const double mass = 1 / invMass_[i];
+      kinetic += 0.5 * mass * v_[i].squaredNorm() + 0.5 / invInertia_[i] * w_[i].squaredNorm();
+      height -= mass * gravity.dot(x_[i]);
+    }
+    const double energy = kinetic + height + potential_;
+    if (!std::isfinite(energy)) return;  // RS7024's business
+    if (!measured_) {
+      measured_ = true;
+      startEnergy_ = energy;
+      bodyWork_ = 0;
+      return;
+    }
+    const double gained = energy - startEnergy_ - bodyWork_;
+    const double slack = 0.5 * (kinetic + std::max(0.0, elastic_)) + energyFloor_ * std::max(gravity.norm(), 9.81);
+    if (!(gained > slack)) return;
+    const GranularMaterial& m = m_;
+    const bool cohesive = m.cohesionStiffness > 0 && m.cohesionMaxDistance > 0;
+    fail(particle_code::kEnergy, cohesive ? "cohesionStiffness" : "substeps",
+         "the grains' energy grew by " + roundedNumber(gained, 3) + " J " + when() + " (from " +
+             roundedNumber(startEnergy_, 3) + " J to " + roundedNumber(energy, 3) + " J with " +
+             roundedNumber(bodyWork_, 3) + " J of work by bodies; fastest grain " + roundedNumber(speed_, 3) +
+             " m/s): the solver is unstable",
+         std::string(cohesive ? "likely the cohesion: lower cohesionStiffness or cohesionMaxDistance (a grain in "
+                                "range of many others is stiffer than one pair); "
+                              : "") +
+             "or grains starting in overlap, or too long a time step for normalStiffness: raise substeps or "
+             "shorten time_step");
+  }
+
   void rebuild() {
-    pairs_.build(x_, r_, rMax_, reach_);
+    if (!pairs_.build(x_, r_, rMax_, reach_, maxPairs_)) {
+      fail(particle_code::kTooManyGrainPairs, m_.cohesionMaxDistance > 0 ? "cohesionMaxDistance" : "",
+           "more than " + std::to_string(maxPairs_) + " candidate pairs (" + std::to_string(kMaxGranularPairsPerGrain) +
+               " per grain) " + when() + ": the grains are pressed into each other",
+           "grains that do not overlap by more than half their radii have at most 9 pairs each; look for a "
+           "contact law too soft for the load (normalStiffness) or grains thrown into each other");
+      return;
+    }
     anchor_ = x_;
     drift_ = 0;
     built_ = true;
@@ -108,7 +194,24 @@ class GranularDem final : public GranularBody {
     stats_.pairs = pairs_.size();
   }
 
-  void pairForces(double h) {
+  // Energy stored in a contact: the normal spring at depth d (linear or
+  // Hertz) and the tangential and rolling springs.
+  double springEnergy(double depth, double reff, const GranularHistory& hist) const {
+    const GranularMaterial& m = m_;
+    double e = 0.5 * m.kt * hist.slide.squaredNorm() + 0.5 * m.kt * reff * reff * hist.roll.squaredNorm();
+    if (depth > 0) e += m.hertz ? 0.4 * m.kn * depth * depth * std::sqrt(depth / reff) : 0.5 * m.kn * depth * depth;
+    return e;
+  }
+  // The cohesion well at a surface gap (granular_contact.hpp's law), zero
+  // past the cut-off: -kc gmax^2 / 6 in contact.
+  double cohesionEnergy(double gap) const {
+    const double kc = m_.cohesionStiffness, gmax = m_.cohesionMaxDistance;
+    if (!(kc > 0) || !(gmax > 0) || gap >= gmax) return 0;
+    const double g = std::max(0.0, gap);
+    return -kc * (gmax * gmax / 6 - g * g / 2 + g * g * g / (3 * gmax));
+  }
+
+  void pairForces(double h, bool measure) {
     std::size_t touching = 0;
     GranularContact c;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -127,6 +230,11 @@ class GranularDem final : public GranularBody {
       c.reff = r_[a] * r_[b] / (r_[a] + r_[b]);
       c.friction = m_.friction;  // one material per record: RaiSim uses a material's own friction for equal ids
       c.va = v_[a], c.vb = v_[b], c.wa = w_[a], c.wb = w_[b];
+      if (measure) {
+        const double e = springEnergy(c.depth, c.reff, pairs_.history[k]);
+        potential_ += e + cohesionEnergy(-c.depth);
+        elastic_ += e;
+      }
       GranularContactForce out = granularContactForce(m_, c, h, pairs_.history[k]);
       f_[a] += out.force;
       f_[b] -= out.force;
@@ -137,7 +245,7 @@ class GranularDem final : public GranularBody {
     stats_.contacts = touching;
   }
 
-  void surfaceForces(double h, double share, SurfaceQuery& surfaces) {
+  void surfaceForces(double h, double share, SurfaceQuery& surfaces, bool measure) {
     Eigen::AlignedBox3d region;
     for (const Eigen::Vector3d& p : x_) region.extend(p);
     // Where the grains can be during this substep, and their radius.
@@ -175,9 +283,17 @@ class GranularDem final : public GranularBody {
         c.va = v_[i], c.wa = w_[i];
         c.vb = s.body >= 0 ? surfaces.velocity(s.body, s.point) : Eigen::Vector3d::Zero();
         c.wb.setZero();
+        if (measure) {
+          const double e = springEnergy(c.depth, c.reff, hist.springs);
+          potential_ += e;
+          elastic_ += e;
+        }
         GranularContactForce out = granularContactForce(m_, c, h, hist.springs);
         f_[i] += out.force;
         t_[i] += out.torqueA;
+        // What a moving body can give the grain this substep (an upper
+        // bound: the force on the grain along the body's motion).
+        if (s.body >= 0 && !fixed_) bodyWork_ += std::max(0.0, out.force.dot(c.vb)) * h;
         // The body takes the opposite force, averaged over the world step.
         if (s.body >= 0) surfaces.addForce(s.body, s.point, -out.force * share);
         histories_.push_back(hist);
@@ -216,6 +332,13 @@ class GranularDem final : public GranularBody {
   std::vector<SurfaceHistory> histories_, previous_;
   std::vector<std::uint32_t> surfaceStart_, previousStart_;
   GranularStats stats_;
+  std::optional<GranularFailure> failure_;
+  std::size_t maxPairs_ = 0;
+  std::uint64_t steps_ = 0;
+  double time_ = 0;
+  // The energy check (checkEnergy()).
+  bool measured_ = false;
+  double startEnergy_ = 0, bodyWork_ = 0, potential_ = 0, elastic_ = 0, energyFloor_ = 0;
 };
 
 }  // namespace

@@ -2,9 +2,12 @@
 
 namespace rscene::sim {
 
-void GranularPairs::build(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax,
-                          double reach) {
-  grid_.pairs(x, r, rMax, reach, newI_, newJ_);
+bool GranularPairs::build(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax,
+                          double reach, std::size_t maxPairs) {
+  if (!grid_.pairs(x, r, rMax, reach, newI_, newJ_, maxPairs)) {
+    newI_.clear(), newJ_.clear();
+    return false;
+  }
   // Carry the histories over: both lists are sorted by (i, j).
   newHistory_.assign(newI_.size(), GranularHistory{});
   for (std::size_t o = 0, k = 0; o < i.size() && k < newI_.size();) {
@@ -19,6 +22,7 @@ void GranularPairs::build(const std::vector<Eigen::Vector3d>& x, const std::vect
   i.swap(newI_);
   j.swap(newJ_);
   history.swap(newHistory_);
+  return true;
 }
 
 }  // namespace rscene::sim

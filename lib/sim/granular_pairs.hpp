@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "scene/neighbour_grid.hpp"
@@ -20,8 +21,10 @@ class GranularPairs {
  public:
   // Rebuilds the list from positions and radii: every (i < j) with
   // |xi - xj| < ri + rj + reach.  Histories of surviving pairs are kept,
-  // those of new pairs start at zero.
-  void build(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax, double reach);
+  // those of new pairs start at zero.  False, the list left as it was,
+  // when there would be more than `maxPairs` pairs.
+  bool build(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& r, double rMax, double reach,
+             std::size_t maxPairs = std::numeric_limits<std::size_t>::max());
 
   std::size_t size() const { return i.size(); }
   std::vector<std::uint32_t> i, j;

@@ -67,6 +67,13 @@ Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad) {
   return d;
 }
 
+Diagnostic particleError(const Document& doc, const ParticleFailure& bad) {
+  const GranularFailure& f = bad.failure;
+  Diagnostics found;
+  reportAt(&doc, bad.recordIndex, f.field, f.code, f.message, found, Severity::Error, f.hint);
+  return found.back();
+}
+
 Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step, std::uint64_t maxPairs) {
   Diagnostic d;
   d.code = limit_code::kTooManyPairs;

@@ -56,6 +56,9 @@ Diagnostic tooManySteps(const Document& doc, const std::string& what, std::uint6
 // The error for World::nonFinite(), at the body's record.
 Diagnostic nonFiniteError(const Document& doc, const NonFinite& bad);
 
+// The error for a particle system that stopped the run, at its record's field.
+Diagnostic particleError(const Document& doc, const ParticleFailure& bad);
+
 // The error for a world that met more overlapping pairs than its cap, at
 // the record World::pairOverflow() names.
 Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step, std::uint64_t maxPairs);

@@ -13,6 +13,7 @@ namespace rscene::sim {
 bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::AssetCache& assets,
                              Diagnostics& diagnostics) {
   bool ok = true;
+  timeStep_ = scene.timeStep;
   for (const Deformable& d : scene.deformables) {
     asset::ObjSurface surface;
     std::string error, field;
@@ -42,7 +43,10 @@ bool ParticleSystems::create(const Scene& scene, const Document* doc, asset::Ass
       ok = false;
       continue;
     }
-    granulars_.push_back({g.recordIndex, g.path, g.world, std::move(body)});
+    Granular record = g;
+    record.positions.clear();
+    record.radii.clear();
+    granulars_.push_back({g.recordIndex, g.path, g.world, std::move(body), std::move(record)});
   }
   return ok;
 }
@@ -134,6 +138,53 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
 std::optional<ParticleSystems::Runaway> ParticleSystems::deformableRunaway() const {
   for (const DeformableEntry& d : deformables_)
     if (std::string why = d.body->runaway(); !why.empty()) return Runaway{d.recordIndex, d.path, std::move(why)};
+std::optional<ParticleFailure> ParticleSystems::failure() const {
+  for (const GranularEntry& g : granulars_)
+    if (const auto& f = g.body->failure()) {
+      ParticleFailure out{g.recordIndex, g.path, *f};
+      out.failure.message = "granular " + g.path + ": " + out.failure.message;
+      return out;
+    }
+  return std::nullopt;
+}
+
+std::vector<Eigen::Vector3d> ParticleSystems::local(const GranularEntry& g) {
+  const Pose toRecord = g.frame.inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(g.body->positions().size());
+  for (const Eigen::Vector3d& p : g.body->positions()) {
+    Eigen::Vector3d x = (toRecord * Pose{p, Eigen::Quaterniond::Identity()}).position;
+    for (int k = 0; k < 3; ++k)
+      if (x[k] == 0) x[k] = 0.0;  // no "-0"
+    out.push_back(x);
+  }
+  return out;
+}
+
+std::optional<ParticleFailure> ParticleSystems::unwritable() const {
+  for (const GranularEntry& g : granulars_) {
+    if (g.body->positions().empty() || g.record.fixed) continue;  // written as they were read
+    Granular settled = g.record;
+    settled.positions = local(g);
+    settled.radii = g.body->radii();
+    std::vector<ParticleFinding> findings;
+    granularSetup(settled, timeStep_, findings, false);
+    for (const ParticleFinding& f : findings) {
+      if (!f.error) continue;
+      const bool overlap = f.code == std::string_view(particle_code::kOverlap);
+      std::string rule = f.message;
+      const std::string prefix = "granular " + g.path + ": ";
+      if (rule.compare(0, prefix.size(), prefix) == 0) rule.erase(0, prefix.size());
+      GranularFailure why{particle_code::kLeftBounds, overlap ? "normalStiffness" : "",
+                          "granular " + g.path + ": at the end of the run its grains are where the scene model "
+                          "refuses them (" + rule + " [" + f.code + "]), so the scene written would not load; "
+                          "nothing was written",
+                          overlap ? "the contact law is too soft for the bed's weight: raise normalStiffness (or "
+                                    "lower density or the bed's height)"
+                                  : "look at the record's velocity and at what launches the grains"};
+      return ParticleFailure{g.recordIndex, g.path, std::move(why)};
+    }
+  }
   return std::nullopt;
 }
 
@@ -142,19 +193,17 @@ void ParticleSystems::writeBack(Document& doc) const {
   for (const GranularEntry& g : granulars_) {
     positions.clear();
     radii.clear();
-    const Pose toRecord = g.frame.inverse();
-    const std::vector<Eigen::Vector3d>& p = g.body->positions();
     const std::vector<double>& r = g.body->radii();
-    if (p.empty()) continue;  // an empty bed stays as written
+    if (g.body->positions().empty()) continue;  // an empty bed stays as written
+    const std::vector<Eigen::Vector3d> p = local(g);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      Eigen::Vector3d local = (toRecord * Pose{p[i], Eigen::Quaterniond::Identity()}).position;
       if (i) {
         positions += ';';
         radii += ',';
       }
       for (int k = 0; k < 3; ++k) {
         if (k) positions += ',';
-        appendNumber(positions, local[k] == 0 ? 0.0 : local[k]);  // no "-0"
+        appendNumber(positions, p[i][k]);
       }
       appendNumber(radii, r[i]);
     }

@@ -23,6 +23,13 @@ namespace rscene::sim {
 
 namespace particle_code = rscene::particle_code;  // RS7080-RS7089 (scene/granular.hpp)
 
+// Why a system stopped the run (GranularFailure), at its record.
+struct ParticleFailure {
+  int recordIndex = -1;
+  std::string path;
+  GranularFailure failure;
+};
+
 // The particles of one record now, for the trajectory and the renderer.
 using robot::ParticleState;
 
@@ -68,6 +75,13 @@ class ParticleSystems {
     std::string path, why;
   };
   std::optional<Runaway> deformableRunaway() const;
+  // The first system that stopped itself (energy, bounds, pairs).
+  std::optional<ParticleFailure> failure() const;
+  // What sim writes, sim reads: the first granular record whose grains now
+  // (as writeBack() would write them) the scene model would refuse
+  // (granularSetup(): an overlap deeper than half the radii, a grain past
+  // 1e9 m), as RS7084 naming the rule.  Run before writing.
+  std::optional<ParticleFailure> unwritable() const;
   // Granular records get `positions` and `radii` (in the record's frame):
   // RaiSim reads explicit positions in place of the box fill, so the
   // settled bed loads as it was left.  Deformables keep their record (the
@@ -85,7 +99,11 @@ class ParticleSystems {
     std::string path;
     Pose frame;  // the record's world frame: written-back positions are in it
     std::unique_ptr<GranularBody> body;
+    Granular record;  // without its grains: unwritable() judges the settled ones
   };
+  // The grains of `g` in its record's frame, as writeBack() writes them.
+  static std::vector<Eigen::Vector3d> local(const GranularEntry& g);
+  double timeStep_ = 0;
   std::vector<DeformableEntry> deformables_;
   std::vector<GranularEntry> granulars_;
   double stepSeconds_ = 0;

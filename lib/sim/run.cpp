@@ -23,6 +23,7 @@ RunResult runWorld(World& world, const Document& doc, const RunOptions& options,
   // After every step (and before the first) every body's state is checked.
   auto healthy = [&] {
     if (auto bad = world.nonFinite()) result.failure = nonFiniteError(doc, *bad);
+    else if (auto stopped = world.particleFailure()) result.failure = particleError(doc, *stopped);
     else if (auto record = world.pairOverflow())
       result.failure = tooManyPairs(doc, *record, world.steps(), options.maxPairs);
     return !result.failure;
@@ -58,6 +59,10 @@ RunResult runWorld(World& world, const Document& doc, const RunOptions& options,
   }
   if (options.progressDone) options.progressDone();
   result.interrupted = interrupted();
+  // What sim writes, sim reads: grains the scene model would refuse stop
+  // the run before anything is written.
+  if (result.ok())
+    if (auto unwritable = world.particlesUnwritable()) result.failure = particleError(doc, *unwritable);
   result.stepSeconds = seconds(start, Clock::now());
   if (result.ok() && traj) trajectory->write(buffer);
   return result;

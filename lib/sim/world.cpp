@@ -1251,6 +1251,8 @@ void World::writeBack(Document& doc) const {
 }
 
 std::vector<ParticleState> World::particleStates() const { return impl_->particles.states(); }
+std::optional<ParticleFailure> World::particleFailure() const { return impl_->particles.failure(); }
+std::optional<ParticleFailure> World::particlesUnwritable() const { return impl_->particles.unwritable(); }
 const ParticleSystems& World::particleSystems() const { return impl_->particles; }
 
 void World::writeRobot(Document& doc, const RobotState& state) {

@@ -226,6 +226,10 @@ class World {
   // world is then missing contacts and should not be trusted): the record
   // of a dynamic body in the first pair refused; nullopt before.
   std::optional<int> pairOverflow() const;
+  // A particle system that stopped itself (ParticleSystems::failure()), and
+  // one whose state now would not load again (unwritable()).
+  std::optional<ParticleFailure> particleFailure() const;
+  std::optional<ParticleFailure> particlesUnwritable() const;
 
   // Initial conditions the format has no key for (tests, programs that
   // embed lib/sim): sets the velocity of the dynamic body named by path or

@@ -91,3 +91,38 @@ TEST(GranularPairs, HistoriesSurviveARebuildOnlyForPairsThatStay) {
   EXPECT_EQ(pairs.history[1].slide, Eigen::Vector3d::Zero());
   EXPECT_EQ(pairs.history[2].roll, Eigen::Vector3d::Zero());
 }
+
+// Issue 24 (02): 64,000 grains and one at (-1e6, -1e6, -1e6) put every
+// other grain into one clamped cell: each measured its distance to all
+// the others.  Cells now have their own number however far apart.
+TEST(NeighbourGrid, OneFarGrainLeavesTheSearchLinear) {
+  std::vector<Eigen::Vector3d> x;
+  std::vector<double> r;
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 20; ++y)
+      for (int k = 0; k < 20; ++k) x.emplace_back(0.043 * k, 0.043 * y, 0.02 + 0.043 * z), r.push_back(0.02);
+  rscene::NeighbourGrid grid;
+  std::vector<std::uint32_t> i, j;
+  ASSERT_TRUE(grid.pairs(x, r, 0.02, 0.004, i, j));
+  const std::uint64_t alone = grid.distanceTests(), pairsAlone = i.size();
+  x.emplace_back(-1e6, -1e6, -1e6), r.push_back(0.02);
+  ASSERT_TRUE(grid.pairs(x, r, 0.02, 0.004, i, j));
+  EXPECT_EQ(i.size(), pairsAlone);  // the far grain touches nobody
+  EXPECT_LE(grid.distanceTests(), alone + 64) << "the far grain made the others share cells";
+  EXPECT_LT(grid.distanceTests(), 30 * x.size());  // a few dozen per grain, not n^2 / 2 = 3.2e7
+}
+
+// The cap stops the search before the lists outgrow it.
+TEST(NeighbourGrid, ThePairCapStopsTheSearch) {
+  std::vector<Eigen::Vector3d> x(500, Eigen::Vector3d(1, 2, 3));  // all at one point: 124,750 pairs
+  std::vector<double> r(500, 0.02);
+  rscene::NeighbourGrid grid;
+  std::vector<std::uint32_t> i, j;
+  EXPECT_FALSE(grid.pairs(x, r, 0.02, 0, i, j, 1000));
+  EXPECT_LE(i.size(), 1000u);
+  EXPECT_TRUE(grid.pairs(x, r, 0.02, 0, i, j));
+  EXPECT_EQ(i.size(), 500u * 499u / 2);
+  GranularPairs pairs;
+  EXPECT_FALSE(pairs.build(x, r, 0.02, 0, 1000));
+  EXPECT_EQ(pairs.size(), 0u);  // left as it was
+}

@@ -11,6 +11,8 @@
 #include <cstring>
 
 #include "sim/granular_body.hpp"
+#include "sim/granular_contact.hpp"
+#include "sim/granular_dem.hpp"
 #include "sim/granular_material.hpp"
 
 using namespace rscene;
@@ -449,4 +451,181 @@ TEST(Granular, AnEmptyBedIsFine) {
   body->step(0.001, kGravity, ground);
   EXPECT_TRUE(body->positions().empty());
   EXPECT_EQ(body->maxSpeed(), 0);
+}
+
+// Issue 24 (01): cohesionMaxDistance=100 listed every pair of a bed.  The
+// range is at most the smallest radius: cohesion acts at contact distances.
+TEST(Granular, ACohesionRangePastTheSmallestRadiusIsRefusedAtItsKey) {
+  Granular g = record(block(3, 3, 1, 0.043, 0.5));
+  g.cohesionStiffness = 1e-9;
+  g.cohesionMaxDistance = 100;
+  auto f = refused(g);
+  ASSERT_FALSE(f.empty());
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "cohesionMaxDistance");
+  EXPECT_NE(f[0].message.find("cohesionMaxDistance 100 m is more than the smallest grain radius 0.02 m"),
+            std::string::npos)
+      << f[0].message;
+  g.cohesionMaxDistance = 0.02;  // one radius: allowed
+  EXPECT_NE(make(g, 0.001), nullptr);
+  g.cohesionStiffness = 0;  // a range without a force is nothing
+  g.cohesionMaxDistance = 100;
+  EXPECT_NE(make(g, 0.001), nullptr);
+}
+
+// Issue 24 (06): the force jumped from kc gmax to 0 at the cut-off.
+TEST(Granular, CohesionFallsContinuouslyToZeroAtItsCutOff) {
+  GranularMaterial m;
+  m.kn = 5e4;
+  m.cohesionStiffness = 5e4;
+  m.cohesionMaxDistance = 0.02;
+  GranularContact c;
+  c.n = Eigen::Vector3d::UnitX();
+  c.ra = c.rb = 0.02;
+  c.reff = 0.01;
+  c.va = c.vb = c.wa = c.wb = Eigen::Vector3d::Zero();
+  auto force = [&](double gap) {
+    GranularHistory h;
+    c.depth = -gap;
+    return granularContactForce(m, c, 1e-4, h).force.x();
+  };
+  const double eps = 1e-9;
+  EXPECT_NEAR(force(0.02 - eps), 0, 5e4 * eps * 1.01);  // nothing left to jump from
+  EXPECT_EQ(force(0.02), 0);
+  EXPECT_NEAR(force(1e-6), -5e4 * 1e-6, 1e-4 * 5e4 * 1e-6);  // slope kc at contact (1 - g/gmax = 1 - 5e-5)
+  EXPECT_NEAR(force(0.01), -5e4 * 0.01 * 0.5, 1e-9);  // kc g (1 - g / gmax)
+  EXPECT_EQ(force(0.03), 0);
+}
+
+// A pair at rest in contact under cohesion, no gravity: the cohesion is
+// zero at contact, so nothing moves (closed form: rest stays rest).
+TEST(Granular, GrainsAtRestUnderCohesionStayAtRest) {
+  const double r = 0.02;
+  // (A third grain at (0, 2r, 0) would be 0.83 r from the second: in
+  // range, pulled in, as it should be.)
+  Granular g = record({{0, 0, 0}, {2 * r, 0, 0}});
+  g.cohesionStiffness = 5e4;
+  g.cohesionMaxDistance = r;
+  auto body = make(g, 0.001);
+  AnalyticSurfaces none;
+  const auto start = body->positions();
+  for (int k = 0; k < 1000; ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  EXPECT_LT(body->maxSpeed(), 1e-9);  // round-off of 2 r as a distance, no more
+  for (std::size_t i = 0; i < start.size(); ++i) EXPECT_LT((body->positions()[i] - start[i]).norm(), 1e-12);
+  EXPECT_FALSE(body->failure());
+}
+
+// Issue 24 (06): 32 grains resting on the ground, cohesion as stiff as the
+// contacts over one radius (the reproducer): they flew to 53 m.  Now they
+// either stay in a heap or the run is stopped with RS7083 at the cohesion;
+// never a grain above a metre with no error.
+TEST(Granular, ACohesiveBedDoesNotGainEnergy) {
+  const double r = 0.02;
+  for (double kc : {5e4, 2e5}) {
+    Granular g = record(block(4, 4, 2, 0.043, r + 0.003));
+    g.substeps = 3;
+    g.cohesionStiffness = kc;
+    g.cohesionMaxDistance = r;
+    auto body = make(g, 0.001);
+    AnalyticSurfaces ground;
+    ground.groundHeights = {0};
+    double top = 0;
+    for (int k = 0; k < 1000 && !body->failure(); ++k) {
+      body->step(0.001, kGravity, ground);
+      for (const auto& p : body->positions()) top = std::max(top, p.z());
+    }
+    if (body->failure()) {
+      EXPECT_STREQ(body->failure()->code, "RS7083");
+      EXPECT_EQ(body->failure()->field, "cohesionStiffness");
+    } else {
+      EXPECT_LT(top, 0.2) << "kc " << kc;  // the bed was 0.07 m tall
+    }
+  }
+}
+
+// An unstable solver is stopped: a grain resting on the ground, no
+// damping, a substep three times the critical one of its contact (built
+// past the setup's stability rule, which would have raised the substeps).
+// Each bounce gains energy from nothing: RS7083 at substeps (no cohesion),
+// caught while the grain is still near (not at 1e300 m).
+TEST(Granular, EnergyFromNothingStopsTheRun) {
+  const double r = 0.02;
+  Granular g = record({{0, 0, r - 1e-5}});
+  g.normalDamping = 0, g.tangentialDamping = 0;
+  std::vector<GranularFinding> findings;
+  std::optional<GranularSetup> setup = granularSetup(g, 0.001, findings);
+  ASSERT_TRUE(setup);
+  const double critical = 2 / std::sqrt(5e4 / sphereMass(1600, r));
+  setup->substeps = 1;
+  setup->maxSubstep = 1;  // the step below is not raised
+  auto body = makeGranularDem(std::move(*setup));
+  AnalyticSurfaces ground;
+  ground.groundHeights = {0};
+  int k = 0;
+  for (; k < 5000 && !body->failure(); ++k) body->step(3 * critical, kGravity, ground);
+  ASSERT_TRUE(body->failure()) << "max speed " << body->maxSpeed();
+  EXPECT_STREQ(body->failure()->code, "RS7083");
+  EXPECT_EQ(body->failure()->field, "substeps");  // no cohesion: the time step
+  EXPECT_LT(body->maxSpeed(), 100) << "stopped early, at step " << k;
+  // The same grain at its stable step keeps its energy and runs on.
+  setup = granularSetup(g, 0.001, findings);
+  body = makeGranularDem(std::move(*setup));
+  for (k = 0; k < 5000; ++k) body->step(0.001, kGravity, ground);
+  EXPECT_FALSE(body->failure());
+}
+
+// Issue 24 (12): grains written past 1e9 m were refused on reload.
+TEST(Granular, GrainsLeavingTheBoundsStopTheRun) {
+  Granular g = record({{0, 0, 1}});
+  g.velocity = {1e9, 0, 0};
+  auto body = make(g, 0.001);
+  AnalyticSurfaces none;
+  for (int k = 0; k < 3000 && !body->failure(); ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  ASSERT_TRUE(body->failure());
+  EXPECT_STREQ(body->failure()->code, "RS7084");
+  EXPECT_NE(body->failure()->message.find("grain 0 is past 1e9 m at step 1001"), std::string::npos)
+      << body->failure()->message;
+  for (const auto& p : body->positions()) EXPECT_LE(std::abs(p.x()), 1.001e9);
+}
+
+// Issue 24 (15): the messages point at the key that is wrong and print
+// its number as written.
+TEST(Granular, BoxFillMessagesNameTheirKeyAndNumber) {
+  Granular g = record({});
+  g.boxMin = {-0.1, -0.1, 0};
+  g.boxMax = {0.1, 0.1, 0.1};
+  g.radius = 0;
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7082");
+  EXPECT_EQ(f[0].field, "radius");
+  EXPECT_NE(f[0].message.find("radius 0:"), std::string::npos) << f[0].message;
+  EXPECT_EQ(f[0].message.find("0.000000"), std::string::npos) << f[0].message;
+  g.radius = 0.02, g.spacing = -1;
+  f = refused(g);
+  EXPECT_EQ(f[0].field, "spacing");
+  g.radius = 1e-9, g.spacing = 1e-8, g.maxParticles = 5000;
+  f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].field, "maxParticles");  // the count against the record's own limit
+  EXPECT_EQ(f[0].message.find("18446744073709551615"), std::string::npos) << f[0].message;
+  EXPECT_NE(f[0].message.find("more than 1e18 particles"), std::string::npos) << f[0].message;
+}
+
+TEST(Granular, AFarGrainIsAPositionErrorNotAnOverlap) {
+  Granular g = record({{0, 0, 1}, {1e300, 0, 1}, {2e300, 0, 1}});
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "positions");
+}
+
+TEST(Granular, APosePastTheBoundIsAPositionErrorAtThePose) {
+  Granular g = record(block(3, 3, 1, 0.043, 0.5));
+  g.world.position = {1e300, 0, 0};
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "position");
+  EXPECT_EQ(f[0].message.find("overlap"), std::string::npos) << f[0].message;
 }
