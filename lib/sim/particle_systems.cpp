@@ -138,6 +138,9 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
 std::optional<ParticleSystems::Runaway> ParticleSystems::deformableRunaway() const {
   for (const DeformableEntry& d : deformables_)
     if (std::string why = d.body->runaway(); !why.empty()) return Runaway{d.recordIndex, d.path, std::move(why)};
+  return std::nullopt;
+}
+
 std::optional<ParticleFailure> ParticleSystems::failure() const {
   for (const GranularEntry& g : granulars_)
     if (const auto& f = g.body->failure()) {
