@@ -21,7 +21,11 @@ namespace {
 
 std::string gTool = "rscene";
 
-volatile std::sig_atomic_t gWriting = 0;             // inside writeOutput()
+// Inside writeOutput(), on this thread.  Per thread: rscene-render's writer
+// threads write while the drawing thread only sets the stop flag, and a
+// signal (which lands on a thread that does not block it) must be judged
+// by what the thread it interrupts is doing.
+thread_local volatile std::sig_atomic_t gWriting = 0;
 volatile std::sig_atomic_t* gStopFlag = nullptr;     // stopOnInterrupt()
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGALRM, SIGQUIT, SIGUSR1, SIGUSR2};
