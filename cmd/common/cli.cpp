@@ -30,14 +30,10 @@ volatile std::sig_atomic_t* gStopFlag = nullptr;     // stopOnInterrupt()
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGALRM, SIGQUIT, SIGUSR1, SIGUSR2};
 
-extern "C" void onTerminatingSignal(int sig) {
-  if (gStopFlag && !gWriting) {
-    if (!*gStopFlag) *gStopFlag = sig;
-    return;
-  }
-  removeTemporaryFiles();
-  // Die of the signal itself rather than exit(128+sig): the status a shell
-  // reports is the same, and a calling script's loop stops on it too.
+// Dies of `sig` itself rather than exit(128+sig): the status a shell
+// reports is the same, and a calling script's loop stops on it too.
+// Async-signal-safe.
+void dieBySignal(int sig) {
   struct sigaction fallback {};
   fallback.sa_handler = SIG_DFL;
   sigemptyset(&fallback.sa_mask);
@@ -47,6 +43,15 @@ extern "C" void onTerminatingSignal(int sig) {
   sigaddset(&only, sig);
   ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
   ::raise(sig);
+}
+
+extern "C" void onTerminatingSignal(int sig) {
+  if (gStopFlag && !gWriting) {
+    if (!*gStopFlag) *gStopFlag = sig;
+    return;
+  }
+  removeTemporaryFiles();
+  dieBySignal(sig);
   ::_exit(128 + sig);
 }
 
@@ -173,15 +178,7 @@ sigset_t stopSignals() {
 int endBySignal(int sig) {
   if (sig == SIGINT || sig <= 0) return kInterrupted;
   std::fflush(nullptr);
-  struct sigaction fallback {};
-  fallback.sa_handler = SIG_DFL;
-  sigemptyset(&fallback.sa_mask);
-  ::sigaction(sig, &fallback, nullptr);
-  sigset_t only;
-  sigemptyset(&only);
-  sigaddset(&only, sig);
-  ::sigprocmask(SIG_UNBLOCK, &only, nullptr);
-  ::raise(sig);
+  dieBySignal(sig);
   return 128 + sig;
 }
 
