@@ -99,7 +99,7 @@ PY
 
 @test "issue 24 (04): a run whose cloth solver work passes the cap is refused up front with its cost, at iterations" {
   scene "iterations=2000 substeps=100"
-  # 465 x 2000 x 100 = 9.3e7 updates a step: one step is under the warning's 1e9
+  # 465 x 2000 x 100 = 9.3e7 updates a step: one step is under the warning's 5e8
   run -0 --separate-stderr "$SIM" --steps 1 -o /dev/null cloth.rscene
   [ "$(grep -c 'RS707[56]' <<<"$stderr")" -eq 0 ]
   # 1000 steps = 9.3e10 updates: refused at once, nothing written

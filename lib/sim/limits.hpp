@@ -41,7 +41,7 @@ inline constexpr std::uint64_t kDefaultMaxPairs = 100'000;
 // a warning (RS7076).  One core does about kDeformableUpdatesPerSecond.
 inline constexpr double kDeformableUpdatesPerSecond = 5e7;
 inline constexpr double kMaxDeformableWorkPerRun = 3e10;  // about 10 minutes of one core
-inline constexpr double kDeformableWorkWarning = 1e9;     // about 20 s
+inline constexpr double kDeformableWorkWarning = 5e8;     // about 10 s
 
 // Steps of a run of `duration` seconds at `timeStep`: round(duration /
 // timeStep), computed without overflow or undefined conversion.  nullopt
