@@ -86,7 +86,8 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
   ok = ok && makeRobots(doc, out.scene, out.robots, ds, o.allowMissingAssets);
   wo.robots = &out.robots;
   if (!parsePdGains(o.pdGains, wo.pd, usageError)) return false;
-  if (ok && leftOut(out.scene) > 0) {
+  const int robotsLeftOut = ok ? leftOut(out.scene) : 0;
+  if (robotsLeftOut > 0) {
     // The joint may be one of a robot left out, whose joints are not known:
     // a warning, not a usage error.
     for (const std::string& name : unknownPdJoints(wo.pd, out.robots)) {
@@ -95,7 +96,7 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
       d.code = scene_code::kMissingFile;
       d.message = "--pd-gains names joint '" + name +
                   "', which no articulated system loaded has as a movable joint; its gains are not used (" +
-                  std::to_string(leftOut(out.scene)) + " left out by --allow-missing-assets)";
+                  std::to_string(robotsLeftOut) + " left out by --allow-missing-assets)";
       ds.push_back(std::move(d));
     }
   } else if (ok) {

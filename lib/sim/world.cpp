@@ -1072,7 +1072,6 @@ std::optional<NonFinite> World::nonFinite() const {
 const std::vector<StartOverlap>& World::startOverlaps() const { return impl_->startOverlaps; }
 
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
-  Diagnostic w;
   auto pathOf = [&](int recordIndex) -> std::string {
     if (recordIndex < 0 || static_cast<std::size_t>(recordIndex) >= doc.records.size()) return "a robot's link";
     Diagnostics unused;
@@ -1086,7 +1085,7 @@ Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
            "dynamic body " + pathOf(o.recordIndex) + " starts " + depth + " inside " + pathOf(o.otherRecordIndex) +
                "; the solver pushes it out over the first steps, which moves it and what it touches",
            one, Severity::Warning, "place it clear of what it starts inside");
-  return one.empty() ? w : one.front();
+  return one.front();  // reportAt() reports at the record, or bare
 }
 
 Diagnostic departureWarning(const Document& doc, const Departure& d) {
