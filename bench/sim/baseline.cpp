@@ -23,6 +23,7 @@
 // keys the scenes leave out have Engine 2's defaults, as in lib/sim.
 //
 // Exit status: 0, or 2 on a usage, input or output error.
+#include <algorithm>
 #include <btBulletDynamicsCommon.h>
 
 #include <cinttypes>
@@ -188,7 +189,23 @@ class World {
     for (auto& b : bodies_) world_->removeRigidBody(b.get());
   }
 
-  void step() { world_->stepSimulation(dt_, 0, dt_); }
+  // rscene-sim's rest rule, as written there (lib/sim/world.cpp): a dynamic
+  // body in a contact deeper than 5 mm is kept awake, so that it is pushed
+  // out instead of falling asleep inside another.  The same rule here keeps
+  // the two programs' worlds, and so their final poses, the same.
+  void step() {
+    world_->stepSimulation(dt_, 0, dt_);
+    for (int i = 0, m = dispatcher_.getNumManifolds(); i < m; ++i) {
+      btPersistentManifold* manifold = dispatcher_.getManifoldByIndexInternal(i);
+      double depth = 0;
+      for (int k = 0; k < manifold->getNumContacts(); ++k)
+        depth = std::max(depth, -double(manifold->getContactPoint(k).getDistance()));
+      if (!(depth > 0.005)) continue;
+      for (const btCollisionObject* o : {manifold->getBody0(), manifold->getBody1()})
+        if (const btRigidBody* rb = btRigidBody::upcast(o); rb && !rb->isStaticOrKinematicObject())
+          const_cast<btRigidBody*>(rb)->activate();
+    }
+  }
 
   // `path x y z qw qx qy qz` per dynamic body, %.17g (round trip).
   bool write(const char* file) const {
