@@ -105,11 +105,13 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
     }
     return true;
   }
-  in.display = operand;
-  in.path = operand;
+  std::string file = operand;
+  if (!defaultSceneOf(operand, file)) return false;
+  in.display = file;
+  in.path = file;
   std::string err;
-  if (!readFile(operand, in.text, &err)) {
-    error("cannot read '" + operand + "': " + err);
+  if (!readFile(file, in.text, &err)) {
+    error("cannot read '" + file + "': " + err);
     return false;
   }
   return true;

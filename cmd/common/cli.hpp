@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/diagnostic.hpp"
+#include "core/project.hpp"
 #include "core/writer.hpp"
 
 namespace CLI {
@@ -40,7 +41,20 @@ struct Input {
 void hintStdinPaths(const Input& in, const std::string& baseDir, Diagnostics& ds);
 
 // Reads `operand` ("-" = stdin).  On failure prints `tool: error: ...`.
+// An Engine 2 project is read as its default scene (project.cpp).
 bool readInput(const std::string& operand, const std::string& stdinName, Input& in);
+
+// Engine 2 projects (project.cpp).  The project file of `root`, read and
+// checked (false, printed, when it cannot be read).
+bool readProjectFile(const std::string& root, std::string& text, ProjectRead& read);
+// The project of `root` when its file has no errors; else prints them.
+bool openProject(const std::string& root, Project& project);
+// The project the scene `in` lies in, for its asset paths (stdin: from
+// --base-dir's folder); empty when none.
+ProjectPlace projectPlace(const Input& in, const std::string& baseDir);
+// When `operand` is a project, sets `scene` to its default scene (false,
+// printed, when it has none or its file has errors); else leaves `scene`.
+bool defaultSceneOf(const std::string& operand, std::string& scene);
 
 // Writes `produce`'s output to `path` ("-" = stdout) through the library's
 // one output routine (core/output_file.hpp: atomic replacement, links kept,
@@ -119,12 +133,19 @@ void addInputOperands(CLI::App& app, std::vector<std::string>& files);
 // sorted, hidden entries and links to folders skipped).  An unreadable
 // folder is printed as an error (ok = false), a folder without scenes as a
 // warning (operands.cpp).
+//
+// An Engine 2 project (a folder holding `raisim_engine2_project`, or that
+// file) becomes its scenes (core/project.hpp: projectScenes); its root is
+// listed in `projects`.  With `checkProjects` a project file with errors
+// is printed and its scenes left out (ok = false); without, the caller
+// (rscene-validate) reports the project file itself.
 struct Operands {
   std::vector<std::string> files;
+  std::vector<std::string> projects;  // project folders among the operands
   bool hadDirectory = false;
   bool ok = true;
 };
-Operands expandOperands(const std::vector<std::string>& operands);
+Operands expandOperands(const std::vector<std::string>& operands, bool checkProjects = true);
 bool anyDirectory(const std::vector<std::string>& operands);
 void addOutputOption(CLI::App& app, std::string& output, const char* what);
 // `assets`: stdin's name also places relative asset paths.

@@ -2,7 +2,9 @@
 #include <filesystem>
 
 #include "common/cli.hpp"
+#include "core/filesystem.hpp"
 #include "core/find_scenes.hpp"
+#include "core/project.hpp"
 
 namespace rscene::cli {
 
@@ -13,10 +15,36 @@ bool anyDirectory(const std::vector<std::string>& operands) {
   return false;
 }
 
-Operands expandOperands(const std::vector<std::string>& operands) {
+Operands expandOperands(const std::vector<std::string>& operands, bool checkProjects) {
   Operands out;
   for (const std::string& op : operands) {
     std::error_code ec;
+    if (std::string root; isProject(op, diskFileSystem(), root)) {
+      out.hadDirectory = true;
+      out.projects.push_back(root);
+      Project project;
+      if (checkProjects) {
+        if (!openProject(root, project)) {
+          out.ok = false;
+          continue;
+        }
+      } else {
+        std::string text;
+        ProjectRead read;
+        if (!readProjectFile(root, text, read)) {
+          out.ok = false;
+          continue;
+        }
+        project = std::move(read.project);
+      }
+      std::vector<std::string> errors;
+      std::vector<std::string> scenes = projectScenes(project, errors);
+      for (const std::string& e : errors) error(e);
+      out.ok = out.ok && errors.empty();
+      if (scenes.empty() && errors.empty()) warning("no .rscene files in project '" + root + "'");
+      out.files.insert(out.files.end(), scenes.begin(), scenes.end());
+      continue;
+    }
     if (op == "-" || !std::filesystem::is_directory(op, ec)) {
       out.files.push_back(op);  // a missing file is reported when it is read
       continue;

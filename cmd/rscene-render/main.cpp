@@ -52,6 +52,7 @@ int run(const Options& opt) {
   auto tBuild = Clock::now();
   SceneOptions so;
   so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  so.project = cli::projectPlace(in, opt.baseDir);
   so.baseDir = opt.baseDir;
   render::RenderOptions ro;
   ro.maxTexturePixels = opt.maxTexturePixels;

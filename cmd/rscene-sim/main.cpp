@@ -60,6 +60,7 @@ int run(const Options& opt) {
 
   sim::PrepareOptions po;
   po.scene.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  po.scene.project = cli::projectPlace(in, opt.baseDir);
   po.scene.baseDir = opt.baseDir;
   po.allowMissingAssets = opt.allowMissing;
   if (opt.steps >= 0) po.steps = static_cast<std::uint64_t>(opt.steps);

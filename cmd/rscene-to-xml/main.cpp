@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   // standard input, else the current one), as in rscene-sim.
   SceneOptions so;
   so.sceneDir = in.path.empty() ? "." : directoryOf(in.path);
+  so.project = cli::projectPlace(in, {});
   Scene scene;
   Diagnostics ds = loaded.diagnostics;
   // What rscene-sim refuses (a dynamic body without mass, a zero size ...)

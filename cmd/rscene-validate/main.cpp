@@ -68,10 +68,13 @@ struct Run {
   struct Keep : DiagnosticSink {
     Run& run;
     const std::string& name;
-    const Document& doc;  // its buffer holds the text while the check runs
+    const Document* doc;    // its buffer holds the text while the check runs
+    std::string_view text;  // or the text itself (a project file)
     validate::FileCounts counts;
     Diagnostics shown;
-    Keep(Run& r, const std::string& n, const Document& d) : run(r), name(n), doc(d) {}
+    Keep(Run& r, const std::string& n, const Document& d) : run(r), name(n), doc(&d) {}
+    Keep(Run& r, const std::string& n, std::string_view t) : run(r), name(n), doc(nullptr), text(t) {}
+    std::string_view buffer() const { return doc ? doc->buffer() : text; }
     void add(Diagnostic d) override {
       if (!run.wanted(d)) return;
       bool error = d.severity == Severity::Error;
@@ -79,7 +82,7 @@ struct Run {
       if (error || run.opt.strict) run.failed = true;
       if (run.opt.maxIssues == 0 || run.totals.shown < run.opt.maxIssues) {
         ++run.totals.shown;
-        if (run.reporter.streams()) run.reporter.finding(name, doc.buffer(), d);
+        if (run.reporter.streams()) run.reporter.finding(name, buffer(), d);
         else shown.push_back(std::move(d));
       }
     }
@@ -93,6 +96,7 @@ struct Run {
     co.profile = opt.profile == "raisim" ? Profile::RaiSim : Profile::Engine2;
     co.checkFiles = opt.checkFiles;
     co.sceneDir = in.isStdin && !opt.baseDir.empty() ? opt.baseDir : directoryOf(in.path);
+    co.project = cli::projectPlace(in, opt.baseDir);
     Document doc;
     Keep keep(*this, in.display, doc);
     // Robots are checked against their models (lib/robot, above lib/scene):
@@ -109,6 +113,22 @@ struct Run {
     totals.warnings += keep.counts.warnings;
     ++totals.files;
     reporter.file(in.display, doc.buffer(), keep.shown, keep.counts);
+    return true;
+  }
+
+  // Checks an Engine 2 project's file (its scenes are operands of their
+  // own); false on an I/O error.
+  bool project(const std::string& root) {
+    std::string text;
+    ProjectRead read;
+    if (!cli::readProjectFile(root, text, read)) return false;
+    const std::string& name = read.project.file;
+    Keep keep(*this, name, text);
+    for (Diagnostic& d : read.diagnostics) keep.add(std::move(d));
+    totals.errors += keep.counts.errors;
+    totals.warnings += keep.counts.warnings;
+    ++totals.files;
+    reporter.file(name, text, keep.shown, keep.counts);
     return true;
   }
 };
@@ -156,9 +176,10 @@ int main(int argc, char** argv) {
   std::unique_ptr<validate::Reporter> reporter = opt.format == "json"    ? validate::jsonReporter()
                                                  : opt.format == "sarif" ? validate::sarifReporter()
                                                                          : validate::textReporter(color);
-  cli::Operands operands = cli::expandOperands(opt.files);
+  cli::Operands operands = cli::expandOperands(opt.files, false);
   Run run{opt, *reporter, {opt.ignore.begin(), opt.ignore.end()}, {opt.only.begin(), opt.only.end()}, {}, false};
   bool trouble = !operands.ok;
+  for (const std::string& p : operands.projects) trouble = !run.project(p) || trouble;
   for (const std::string& f : operands.files) trouble = !run.file(f) || trouble;
   if (!reporter->finish(run.totals)) {
     cli::error("cannot write standard output");

@@ -16,6 +16,8 @@ std::string join(const std::string& dir, const std::string& path) {
 
 }  // namespace
 
+std::string joinPath(const std::string& dir, const std::string& path) { return join(dir, path); }
+
 bool fileExistsOnDisk(const std::string& path) {
   return diskFileSystem().stat(path).kind == FileKind::Regular;  // the one classification of paths
 }
@@ -45,6 +47,20 @@ std::string resolveAsset(const std::string& sceneDir, const std::string& assetRo
   std::string root = assetRoot.empty() ? "." : assetRoot;
   std::string base = root.front() == '/' ? root : join(sceneDir, root);
   return join(base, path);
+}
+
+std::string resolveAsset(const std::string& sceneDir, const ProjectPlace& project, int version,
+                         const std::string& assetRoot, const std::string& path, const FileExists& exists) {
+  if (project.empty()) return resolveAsset(sceneDir, assetRoot, path, exists);
+  if (path.empty() || path.front() == '/') return path;
+  std::string direct = join(sceneDir, path);
+  if (exists(direct)) return direct;
+  std::string root = assetRoot.empty() ? "." : assetRoot;
+  std::string base = root.front() == '/' ? root : join(version == 1 ? project.root : sceneDir, root);
+  std::string asked = join(base, path);
+  if (exists(asked) || project.assets.empty()) return asked;
+  std::string shared = join(project.assets, path);
+  return exists(shared) ? shared : asked;
 }
 
 std::string assetRootOf(const Document& doc) {

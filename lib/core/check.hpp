@@ -21,6 +21,7 @@ struct CheckOptions {
   Profile profile = Profile::Engine2;
   bool checkFiles = false;     // RS5xxx: asset paths must name existing files
   std::string sceneDir = ".";  // directory relative asset paths start from
+  ProjectPlace project;        // the Engine 2 project the scene is in (core/assets.hpp), if any
   FileExists fileExists = fileExistsOnDisk;
 };
 

@@ -16,10 +16,13 @@ void checkFiles(Context& ctx, const Record& r) {
     if (def.type != ValueType::Path || def.name.rfind("output", 0) == 0 || def.name == "resourceDirectory") return;
     std::string path = percentDecode(ctx.doc.text(f.value));
     if (path.empty()) return;
-    std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.index.assetRoot, path, ctx.opt.fileExists);
+    std::string resolved = resolveAsset(ctx.opt.sceneDir, ctx.opt.project, ctx.doc.version, ctx.index.assetRoot, path,
+                                           ctx.opt.fileExists);
     if (ctx.opt.fileExists(resolved)) return;
     ctx.report(rs::RS5001, r, f.value, def.name, "file '" + path + "' " + whyNotAFile(resolved) + " (resolved to '" + resolved + "')",
-               "paths resolve against the scene's directory, then against asset_root");
+               ctx.opt.project.empty() ? "paths resolve against the scene's directory, then against asset_root"
+                                         : "paths resolve against the scene's directory, then against asset_root, then against "
+                                           "the project's asset_directory");
   });
 }
 

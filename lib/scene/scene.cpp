@@ -62,7 +62,8 @@ void Builder::run() {
 
 std::string Builder::asset(const std::string& path) const {
   if (path.empty()) return path;
-  std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, opt_.exists);
+  std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, opt_.project, doc_.version, s_.assetRoot, path,
+                                 opt_.exists);
   for (std::size_t at; (at = out.find("/./")) != std::string::npos;) out.erase(at, 2);  // "dir/./x" -> "dir/x"
   return out;
 }
@@ -93,7 +94,8 @@ AssetPath Builder::assetFn() const {
 std::string Builder::assetDirectory(const std::string& path) const {
   if (path.empty()) return path;
   auto isDir = [](const std::string& p) { return DiskFileSystem().stat(p).kind == FileKind::Directory; };
-  std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, s_.assetRoot, path, isDir);
+  std::string out = resolveAsset(opt_.baseDir.empty() ? opt_.sceneDir : opt_.baseDir, opt_.project, doc_.version, s_.assetRoot, path,
+                                 isDir);
   for (std::size_t at; (at = out.find("/./")) != std::string::npos;) out.erase(at, 2);
   return out;
 }

@@ -70,6 +70,7 @@ inline constexpr const char* kUnknownBody = rs::RS3012;   // wire body that name
 struct SceneOptions {
   std::string sceneDir = ".";  // directory of the scene file (assets resolve against it)
   std::string baseDir;         // when set, replaces sceneDir (e.g. for stdin)
+  ProjectPlace project;        // the Engine 2 project the scene is in (core/assets.hpp), if any
   FileExists exists = fileExistsOnDisk;
   // Build only what checkScene() reads: time step, groups, objects,
   // compounds, wires, point clouds, and terrains without their per-sample

@@ -134,6 +134,7 @@ void validateScene(std::string text, const CheckOptions& options, Document& doc,
   // and must be known to merge them into core's as those stream past.
   SceneOptions so;
   so.sceneDir = options.sceneDir;
+  so.project = options.project;
   so.exists = options.fileExists;
   so.bodiesOnly = true;  // the rest is lib/core's to check; keeps validate fast on large scenes
   Scene scene;

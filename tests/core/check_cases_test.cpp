@@ -158,6 +158,8 @@ TEST(CheckCases, EachCodeTriggersOnItsSceneAndNotOnTheFineOne) {
 TEST(CheckCases, EveryCodeOfTheValidatorHasACase) {
   std::set<std::string> covered{"RS5001"};  // check_files_test.cpp
   covered.insert("RS1010");                  // needs a 4 GiB input; loader_test covers the limit
+  for (const char* c : {"RS1201", "RS1202", "RS1203", "RS1204", "RS1205", "RS1206", "RS1207", "RS1208"})
+    covered.insert(c);  // the project file's codes: project_test.cpp has a case for each
   for (const Case& c : cases()) covered.insert(c.code);
   // Codes of the other layers have their cases beside them (tests/scene ...).
   for (const CheckInfo& info : checkTable()) {

@@ -1,0 +1,87 @@
+#!/usr/bin/env bats
+# Engine 2 projects (README, "Engine 2 projects"): a folder with a
+# raisim_engine2_project file as an operand of every tool, its file checked
+# by rscene-validate, and its scenes' assets found through asset_directory.
+
+load helpers
+
+# make_project: ./proj with two scenes, the crate mesh in assets/ and a
+# default scene; the scenes name the mesh as `meshes/crate.obj`, found only
+# through the project's asset_directory.
+make_project() {
+  mkdir -p proj/assets/meshes proj/scenes/more
+  cp "$DATA/render_assets/crate.obj" "$DATA/render_assets/crate.mtl" "$DATA/render_assets/checker.png" proj/assets/meshes/
+  cat > proj/raisim_engine2_project <<'EOF'
+raisim_engine2_project 1
+name Test Project
+asset_directory assets
+scene_directory scenes
+default_scene scenes/crate.rscene
+description Two scenes and a crate.
+EOF
+  sed 's|render_assets/crate.obj|meshes/crate.obj|' "$DATA/render_mesh.rscene" > proj/scenes/crate.rscene
+  printf 'raisim_engine_scene 2\nobject /World/Ball sphere 0 0 1 1 0 0 0 0.5 0.5 0.5 1 1 1 default engine_default false true false - dynamic true 1 18446744073709551615\n' \
+    > proj/scenes/more/ball.rscene
+}
+
+@test "project: rscene-validate PROJECT/ checks the project file and every scene, finding assets in asset_directory" {
+  in_workdir
+  make_project
+  run -0 --separate-stderr "$BIN/rscene-validate" --check-files proj/
+  [ "$output" = "" ]
+  [ "$stderr" = "no issues in 3 files" ]
+  # The same scene named directly finds the same mesh: its project is found from its folder.
+  run -0 "$BIN/rscene-validate" --check-files proj/scenes/crate.rscene
+  # Outside the project, the mesh is not found.
+  cp proj/scenes/crate.rscene lone.rscene
+  run -1 "$BIN/rscene-validate" --check-files lone.rscene
+  [[ "$output" == *"lone.rscene:5:"*"[RS5001]"* ]]
+}
+
+@test "project: a defect in the project file is reported at file:line:col with its code" {
+  in_workdir
+  make_project
+  sed -i 's|^scene_directory scenes|scene_directory scenez|; s|^name |title |' proj/raisim_engine2_project
+  run -1 --separate-stderr "$BIN/rscene-validate" proj
+  [[ "$output" == *"proj/raisim_engine2_project:2:1: warning: unknown project record 'title' (ignored) [RS1202]"* ]]
+  [[ "$output" == *"proj/raisim_engine2_project:4:17: error: scene_directory 'scenez' does not exist"*"[RS1206]"* ]]
+  printf 'raisim_engine2_project 2\n' > proj/raisim_engine2_project
+  run -1 "$BIN/rscene-validate" proj/raisim_engine2_project
+  [[ "$output" == *"proj/raisim_engine2_project:1:24: error: unsupported project version '2' (only 1 exists) [RS1201]"* ]]
+  run -0 "$BIN/rscene-validate" --list-checks
+  [[ "$output" == *"RS1207"* ]]
+}
+
+@test "project: rscene-fmt --check PROJECT formats its scenes, not its project file" {
+  in_workdir
+  make_project
+  printf 'raisim_engine_scene 2\nobject /World/B box 0 0 1 1 0 0 0 1.0 1 1 1 1 1 default engine_default false true false - dynamic true 1 18446744073709551615\n' \
+    > proj/scenes/b.rscene
+  cp proj/raisim_engine2_project before
+  run -1 "$BIN/rscene-fmt" --check proj
+  [[ "$output" == *"proj/scenes/b.rscene"* ]]
+  [[ "$output" != *"raisim_engine2_project"* ]]
+  run -0 "$BIN/rscene-fmt" -i proj
+  cmp before proj/raisim_engine2_project
+  run -0 "$BIN/rscene-fmt" --check proj
+}
+
+@test "project: where one scene is meant, a project is its default scene" {
+  needs_tools rscene-sim rscene-to-json rscene-render
+  in_workdir
+  make_project
+  run -0 "$BIN/rscene-to-json" proj
+  [[ "$output" == *'"/World/Crate"'* ]]
+  run -0 "$BIN/rscene-sim" --steps 2 proj -o out.rscene
+  grep -q '^object /World/Crate mesh' out.rscene
+  # The mesh is found through asset_directory: drawn, the crate covers the image's middle.
+  run -0 "$BIN/rscene-render" proj -o crate.png
+  run -0 "$BIN/rscene-render" proj/scenes/crate.rscene -o direct.png
+  cmp crate.png direct.png
+  sed -i '/^default_scene/d' proj/raisim_engine2_project
+  run -2 --separate-stderr "$BIN/rscene-to-json" proj
+  [ "$output" = "" ]
+  [ "$stderr" = "rscene-to-json: error: project 'proj' has no default_scene: name one of its scenes" ]
+  sed -i 's|^raisim_engine2_project 1|raisim_engine2_project 9|' proj/raisim_engine2_project
+  refused "proj/raisim_engine2_project:1:24: error: unsupported project version '9'" "$BIN/rscene-sim" --steps 1 proj
+}
