@@ -1,0 +1,224 @@
+#!/bin/bash
+# A single-node Slurm cluster on this machine, for trying and testing the
+# job-array recipe of examples/slurm/ (shell-tests/slurm.bats runs it).
+# Debian's packages: slurm-wlm (slurmctld, slurmd, sbatch...) and munge.
+#
+#   eval "$(scripts/slurm-cluster.sh start [DIR])"   # exports SLURM_CONF
+#   sbatch --wait ...; sinfo; squeue
+#   scripts/slurm-cluster.sh stop DIR
+#
+# start: makes DIR (default: a new folder under ${TMPDIR:-/tmp}) and puts
+# everything there: a munge key, the sockets, slurm.conf (one node with
+# this machine's CPUs, one default partition, free TCP ports), the state,
+# spool, logs and pid files.  It starts munged, slurmctld and slurmd,
+# waits (at most SLURM_START_TIMEOUT seconds, default 60) until `sinfo`
+# shows the node idle, and prints `export SLURM_CONF=DIR/slurm.conf` (and
+# RSCENE_SLURM_DIR=DIR) on standard output.  Nothing outside DIR is
+# written and no system service is used: it runs in a container without
+# systemd.  When it cannot finish it stops what it started, removes DIR,
+# and exits 1, showing the daemons' log tails.  It exits 77 (nothing
+# started) where a cluster cannot start here: not root (the daemons run
+# as root, SlurmUser=root) or a package missing.
+#
+# stop: cancels the jobs left on the cluster, stops exactly the daemons
+# whose pid files are in DIR (TERM, then KILL after 10 s), and removes
+# DIR.  It is safe to run twice, or after a start that failed.
+#
+# No slurmdbd: `sacct` has no accounting storage here, so the recipe
+# keeps its own per-task status files.
+set -Eeuo pipefail
+
+die() { echo "slurm-cluster: $*" >&2; exit 1; }
+usage() { echo "usage: $0 start [DIR] | stop DIR" >&2; exit 2; }
+
+# The daemons it starts, each with its pid file DIR/NAME.pid.
+DAEMONS="munged slurmctld slurmd"
+
+# pid_of DIR NAME: the pid in DIR/NAME.pid when that process still runs
+# the program NAME (a reused pid is left alone), else nothing.
+pid_of() {
+  local f="$1/$2.pid" pid
+  [ -s "$f" ] || return 0
+  pid=$(tr -dc 0-9 < "$f")
+  [ -n "$pid" ] && [ -r "/proc/$pid/comm" ] || return 0
+  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$2" ] && echo "$pid"
+  return 0
+}
+
+# The daemons' log tails, for a start that failed.
+show_logs() {
+  local f
+  for f in "$1"/log/*.log; do
+    [ -s "$f" ] || continue
+    echo "--- $f" >&2
+    tail -n 15 "$f" >&2
+  done
+}
+
+stop_cluster() {
+  local dir=$1 name pid i
+  [ -d "$dir" ] || return 0
+  # Only a folder this script made: its marker file says so.
+  [ -e "$dir/.rscene-slurm" ] || die "$dir was not made by slurm-cluster.sh start; not touching it"
+  # Jobs still queued or running: end them while slurmctld and slurmd
+  # are up, so that no slurmstepd or job process outlives the cluster.
+  if [ -n "$(pid_of "$dir" slurmctld)" ] && [ -n "$(pid_of "$dir" slurmd)" ]; then
+    SLURM_CONF="$dir/slurm.conf" timeout 10 scancel --quiet --full --user=root >/dev/null 2>&1 || true
+    for i in $(seq 1 50); do
+      [ -z "$(SLURM_CONF="$dir/slurm.conf" timeout 5 squeue -h -o %i 2>/dev/null)" ] && break
+      sleep 0.2
+    done
+  fi
+  # TERM to all three at once (each takes a second or two to end), KILL
+  # to what is left after 10 s.
+  local pids=""
+  for name in $DAEMONS; do
+    pid=$(pid_of "$dir" "$name")
+    [ -z "$pid" ] || { kill -TERM "$pid" 2>/dev/null || true; pids="$pids $pid"; }
+  done
+  for i in $(seq 1 100); do
+    local alive=""
+    for pid in $pids; do
+      ! kill -0 "$pid" 2>/dev/null || alive="$alive $pid"
+    done
+    pids=$alive
+    [ -n "$pids" ] || break
+    sleep 0.1
+  done
+  for pid in $pids; do kill -KILL "$pid" 2>/dev/null || true; done
+  # A job step that slurmd could not end: a slurmstepd started by this
+  # cluster's slurmd, which passed it this SLURM_CONF.
+  local p comm
+  for p in /proc/[0-9]*; do
+    comm=""
+    read -r comm 2>/dev/null < "$p/comm" || continue
+    [ "$comm" = slurmstepd ] || continue
+    if tr '\0' '\n' < "$p/environ" 2>/dev/null | grep -qx "SLURM_CONF=$dir/slurm.conf"; then
+      kill -KILL "${p#/proc/}" 2>/dev/null || true
+    fi
+  done
+  rm -rf "$dir"
+}
+
+# free_ports N: N distinct TCP ports that nothing listens on now.
+free_ports() {
+  python3 - "$1" <<'EOF'
+import socket, sys
+socks = []
+for _ in range(int(sys.argv[1])):
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    socks.append(s)
+print(" ".join(str(s.getsockname()[1]) for s in socks))
+EOF
+}
+
+start_cluster() {
+  local dir=${1:-} p
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "slurm-cluster: needs root (the test cluster runs its daemons as root)" >&2
+    exit 77
+  fi
+  for p in munged mungekey slurmctld slurmd sbatch sinfo scancel squeue python3; do
+    command -v "$p" >/dev/null 2>&1 || PATH="$PATH:/usr/sbin:/sbin" command -v "$p" >/dev/null 2>&1 || {
+      echo "slurm-cluster: $p not found (sh scripts/install-deps.sh installs slurm-wlm and munge)" >&2
+      exit 77
+    }
+  done
+  export PATH="$PATH:/usr/sbin:/sbin"
+
+  if [ -z "$dir" ]; then
+    dir=$(mktemp -d "${TMPDIR:-/tmp}/rscene-slurm.XXXXXX")
+  else
+    [ ! -e "$dir" ] || [ -z "$(ls -A "$dir")" ] || die "$dir exists and is not empty"
+    mkdir -p "$dir"
+  fi
+  dir=$(cd "$dir" && pwd -P)
+  : > "$dir/.rscene-slurm"
+  # munged refuses a key that others can read, and a socket in a folder
+  # that others can write to or cannot enter.
+  chmod 755 "$dir"
+  mkdir -m 700 "$dir/munge" "$dir/log" "$dir/state" "$dir/spool"
+  mkdir -m 755 "$dir/socket"
+  trap 'show_logs "$dir"; stop_cluster "$dir"; exit 1' ERR
+  trap 'stop_cluster "$dir"; exit 1' INT TERM
+
+  mungekey --create --keyfile="$dir/munge/munge.key" --bits=1024 >/dev/null 2>&1 ||
+    dd if=/dev/urandom of="$dir/munge/munge.key" bs=1024 count=1 status=none
+  chmod 400 "$dir/munge/munge.key"
+  munged --socket="$dir/socket/munge.socket" --key-file="$dir/munge/munge.key" \
+    --pid-file="$dir/munged.pid" --log-file="$dir/log/munged.log" \
+    --seed-file="$dir/munge/munged.seed" --num-threads=2 </dev/null >/dev/null 2>&1
+
+  local host ports ctld_port d_port cpus
+  host=$(hostname -s)
+  ports=$(free_ports 2)
+  ctld_port=${ports% *}
+  d_port=${ports#* }
+  cpus=$(nproc)
+  cat > "$dir/slurm.conf" <<EOF
+# Written by scripts/slurm-cluster.sh: one node, this machine, for tests.
+ClusterName=rscene
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$ctld_port
+SlurmdPort=$d_port
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$dir/socket/munge.socket
+StateSaveLocation=$dir/state
+SlurmdSpoolDir=$dir/spool
+SlurmctldPidFile=$dir/slurmctld.pid
+SlurmdPidFile=$dir/slurmd.pid
+SlurmctldLogFile=$dir/log/slurmctld.log
+SlurmdLogFile=$dir/log/slurmd.log
+SlurmctldDebug=info
+SlurmdDebug=info
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+MpiDefault=none
+SwitchType=switch/none
+SchedulerType=sched/builtin
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+ReturnToService=2
+SlurmdParameters=config_overrides
+# A finished job's record stays 4 s: long enough for sbatch --wait, which
+# then polls every 2 s instead of backing off to 8 or 32 s.
+MinJobAge=4
+KillWait=5
+InactiveLimit=0
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+PartitionName=batch Nodes=$host Default=YES MaxTime=INFINITE State=UP
+EOF
+  export SLURM_CONF="$dir/slurm.conf"
+
+  # -c: a fresh start, no state from an earlier cluster; -i: ignore any.
+  slurmctld -c -i </dev/null >/dev/null 2>&1
+  slurmd -N "$host" </dev/null >/dev/null 2>&1
+
+  local timeout=${SLURM_START_TIMEOUT:-60} waited=0 state=""
+  while :; do
+    state=$(timeout 5 sinfo -h -N -o %t 2>/dev/null || true)
+    [ "$state" = idle ] && break
+    if [ -z "$(pid_of "$dir" munged)" ] || [ -z "$(pid_of "$dir" slurmctld)" ] || [ -z "$(pid_of "$dir" slurmd)" ]; then
+      # A daemon may still be forking when its pid file is absent.
+      [ "$waited" -lt 3 ] || { echo "slurm-cluster: a daemon exited" >&2; false; }
+    fi
+    [ "$waited" -lt "$timeout" ] || { echo "slurm-cluster: the node is not idle after ${timeout}s (state: ${state:-none})" >&2; false; }
+    sleep 1
+    waited=$((waited + 1))
+  done
+  trap - ERR INT TERM
+  echo "export SLURM_CONF=$dir/slurm.conf RSCENE_SLURM_DIR=$dir"
+}
+
+case ${1:-} in
+  start) [ $# -le 2 ] || usage; start_cluster "${2:-}" ;;
+  stop) [ $# -eq 2 ] || usage; stop_cluster "$2" ;;
+  *) usage ;;
+esac
