@@ -134,6 +134,8 @@ start_cluster() {
     mkdir -p "$dir"
   fi
   dir=$(cd "$dir" && pwd -P)
+  # munged's socket path has at most 108 bytes.
+  [ "${#dir}" -le 80 ] || { rmdir "$dir" 2>/dev/null || true; die "$dir: too long a path for munge's socket (keep it under 80 bytes)"; }
   : > "$dir/.rscene-slurm"
   # munged refuses a key that others can read, and a socket in a folder
   # that others can write to or cannot enter.
@@ -150,12 +152,14 @@ start_cluster() {
     --pid-file="$dir/munged.pid" --log-file="$dir/log/munged.log" \
     --seed-file="$dir/munge/munged.seed" --num-threads=2 </dev/null >/dev/null 2>&1
 
-  local host ports ctld_port d_port cpus
+  local host ports ctld_port d_port cpus mem
   host=$(hostname -s)
   ports=$(free_ports 2)
   ctld_port=${ports% *}
   d_port=${ports#* }
   cpus=$(nproc)
+  # This machine's memory in MiB (jobs ask for some: --mem-per-cpu).
+  mem=$(awk '$1 == "MemTotal:" { print int($2 / 1024) }' /proc/meminfo)
   cat > "$dir/slurm.conf" <<EOF
 # Written by scripts/slurm-cluster.sh: one node, this machine, for tests.
 ClusterName=rscene
@@ -179,12 +183,15 @@ ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 JobAcctGatherType=jobacct_gather/none
 AccountingStorageType=accounting_storage/none
-JobCompType=jobcomp/none
+# Each finished job and array task, one line: JobState=COMPLETED|FAILED...
+# (no slurmdbd, so sacct has nothing to read).
+JobCompType=jobcomp/filetxt
+JobCompLoc=$dir/log/jobcomp.log
 MpiDefault=none
 SwitchType=switch/none
 SchedulerType=sched/builtin
 SelectType=select/cons_tres
-SelectTypeParameters=CR_CPU
+SelectTypeParameters=CR_CPU_Memory
 ReturnToService=2
 SlurmdParameters=config_overrides
 # A finished job's record stays 4 s: long enough for sbatch --wait, which
@@ -192,7 +199,7 @@ SlurmdParameters=config_overrides
 MinJobAge=4
 KillWait=5
 InactiveLimit=0
-NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem State=UNKNOWN
 PartitionName=batch Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
   export SLURM_CONF="$dir/slurm.conf"

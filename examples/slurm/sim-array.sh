@@ -54,7 +54,7 @@ trap 'rm -rf "$tmp"' EXIT
 # it, named for this host and process, then a rename).
 put() {
   local t
-  t="$(dirname "$1")/.$(basename "$1").$(hostname).$$"
+  t="$(dirname "$1")/.$(basename "$1").${HOSTNAME:-host}.$$"
   cat > "$t" && mv -f "$t" "$1" || { rm -f "$t"; return 1; }
 }
 

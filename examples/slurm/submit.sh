@@ -5,7 +5,8 @@
 #
 # LIST holds one scene path a line; OUT is the results folder (see
 # sim-array.sh).  The options go to sbatch as they are (--wait,
-# --partition=..., --test-only).  It records LIST and CHUNK in OUT/batch,
+# --partition=..., --test-only).  With --wait it exits 1 when a task
+# failed or did not run (rerun-failed.sh --check), 0 when all are ok.  It records LIST and CHUNK in OUT/batch,
 # which rerun-failed.sh and summarize.sh read, so that a task number keeps
 # naming the same scenes.
 #
@@ -50,6 +51,14 @@ case " $* " in
     ;;
 esac
 echo "submit: $n scenes, $tasks tasks of $chunk" >&2
-exec sbatch --array="0-$((tasks - 1))${THROTTLE:+%$THROTTLE}" \
+rc=0
+sbatch --array="0-$((tasks - 1))${THROTTLE:+%$THROTTLE}" \
   --output="$out/logs/%A_%a.out" --export="ALL,CHUNK=$chunk" \
-  "$@" "$here/sim-array.sh" "$list" "$out"
+  "$@" "$here/sim-array.sh" "$list" "$out" || rc=$?
+case " $* " in
+  # sbatch --wait's own status can miss a failed task of an array (one
+  # whose record slurmctld dropped, MinJobAge, before the last task
+  # ended): the status files tell.
+  *" --wait "*) exec "$here/rerun-failed.sh" --check "$out" ;;
+esac
+exit "$rc"
