@@ -56,7 +56,7 @@ show_logs() {
 }
 
 stop_cluster() {
-  local dir=$1 name pid i
+  local dir=$1 name pid
   [ -d "$dir" ] || return 0
   # Only a folder this script made: its marker file says so.
   [ -e "$dir/.rscene-slurm" ] || die "$dir was not made by slurm-cluster.sh start; not touching it"
@@ -64,7 +64,7 @@ stop_cluster() {
   # are up, so that no slurmstepd or job process outlives the cluster.
   if [ -n "$(pid_of "$dir" slurmctld)" ] && [ -n "$(pid_of "$dir" slurmd)" ]; then
     SLURM_CONF="$dir/slurm.conf" timeout 10 scancel --quiet --full --user=root >/dev/null 2>&1 || true
-    for i in $(seq 1 50); do
+    for _ in $(seq 1 50); do
       [ -z "$(SLURM_CONF="$dir/slurm.conf" timeout 5 squeue -h -o %i 2>/dev/null)" ] && break
       sleep 0.2
     done
@@ -76,7 +76,7 @@ stop_cluster() {
     pid=$(pid_of "$dir" "$name")
     [ -z "$pid" ] || { kill -TERM "$pid" 2>/dev/null || true; pids="$pids $pid"; }
   done
-  for i in $(seq 1 100); do
+  for _ in $(seq 1 100); do
     local alive=""
     for pid in $pids; do
       ! kill -0 "$pid" 2>/dev/null || alive="$alive $pid"

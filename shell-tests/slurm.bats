@@ -150,9 +150,11 @@ scenes() {
   dir=$(sed -n 's/.* RSCENE_SLURM_DIR=//p' <<<"$output")
   [ -e "$dir/.rscene-slurm" ]
   pids=$(cat "$dir"/*.pid)
-  SLURM_CONF="$dir/slurm.conf" run -0 sbatch --output=/dev/null --wrap 'echo $$ > '"$PWD"'/job.pid; exec sleep 300'
+  # a job left running: its shell (then sleep) and its slurmstepd
+  SLURM_CONF="$dir/slurm.conf" run -0 sbatch --output=/dev/null --wrap 'echo $$ $PPID > '"$PWD"'/job.pid; exec sleep 300'
   for _ in $(seq 1 100); do [ -s job.pid ] && break; sleep 0.1; done
   [ -s job.pid ]
+  [ "$(cat "/proc/$(cut -d' ' -f2 job.pid)/comm")" = slurmstepd ]
   pids="$pids $(cat job.pid)"
   run -0 "$CLUSTER" stop "$dir"
   [ ! -e "$dir" ]
@@ -188,8 +190,8 @@ scenes() {
 @test "the summary lists a scene whose task did not run, and exits 1" {
   needs_tools rscene-sim
   scenes 4
-  printf 'LIST=%q\nCHUNK=2\nTASKS=2\n' "$PWD/scenes.txt" > batch
-  mkdir out && mv batch out/
+  mkdir out
+  printf 'LIST=%q\nCHUNK=2\nTASKS=2\n' "$PWD/scenes.txt" > out/batch
   SLURM_ARRAY_TASK_ID=0 CHUNK=2 run -0 "$RECIPE/sim-array.sh" scenes.txt out
   run -1 "$RECIPE/summarize.sh" out sum.jsonl
   [[ $output == *"summarize: 4 scenes, 2 ok, 2 failed or not run"* ]]

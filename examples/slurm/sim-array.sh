@@ -55,7 +55,10 @@ trap 'rm -rf "$tmp"' EXIT
 put() {
   local t
   t="$(dirname "$1")/.$(basename "$1").${HOSTNAME:-host}.$$"
-  cat > "$t" && mv -f "$t" "$1" || { rm -f "$t"; return 1; }
+  if ! { cat > "$t" && mv -f "$t" "$1"; }; then
+    rm -f "$t"
+    return 1
+  fi
 }
 
 first=$((task * chunk + 1))

@@ -29,7 +29,7 @@ n=$(grep -c . "$list" || true)
 [ "$n" -gt 0 ] || die "$list lists no scene"
 [ "$(grep -c . "$list")" -eq "$(wc -l < "$list")" ] || die "$list has an empty line"
 dup=$(sed -e 's|.*/||' -e 's|\.rscene$||' "$list" | sort | uniq -d | head -n 3)
-[ -z "$dup" ] || die "$list names more than one scene called: $(echo $dup)"
+[ -z "$dup" ] || die "$list names more than one scene called: $(tr '\n' ' ' <<<"$dup")"
 
 chunk=${CHUNK:-$(((n + 999) / 1000))}
 tasks=$(((n + chunk - 1) / chunk))

@@ -18,7 +18,7 @@
 set -euo pipefail
 
 die() { echo "summarize: $*" >&2; exit 2; }
-[ $# -ge 1 ] && [ $# -le 2 ] || die "usage: summarize.sh OUT [FILE.jsonl|FILE.csv]"
+[ $# -eq 1 ] || [ $# -eq 2 ] || die "usage: summarize.sh OUT [FILE.jsonl|FILE.csv]"
 out=$1 file=${2:-}
 [ -r "$out/batch" ] || die "no $out/batch: submit the batch with submit.sh"
 LIST="" CHUNK=""
@@ -60,7 +60,10 @@ if [ -z "$file" ]; then
   cat "$tmp/summary"
 else
   t="$(dirname "$file")/.$(basename "$file").$$"
-  cp "$tmp/summary" "$t" && mv -f "$t" "$file" || { rm -f "$t"; die "cannot write $file"; }
+  if ! { cp "$tmp/summary" "$t" && mv -f "$t" "$file"; }; then
+    rm -f "$t"
+    die "cannot write $file"
+  fi
 fi
 bad=$(jq -n 'reduce inputs as $r (0; . + (if $r.exit == 0 then 0 else 1 end))' "$tmp/all.jsonl")
 total=$(wc -l < "$tmp/all.jsonl")
