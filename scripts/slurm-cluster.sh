@@ -34,15 +34,26 @@ usage() { echo "usage: $0 start [DIR] | stop DIR" >&2; exit 2; }
 # The daemons it starts, each with its pid file DIR/NAME.pid.
 DAEMONS="munged slurmctld slurmd"
 
+# running PID: whether PID is a live process; an ended one that its
+# parent has not reaped yet (a zombie: a container's pid 1 may take its
+# time) is not.
+running() {
+  local stat=""
+  read -r stat 2>/dev/null < "/proc/$1/stat" || return 1
+  stat=${stat##*) }
+  case ${stat%% *} in Z | X | x) return 1 ;; esac
+  return 0
+}
+
 # pid_of DIR NAME: the pid in DIR/NAME.pid when that process still runs
 # the program NAME (a reused pid is left alone), else nothing.
 pid_of() {
-  local f="$1/$2.pid" pid
+  local f="$1/$2.pid" pid comm=""
   [ -s "$f" ] || return 0
   pid=$(tr -dc 0-9 < "$f")
-  [ -n "$pid" ] && [ -r "/proc/$pid/comm" ] || return 0
-  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$2" ] && echo "$pid"
-  return 0
+  [ -n "$pid" ] && running "$pid" || return 0
+  read -r comm 2>/dev/null < "/proc/$pid/comm" || return 0
+  [ "$comm" != "$2" ] || echo "$pid"
 }
 
 # The daemons' log tails, for a start that failed.
@@ -79,23 +90,38 @@ stop_cluster() {
   for _ in $(seq 1 100); do
     local alive=""
     for pid in $pids; do
-      ! kill -0 "$pid" 2>/dev/null || alive="$alive $pid"
+      ! running "$pid" || alive="$alive $pid"
     done
     pids=$alive
     [ -n "$pids" ] || break
     sleep 0.1
   done
   for pid in $pids; do kill -KILL "$pid" 2>/dev/null || true; done
-  # A job step that slurmd could not end: a slurmstepd started by this
-  # cluster's slurmd, which passed it this SLURM_CONF.
-  local p comm
+  # A job that slurmd could not end (slurmctld or slurmd gone before the
+  # scancel): its slurmstepd, found by the SLURM_CONF this cluster's
+  # slurmd passed it, and every process under it.
+  local p comm stat ppid steps="" kids
+  local -A children=()
   for p in /proc/[0-9]*; do
-    comm=""
+    stat="" comm=""
+    read -r stat 2>/dev/null < "$p/stat" || continue
+    stat=${stat##*) }  # after "pid (comm) ": state ppid ...
+    ppid=${stat#* }
+    ppid=${ppid%% *}
+    children[$ppid]+=" ${p#/proc/}"
     read -r comm 2>/dev/null < "$p/comm" || continue
     [ "$comm" = slurmstepd ] || continue
-    if tr '\0' '\n' < "$p/environ" 2>/dev/null | grep -qx "SLURM_CONF=$dir/slurm.conf"; then
-      kill -KILL "${p#/proc/}" 2>/dev/null || true
+    if running "${p#/proc/}" && tr '\0' '\n' < "$p/environ" 2>/dev/null | grep -qx "SLURM_CONF=$dir/slurm.conf"; then
+      steps="$steps ${p#/proc/}"
     fi
+  done
+  while [ -n "$steps" ]; do
+    kids=""
+    for pid in $steps; do
+      kill -KILL "$pid" 2>/dev/null || true
+      kids="$kids ${children[$pid]:-}"
+    done
+    steps=$kids
   done
   rm -rf "$dir"
 }

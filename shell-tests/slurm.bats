@@ -141,29 +141,54 @@ scenes() {
   [[ $output == *"2000 tasks, over the cluster's MaxArraySize (1001): raise CHUNK"* ]]
 }
 
-@test "stop ends every process the cluster started, a running job's too, and removes its folder" {
-  needs_cluster
-  local dir pids p
-  # a second cluster beside the file's, in a folder of its own making
-  # (munge wants a short socket path in folders all may enter)
+# start_second: a second cluster beside the file's, in a folder of its
+# own making (munge wants a short socket path in folders all may enter),
+# running a job that sleeps; sets dir, and pids to the daemons', the
+# job shell's (then sleep's) and its slurmstepd's.
+start_second() {
   run -0 --separate-stderr "$CLUSTER" start
   dir=$(sed -n 's/.* RSCENE_SLURM_DIR=//p' <<<"$output")
   [ -e "$dir/.rscene-slurm" ]
   pids=$(cat "$dir"/*.pid)
-  # a job left running: its shell (then sleep) and its slurmstepd
   SLURM_CONF="$dir/slurm.conf" run -0 sbatch --output=/dev/null --wrap 'echo $$ $PPID > '"$PWD"'/job.pid; exec sleep 300'
-  for _ in $(seq 1 100); do [ -s job.pid ] && break; sleep 0.1; done
+  for _ in $(seq 1 300); do [ -s job.pid ] && break; sleep 0.1; done
   [ -s job.pid ]
   [ "$(cat "/proc/$(cut -d' ' -f2 job.pid)/comm")" = slurmstepd ]
   pids="$pids $(cat job.pid)"
+}
+
+# ended PID...: each is gone, or a zombie that its parent (pid 1, for a
+# daemon) has not reaped yet.
+ended() {
+  local p
+  for p in "$@"; do
+    [ ! -e "/proc/$p/stat" ] || [[ $(cat "/proc/$p/stat" 2>/dev/null) == *") Z "* ]] ||
+      [ ! -e "/proc/$p/stat" ] || { echo "process $p still runs: $(cat "/proc/$p/stat")"; return 1; }
+  done
+}
+
+@test "stop ends every process the cluster started, a running job's too, and removes its folder" {
+  needs_cluster
+  local dir pids
+  start_second
   run -0 "$CLUSTER" stop "$dir"
   [ ! -e "$dir" ]
-  for p in $pids; do
-    ! kill -0 "$p" 2>/dev/null || { echo "process $p still runs"; false; }
-  done
+  # shellcheck disable=SC2086
+  ended $pids
   # the file's own cluster still answers
   run -0 sinfo -h -N -o %t
   [ "$output" = idle ]
+}
+
+@test "stop ends a job's processes even when slurmctld and slurmd have died" {
+  needs_cluster
+  local dir pids
+  start_second
+  kill -KILL "$(cat "$dir/slurmctld.pid")" "$(cat "$dir/slurmd.pid")"
+  run -0 "$CLUSTER" stop "$dir"
+  [ ! -e "$dir" ]
+  # shellcheck disable=SC2086
+  ended $pids
 }
 
 @test "stop leaves alone a folder it did not make" {
