@@ -20,9 +20,16 @@
 # started) where a cluster cannot start here: not root (the daemons run
 # as root, SlurmUser=root) or a package missing.
 #
+# DIR must be short (munged's socket path has at most 108 bytes) and in
+# folders everyone may enter (munged checks).
+#
 # stop: cancels the jobs left on the cluster, stops exactly the daemons
-# whose pid files are in DIR (TERM, then KILL after 10 s), and removes
-# DIR.  It is safe to run twice, or after a start that failed.
+# whose pid files are in DIR (TERM, then KILL after 10 s), ends a job
+# step that outlived slurmd (its slurmstepd, found by this SLURM_CONF,
+# and every process under it), and removes DIR.  A process that has
+# ended but is not yet reaped (a zombie) counts as ended.  It refuses a
+# DIR that start did not make, and is safe to run twice, or after a
+# start that failed.
 #
 # No slurmdbd: `sacct` has no accounting storage here, so the recipe
 # keeps its own per-task status files.
@@ -168,7 +175,7 @@ start_cluster() {
   chmod 755 "$dir"
   mkdir -m 700 "$dir/munge" "$dir/log" "$dir/state" "$dir/spool"
   mkdir -m 755 "$dir/socket"
-  trap 'show_logs "$dir"; stop_cluster "$dir"; exit 1' ERR
+  trap 'echo "slurm-cluster: start failed; the logs:" >&2; show_logs "$dir"; stop_cluster "$dir"; exit 1' ERR
   trap 'stop_cluster "$dir"; exit 1' INT TERM
 
   mungekey --create --keyfile="$dir/munge/munge.key" --bits=1024 >/dev/null 2>&1 ||
@@ -176,7 +183,7 @@ start_cluster() {
   chmod 400 "$dir/munge/munge.key"
   munged --socket="$dir/socket/munge.socket" --key-file="$dir/munge/munge.key" \
     --pid-file="$dir/munged.pid" --log-file="$dir/log/munged.log" \
-    --seed-file="$dir/munge/munged.seed" --num-threads=2 </dev/null >/dev/null 2>&1
+    --seed-file="$dir/munge/munged.seed" --num-threads=2 </dev/null >"$dir/log/munged.start.log" 2>&1
 
   local host ports ctld_port d_port cpus mem
   host=$(hostname -s)
@@ -214,6 +221,7 @@ AccountingStorageType=accounting_storage/none
 JobCompType=jobcomp/filetxt
 JobCompLoc=$dir/log/jobcomp.log
 MpiDefault=none
+MailProg=/bin/true
 SwitchType=switch/none
 SchedulerType=sched/builtin
 SelectType=select/cons_tres
@@ -231,8 +239,8 @@ EOF
   export SLURM_CONF="$dir/slurm.conf"
 
   # -c: a fresh start, no state from an earlier cluster; -i: ignore any.
-  slurmctld -c -i </dev/null >/dev/null 2>&1
-  slurmd -N "$host" </dev/null >/dev/null 2>&1
+  slurmctld -c -i </dev/null >"$dir/log/slurmctld.start.log" 2>&1
+  slurmd -N "$host" </dev/null >"$dir/log/slurmd.start.log" 2>&1
 
   local timeout=${SLURM_START_TIMEOUT:-60} waited=0 state=""
   while :; do
