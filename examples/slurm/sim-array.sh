@@ -80,20 +80,19 @@ for scene in "${scenes[@]}"; do
   "$sim" --duration "$duration" --report -o "$output" "$scene" 2> "$tmp/stderr"
   rc=$?
   [ "$rc" -eq 0 ] || failed=$((failed + 1))
-  # --report's JSON is the last line of standard error; diagnostics
-  # (warnings, or the error of a failed run) come before it.
-  tail -n 1 "$tmp/stderr" | jq -ce 'objects' > "$tmp/report" 2>/dev/null || echo null > "$tmp/report"
-  error=""
-  if [ "$rc" -ne 0 ]; then  # the first diagnostic, else the last line (a crash, a missing tool)
-    error=$(grep -m 1 ': error: ' "$tmp/stderr" || tail -n 1 "$tmp/stderr")
-    [ -n "$error" ] || error="exit status $rc"
-  fi
   [ "$rc" -eq 0 ] || cat "$tmp/stderr" >&2  # the task's log keeps the whole message
+  # One record.  --report's JSON is the last line of standard error;
+  # diagnostics (warnings, or the error of a failed run) come before it.
+  # error: a failed run's first diagnostic, else its last line (a crash,
+  # a missing tool).
   jq -cn --arg scene "$scene" --arg output "$output" --argjson task "$task" \
-    --arg job "$job" --argjson exit "$rc" --arg error "$error" \
-    --slurpfile report "$tmp/report" \
-    '{scene: $scene, output: (if $exit == 0 then $output else null end), task: $task, job: $job,
-      exit: $exit, error: (if $error == "" then null else $error end), report: $report[0]}' |
+    --arg job "$job" --argjson exit "$rc" --rawfile stderr "$tmp/stderr" '
+    ($stderr | split("\n") | map(select(length > 0))) as $lines
+    | {scene: $scene, output: (if $exit == 0 then $output else null end), task: $task, job: $job,
+       exit: $exit,
+       error: (if $exit == 0 then null
+               else (first($lines[] | select(contains(": error: "))) // $lines[-1] // "exit status \($exit)") end),
+       report: ($lines[-1] // "" | (try fromjson catch null) | if type == "object" then . else null end)}' |
     put "$report" || exit 2
 done
 
