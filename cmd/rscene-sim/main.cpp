@@ -123,8 +123,7 @@ int run(const Options& opt) {
   }
   sim::RunResult result;
   // A failed run cancels the trajectory (no file is left at its path) and
-  // writes no scene; the failure is printed before any cancelled write
-  // says so.
+  // writes no scene; the failure printed is the one line about it.
   auto withTrajectory = [&] {
     auto run = [&](Sink* s) {
       // SIGINT stops the loop even inside the writes of the trajectory and
@@ -134,9 +133,11 @@ int run(const Options& opt) {
       if (result.failure) print(Diagnostics{*result.failure});
       return result.ok();
     };
-    return opt.trajectory.empty() ? run(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); });
+    return opt.trajectory.empty()
+               ? run(nullptr)
+               : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); }, cli::Cancel::Quiet);
   };
-  bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
+  bool simulated = recorder ? files.run(withTrajectory, &gInterrupted) : withTrajectory();
   if (!simulated || gInterrupted) {
     files.discard();  // a failed or interrupted run leaves no sensor files
     return gInterrupted ? cli::endBySignal(gInterrupted) : cli::kTrouble;
@@ -211,7 +212,11 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
-  if (!cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) return cli::kTrouble;
+  // With --sensors, SensorFiles::prepare() checks them once the sensors'
+  // folders are known (an output inside a LiDAR's folder-to-be is refused
+  // as that, not as a file in a missing folder).
+  if (opt.sensors.empty() && !cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}}))
+    return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
   return run(opt);
 }
