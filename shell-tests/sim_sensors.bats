@@ -337,3 +337,21 @@ scans_state() { (cd "$1" && ls -A | while read -r f; do echo "$f $(cksum < "$f")
   [[ $stderr == "rscene-sim: error: out/World+Lidar: holds 'notes.txt', which is not a scan rscene-sim wrote"* ]]
   [ "$(ls -A out/World+Lidar)" = notes.txt ] && [ "$(ls -A out)" = World+Lidar ]
 }
+
+@test "LiDAR scans estimated past 1 GiB: a warning with the size before the first step, at lidarSamples (RS7094)" {
+  # 64 x 2048 rays, 5 Hz over 200 s: 1001 scans of up to 1.5 MiB.  The
+  # heavy body stops the run at its first step, so little is written.
+  sed 's|lidarChannels=1 lidarSamples=4 lidarVerticalFov=0|lidarChannels=64 lidarSamples=2048 lidarVerticalFov=30|' room.rscene > big.rscene
+  echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615" >> big.rscene
+  run -2 --separate-stderr "$SIM" --duration 200 --sensors out -o /dev/null big.rscene
+  [[ ${stderr_lines[0]} == "big.rscene:11:"*": warning: the LiDAR scans of this run would write up to 1.47 GiB, more than 1 GiB: LiDAR '/World/Lidar' takes 131072 points a scan x 12 bytes (binary PCD) = 1.5 MiB a scan, x 1001 scans = 1.47 GiB (every ray a return) [RS7094]" ]]
+  [[ $stderr == *"[RS7024]"* ]]
+  [ ! -e out ]
+  # As text, about 32 bytes a point; the hint names the binary encoding.
+  run -2 --separate-stderr "$SIM" --duration 200 --sensors out --pcd-encoding ascii -o /dev/null big.rscene
+  [[ ${stderr_lines[0]} == *"would write up to 3.91 GiB"*"about 32 bytes (ascii PCD)"*"[RS7094]" ]]
+  [[ $stderr == *"hint: "*"--pcd-encoding binary writes 12 bytes a point"* ]]
+  # 10 s: 51 scans, 77 MiB: no warning.
+  run -2 --separate-stderr "$SIM" --duration 10 --sensors out -o /dev/null big.rscene
+  [[ $stderr != *RS7094* ]]
+}

@@ -1,5 +1,6 @@
 // rscene-sim: steps a scene's physics in Bullet and writes the scene back
 // with the simulated poses (and optionally a trajectory).
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -89,6 +90,17 @@ int run(const Options& opt) {
   if (!opt.sensors.empty() && !files.prepare({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) {
     files.discard();  // the folders it made before refusing
     return cli::kTrouble;
+  }
+  // What the LiDAR scans will take on disk, said before the run (RS7094).
+  if (!opt.sensors.empty()) {
+    struct statvfs fsInfo {};
+    double freeBytes = ::statvfs(opt.sensors.c_str(), &fsInfo) == 0
+                           ? static_cast<double>(fsInfo.f_bavail) * static_cast<double>(fsInfo.f_frsize)
+                           : -1;
+    if (auto w = sim::lidarOutputWarning(doc, sensors, total, world->timeStep(),
+                                         opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary,
+                                         freeBytes))
+      print(Diagnostics{*w});
   }
   std::unique_ptr<sim::SensorRecorder> recorder;
   if (!sensors.empty()) recorder = std::make_unique<sim::SensorRecorder>(scene, *world, sensors);
