@@ -142,6 +142,10 @@ int run(const Options& opt) {
       // sensor files: the run then cancels them.
       cli::InterruptibleScope interruptible;
       result = sim::runWorld(*world, doc, ro, s, &lines);
+      // Stepping done: a stop signal now waits until the sensor files and
+      // scan folders are in place (it would otherwise end the tool inside
+      // the trajectory's rename, leaving the temporary scan folders).
+      if (result.ok() && recorder) files.holdStops();
       if (result.failure) print(Diagnostics{*result.failure});
       return result.ok();
     };

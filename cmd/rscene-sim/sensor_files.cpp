@@ -194,13 +194,9 @@ bool SensorFiles::prepare(std::vector<cli::NamedOutput> outputs) {
 bool SensorFiles::open(std::size_t stream, const std::function<bool()>& simulate) {
   if (stream == paths_.size()) {
     bool ok = simulate() && !(stopped_ && *stopped_);
-    if (ok) {
-      // From here until the scan folders are in place a stop signal waits:
-      // it would end the tool between two renames.
-      sigset_t interrupt = cli::stopSignals();
-      pthread_sigmask(SIG_BLOCK, &interrupt, &previousMask_);
-      held_ = true;
-    }
+    // From here until the scan folders are in place a stop signal waits:
+    // it would end the tool between two renames.
+    if (ok) holdStops();
     return ok;
   }
   // Nested: each file is written inside the one before, so all of them are
@@ -218,6 +214,13 @@ bool SensorFiles::open(std::size_t stream, const std::function<bool()>& simulate
         return ok;
       },
       cli::Cancel::Quiet);
+}
+
+void SensorFiles::holdStops() {
+  if (held_) return;
+  sigset_t interrupt = cli::stopSignals();
+  pthread_sigmask(SIG_BLOCK, &interrupt, &previousMask_);
+  held_ = true;
 }
 
 bool SensorFiles::run(const std::function<bool()>& simulate, const volatile std::sig_atomic_t* stopped) {

@@ -40,6 +40,12 @@ class SensorFiles : public sim::SensorOutput {
   // signals held off meanwhile, so a signal cannot leave half of them).
   bool run(const std::function<bool()>& simulate, const volatile std::sig_atomic_t* stopped);
 
+  // Holds stop signals off from now until run() returns: `simulate` calls
+  // it once its stepping succeeded, before the outputs it writes itself
+  // (the trajectory) are put in place, where a signal would end the tool
+  // at once and leave the temporary scan folders.
+  void holdStops();
+
   // Removes the temporary scan folders and then the folders prepare()
   // created (those left empty), deepest first: a failed or interrupted run
   // leaves no sensor files.  Whatever was there before stays as it was.
