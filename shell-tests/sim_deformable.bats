@@ -107,7 +107,7 @@ PY
   run -2 --separate-stderr "$SIM" --steps 1000 -o out.rscene cloth.rscene
   [ "$SECONDS" -lt 10 ]
   [ ! -e out.rscene ]
-  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:"*": error: the deformables' solver work for this run is 9.3e+07 updates a step x 1000 steps = 9.3e+10 updates"*"about 31 min of one core"*"more than the limit of 3e+10"*"[RS7075]" ]]
+  [[ "${stderr%%$'\n'*}" == "cloth.rscene:6:"*": error: the deformables' solver work for this run is 9.3e+07 updates a step x 1000 steps = 9.3e+10 updates"*"about 31 min of one core"*"takes 9.3e+07 updates a step; the run's 9.3e+10 updates are more than the limit of 3e+10 updates a run (about 10 min); nothing was simulated [RS7075]" ]]
   [[ "$stderr" == *"hint: lower iterations or substeps"* ]]
   # 20 steps = 1.86e9: the cost is a warning before the first step (the run itself is cut short here)
   run --separate-stderr timeout -s INT 5 "$SIM" --steps 20 -o /dev/null cloth.rscene
@@ -167,4 +167,47 @@ PY
     [ -z "$(grep -v RS7079 <<<"$stderr" | grep 'error:\|warning:')" ]
   done
   [ "$n" -ge 1 ]
+}
+
+@test "RS7078 counts robot links: a cloth more than 20 times a moving link's mass is refused, naming the link; groups that never meet are not" {
+  scene "totalMass=20"
+  cat > arm.urdf <<'URDF'
+<robot name="arm">
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base">
+    <inertial><mass value="5"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.4 0.4 0.4"/></geometry></collision>
+  </link>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><origin xyz="0 0 0.5"/><axis xyz="1 0 0"/>
+    <limit lower="-3" upper="3" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <inertial><mass value="0.5"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+</robot>
+URDF
+  { cat cloth.rscene; echo "articulated_resource arm_res Arm arm.urdf"
+    echo "articulated /World/Arm arm_res 4 0 0.2 1 0 0 0 true true ${ARM_EXTRA:-}"; } > arm.rscene
+  run -2 --separate-stderr "$SIM" --steps 10 -o out.rscene arm.rscene
+  [[ "${stderr%%$'\n'*}" == *"error: deformable '/World/Cloth': totalMass 20 kg is more than 20 times the mass of link 'arm' of articulated system '/World/Arm' (0.5 kg) it may touch"*"[RS7078]" ]]
+  [ ! -e out.rscene ]
+  # The robot's collisionMask leaves out the cloth's group 1: they never meet.
+  sed -i 's|^articulated /World/Arm .*|& collisionMask=2|' arm.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 -o out.rscene arm.rscene
+  [[ $stderr != *RS7078* ]]
+}
+
+@test "the per-step work cap (RS7081) is the scene model's: validate --check-files and sim refuse at the same place with the same words" {
+  scene "iterations=10000 substeps=1000"
+  # 465 x 10000 x 1000 = 4.65e9 updates a step, past 1e9: counting the
+  # constraints needs the mesh, so validate says it with --check-files.
+  run -1 --separate-stderr "$BIN/rscene-validate" --check-files cloth.rscene
+  v=$(grep 'RS7081' <<<"$output")
+  [[ $v == "cloth.rscene:6:"*": error: deformable '/World/Cloth': iterations x substeps x (constraints + particles) is 4.65e+09 a step (at most 1e+09) [RS7081]" ]]
+  run -2 --separate-stderr "$SIM" --steps 1 -o out.rscene cloth.rscene
+  [ "${stderr%%$'\n'*}" = "$v" ]
+  [ ! -e out.rscene ]
 }

@@ -266,7 +266,7 @@ EOF2
 @test "--trajectory or -o inside a LiDAR's scan folder is refused before any work; no scan replaced" {
   mkdir -p out/World+Lidar
   run -2 --separate-stderr "$SIM" --duration 1 --sensors out --trajectory out/World+Lidar/scan_000000.pcd -o /dev/null room.rscene
-  [[ $stderr == *"rscene-sim: error: --trajectory 'out/World+Lidar/scan_000000.pcd' is inside the scan folder 'out/World+Lidar' of LiDAR '/World/Lidar', where its scans are written"* ]]
+  [[ $stderr == *"rscene-sim: error: --trajectory 'out/World+Lidar/scan_000000.pcd' is inside the scan folder 'out/World+Lidar' of LiDAR '/World/Lidar', which holds its scans and is replaced as a whole"* ]]
   [ -z "$(ls out/World+Lidar)" ]
   run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o out/World+Lidar/x.rscene room.rscene
   [[ $stderr == *"-o 'out/World+Lidar/x.rscene' is inside the scan folder"* ]]
@@ -274,4 +274,84 @@ EOF2
   # beside the folder is fine
   run -0 "$SIM" --duration 1 --sensors out --trajectory out/traj.jsonl -o /dev/null room.rscene
   [ -s out/traj.jsonl ]
+}
+
+@test "-o or --trajectory inside a LiDAR folder --sensors has not made yet: refused as that, nothing left" {
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o out/World+Lidar/x.rscene room.rscene
+  [ "$stderr" = "rscene-sim: error: -o 'out/World+Lidar/x.rscene' is inside the scan folder 'out/World+Lidar' of LiDAR '/World/Lidar', which holds its scans and is replaced as a whole: give a path outside --sensors' LiDAR folders" ]
+  [ ! -e out ]
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out --trajectory ./out/World+Lidar -o /dev/null room.rscene
+  [[ $stderr == "rscene-sim: error: --trajectory './out/World+Lidar' names the scan folder 'out/World+Lidar' of LiDAR"* ]]
+  [ ! -e out ]
+}
+
+# The LiDAR's files: name, size and checksum, for comparing two states.
+scans_state() { (cd "$1" && ls -A | while read -r f; do echo "$f $(cksum < "$f")"; done) }
+
+@test "a re-run stopped by a signal leaves the earlier run's scans byte for byte, and no temporary folder" {
+  run -0 "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  before=$(scans_state out/World+Lidar)
+  [ "$(ls out/World+Lidar | grep -c '^scan_')" -eq 6 ]
+  for sig in TERM INT; do
+    run timeout --preserve-status -s "$sig" 1 "$SIM" --duration 100000 --sensors out -o /dev/null room.rscene
+    [ "$status" -eq $((128 + $(kill -l "$sig"))) ]
+    [ "$(scans_state out/World+Lidar)" = "$before" ]
+    [ -z "$(ls -A out | grep tmp)" ]
+  done
+}
+
+@test "a shorter re-run replaces the whole scan folder: no scan of the earlier run stays" {
+  run -0 "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  [ -f out/World+Lidar/scan_000005.pcd ]
+  chmod 0750 out/World+Lidar
+  run -0 "$SIM" --duration 0.2 --sensors out -o /dev/null room.rscene
+  [ "$(ls -A out/World+Lidar)" = "$(printf '%s\n' scan_000000.pcd scan_000001.pcd scans.csv)" ]
+  [ "$(wc -l < out/World+Lidar/scans.csv)" -eq 3 ]
+  [ "$(stat -c %a out/World+Lidar)" = 750 ]  # the folder's mode is kept
+  [ "$(ls -A out)" = "$(printf '%s\n' World+Imu.csv World+Lidar)" ]  # no temporary folder
+}
+
+@test "a re-run that fails leaves the earlier scans as they were and no temporary folder" {
+  run -0 "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  before=$(scans_state out/World+Lidar)
+  { room; echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615"; } > heavy.rscene
+  run -2 --separate-stderr "$SIM" --steps 2000 --sensors out -o /dev/null heavy.rscene
+  [[ $stderr == *"[RS7024]"* ]]
+  [[ $stderr != *"write cancelled"* ]]  # the failure is the one line about it
+  [ "$(scans_state out/World+Lidar)" = "$before" ]
+  [ "$(ls -A out)" = "$(printf '%s\n' World+Imu.csv World+Lidar)" ]
+}
+
+@test "a link, a file or a folder of other files where a LiDAR's scan folder goes is refused before any work" {
+  mkdir -p out elsewhere
+  ln -s ../elsewhere out/World+Lidar
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  [[ $stderr == "rscene-sim: error: out/World+Lidar: is a symbolic link; a LiDAR's scan folder is replaced as a whole"* ]]
+  [ -z "$(ls -A elsewhere)" ] && [ -L out/World+Lidar ] && [ "$(ls -A out)" = World+Lidar ]
+  rm out/World+Lidar && echo keep > out/World+Lidar
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  [[ $stderr == "rscene-sim: error: out/World+Lidar: is in the way of the LiDAR's scan folder and is not a folder"* ]]
+  [ "$(cat out/World+Lidar)" = keep ]
+  rm out/World+Lidar && mkdir out/World+Lidar && echo mine > out/World+Lidar/notes.txt
+  run -2 --separate-stderr "$SIM" --duration 1 --sensors out -o /dev/null room.rscene
+  [[ $stderr == "rscene-sim: error: out/World+Lidar: holds 'notes.txt', which is not a scan rscene-sim wrote"* ]]
+  [ "$(ls -A out/World+Lidar)" = notes.txt ] && [ "$(ls -A out)" = World+Lidar ]
+}
+
+@test "LiDAR scans estimated past 1 GiB: a warning with the size before the first step, at lidarSamples (RS7094)" {
+  # 64 x 2048 rays, 5 Hz over 200 s: 1001 scans of up to 1.5 MiB.  The
+  # heavy body stops the run at its first step, so little is written.
+  sed 's|lidarChannels=1 lidarSamples=4 lidarVerticalFov=0|lidarChannels=64 lidarSamples=2048 lidarVerticalFov=30|' room.rscene > big.rscene
+  echo "object /World/Heavy box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 2.2250738585072014e-308 default engine_default false true false - dynamic true 1 18446744073709551615" >> big.rscene
+  run -2 --separate-stderr "$SIM" --duration 200 --sensors out -o /dev/null big.rscene
+  [[ ${stderr_lines[0]} == "big.rscene:11:"*": warning: the LiDAR scans of this run would write up to 1.47 GiB, more than 1 GiB: LiDAR '/World/Lidar' takes 131072 points a scan x 12 bytes (binary PCD) = 1.5 MiB a scan, x 1001 scans = 1.47 GiB (every ray a return) [RS7094]" ]]
+  [[ $stderr == *"[RS7024]"* ]]
+  [ ! -e out ]
+  # As text, about 32 bytes a point; the hint names the binary encoding.
+  run -2 --separate-stderr "$SIM" --duration 200 --sensors out --pcd-encoding ascii -o /dev/null big.rscene
+  [[ ${stderr_lines[0]} == *"would write up to 3.91 GiB"*"about 32 bytes (ascii PCD)"*"[RS7094]" ]]
+  [[ $stderr == *"hint: "*"--pcd-encoding binary writes 12 bytes a point"* ]]
+  # 10 s: 51 scans, 77 MiB: no warning.
+  run -2 --separate-stderr "$SIM" --duration 10 --sensors out -o /dev/null big.rscene
+  [[ $stderr != *RS7094* ]]
 }

@@ -147,7 +147,7 @@ bool checkOutputs(const std::vector<NamedOutput>& outputs) {
   return true;
 }
 
-bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce) {
+bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce, Cancel cancel) {
   WritingScope writing;
   if (path.empty() || path == "-") {
     StdoutSink sink;
@@ -159,10 +159,17 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
   // /dev/stdout and /dev/fd/1 are written straight to the descriptor.
   std::fflush(stdout);
   std::string err;
-  if (!writeOutputFile(path, produce, &err)) {
+  bool cancelled = false;
+  auto producer = [&](Sink& s) {
+    cancelled = !produce(s);
+    return !cancelled;
+  };
+  if (!writeOutputFile(path, producer, &err)) {
     // A write an interrupted tool cancelled is no error of its own: the
-    // exit status (130) says it.
-    if (!(gStopFlag && *gStopFlag)) error(path + ": " + err);
+    // exit status (130) says it; nor is one its producer cancelled after
+    // saying why.  A failure of the write itself is always said.
+    bool quiet = (gStopFlag && *gStopFlag) || (cancel == Cancel::Quiet && cancelled && err == "write cancelled");
+    if (!quiet) error(path + ": " + err);
     return false;
   }
   return true;

@@ -59,8 +59,12 @@ bool defaultSceneOf(const std::string& operand, std::string& scene);
 // Writes `produce`'s output to `path` ("-" = stdout) through the library's
 // one output routine (core/output_file.hpp: atomic replacement, links kept,
 // devices written through, read-only and hard-linked files refused).  On
-// failure prints `tool: error: PATH: why`.
-bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce);
+// failure prints `tool: error: PATH: why`.  With Cancel::Quiet, produce()
+// returning false cancels the write without that line: the producer has
+// already said why (rscene-sim's failed run), and "write cancelled" after
+// it would only repeat it.
+enum class Cancel { Say, Quiet };
+bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& produce, Cancel cancel = Cancel::Say);
 
 // One output (or an input that must not be overwritten) of a tool:
 // `flag` names it in messages, `path` is "-" for standard output and ""

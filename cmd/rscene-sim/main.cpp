@@ -1,5 +1,6 @@
 // rscene-sim: steps a scene's physics in Bullet and writes the scene back
 // with the simulated poses (and optionally a trajectory).
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -91,6 +92,17 @@ int run(const Options& opt) {
     files.discard();  // the folders it made before refusing
     return cli::kTrouble;
   }
+  // What the LiDAR scans will take on disk, said before the run (RS7094).
+  if (!opt.sensors.empty()) {
+    struct statvfs fsInfo {};
+    double freeBytes = ::statvfs(opt.sensors.c_str(), &fsInfo) == 0
+                           ? static_cast<double>(fsInfo.f_bavail) * static_cast<double>(fsInfo.f_frsize)
+                           : -1;
+    if (auto w = sim::lidarOutputWarning(doc, sensors, total, world->timeStep(),
+                                         opt.pcdEncoding == "ascii" ? sim::PcdEncoding::Ascii : sim::PcdEncoding::Binary,
+                                         freeBytes))
+      print(Diagnostics{*w});
+  }
   std::unique_ptr<sim::SensorRecorder> recorder;
   if (!sensors.empty()) recorder = std::make_unique<sim::SensorRecorder>(scene, *world, sensors);
   bool sensorsFailed = false;  // a sensor file could not be written, or a reading was not finite (printed)
@@ -124,20 +136,25 @@ int run(const Options& opt) {
   }
   sim::RunResult result;
   // A failed run cancels the trajectory (no file is left at its path) and
-  // writes no scene; the failure is printed before any cancelled write
-  // says so.
+  // writes no scene; the failure printed is the one line about it.
   auto withTrajectory = [&] {
     auto run = [&](Sink* s) {
       // SIGINT stops the loop even inside the writes of the trajectory and
       // sensor files: the run then cancels them.
       cli::InterruptibleScope interruptible;
       result = sim::runWorld(*world, doc, ro, s, &lines);
+      // Stepping done: a stop signal now waits until the sensor files and
+      // scan folders are in place (it would otherwise end the tool inside
+      // the trajectory's rename, leaving the temporary scan folders).
+      if (result.ok() && recorder) files.holdStops();
       if (result.failure) print(Diagnostics{*result.failure});
       return result.ok();
     };
-    return opt.trajectory.empty() ? run(nullptr) : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); });
+    return opt.trajectory.empty()
+               ? run(nullptr)
+               : cli::writeOutput(opt.trajectory, [&](Sink& s) { return run(&s); }, cli::Cancel::Quiet);
   };
-  bool simulated = recorder ? files.run(withTrajectory) : withTrajectory();
+  bool simulated = recorder ? files.run(withTrajectory, &gInterrupted) : withTrajectory();
   if (!simulated || gInterrupted) {
     files.discard();  // a failed or interrupted run leaves no sensor files
     return gInterrupted ? cli::endBySignal(gInterrupted) : cli::kTrouble;
@@ -212,7 +229,11 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
-  if (!cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}})) return cli::kTrouble;
+  // With --sensors, SensorFiles::prepare() checks them once the sensors'
+  // folders are known (an output inside a LiDAR's folder-to-be is refused
+  // as that, not as a file in a missing folder).
+  if (opt.sensors.empty() && !cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}}))
+    return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
   return run(opt);
 }

@@ -1,6 +1,7 @@
 // The simulator's own limits (limits.hpp).
 #include "sim/limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -122,17 +123,83 @@ bool checkDeformableWork(const Document& doc, const World& world, std::uint64_t 
   const double total = perStep * static_cast<double>(steps);
   if (!(total > kDeformableWorkWarning)) return true;
   const bool refused = total > kMaxDeformableWorkPerRun;
+  // Like with like: the run's work against the per-run limit; the
+  // per-step figures say where it comes from.
   std::string message = "the deformables' solver work for this run is " + sci(perStep) + " updates a step x " +
                         std::to_string(steps) + " steps = " + sci(total) +
                         " updates (iterations x substeps x (constraints + particles) x steps), " + coreTime(total) +
-                        " of one core; deformable '" + top->path + "' takes " + sci(top->workPerStep) + " a step";
+                        " of one core; deformable '" + top->path + "' takes " + sci(top->workPerStep) +
+                        " updates a step";
   if (refused)
-    message += ", more than the limit of " + sci(kMaxDeformableWorkPerRun) + " (" + coreTime(kMaxDeformableWorkPerRun) +
+    message += "; the run's " + sci(total) + " updates are more than the limit of " +
+               sci(kMaxDeformableWorkPerRun) + " updates a run (" + coreTime(kMaxDeformableWorkPerRun) +
                "); nothing was simulated";
   reportAt(&doc, top->recordIndex, "iterations", refused ? rs::RS7075 : rs::RS7076, message, ds,
            refused ? Severity::Error : Severity::Warning,
            "lower iterations or substeps, use a coarser mesh, or simulate fewer steps (--steps, --duration)");
   return !refused;
+}
+
+std::uint64_t lidarScansInRun(const RecordedSensor& lidar, std::uint64_t steps, double timeStep) {
+  const double rate = lidar.spec.params.updateRate;
+  const double samples = static_cast<double>(steps) + 1;  // time 0, then after each step
+  if (!(rate > 0)) return steps + 1;
+  double scans = std::floor(static_cast<double>(steps) * timeStep * rate * (1 + 1e-9)) + 1;
+  return static_cast<std::uint64_t>(std::min(scans, samples));
+}
+
+double lidarScanBytes(const RecordedSensor& lidar, PcdEncoding encoding) {
+  const double point = encoding == PcdEncoding::Binary ? 12 : kAsciiPcdPointBytes;
+  return static_cast<double>(lidar.directions.size()) * point + kPcdHeaderBytes;
+}
+
+namespace {
+
+// "37.5 GiB", "512 MiB".
+std::string bytesText(double b) {
+  char text[48];
+  if (b >= 1024.0 * 1024 * 1024 * 1024) std::snprintf(text, sizeof text, "%.3g TiB", b / (1024.0 * 1024 * 1024 * 1024));
+  else if (b >= 1024.0 * 1024 * 1024) std::snprintf(text, sizeof text, "%.3g GiB", b / (1024.0 * 1024 * 1024));
+  else if (b >= 1024.0 * 1024) std::snprintf(text, sizeof text, "%.3g MiB", b / (1024.0 * 1024));
+  else std::snprintf(text, sizeof text, "%.3g KiB", b / 1024);
+  return text;
+}
+
+}  // namespace
+
+std::optional<Diagnostic> lidarOutputWarning(const Document& doc, const std::vector<RecordedSensor>& sensors,
+                                             std::uint64_t steps, double timeStep, PcdEncoding encoding,
+                                             double freeBytes) {
+  double total = 0, most = -1;
+  const RecordedSensor* top = nullptr;
+  int lidars = 0;
+  for (const RecordedSensor& s : sensors) {
+    if (s.spec.kind != robot::SensorKind::Lidar) continue;
+    ++lidars;
+    const double bytes = lidarScanBytes(s, encoding) * static_cast<double>(lidarScansInRun(s, steps, timeStep));
+    total += bytes;
+    if (bytes > most) most = bytes, top = &s;
+  }
+  if (!top || !(total > kLidarOutputWarning)) return std::nullopt;
+  const bool binary = encoding == PcdEncoding::Binary;
+  const std::uint64_t scans = lidarScansInRun(*top, steps, timeStep);
+  std::string message = "the LiDAR scans of this run would write up to " + bytesText(total) +
+                        ", more than 1 GiB: LiDAR '" + top->spec.name + "' takes " +
+                        std::to_string(top->directions.size()) + " points a scan x " +
+                        (binary ? "12 bytes (binary PCD)" : "about 32 bytes (ascii PCD)") + " = " +
+                        bytesText(lidarScanBytes(*top, encoding)) + " a scan, x " + std::to_string(scans) +
+                        " scans = " + bytesText(most) + " (every ray a return)";
+  if (lidars > 1) message += std::string("; the other LiDAR") + (lidars > 2 ? "s" : "") + " the rest";
+  if (freeBytes >= 0 && total > freeBytes)
+    message += "; the file system of --sensors has " + bytesText(freeBytes) +
+               " free, and the run stops when it is full (the earlier scans stay)";
+  std::string hint = "fewer lidarChannels or lidarSamples, a lower updateRate, or a shorter run (--steps, --duration)";
+  if (!binary) hint += "; --pcd-encoding binary writes 12 bytes a point";
+  const bool record = top->spec.recordIndex >= 0;
+  Diagnostics ds;
+  reportAt(&doc, record ? top->spec.recordIndex : top->spec.robotRecord, record ? "lidarSamples" : "", rs::RS7094,
+           message, ds, Severity::Warning, hint);
+  return ds.back();
 }
 
 std::optional<Diagnostic> deformablesAtStartPose(const Document& doc, const Scene& scene) {

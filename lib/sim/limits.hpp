@@ -15,6 +15,8 @@
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
 #include "scene/scene.hpp"
+#include "sim/pcd.hpp"
+#include "sim/sensor_recorder.hpp"
 #include "sim/world.hpp"
 
 namespace rscene::sim {
@@ -68,6 +70,25 @@ Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step
 // iterations (RS7075); a warning there (RS7076) for a run past the warning
 // threshold.
 bool checkDeformableWork(const Document& doc, const World& world, std::uint64_t steps, Diagnostics& diagnostics);
+
+// Bytes the LiDAR scans of a run write, at most (every ray a return):
+// rays x bytes a point (12 binary, kAsciiPcdPointBytes as text) plus
+// a header, for each scan the run takes (one at time 0, then one an
+// update period; every step at updateRate 0).  Past kLidarOutputWarning
+// (1 GiB) rscene-sim warns before the first step (RS7094), at the costliest
+// LiDAR's lidarSamples (its robot's record for a sensor-set LiDAR).  No
+// refusal: a write that fails (a full disk) stops the run, which then
+// leaves the earlier run's scans as they were.
+inline constexpr double kLidarOutputWarning = 1024.0 * 1024 * 1024;
+inline constexpr double kAsciiPcdPointBytes = 32;  // "x y z\n", shortest round-trip floats, typical
+inline constexpr double kPcdHeaderBytes = 300;
+std::uint64_t lidarScansInRun(const RecordedSensor& lidar, std::uint64_t steps, double timeStep);
+double lidarScanBytes(const RecordedSensor& lidar, PcdEncoding encoding);
+// `freeBytes`: room left where the scans go (< 0: unknown), named when the
+// estimate is past it.
+std::optional<Diagnostic> lidarOutputWarning(const Document& doc, const std::vector<RecordedSensor>& sensors,
+                                             std::uint64_t steps, double timeStep, PcdEncoding encoding,
+                                             double freeBytes);
 
 // The warning (RS7079, once, at the first deformable record, naming them
 // all) for a scene written back with deformables: the format has no key

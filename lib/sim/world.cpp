@@ -187,22 +187,55 @@ struct World::Impl {
   // (RS7078): its contact reactions reach Bullet as forces for the next
   // step, an explicit coupling that holds up to about 20:1 (a 1 kg box
   // under a 40 kg cloth starts to jump; under 1e6 kg it was thrown 716 km).
+  // The bodies: dynamic objects and compounds, and the moving links of
+  // robots (each link's own mass: what a contact force on it accelerates
+  // at the least, its joints free) that have a collision shape; each only
+  // when the collision groups let it meet the deformable.
   bool deformableMassRatios(const Scene& scene, const Document* doc, Diagnostics& ds) const {
-    const Simulated* lightest = nullptr;
-    double least = INFINITY;
+    struct Touchable {
+      double mass;
+      const btCollisionObject* object;
+      std::string name;  // "dynamic body '/World/Box'", "link 'foot' of articulated system '/World/Robot'"
+    };
+    std::vector<Touchable> bodies;
     for (const Simulated& s : simulated)
-      if (s.dynamic && s.body->getInvMass() > 0 && 1 / s.body->getInvMass() < least) {
-        least = 1 / s.body->getInvMass();
-        lightest = &s;
+      if (s.dynamic && s.body->getInvMass() > 0)
+        bodies.push_back({1 / s.body->getInvMass(), s.body, "dynamic body '" + s.path + "'"});
+    for (const std::unique_ptr<SimRobot>& r : robots) {
+      btMultiBody* mb = r->multiBody();
+      const robot::RobotInstance& instance = r->instance();
+      const std::vector<RobotBody>& layout = r->layout().bodies;
+      for (std::size_t b = 0; b < r->colliders().size(); ++b) {
+        const btMultiBodyLinkCollider* c = r->colliders()[b];
+        if (!c || !r->hasShapes(static_cast<int>(b))) continue;
+        if (b == 0 && mb->hasFixedBase()) continue;  // fixed where it is
+        const double mass = b == 0 ? mb->getBaseMass() : mb->getLinkMass(static_cast<int>(b) - 1);
+        if (!(mass > 0)) continue;
+        std::string link;
+        if (instance.model && !layout[b].links.empty())
+          link = instance.model->links[static_cast<std::size_t>(layout[b].links.front())].name;
+        bodies.push_back({mass, c,
+                          (link.empty() ? "body " + std::to_string(b) : "link '" + link + "'") +
+                              " of articulated system '" + instance.record->path + "'"});
       }
-    if (!lightest) return true;
+    }
     bool ok = true;
     for (const Deformable& d : scene.deformables) {
-      if (!d.collidable || !(d.totalMass > kMaxDeformableMassRatio * least)) continue;
+      if (!d.collidable) continue;
+      const Touchable* lightest = nullptr;
+      for (const Touchable& t : bodies) {
+        const int index = t.object->getUserIndex();
+        if (index >= 0 && static_cast<std::size_t>(index) < info.size()) {
+          const BodyInfo& b = info[static_cast<std::size_t>(index)];
+          if ((b.group & d.collisionMask) == 0 || (d.collisionGroup & b.mask) == 0) continue;  // never meet
+        }
+        if (!lightest || t.mass < lightest->mass) lightest = &t;
+      }
+      if (!lightest || !(d.totalMass > kMaxDeformableMassRatio * lightest->mass)) continue;
       reportAt(doc, d.recordIndex, "totalMass", rs::RS7078,
                "deformable '" + d.path + "': totalMass " + roundedNumber(d.totalMass, 6) + " kg is more than " +
-                   roundedNumber(kMaxDeformableMassRatio, 6) + " times the mass of dynamic body '" + lightest->path +
-                   "' (" + roundedNumber(least, 6) +
+                   roundedNumber(kMaxDeformableMassRatio, 6) + " times the mass of " + lightest->name + " (" +
+                   roundedNumber(lightest->mass, 6) +
                    " kg) it may touch: its contact reactions would throw the body (they reach it as forces for the "
                    "next step, stable up to about that ratio)",
                ds, Severity::Error, "make the deformable lighter or the body heavier, or keep them apart with collisionGroup/collisionMask");

@@ -151,8 +151,8 @@ struct NonFinite {
   std::string cause;
 };
 
-// Most a deformable's totalMass may exceed the mass of a dynamic rigid body
-// (object or compound) of the same world (RS7078): the particles' contact
+// Most a deformable's totalMass may exceed the mass of a dynamic body
+// (object, compound or moving robot link) it may touch (RS7078): the particles' contact
 // reactions reach Bullet as forces for the next step, stable up to about this.
 inline constexpr double kMaxDeformableMassRatio = 20;
 

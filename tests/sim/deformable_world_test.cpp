@@ -129,6 +129,20 @@ TEST(DeformableWorld, AClothFarHeavierThanABodyIsRefusedAtTotalMass) {
   EXPECT_TRUE(ok->world) << test::firstMessage(ok->diags);
 }
 
+// RS7078 asks only about bodies the cloth can meet: a box whose collision
+// mask leaves out the cloth's group 1 is no reason to refuse it.
+TEST(DeformableWorld, AHeavyClothIsNotRefusedForABodyItsGroupsNeverMeet) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(9, 1));
+  asset::AssetCache cache(fs);
+  const std::string apart =
+      "object /World/Box box 3 0 0.3 1 0 0 0 0.4 0.4 0.4 0 0 1 default - false true false - dynamic "
+      "true 2 2\n";
+  auto r = make(kGround + apart + "deformable /World/Cloth cloth cloth.obj 0 0 0.6 1 0 0 0 1 1 1 totalMass=100\n",
+                cache);
+  EXPECT_TRUE(r->world) << test::firstMessage(r->diags);
+}
+
 // The per-run cap on the deformables' work (RS7075), with the warning
 // below it (RS7076), at the record's iterations.
 TEST(DeformableWorld, TheRunsSolverWorkIsCappedUpFrontWithItsCost) {
@@ -155,6 +169,10 @@ TEST(DeformableWorld, TheRunsSolverWorkIsCappedUpFrontWithItsCost) {
   EXPECT_EQ(ds[0].line, 4u);
   EXPECT_NE(ds[0].message.find("= 4.65e+10 updates"), std::string::npos) << ds[0].message;
   EXPECT_NE(ds[0].message.find("about 16 min of one core"), std::string::npos) << ds[0].message;
+  // Like with like: the run's figure against the per-run limit.
+  EXPECT_NE(ds[0].message.find("the run's 4.65e+10 updates are more than the limit of 3e+10 updates a run"),
+            std::string::npos)
+      << ds[0].message;
 }
 
 // A scene written back with deformables says once that they keep their

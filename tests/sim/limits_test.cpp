@@ -184,3 +184,45 @@ TEST(PairFilter, CoLocatedDynamicBodiesHitTheCap) {
   fits->step();
   EXPECT_EQ(fits->pairOverflow(), std::nullopt);
 }
+
+// RS7094: what the LiDAR scans of a run take on disk, at most.
+TEST(SimLimits, LidarOutputIsEstimatedBeforeTheRunAndWarnedPastOneGiB) {
+  auto l = load("time_step 0.01\nsensor /World/Lidar lidar - 0 0 1 1 0 0 0 updateRate=5 lidarChannels=64 lidarSamples=2048\n");
+  RecordedSensor lidar;
+  lidar.spec.kind = robot::SensorKind::Lidar;
+  lidar.spec.name = "/World/Lidar";
+  lidar.spec.recordIndex = 2;
+  lidar.spec.params.updateRate = 5;
+  lidar.directions.assign(64 * 2048, Eigen::Vector3d::UnitX());
+  // One scan at 0, then one each 0.2 s: 10 s at 0.01 s a step is 51.
+  EXPECT_EQ(lidarScansInRun(lidar, 1000, 0.01), 51u);
+  EXPECT_EQ(lidarScansInRun(lidar, 0, 0.01), 1u);
+  RecordedSensor everyStep = lidar;
+  everyStep.spec.params.updateRate = 0;
+  EXPECT_EQ(lidarScansInRun(everyStep, 1000, 0.01), 1001u);
+  RecordedSensor fast = lidar;  // faster than the steps: one a step at most
+  fast.spec.params.updateRate = 1e6;
+  EXPECT_EQ(lidarScansInRun(fast, 1000, 0.01), 1001u);
+  EXPECT_EQ(lidarScanBytes(lidar, PcdEncoding::Binary), 131072 * 12 + kPcdHeaderBytes);
+  EXPECT_EQ(lidarScanBytes(lidar, PcdEncoding::Ascii), 131072 * kAsciiPcdPointBytes + kPcdHeaderBytes);
+  // 51 scans of 1.5 MiB: nothing said.
+  EXPECT_FALSE(lidarOutputWarning(l->doc, {lidar}, 1000, 0.01, PcdEncoding::Binary, -1));
+  // 1001 scans: 1.47 GiB, a warning at lidarSamples with the figures.
+  auto w = lidarOutputWarning(l->doc, {lidar}, 20000, 0.01, PcdEncoding::Binary, 1e9);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->code, "RS7094");
+  EXPECT_EQ(w->severity, Severity::Warning);
+  EXPECT_EQ(w->line, 3u);
+  EXPECT_NE(w->message.find("up to 1.47 GiB"), std::string::npos) << w->message;
+  EXPECT_NE(w->message.find("131072 points a scan x 12 bytes (binary PCD)"), std::string::npos) << w->message;
+  EXPECT_NE(w->message.find("x 1001 scans"), std::string::npos) << w->message;
+  EXPECT_NE(w->message.find("has 954 MiB free"), std::string::npos) << w->message;  // past the free space: said
+  // Two of them: the total, at the costlier.
+  RecordedSensor small = lidar;
+  small.directions.resize(16);
+  auto two = lidarOutputWarning(l->doc, {small, lidar}, 20000, 0.01, PcdEncoding::Binary, -1);
+  ASSERT_TRUE(two);
+  EXPECT_NE(two->message.find("LiDAR '/World/Lidar' takes 131072"), std::string::npos) << two->message;
+  EXPECT_NE(two->message.find("; the other LiDAR the rest"), std::string::npos) << two->message;
+  EXPECT_EQ(two->message.find("free"), std::string::npos) << two->message;
+}
