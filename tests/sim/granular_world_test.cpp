@@ -168,6 +168,6 @@ TEST(GranularWorld, TheRunsGranularWorkIsWarnedAboutThenRefused) {
   ASSERT_EQ(ds.size(), 1u);
   EXPECT_EQ(ds[0].code, "RS7093");
   EXPECT_EQ(ds[0].severity, Severity::Error);
-  EXPECT_NE(ds[0].message.find("updates a run (about 11 min), so nothing was simulated"), std::string::npos)
+  EXPECT_NE(ds[0].message.find("updates a run (about 10 min), so nothing was simulated"), std::string::npos)
       << ds[0].message;
 }
