@@ -220,7 +220,29 @@ class Checker {
   // (scene/granular.hpp): the findings rscene-sim builds its solver after.
   void granular(const Granular& g) {
     std::vector<ParticleFinding> found;
-    granularSetup(g, s_.timeStep, found, /*world=*/false);
+    std::optional<GranularSetup> setup = granularSetup(g, s_.timeStep, found, /*world=*/false);
+    // Grains starting inside the ground (RS7091): the planes the simulator
+    // builds, those whose collision filter meets the grains' (group 1,
+    // every mask bit).  Poses as written: rscene-validate's model resolves
+    // no world poses, so records under a parent, and other bodies, are
+    // rscene-sim's to measure (the same rule, the same code).
+    // A group is a folder in the world frame: under one, local is world.
+    auto inWorldFrame = [&](const std::string& parent) {
+      if (parent.empty()) return true;
+      for (const Group& grp : s_.groups)
+        if (grp.id == parent || grp.path == parent) return true;
+      return false;
+    };
+    if (setup && !g.fixed && inWorldFrame(g.parentId)) {
+      std::vector<double> heights;
+      for (const Object& o : s_.objects)
+        if ((o.primitive == "ground" || o.primitive == "half_space") && o.bodyMode != BodyMode::VisualOnly &&
+            inWorldFrame(o.parentId) && o.collisionGroup != 0 && (o.collisionMask & 1) != 0)
+          heights.push_back(o.local.position.z());
+      for (Eigen::Vector3d& x : setup->positions) x = g.local.position + g.local.orientation * x;
+      GranularStartDepth deep = granularGroundDepth(*setup, heights);
+      if (deep.count) found.push_back(granularStartDepthFinding(g, deep, "the ground"));
+    }
     RecordReader r = reader(g.recordIndex);
     for (const ParticleFinding& f : found)
       if (f.error || opt_.stepWarnings) r.error(f.field, f.code, f.message, {}, f.error ? Severity::Error : Severity::Warning);

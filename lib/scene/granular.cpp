@@ -82,7 +82,7 @@ bool granularMaterial(const Granular& g, GranularMaterial& m, std::vector<Partic
   return ok;
 }
 
-double granularMaxSubstep(const GranularMaterial& m, double minMass) {
+double granularMaxSubstep(const GranularMaterial& m, double minMass, const char** limiting) {
   const double pairMass = minMass / 2;
   // Critical step of the damped oscillator x'' = -(k x + c x') / mass under
   // explicit (semi-implicit Euler) integration.
@@ -99,10 +99,68 @@ double granularMaxSubstep(const GranularMaterial& m, double minMass) {
   double tangential = critical(3.5 * m.kt, 3.5 * m.ct, pairMass);
   // Cohesion is an undamped spring of cohesionStiffness across the gap: as
   // stiff a mode as the normal one when kc is as large (a bed at the edge of
-  // stability without it gains energy and flies apart with it).
+  // stability without it gains energy and flies apart with it).  A pair,
+  // like the normal mode: a grain's cohesion partners are its contact
+  // neighbours, whose several springs at once kStableFraction covers for
+  // both (tests/sim/granular_test.cpp runs a bed held by cohesion alone at
+  // the step this gives).
   double cohesion = m.cohesionStiffness > 0 && m.cohesionMaxDistance > 0 ? critical(m.cohesionStiffness, 0, pairMass)
                                                                          : INFINITY;
-  return kStableFraction * std::min({normal, tangential, cohesion});
+  const double least = std::min({normal, tangential, cohesion});
+  if (limiting)
+    *limiting = least == cohesion ? "cohesionStiffness" : least == tangential ? "tangentialStiffness" : "normalStiffness";
+  return kStableFraction * least;
+}
+
+double granularNormalEnergy(const GranularMaterial& m, double depth, double reff) {
+  if (!(depth > 0)) return 0;
+  return m.hertz ? 0.4 * m.kn * depth * depth * std::sqrt(depth / reff) : 0.5 * m.kn * depth * depth;
+}
+
+double granularStartDepthTolerance(const GranularMaterial& m, double r) {
+  // A grain against a surface: Reff is its radius (the solver's rule).
+  const double lift = m.density * 4.0 / 3.0 * M_PI * r * r * r * 9.81 * r;
+  double d = m.hertz ? std::pow(lift * std::sqrt(r) / (0.4 * m.kn), 0.4) : std::sqrt(2 * lift / m.kn);
+  if (!(d < 0.5 * r)) d = 0.5 * r;
+  return d;
+}
+
+ParticleFinding granularStartDepthFinding(const Granular& g, const GranularStartDepth& deep, const std::string& inside,
+                                          bool advise) {
+  auto mm = [](double v) { return v < 0.1 ? roundedNumber(v * 1000, 3) + " mm" : roundedNumber(v, 3) + " m"; };
+  const Eigen::Vector3d& at = deep.at;
+  const bool one = deep.count == 1;
+  return {true, kStartsInside, g.positions.empty() ? "boxMin" : "positions",
+          "granular " + g.path + ": " + std::to_string(deep.count) + (one ? " grain starts" : " grains start") +
+              " inside " + inside +
+              (one ? " deeper than its contact spring holds without throwing it"
+                   : " deeper than their contact springs hold without throwing them") +
+              "; the deepest, grain " +
+              std::to_string(deep.worst) + " at (" + roundedNumber(at.x(), 6) + ", " + roundedNumber(at.y(), 6) + ", " +
+              roundedNumber(at.z(), 6) + "), by " + mm(deep.depth) + " (at most " + mm(deep.tolerance) +
+              ": where its spring holds the energy of lifting it by its radius)" +
+              (advise ? "; place the grains clear of the ground and the bodies (centres at least a radius above the "
+                        "ground)"
+                      : "")};
+}
+
+GranularStartDepth granularGroundDepth(const GranularSetup& s, const std::vector<double>& heights) {
+  GranularStartDepth out;
+  if (heights.empty()) return out;
+  double worstExcess = 0;
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    const double r = s.radii[i];
+    double depth = -INFINITY;
+    for (double h : heights) depth = std::max(depth, r - (s.positions[i].z() - h));
+    const double tol = granularStartDepthTolerance(s.material, r);
+    if (!(depth > tol * (1 + 1e-9))) continue;
+    ++out.count;
+    if (depth - tol > worstExcess) {
+      worstExcess = depth - tol;
+      out.worst = i, out.depth = depth, out.tolerance = tol, out.at = s.positions[i];
+    }
+  }
+  return out;
 }
 
 std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeStep,
@@ -200,6 +258,31 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
                               "and a longer range makes every grain pull on grains it does not touch"});
       return std::nullopt;
     }
+    // Cohesion stronger than the contact repulsion: a pair falling from
+    // cohesionMaxDistance into contact gains the well's depth,
+    // integral of kc g (1 - g / gmax) = kc gmax^2 / 6, and only the normal
+    // spring stops it.  When that spring needs more than a quarter of the
+    // smallest radius to take it, grains pulled by their neighbours fall
+    // through each other and are thrown out again.
+    if (s.material.cohesionStiffness > 0 && s.material.cohesionMaxDistance > 0) {
+      const double well = s.material.cohesionStiffness * s.material.cohesionMaxDistance *
+                          s.material.cohesionMaxDistance / 6;
+      const double overlap = kCohesionOverlapFraction * rMin;
+      const double spring = granularNormalEnergy(s.material, overlap, rMin / 2);
+      if (!(well <= spring)) {
+        // The largest cohesionStiffness the rule lets pass for this range.
+        const double most = 6 * spring / (s.material.cohesionMaxDistance * s.material.cohesionMaxDistance);
+        findings.push_back({true, kCohesionTooStrong, "cohesionStiffness",
+                            "granular " + g.path + ": cohesion stronger than the contact repulsion: its well, " +
+                                "cohesionStiffness x cohesionMaxDistance^2 / 6 = " + number(well) +
+                                " J, is more than the normal spring holds at an overlap of a quarter of the "
+                                "smallest radius (" + number(spring) + " J at " + number(overlap) +
+                                " m), so grains it pulls together fall through each other; at this "
+                                "cohesionMaxDistance cohesionStiffness may be at most " + number(most) +
+                                " (or raise normalStiffness, or shorten cohesionMaxDistance)"});
+        return std::nullopt;
+      }
+    }
     std::size_t a = 0, b = 0;
     if (deepOverlap(s.positions, s.radii, rMax, a, b)) {
       findings.push_back({true, kOverlap, g.positions.empty() ? "spacing" : "positions",
@@ -207,24 +290,30 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
                               (a == b ? "more than " + std::to_string(kMaxGranularPairsPerGrain) +
                                             " touching pairs per grain: grains" 
                                       : "particles " + std::to_string(a) + " and " + std::to_string(b)) +
-                              " overlap by more than half their radii (spacing at least 2 x radius keeps a box "
-                              "fill apart)"});
+                              " overlap by more than half their radii" +
+                              (g.positions.empty() ? " (spacing at least 2 x radius keeps a box fill apart)"
+                                                   : std::string())});
       return std::nullopt;
     }
     const double minMass = s.material.density * 4.0 / 3.0 * M_PI * rMin * rMin * rMin;
-    s.maxSubstep = granularMaxSubstep(s.material, minMass);
+    const char* limiting = "normalStiffness";
+    s.maxSubstep = granularMaxSubstep(s.material, minMass, &limiting);
+    // kt = 0 in the record is 2/7 of normalStiffness: that is the key to change.
+    std::string cause = limiting;
+    if (cause == "tangentialStiffness" && !(g.tangentialStiffness > 0)) cause = "normalStiffness";
+    const std::string lower = cause == "cohesionStiffness" ? "lower cohesionStiffness"
+                              : cause == "tangentialStiffness" ? "lower tangentialStiffness or tangentialDamping"
+                                                               : "lower normalStiffness or normalDamping";
     // Fixed grains never move: their step cannot go unstable.
     const double needed = g.fixed ? 1 : std::ceil(worldTimeStep / s.maxSubstep - 1e-9);
     const std::string why = "time_step " + seconds(worldTimeStep) + " against a stable substep of at most " +
-                            seconds(s.maxSubstep) + " (0.6 of the critical step of normalStiffness, normalDamping, "
-                            "tangentialStiffness, tangentialDamping and cohesionStiffness for the lightest grain, radius " +
-                            number(rMin) + " m)";
+                            seconds(s.maxSubstep) + " (0.6 of the critical step of " + cause +
+                            " for the lightest grain, radius " + number(rMin) + " m)";
     if (!(needed <= kMaxGranularSubsteps)) {
-      findings.push_back({true, kTooStiff, "normalStiffness",
+      findings.push_back({true, kTooStiff, cause,
                           "granular " + g.path + ": stability needs more than " +
-                              std::to_string(kMaxGranularSubsteps) + " substeps per world step: " + why +
-                              "; lower normalStiffness or normalDamping, raise radius or density, or shorten "
-                              "time_step"});
+                              std::to_string(kMaxGranularSubsteps) + " substeps per world step: " + why + "; " +
+                              lower + ", raise radius or density, or shorten time_step"});
       return std::nullopt;
     }
     if (needed > s.substeps) {
@@ -233,7 +322,7 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
                               std::to_string(static_cast<int>(needed)) + " for stability (" + why + "), " +
                               number(std::round(needed / s.substeps * 10) / 10) +
                               "x the particle time; write substeps=" + std::to_string(static_cast<int>(needed)) +
-                              " to accept it, or lower normalStiffness or normalDamping"});
+                              " to accept it, or " + lower});
       s.substeps = static_cast<int>(needed);
     }
   }

@@ -47,6 +47,9 @@ inline constexpr const char* kOverlap = rs::RS7089;         // grains overlappin
 inline constexpr const char* kEnergy = rs::RS7083;          // sim: energy grew, the solver is unstable
 inline constexpr const char* kLeftBounds = rs::RS7084;      // sim: grains past 1e9 m or settled into a refused state
 inline constexpr const char* kTooManyGrainPairs = rs::RS7085;  // sim: pair list past its cap
+inline constexpr const char* kStartsInside = rs::RS7091;  // grains starting inside the ground or a body
+inline constexpr const char* kCohesionTooStrong = rs::RS7092;  // cohesion well deeper than the contact spring holds
+inline constexpr const char* kGranularWork = rs::RS7093;  // sim: the run's solver work (refusal or warning)
 }  // namespace particle_code
 
 // A finding of a particle record's check: an error refuses the record, a
@@ -101,7 +104,42 @@ bool granularMaterial(const Granular& record, GranularMaterial& out, std::vector
 // critical step 2/w (sqrt(1 + z^2) - z) of the stiffest mode, the normal
 // (kn; Hertz: its tangent stiffness at an overlap of kHertzOverlap x
 // Reff) or tangential one (kt with rotation: 3.5 kt), of a pair (mass m/2).
-double granularMaxSubstep(const GranularMaterial& m, double minMass);
+// `limiting`, when given, gets the record key of the mode that sets it
+// (normalStiffness, tangentialStiffness or cohesionStiffness).
+double granularMaxSubstep(const GranularMaterial& m, double minMass, const char** limiting = nullptr);
+
+// Energy stored in the normal spring of a contact at overlap `depth`
+// (linear 1/2 kn d^2, Hertz 2/5 kn d^2 sqrt(d / Reff)).
+double granularNormalEnergy(const GranularMaterial& m, double depth, double reff);
+
+// The overlap, as a fraction of the smallest radius, whose normal-spring
+// energy the cohesion well must not exceed (RS7092): a quarter.  A pair
+// falling from cohesionMaxDistance into contact stops within it, and a
+// grain pulled by 16 such wells at once (linear) still stops short of the
+// deep overlap RS7089 refuses (half the sum of the radii).
+inline constexpr double kCohesionOverlapFraction = 0.25;
+
+// The deepest a grain of `radius` may start inside the ground or another
+// body (RS7091): where its normal spring holds the energy of lifting the
+// grain by its own radius against 9.81 m/s^2 (what the solver's energy
+// check lets pass for each grain), and never more than half the radius.
+// A bed settled on the ground is far inside it.
+double granularStartDepthTolerance(const GranularMaterial& m, double radius);
+
+// Grains that start deeper inside a surface than granularStartDepthTolerance().
+struct GranularStartDepth {
+  std::size_t count = 0;  // grains past the tolerance
+  std::size_t worst = 0;  // the one furthest past it
+  double depth = 0;       // its depth, m
+  double tolerance = 0;   // its tolerance, m
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();  // its centre, world
+};
+// The finding (RS7091) for `deep` (count > 0), at the key that placed the
+// grains (positions, or boxMin for a box fill); `inside` names what they
+// start in ("the ground", "the ground or another body").
+// `advise`: end with where to place the grains (not for a settled bed).
+ParticleFinding granularStartDepthFinding(const Granular& record, const GranularStartDepth& deep,
+                                          const std::string& inside, bool advise = true);
 
 // A granular record ready to simulate.
 struct GranularSetup {
@@ -123,5 +161,9 @@ struct GranularSetup {
 // frame (a check needs no world pose).
 std::optional<GranularSetup> granularSetup(const Granular& record, double worldTimeStep,
                                            std::vector<ParticleFinding>& findings, bool world = true);
+
+// The grains of a setup in world coordinates against horizontal ground
+// planes at `heights` (normal +z, as the simulator builds them).
+GranularStartDepth granularGroundDepth(const GranularSetup& worldSetup, const std::vector<double>& heights);
 
 }  // namespace rscene

@@ -69,6 +69,11 @@ class GranularBody {
   virtual bool finite() const = 0;
   virtual const GranularStats& stats() const = 0;
   virtual const std::optional<GranularFailure>& failure() const = 0;
+  virtual const GranularMaterial& material() const = 0;
+  virtual bool fixed() const = 0;
+  // Candidate pairs in the neighbour list (built when the body is made):
+  // with the grains and the substeps, the solver's work per step.
+  virtual std::size_t candidatePairs() const = 0;
 };
 
 }  // namespace rscene::sim

@@ -62,6 +62,9 @@ class GranularDem final : public GranularBody {
     // every grain a rise of its own radius.
     for (std::size_t i = 0; i < n; ++i) energyFloor_ += r_[i] / invMass_[i];
     if (fixed_) energyFloor_ = 0;
+    // The pair list now, so that the run's cost is known before its first
+    // step (a list past its cap stops the run at that step, RS7085).
+    if (!fixed_ && n) rebuild();
   }
 
   void step(double dt, const Eigen::Vector3d& gravity, SurfaceQuery& surfaces) override {
@@ -100,6 +103,9 @@ class GranularDem final : public GranularBody {
   bool finite() const override { return finite_; }
   const GranularStats& stats() const override { return stats_; }
   const std::optional<GranularFailure>& failure() const override { return failure_; }
+  const GranularMaterial& material() const override { return m_; }
+  bool fixed() const override { return fixed_; }
+  std::size_t candidatePairs() const override { return pairs_.size(); }
 
  private:
   // `measure`: the mechanical energy of the state this substep starts from
@@ -111,7 +117,7 @@ class GranularDem final : public GranularBody {
     if (failure_) return;
     stats_.neighbourSeconds += since(t);
     measure = measure && !fixed_;
-    potential_ = 0, elastic_ = 0;
+    potential_ = 0, elastic_ = 0, surfaceElastic_ = 0;
 
     for (std::size_t i = 0; i < x_.size(); ++i) f_[i].setZero(), t_[i].setZero();
     stats_.maxPenetration = 0;
@@ -157,7 +163,11 @@ class GranularDem final : public GranularBody {
     if (!std::isfinite(energy)) return;  // RS7024's business
     if (!measured_) {
       measured_ = true;
-      startEnergy_ = energy;
+      // The springs of grains starting inside the ground or a body are no
+      // budget: grains deeper than granularStartDepthTolerance() were
+      // refused (RS7091), and what is left would otherwise let a solver
+      // throw them with energy it never had.
+      startEnergy_ = energy - surfaceElastic_;
       bodyWork_ = 0;
       return;
     }
@@ -287,6 +297,7 @@ class GranularDem final : public GranularBody {
           const double e = springEnergy(c.depth, c.reff, hist.springs);
           potential_ += e;
           elastic_ += e;
+          surfaceElastic_ += e;
         }
         GranularContactForce out = granularContactForce(m_, c, h, hist.springs);
         f_[i] += out.force;
@@ -338,7 +349,7 @@ class GranularDem final : public GranularBody {
   double time_ = 0;
   // The energy check (checkEnergy()).
   bool measured_ = false;
-  double startEnergy_ = 0, bodyWork_ = 0, potential_ = 0, elastic_ = 0, energyFloor_ = 0;
+  double startEnergy_ = 0, bodyWork_ = 0, potential_ = 0, elastic_ = 0, surfaceElastic_ = 0, energyFloor_ = 0;
 };
 
 }  // namespace

@@ -93,8 +93,8 @@ Diagnostic tooManyPairs(const Document& doc, int recordIndex, std::uint64_t step
 namespace {
 
 // Seconds of one core for `work` updates, in words ("about 8.3 h").
-std::string coreTime(double work) {
-  const double s = work / kDeformableUpdatesPerSecond;
+std::string coreTime(double work, double rate = kDeformableUpdatesPerSecond) {
+  const double s = work / rate;
   char text[64];
   if (s < 120) std::snprintf(text, sizeof text, "about %.2g s", s);
   else if (s < 7200) std::snprintf(text, sizeof text, "about %.2g min", s / 60);
@@ -200,6 +200,38 @@ std::optional<Diagnostic> lidarOutputWarning(const Document& doc, const std::vec
   reportAt(&doc, record ? top->spec.recordIndex : top->spec.robotRecord, record ? "lidarSamples" : "", rs::RS7094,
            message, ds, Severity::Warning, hint);
   return ds.back();
+}
+
+bool checkGranularWork(const Document& doc, const World& world, std::uint64_t steps, Diagnostics& ds) {
+  std::vector<ParticleSystems::GranularCost> costs = world.particleSystems().granularCosts();
+  if (costs.empty()) return true;
+  double perStep = 0;
+  const ParticleSystems::GranularCost* top = &costs.front();
+  for (const auto& c : costs) {
+    perStep += c.workPerStep;
+    if (c.workPerStep > top->workPerStep) top = &c;
+  }
+  const double total = perStep * static_cast<double>(steps);
+  if (!(total > kGranularWorkWarning)) return true;
+  const bool refused = total > kMaxGranularWorkPerRun;
+  const double rate = kGranularUpdatesPerSecond;
+  std::string message = "the granular solver's work for this run is " + sci(perStep) + " updates a step (" +
+                        coreTime(perStep, rate) + " of one core a step) x " + std::to_string(steps) + " steps = " +
+                        sci(total) + " updates (substeps x (grains + candidate pairs) x steps), " +
+                        coreTime(total, rate) + " of one core for the run; granular " + top->path + ": " +
+                        std::to_string(top->grains) + " grains and " + std::to_string(top->pairs) +
+                        " candidate pairs in " + std::to_string(top->substeps) + " substeps a step";
+  if (refused)
+    message += "; more than the limit of " + sci(kMaxGranularWorkPerRun) + " updates a run (" +
+               coreTime(kMaxGranularWorkPerRun, rate) + "), so nothing was simulated";
+  else
+    message += "; more than " + sci(kGranularWorkWarning) + " updates a run (" + coreTime(kGranularWorkWarning, rate) +
+               ")";
+  reportAt(&doc, top->recordIndex, "substeps", particle_code::kGranularWork, message, ds,
+           refused ? Severity::Error : Severity::Warning,
+           "lower substeps (or the stiffness that raised them), use fewer or larger grains, or simulate fewer steps "
+           "(--steps, --duration)");
+  return !refused;
 }
 
 std::optional<Diagnostic> deformablesAtStartPose(const Document& doc, const Scene& scene) {

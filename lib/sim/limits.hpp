@@ -45,6 +45,18 @@ inline constexpr double kDeformableUpdatesPerSecond = 5e7;
 inline constexpr double kMaxDeformableWorkPerRun = 3e10;  // about 10 minutes of one core
 inline constexpr double kDeformableWorkWarning = 5e8;     // about 10 s
 
+// The granular solver's work of one run, in updates (substeps x (grains
+// + candidate pairs) x steps, summed over the granular records): past
+// kMaxGranularWorkPerRun the run is refused before its first step, past
+// kGranularWorkWarning the expected cost is a warning (both RS7093, with
+// the figures a step and a run).  One core does about
+// kGranularUpdatesPerSecond, as for the deformables (CPU time: a packed
+// bed of 11,774 grains and 33,669 candidate pairs 5.3e7 a second, a loose
+// one of 95,220 grains 1.2e8: its pairs are mostly out of reach).
+inline constexpr double kGranularUpdatesPerSecond = 5e7;
+inline constexpr double kMaxGranularWorkPerRun = 3e10;  // about 10 minutes of one core
+inline constexpr double kGranularWorkWarning = 5e8;     // about 10 s
+
 // Steps of a run of `duration` seconds at `timeStep`: round(duration /
 // timeStep), computed without overflow or undefined conversion.  nullopt
 // when that is more than maxSteps (a non-finite quotient included).
@@ -89,6 +101,12 @@ double lidarScanBytes(const RecordedSensor& lidar, PcdEncoding encoding);
 std::optional<Diagnostic> lidarOutputWarning(const Document& doc, const std::vector<RecordedSensor>& sensors,
                                              std::uint64_t steps, double timeStep, PcdEncoding encoding,
                                              double freeBytes);
+
+// The per-run cap on the granular solver's work (above) for a run of
+// `steps` steps of `world`: false after an error at the costliest granular
+// record's substeps (RS7093); a warning there (RS7093) past the warning
+// threshold.
+bool checkGranularWork(const Document& doc, const World& world, std::uint64_t steps, Diagnostics& diagnostics);
 
 // The warning (RS7079, once, at the first deformable record, naming them
 // all) for a scene written back with deformables: the format has no key

@@ -135,6 +135,59 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
   return ok;
 }
 
+std::vector<ParticleSystems::GranularCost> ParticleSystems::granularCosts() const {
+  std::vector<GranularCost> out;
+  for (const GranularEntry& g : granulars_) {
+    GranularCost c{g.recordIndex, g.path, g.body->positions().size(), g.body->candidatePairs(),
+                   g.body->stats().substepsPerStep, 0};
+    c.workPerStep = static_cast<double>(c.substeps) * static_cast<double>(c.grains + c.pairs);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+GranularStartDepth ParticleSystems::startDepth(const GranularEntry& g, SurfaceQuery& surfaces) {
+  GranularStartDepth out;
+  const std::vector<Eigen::Vector3d>& x = g.body->positions();
+  const std::vector<double>& r = g.body->radii();
+  if (x.empty() || g.body->fixed()) return out;
+  Eigen::AlignedBox3d region;
+  double rMax = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) region.extend(x[i]), rMax = std::max(rMax, r[i]);
+  region.min().array() -= rMax;
+  region.max().array() += rMax;
+  surfaces.prepare(region, 1, ~std::uint64_t{0}, "");  // as the solver prepares them
+  std::vector<SurfaceContact> found;
+  double worstExcess = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    found.clear();
+    surfaces.contacts(x[i], r[i], 0, found);
+    double depth = 0;
+    for (const SurfaceContact& c : found)
+      if (c.normal.allFinite() && c.depth > depth) depth = c.depth;
+    const double tol = granularStartDepthTolerance(g.body->material(), r[i]);
+    if (!(depth > tol * (1 + 1e-9))) continue;
+    ++out.count;
+    if (depth - tol > worstExcess) {
+      worstExcess = depth - tol;
+      out.worst = i, out.depth = depth, out.tolerance = tol, out.at = x[i];
+    }
+  }
+  return out;
+}
+
+bool ParticleSystems::checkGranularStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics) const {
+  bool ok = true;
+  for (const GranularEntry& g : granulars_) {
+    const GranularStartDepth deep = startDepth(g, surfaces);
+    if (!deep.count) continue;
+    const ParticleFinding f = granularStartDepthFinding(g.record, deep, "the ground or another body");
+    reportAt(doc, g.recordIndex, f.field, f.code, f.message, diagnostics);
+    ok = false;
+  }
+  return ok;
+}
+
 std::optional<ParticleSystems::Runaway> ParticleSystems::deformableRunaway() const {
   for (const DeformableEntry& d : deformables_)
     if (std::string why = d.body->runaway(); !why.empty()) return Runaway{d.recordIndex, d.path, std::move(why)};
@@ -164,7 +217,7 @@ std::vector<Eigen::Vector3d> ParticleSystems::local(const GranularEntry& g) {
   return out;
 }
 
-std::optional<ParticleFailure> ParticleSystems::unwritable() const {
+std::optional<ParticleFailure> ParticleSystems::unwritable(SurfaceQuery* surfaces) const {
   for (const GranularEntry& g : granulars_) {
     if (g.body->positions().empty() || g.record.fixed) continue;  // written as they were read
     Granular settled = g.record;
@@ -186,6 +239,21 @@ std::optional<ParticleFailure> ParticleSystems::unwritable() const {
                                     "lower density or the bed's height)"
                                   : "look at the record's velocity and at what launches the grains"};
       return ParticleFailure{g.recordIndex, g.path, std::move(why)};
+    }
+    if (surfaces) {
+      const GranularStartDepth deep = startDepth(g, *surfaces);
+      if (deep.count) {
+        std::string rule = granularStartDepthFinding(g.record, deep, "the ground or another body", false).message;
+        const std::string prefix = "granular " + g.path + ": ";
+        if (rule.compare(0, prefix.size(), prefix) == 0) rule.erase(0, prefix.size());
+        GranularFailure why{particle_code::kLeftBounds, "normalStiffness",
+                            "granular " + g.path + ": at the end of the run its grains are where a run would not "
+                            "start them (" + rule + " [" + particle_code::kStartsInside + "]), so the scene written "
+                            "would not load; nothing was written",
+                            "the contact law is too soft for the load on it: raise normalStiffness (or lower density, "
+                            "the bed's height or what presses on it)"};
+        return ParticleFailure{g.recordIndex, g.path, std::move(why)};
+      }
     }
   }
   return std::nullopt;

@@ -68,6 +68,20 @@ class ParticleSystems {
   // whose free particle starts deeper than half its collisionRadius inside
   // a surface (pushing it out in one substep would throw it).
   bool checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics) const;
+  // Granular records: grains, substeps a step and candidate pairs, in
+  // record order, for the per-run cap (checkGranularWork, limits.hpp).
+  struct GranularCost {
+    int recordIndex = -1;
+    std::string path;
+    std::size_t grains = 0, pairs = 0;
+    int substeps = 0;
+    double workPerStep = 0;  // substeps x (grains + pairs)
+  };
+  std::vector<GranularCost> granularCosts() const;
+  // Before the first step: false after an error (RS7091) at each granular
+  // record whose grains start deeper inside a surface (the ground, a
+  // static or dynamic body, a robot link) than granularStartDepthTolerance().
+  bool checkGranularStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics) const;
   // The first deformable whose kinetic energy ran away (DeformableBody::
   // runaway): its record, path and the sentence with the figures.
   struct Runaway {
@@ -81,7 +95,9 @@ class ParticleSystems {
   // (as writeBack() would write them) the scene model would refuse
   // (granularSetup(): an overlap deeper than half the radii, a grain past
   // 1e9 m), as RS7084 naming the rule.  Run before writing.
-  std::optional<ParticleFailure> unwritable() const;
+  // With `surfaces`, grains settled deeper inside a surface than a run
+  // would start them (RS7091) are one too.
+  std::optional<ParticleFailure> unwritable(SurfaceQuery* surfaces = nullptr) const;
   // Granular records get `positions` and `radii` (in the record's frame):
   // RaiSim reads explicit positions in place of the box fill, so the
   // settled bed loads as it was left.  Deformables keep their record (the
@@ -103,6 +119,8 @@ class ParticleSystems {
   };
   // The grains of `g` in its record's frame, as writeBack() writes them.
   static std::vector<Eigen::Vector3d> local(const GranularEntry& g);
+  // The grains of `g` deeper inside a surface than they may start.
+  static GranularStartDepth startDepth(const GranularEntry& g, SurfaceQuery& surfaces);
   double timeStep_ = 0;
   std::vector<DeformableEntry> deformables_;
   std::vector<GranularEntry> granulars_;

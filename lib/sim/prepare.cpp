@@ -120,6 +120,8 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
   // The deformables' work for the whole run, now that the step count and
   // their constraints are known: refused up front past the cap (RS7075).
   if (out.world && !checkDeformableWork(doc, *out.world, out.steps, ds)) out.world.reset();
+  // The granular records' likewise (RS7093).
+  if (out.world && !checkGranularWork(doc, *out.world, out.steps, ds)) out.world.reset();
   if (auto w = unsupportedWarning(out.scene)) ds.push_back(*w);
   return out.world != nullptr;
 }

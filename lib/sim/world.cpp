@@ -918,6 +918,8 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   // A deformable starting inside a body is refused, as grains starting in
   // overlap are (RS7089): its first substep would throw it (RS7077).
   if (w.surfaces && !w.particles.checkDeformableStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
+  // Grains likewise (RS7091; the ground is the scene model's, checkScene()).
+  if (w.surfaces && !w.particles.checkGranularStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
   if (!w.deformableMassRatios(scene, options.document, diagnostics)) return nullptr;
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
@@ -1284,7 +1286,9 @@ void World::writeBack(Document& doc) const {
 
 std::vector<ParticleState> World::particleStates() const { return impl_->particles.states(); }
 std::optional<ParticleFailure> World::particleFailure() const { return impl_->particles.failure(); }
-std::optional<ParticleFailure> World::particlesUnwritable() const { return impl_->particles.unwritable(); }
+std::optional<ParticleFailure> World::particlesUnwritable() const {
+  return impl_->particles.unwritable(impl_->surfaces.get());
+}
 const ParticleSystems& World::particleSystems() const { return impl_->particles; }
 
 void World::writeRobot(Document& doc, const RobotState& state) {

@@ -114,6 +114,13 @@ std::vector<Case> cases() {
       {"RS7089", granular("", "4", "0.05", "0.04"), granular("", "4", "0.05", "0.1")},
       {"RS7087", granular("normalStiffness=1e12"), granular("normalStiffness=1e5")},
       {"RS7086", granular("", "1"), granular("", "3")},
+      // Hostile input round two: grains inside the ground (a plane at z = 1
+      // over a bed at 0.2), cohesion whose well is deeper than the contacts hold.
+      {"RS7091", H + object("ground", "1 1 1", "0.5", "0", "static", "", "/World/G") + granular("").substr(H.size()),
+       H + "object /World/G ground 0 0 -1 1 0 0 0 1 1 1 0.5 1 0 default engine_default false true false - static true 1 "
+           "18446744073709551615\n" + granular("").substr(H.size())},
+      {"RS7092", granular("cohesionStiffness=1e9 cohesionMaxDistance=0.05"),
+       granular("cohesionStiffness=10 cohesionMaxDistance=0.05")},
       {"RS7081", deformable("totalMass=0"), deformable("totalMass=2")},
       {"RS7081", deformable("particleMode=filled particleSpacing=0"), deformable("particleMode=filled")},
       // One outputPath rule for validate, sim and render (issue 23): a NUL

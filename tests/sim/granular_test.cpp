@@ -504,7 +504,7 @@ TEST(Granular, GrainsAtRestUnderCohesionStayAtRest) {
   // (A third grain at (0, 2r, 0) would be 0.83 r from the second: in
   // range, pulled in, as it should be.)
   Granular g = record({{0, 0, 0}, {2 * r, 0, 0}});
-  g.cohesionStiffness = 5e4;
+  g.cohesionStiffness = 9000;  // near the largest RS7092 lets pass at this range
   g.cohesionMaxDistance = r;
   auto body = make(g, 0.001);
   AnalyticSurfaces none;
@@ -516,9 +516,11 @@ TEST(Granular, GrainsAtRestUnderCohesionStayAtRest) {
 }
 
 // Issue 24 (06): 32 grains resting on the ground, cohesion as stiff as the
-// contacts over one radius (the reproducer): they flew to 53 m.  Now they
-// either stay in a heap or the run is stopped with RS7083 at the cohesion;
-// never a grain above a metre with no error.
+// contacts over one radius (the reproducer): they flew to 53 m.  Such
+// cohesion is now refused up front (RS7092: its well is deeper than the
+// contacts hold); at the strongest cohesion the rule lets pass the bed
+// stays a heap, or the run is stopped with RS7083 at the cohesion; never
+// a grain above a metre with no error.
 TEST(Granular, ACohesiveBedDoesNotGainEnergy) {
   const double r = 0.02;
   for (double kc : {5e4, 2e5}) {
@@ -526,20 +528,27 @@ TEST(Granular, ACohesiveBedDoesNotGainEnergy) {
     g.substeps = 3;
     g.cohesionStiffness = kc;
     g.cohesionMaxDistance = r;
-    auto body = make(g, 0.001);
-    AnalyticSurfaces ground;
-    ground.groundHeights = {0};
-    double top = 0;
-    for (int k = 0; k < 1000 && !body->failure(); ++k) {
-      body->step(0.001, kGravity, ground);
-      for (const auto& p : body->positions()) top = std::max(top, p.z());
-    }
-    if (body->failure()) {
-      EXPECT_STREQ(body->failure()->code, "RS7083");
-      EXPECT_EQ(body->failure()->field, "cohesionStiffness");
-    } else {
-      EXPECT_LT(top, 0.2) << "kc " << kc;  // the bed was 0.07 m tall
-    }
+    std::vector<GranularFinding> f = refused(g);
+    ASSERT_FALSE(f.empty());
+    EXPECT_STREQ(f[0].code, "RS7092");
+  }
+  Granular g = record(block(4, 4, 2, 0.043, r + 0.003));
+  g.substeps = 3;
+  g.cohesionStiffness = 9000;
+  g.cohesionMaxDistance = r;
+  auto body = make(g, 0.001);
+  AnalyticSurfaces ground;
+  ground.groundHeights = {0};
+  double top = 0;
+  for (int k = 0; k < 1000 && !body->failure(); ++k) {
+    body->step(0.001, kGravity, ground);
+    for (const auto& p : body->positions()) top = std::max(top, p.z());
+  }
+  if (body->failure()) {
+    EXPECT_STREQ(body->failure()->code, "RS7083");
+    EXPECT_EQ(body->failure()->field, "cohesionStiffness");
+  } else {
+    EXPECT_LT(top, 0.2);  // the bed was 0.07 m tall
   }
 }
 
@@ -628,4 +637,156 @@ TEST(Granular, APosePastTheBoundIsAPositionErrorAtThePose) {
   EXPECT_STREQ(f[0].code, "RS7088");
   EXPECT_EQ(f[0].field, "position");
   EXPECT_EQ(f[0].message.find("overlap"), std::string::npos) << f[0].message;
+}
+
+// Hostile input round two (1): a grain starting inside the ground deeper
+// than its spring can hold without throwing it is the scene model's
+// finding (RS7091), with the count, the worst grain and its depth; a grain
+// at its resting overlap (weight / kn, a hundredth of a millimetre) is not.
+TEST(Granular, GrainsStartingInsideTheGroundAreCountedWithTheWorst) {
+  const double r = 0.02, rest = sphereMass(1600, r) * 9.81 / 5e4;
+  Granular g = record({{0, 0, r - rest}, {0.1, 0, r - 0.005}, {0.2, 0, r - 0.008}, {0.3, 0, 1}});
+  std::vector<ParticleFinding> findings;
+  std::optional<GranularSetup> s = granularSetup(g, 0.001, findings);
+  ASSERT_TRUE(s);
+  const double tol = granularStartDepthTolerance(s->material, r);
+  // Linear: 1/2 kn d^2 = m g r.
+  EXPECT_NEAR(tol, std::sqrt(2 * sphereMass(1600, r) * 9.81 * r / 5e4), 1e-12);
+  EXPECT_GT(tol, 10 * rest);
+  EXPECT_LT(tol, 0.005);
+  GranularStartDepth deep = granularGroundDepth(*s, {0});
+  EXPECT_EQ(deep.count, 2u);
+  EXPECT_EQ(deep.worst, 2u);
+  EXPECT_NEAR(deep.depth, 0.008, 1e-12);
+  ParticleFinding f = granularStartDepthFinding(g, deep, "the ground");
+  EXPECT_STREQ(f.code, "RS7091");
+  EXPECT_EQ(f.field, "positions");
+  EXPECT_NE(f.message.find("2 grains start inside the ground"), std::string::npos) << f.message;
+  EXPECT_NE(f.message.find("grain 2 at (0.2, 0, 0.012), by 8 mm"), std::string::npos) << f.message;
+  // A ground below them all: nothing.
+  EXPECT_EQ(granularGroundDepth(*s, {-1}).count, 0u);
+  // Never deeper than half the radius, however soft the spring.
+  s->material.kn = 1e-3;
+  EXPECT_DOUBLE_EQ(granularStartDepthTolerance(s->material, r), 0.5 * r);
+}
+
+// (1) The energy check does not count a start penetration as budget: a
+// grain started 8 mm inside the ground (past the setup's rule, built
+// directly) is thrown by its spring, and the run stops with RS7083 instead
+// of accepting the energy as its own.
+TEST(Granular, StartPenetrationEnergyIsNoBudget) {
+  const double r = 0.02;
+  Granular g = record({{0, 0, r - 0.008}});
+  std::vector<GranularFinding> findings;
+  std::optional<GranularSetup> setup = granularSetup(g, 0.001, findings);
+  ASSERT_TRUE(setup);
+  auto body = makeGranularDem(std::move(*setup));
+  AnalyticSurfaces ground;
+  ground.groundHeights = {0};
+  for (int k = 0; k < 2000 && !body->failure(); ++k) body->step(0.001, kGravity, ground);
+  ASSERT_TRUE(body->failure()) << "max speed " << body->maxSpeed();
+  EXPECT_STREQ(body->failure()->code, "RS7083");
+  // A grain just inside its tolerance settles with no error.
+  setup = granularSetup(record({{0, 0, r - 0.9 * granularStartDepthTolerance(setup->material, r)}}), 0.001, findings);
+  body = makeGranularDem(std::move(*setup));
+  for (int k = 0; k < 2000; ++k) body->step(0.001, kGravity, ground);
+  EXPECT_FALSE(body->failure());
+  EXPECT_LT(body->maxSpeed(), 0.01);
+}
+
+// (3) Cohesion stronger than the contact repulsion: its well kc gmax^2 / 6
+// past the normal spring's energy at a quarter of the smallest radius is
+// refused at cohesionStiffness (RS7092), with the largest kc it allows.
+TEST(Granular, CohesionStrongerThanTheContactsIsRefusedAtCohesionStiffness) {
+  const double r = 0.02;
+  Granular g = record(block(2, 2, 1, 0.043, 0.5));
+  g.cohesionMaxDistance = r;
+  // Linear: 1/2 5e4 (r / 4)^2 = 0.625 J; kc r^2 / 6 = 0.625 J at kc = 9375.
+  g.cohesionStiffness = 9375 * 1.001;
+  std::vector<GranularFinding> f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7092");
+  EXPECT_EQ(f[0].field, "cohesionStiffness");
+  EXPECT_NE(f[0].message.find("cohesionStiffness may be at most 9.38e+03"), std::string::npos) << f[0].message;
+  g.cohesionStiffness = 9375 * 0.999;
+  EXPECT_TRUE(make(g, 0.001));
+  // Hertz: 2/5 kn d^2 sqrt(d / Reff) at d = r / 4, Reff = r / 2.
+  g.normalContactModel = "hertz";
+  const double hertz = 0.4 * 5e4 * (r / 4) * (r / 4) * std::sqrt(0.5);
+  g.cohesionStiffness = 6 * hertz / (r * r) * 1.001;
+  EXPECT_EQ(refused(g).at(0).code, std::string("RS7092"));
+  g.cohesionStiffness = 6 * hertz / (r * r) * 0.999;
+  EXPECT_TRUE(make(g, 0.001));
+}
+
+// (3) When cohesion is the stiffest mode, RS7087 and RS7086 name
+// cohesionStiffness, not normalStiffness.
+TEST(Granular, StabilityFindingsNameCohesionWhenItIsTheStiffestMode) {
+  Granular g = record(block(2, 2, 1, 0.041, 0.5));
+  g.cohesionMaxDistance = 1e-4;
+  g.cohesionStiffness = 3e8;  // well 0.5 J: within RS7092's rule
+  std::vector<GranularFinding> f = refused(g, 0.02);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7087");
+  EXPECT_EQ(f[0].field, "cohesionStiffness");
+  EXPECT_NE(f[0].message.find("lower cohesionStiffness"), std::string::npos) << f[0].message;
+  std::vector<GranularFinding> warned;
+  auto body = make(g, 0.001, &warned);
+  ASSERT_TRUE(body);
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_STREQ(warned[0].code, "RS7086");
+  EXPECT_NE(warned[0].message.find("critical step of cohesionStiffness"), std::string::npos) << warned[0].message;
+  EXPECT_NE(warned[0].message.find("or lower cohesionStiffness"), std::string::npos) << warned[0].message;
+  // Without cohesion the same bed names the normal law.
+  g.cohesionStiffness = 0;
+  g.normalStiffness = 1e9;
+  f = refused(g, 0.02);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].field, "normalStiffness");
+}
+
+// (4) The stable substep counts cohesion as one pair: a lattice of grains
+// held by cohesion alone (no gravity, every neighbour in range, cohesion
+// the stiffest mode by far) runs at the substeps the rule gives without
+// gaining energy or flying apart.
+TEST(Granular, ALatticeHeldByCohesionAloneIsStableAtTheRuleSubstep) {
+  const double r = 0.02, gmax = 1e-4;
+  Granular g = record(block(4, 4, 4, 2 * r + 0.5 * gmax, 0));
+  g.cohesionMaxDistance = gmax;
+  g.cohesionStiffness = 3e8;
+  g.velocity = {0, 0, 0};
+  std::vector<GranularFinding> warned;
+  auto body = make(g, 0.001, &warned);
+  ASSERT_TRUE(body);
+  EXPECT_GT(body->stats().substepsPerStep, 50);  // cohesion's mode, not the contacts' 2
+  AnalyticSurfaces none;
+  const auto start = body->positions();
+  for (int k = 0; k < 500 && !body->failure(); ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
+  EXPECT_FALSE(body->failure()) << body->failure()->message;
+  double moved = 0;
+  for (std::size_t i = 0; i < start.size(); ++i) moved = std::max(moved, (body->positions()[i] - start[i]).norm());
+  EXPECT_LT(moved, r) << "the lattice held together";
+  EXPECT_LT(body->maxSpeed(), 1.0);
+  // Cohesion is what sets that step: at a third of the rule's substeps
+  // (built past the rule) the same lattice gains energy from nothing.
+  std::vector<GranularFinding> findings;
+  std::optional<GranularSetup> setup = granularSetup(g, 0.001, findings);
+  ASSERT_TRUE(setup);
+  const double h = 3 * setup->maxSubstep;
+  setup->substeps = 1;
+  setup->maxSubstep = 1;
+  auto fast = makeGranularDem(std::move(*setup));
+  for (int k = 0; k < 20000 && !fast->failure(); ++k) fast->step(h, Eigen::Vector3d::Zero(), none);
+  ASSERT_TRUE(fast->failure());
+  EXPECT_STREQ(fast->failure()->code, "RS7083");
+  EXPECT_EQ(fast->failure()->field, "cohesionStiffness");
+}
+
+// (2) The pair list is built with the body, so the run's cost is known
+// before its first step.
+TEST(Granular, CandidatePairsAreKnownBeforeTheFirstStep) {
+  auto body = make(record(block(3, 3, 1, 0.041, 0.5)), 0.001);
+  ASSERT_TRUE(body);
+  // 12 side-by-side pairs of a 3 x 3 grid (the diagonals are past the skin).
+  EXPECT_EQ(body->candidatePairs(), 12u);
 }

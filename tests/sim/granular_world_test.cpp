@@ -9,6 +9,8 @@
 #include "core/loader.hpp"
 #include "core/writer.hpp"
 #include "scene/scene.hpp"
+#include "sim/limits.hpp"
+#include "sim/particle_systems.hpp"
 #include "sim/world.hpp"
 #include "sim/world_test_scene.hpp"
 
@@ -100,4 +102,72 @@ TEST(GranularWorld, TheSchemaDefaultsWarnThatTheSubstepsWereRaised) {
   EXPECT_EQ(r->diags[0].code, "RS7086");
   EXPECT_EQ(r->diags[0].severity, Severity::Warning);
   EXPECT_NE(r->diags[0].message.find("substeps raised from 2 to "), std::string::npos) << r->diags[0].message;
+}
+
+// Hostile input round two (1): grains starting inside a body are refused
+// before the first step (RS7091) at the key that placed them, with the
+// count, the worst grain and its depth.
+TEST(GranularWorld, GrainsStartingInsideABodyAreRefused) {
+  for (const char* mode : {"static", "dynamic"}) {
+    auto r = make(kGround + "object /World/Box box 0 0 0.12 1 0 0 0 0.1 0.1 0.1 0 0 1 default - false true false - " +
+                      mode + " true 1 18446744073709551615\n" + bed("0 0 0.05 1 0 0 0"),
+                  false);
+    ASSERT_FALSE(r->diags.empty());
+    const Diagnostic& d = r->diags.back();
+    EXPECT_EQ(d.code, "RS7091") << mode;
+    EXPECT_EQ(d.line, 4u);
+    EXPECT_NE(d.message.find(" grains start inside the ground or another body"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("the deepest, grain "), std::string::npos) << d.message;
+  }
+}
+
+// (1) Grains below the ground: the scene model's finding, so validate says
+// it too; rscene-sim's own check gives the same code.
+TEST(GranularWorld, GrainsStartingInsideTheGroundAreTheSceneModelsFinding) {
+  auto r = make(kGround + bed("0 0 -0.05 1 0 0 0"), false);
+  ASSERT_FALSE(r->diags.empty());
+  EXPECT_EQ(r->diags.back().code, "RS7091");
+  Diagnostics ds;
+  EXPECT_FALSE(checkPhysics(r->doc, r->scene, ds));
+  ASSERT_FALSE(ds.empty());
+  EXPECT_EQ(ds.back().code, "RS7091");
+  EXPECT_EQ(ds.back().line, 3u);
+  EXPECT_NE(ds.back().message.find("32 grains start inside the ground"), std::string::npos) << ds.back().message;
+  // On the ground, and the settled bed written back, nothing.
+  auto ok = make(kGround + bed("0 0 0 1 0 0 0"));
+  ASSERT_TRUE(ok->world);
+  for (int k = 0; k < 500; ++k) ok->world->step();
+  EXPECT_FALSE(ok->world->particlesUnwritable());
+  Diagnostics none;
+  EXPECT_TRUE(checkPhysics(ok->doc, ok->scene, none)) << test::firstMessage(none);
+}
+
+// (2) The run's granular work is weighed before the first step: a warning
+// past kGranularWorkWarning, a refusal past kMaxGranularWorkPerRun, both
+// with the per-step and per-run figures, at substeps.
+TEST(GranularWorld, TheRunsGranularWorkIsWarnedAboutThenRefused) {
+  auto r = make("time_step 0.001\n" + kGround + bed("0 0 0.05 1 0 0 0"));
+  ASSERT_TRUE(r->world);
+  auto costs = r->world->particleSystems().granularCosts();
+  ASSERT_EQ(costs.size(), 1u);
+  EXPECT_EQ(costs[0].grains, 48u);
+  EXPECT_EQ(costs[0].substeps, 2);
+  EXPECT_DOUBLE_EQ(costs[0].workPerStep, 2.0 * double(48 + costs[0].pairs));
+  auto steps = [&](double work) { return static_cast<std::uint64_t>(work / costs[0].workPerStep * 1.01); };
+  Diagnostics ds;
+  EXPECT_TRUE(checkGranularWork(r->doc, *r->world, steps(kGranularWorkWarning) / 2, ds));
+  EXPECT_TRUE(ds.empty());
+  EXPECT_TRUE(checkGranularWork(r->doc, *r->world, steps(kGranularWorkWarning), ds));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7093");
+  EXPECT_EQ(ds[0].severity, Severity::Warning);
+  EXPECT_NE(ds[0].message.find(" updates a step ("), std::string::npos) << ds[0].message;
+  EXPECT_NE(ds[0].message.find("of one core for the run"), std::string::npos) << ds[0].message;
+  ds.clear();
+  EXPECT_FALSE(checkGranularWork(r->doc, *r->world, steps(kMaxGranularWorkPerRun), ds));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7093");
+  EXPECT_EQ(ds[0].severity, Severity::Error);
+  EXPECT_NE(ds[0].message.find("updates a run (about 10 min), so nothing was simulated"), std::string::npos)
+      << ds[0].message;
 }
