@@ -91,6 +91,18 @@ Pose Builder::mountFrame(const Mount& m, int record) const {
   return parentFrame(record);
 }
 
+void Builder::resolveBodyPoses() {
+  for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
+  for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
+  for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
+  for (const Articulated& a : s_.articulated) poses_[a.recordIndex] = &a.local;
+  const std::size_t before = diags_.size();
+  resolveParents();
+  resolveFrames();
+  diags_.resize(before);  // a cycle: lib/core's RS3017 in validate
+  for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
+}
+
 void Builder::resolveWorld() {
   for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
   for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
