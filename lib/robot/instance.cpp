@@ -1,6 +1,8 @@
 #include "robot/instance.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -125,6 +127,33 @@ LoadOptions loadOptionsOf(const Articulated& record, bool allowMissingMeshes) {
   return o;
 }
 
+namespace {
+
+// RS7056: a start pose that puts a 1-dof joint outside its limits (the
+// solver snaps it back in the first steps, a jolt the scene did not ask
+// for).  At the record's coordinates when it writes them, else at the
+// field naming the model whose own start (MJCF qpos0) it is.
+void startLimits(RecordReader& r, const Articulated& a, const Model& model, const Coordinates& c,
+                 const Eigen::VectorXd& q) {
+  for (int j : c.joints) {
+    const Joint& joint = model.joints[static_cast<std::size_t>(j)];
+    if (!joint.hasLimits || joint.coordinateDim() != 1) continue;
+    const int at = c.coordinateIndex[static_cast<std::size_t>(j)];
+    if (at < 0 || at >= q.size()) continue;
+    const double v = q[at], slack = 1e-9 * std::max(1.0, joint.upper - joint.lower);
+    if (v >= joint.lower - slack && v <= joint.upper + slack) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "%g, outside its limits [%g, %g]", v, joint.lower, joint.upper);
+    const bool written = a.hasCoordinate;
+    r.error(written ? "generalizedCoordinate" : "resource", code::kStartLimits,
+            "articulated system '" + a.path + "' starts with joint '" + joint.name + "' (entry " + std::to_string(at) +
+                (written ? " of generalizedCoordinate" : ", the model's own start") + ") at " + text,
+            "the solver pushes the joint back inside in the first steps", Severity::Warning);
+  }
+}
+
+}  // namespace
+
 bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, RobotInstance& out,
                   Diagnostics& diags, const InstanceOptions& options) {
   out = RobotInstance{};
@@ -196,6 +225,7 @@ bool makeInstance(const Document& doc, const Articulated& a, ModelCache& cache, 
       }
     }
   }
+  if (options.reportModel) startLimits(r, a, model, c, out.q);
   out.u = Eigen::VectorXd::Zero(c.velocityDim);
   if (a.hasVelocity) {
     const std::vector<double>& gv = a.generalizedVelocity;

@@ -22,6 +22,7 @@ inline constexpr const char* kVelocityLength = rs::RS7041;    // generalizedVelo
 inline constexpr const char* kJointOrder = rs::RS7042;        // jointOrder names an unknown, fixed or repeated joint, or omits one
 inline constexpr const char* kQuaternion = rs::RS7043;        // quaternion in generalizedCoordinate not of unit length (warning) or zero
 inline constexpr const char* kStateRange = rs::RS7049;        // coordinate or velocity entry beyond 1e12 (or not finite)
+inline constexpr const char* kStartLimits = rs::RS7056;      // warning: a start pose with a joint outside its limits
 inline constexpr const char* kTooLarge = rs::RS7052;          // more than kMaxRobotBodies bodies
 }  // namespace code
 

@@ -139,15 +139,21 @@ std::vector<std::string> coordinateNames(const Model& model, const Coordinates& 
 Eigen::VectorXd neutralCoordinate(const Model& model, const Coordinates& c, const Pose& base) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(c.coordinateDim);
   if (model.floatingBase) {
-    q.head<3>() = base.position;
-    q[3] = base.orientation.w();
-    q[4] = base.orientation.x();
-    q[5] = base.orientation.y();
-    q[6] = base.orientation.z();
+    const Pose start = base * model.baseStart;
+    q.head<3>() = start.position;
+    q[3] = start.orientation.w();
+    q[4] = start.orientation.x();
+    q[5] = start.orientation.y();
+    q[6] = start.orientation.z();
   }
-  for (int j : c.joints)
-    if (model.joints[static_cast<std::size_t>(j)].type == JointType::Spherical)
-      q[c.coordinateIndex[static_cast<std::size_t>(j)]] = 1;
+  for (int j : c.joints) {
+    const Joint& joint = model.joints[static_cast<std::size_t>(j)];
+    const int at = c.coordinateIndex[static_cast<std::size_t>(j)];
+    if (joint.type == JointType::Spherical)
+      q[at] = 1;
+    else if (joint.coordinateDim() == 1)
+      q[at] = joint.initial;
+  }
   return q;
 }
 

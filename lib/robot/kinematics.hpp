@@ -50,7 +50,9 @@ std::vector<JointOrderProblem> makeCoordinates(const Model& model, const std::ve
 // for a spherical joint.  Used in CSV headers and diffs.
 std::vector<std::string> coordinateNames(const Model& model, const Coordinates& c, bool velocity);
 
-// q at rest: base at `base` (floating), joints at 0, quaternions identity.
+// q at rest, where a record without coordinates starts: a floating base at
+// `base` * Model::baseStart, 1-dof joints at Joint::initial (MJCF's qpos0,
+// else 0), quaternions identity.
 Eigen::VectorXd neutralCoordinate(const Model& model, const Coordinates& c, const Pose& base);
 
 // The motion of one joint for its entries of q (a 1-dof value, or a

@@ -63,6 +63,7 @@ void scaleModel(Model& model, const Eigen::Vector3d& s) {
       scaleGeometry(c.geometry, s, c.origin.orientation);
     }
   }
+  model.baseStart.position = model.baseStart.position.cwiseProduct(s);  // the free body's place in the scaled file
   for (SensorDef& d : model.sensors) d.origin.position = d.origin.position.cwiseProduct(s);  // ride on the link frame
   for (Joint& j : model.joints) {
     j.origin.position = j.origin.position.cwiseProduct(s);
@@ -72,6 +73,7 @@ void scaleModel(Model& model, const Eigen::Vector3d& s) {
       j.lower *= f;
       j.upper *= f;
       for (double& m : j.springMount) m *= f;
+      j.initial *= f;
     }
   }
 }

@@ -60,6 +60,9 @@ class Converter {
       out_.root = addLink(nameOf(mjOBJ_BODY, first_, "body"));
       linkOfBody_[static_cast<std::size_t>(first_)] = out_.root;
       const int j = m_.body_jntadr[first_];
+      // The free joint's qpos0: the body's pos and quat in the file.
+      const int qadr = m_.jnt_qposadr[j];
+      out_.baseStart = poseOf(m_.qpos0 + qadr, m_.qpos0 + qadr + 3);
       if (m_.dof_damping[m_.jnt_dofadr[j]] != 0 || m_.dof_armature[m_.jnt_dofadr[j]] != 0 ||
           m_.dof_frictionloss[m_.jnt_dofadr[j]] != 0)
         warn(code::kSkipped, "free joint '" + nameOf(mjOBJ_JOINT, j, "joint") +
@@ -189,6 +192,7 @@ class Converter {
       if (m_.jnt_type[j] == mjJNT_HINGE) offset.orientation = Eigen::AngleAxisd(-ref, joint.axis);
       if (m_.jnt_type[j] == mjJNT_SLIDE) offset.position = -ref * joint.axis;
       joint.origin = before * translation(anchor) * offset;
+      if (joint.coordinateDim() == 1) joint.initial = ref;  // a record without coordinates starts at qpos0
       const bool last = k == n - 1;
       int link = addLink(last ? bodyName : unique(linkNames_, bodyName + "::" + joint.name));
       connect(std::move(joint), parent, link);

@@ -116,6 +116,9 @@ struct Joint {
   // The spring's rest position: 1 number (revolute, prismatic) or a
   // quaternion w x y z (spherical); empty = the zero position.
   std::vector<double> springMount;
+  // Where a 1-dof joint starts when the record writes no coordinates:
+  // MJCF's qpos0 (the joint's ref), 0 for URDF.
+  double initial = 0;
   int line = 0;
   std::string file;  // as Link::file: the module the joint is in, empty = Model::sourceFile
 
@@ -133,6 +136,9 @@ struct Model {
   // A URDF whose root link is named `world`, or an MJCF model whose first
   // body has no free joint, is fixed to the world at the record's pose.
   bool floatingBase = true;
+  // A floating base's start pose relative to the record's pose: an MJCF
+  // free body's pos/quat (MuJoCo's qpos0), identity for URDF.
+  Pose baseStart;
 
   int findLink(const std::string& name) const;   // -1 when none
   int findJoint(const std::string& name) const;  // -1 when none

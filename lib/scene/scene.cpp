@@ -56,7 +56,8 @@ void Builder::run() {
   }
   defaults();
   resolveArticulated();
-  if (!opt_.bodiesOnly) resolveWorld();  // checkScene() needs no world poses
+  if (!opt_.bodiesOnly) resolveWorld();
+  else resolveBodyPoses();  // checkScene() needs the objects' world poses only
   resolveWires();
 }
 

@@ -259,6 +259,9 @@ class Builder {
   bool hiddenByGroup(int idx) const { return hidden_[static_cast<std::size_t>(idx)] != 0; }
 
   void resolveWorld();
+  // bodiesOnly: objects' world poses only (checkScene()'s ground rule,
+  // scene/start_pose.hpp); a parent cycle is the full build's to report.
+  void resolveBodyPoses();
 
   // visual_records.hpp nodes: carried by their parent's frame like a light.
   void resolveVisualRecords();

@@ -99,6 +99,12 @@ bool Builder::plainBody(const Record& rec) {
                                                 "capsule", "ground", "plane",     "half_space"};
   std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
   if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
+  // The ground rule (scene/start_pose.hpp) reads the planes and the bodies
+  // that may move; only static and kinematic boxes and spheres are left out.
+  if (prim == "ground" || prim == "plane" || prim == "half_space" || slots[7] < 0) return false;
+  if (std::string_view mode = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[7]));
+      mode != "static" && mode != "fixed" && mode != "kinematic")
+    return false;
   for (std::size_t k = 1; k < 7; ++k)  // scale x3, radius, height, mass
     if (!positiveNumber(doc_.positionalText(rec, static_cast<std::uint32_t>(slots[k])), k == 6 ? kMaxMass : kMaxLength))
       return false;

@@ -1,5 +1,9 @@
 #include "scene/scene_builder.hpp"
 
+#include <deque>
+
+#include "scene/visual_records_read.hpp"
+
 namespace rscene::scene_build {
 
 const Pose* Builder::localPose(int idx) const {
@@ -89,6 +93,32 @@ Pose Builder::mountFrame(const Mount& m, int record) const {
     case Mount::Kind::World: break;
   }
   return parentFrame(record);
+}
+
+void Builder::resolveBodyPoses() {
+  for (const Object& o : s_.objects) poses_[o.recordIndex] = &o.local;
+  for (const Compound& c : s_.compounds) poses_[c.recordIndex] = &c.local;
+  for (const Camera& c : s_.cameras) poses_[c.recordIndex] = &c.local;
+  for (const Articulated& a : s_.articulated) poses_[a.recordIndex] = &a.local;
+  // A plain static body the build left out may be a parent: its pose (and
+  // its own parent) are read here, up the chain.
+  std::deque<Pose> skipped;
+  const std::size_t before = diags_.size();
+  for (bool grown = true; grown;) {
+    grown = false;
+    resolveParents();
+    for (int p : std::vector<int>(parentIdx_)) {
+      if (p < 0 || poses_.count(p) || doc_.records[static_cast<std::size_t>(p)].kind != objectKind_) continue;
+      RecordReader r(doc_, static_cast<std::size_t>(p), diags_);
+      skipped.push_back(readPose(r, "position", "orientation"));
+      poses_[p] = &skipped.back();
+      parentOf_[p] = r.str("parentGroupId");
+      grown = true;
+    }
+  }
+  resolveFrames();
+  diags_.resize(before);  // a cycle, a bad number: lib/core's to report in validate
+  for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
 }
 
 void Builder::resolveWorld() {

@@ -17,12 +17,14 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "core/text.hpp"
 #include "scene/mass_properties.hpp"
 #include "scene/reader.hpp"
+#include "scene/start_pose.hpp"
 #include "sim/bt_eigen.hpp"
 #include "sim/bullet_surfaces.hpp"
 #include "sim/particle_systems.hpp"
@@ -282,6 +284,7 @@ struct World::Impl {
   btVector3 boundsMin, boundsMax;
   std::vector<Departure> departures;
   std::vector<StartOverlap> startOverlaps;
+  std::set<int> groundPlanes, groundRuleBodies;  // records: scene/start_pose.hpp's planes and bodies
   bool penetrating = false;  // a contact of a dynamic body deeper than kRestPenetration after the last step
 
   std::vector<std::unique_ptr<btRigidBody>> bodies;
@@ -374,18 +377,35 @@ struct World::Impl {
       const BodyInfo& bi = info[static_cast<std::size_t>(o->getUserIndex())];
       return bi.robot >= 0 ? -1 : bi.recordIndex;
     };
+    // A robot's link in the ground (RS7057): one entry per robot, its deepest link.
+    for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+      const BodyInfo& bx = info[static_cast<std::size_t>(x->getUserIndex())];
+      const BodyInfo& by = info[static_cast<std::size_t>(y->getUserIndex())];
+      if (bx.robot < 0 || by.robot >= 0 || !groundPlanes.count(by.recordIndex)) continue;
+      const SimRobot& r = *robots[static_cast<std::size_t>(bx.robot)];
+      const RobotBody& body = r.layout().bodies[static_cast<std::size_t>(bx.body)];
+      std::string link = body.links.empty() ? "?" : r.instance().model->links[static_cast<std::size_t>(body.links.front())].name;
+      for (StartOverlap& o : startOverlaps)
+        if (o.recordIndex == bx.recordIndex && !o.link.empty()) {
+          if (depth > o.depth) o = {bx.recordIndex, by.recordIndex, depth, link};
+          return;
+        }
+      startOverlaps.push_back({bx.recordIndex, by.recordIndex, depth, link});
+      return;
+    }
     auto dynamic = [](const btCollisionObject* o) {
       const btRigidBody* rb = btRigidBody::upcast(o);
       return rb && !rb->isStaticOrKinematicObject();
     };
     if (!dynamic(a)) std::swap(a, b);
     if (!dynamic(a) || record(a) < 0) return;
+    if (groundRuleBodies.count(record(a)) && groundPlanes.count(record(b))) return;  // the scene model's RS7013
     for (StartOverlap& o : startOverlaps)
       if (o.recordIndex == record(a) && o.otherRecordIndex == record(b)) {
         o.depth = std::max(o.depth, depth);
         return;
       }
-    startOverlaps.push_back({record(a), record(b), depth});
+    startOverlaps.push_back({record(a), record(b), depth, {}});
   }
 
   void depart(Simulated& s, std::string reason) {
@@ -711,6 +731,8 @@ struct World::Impl {
     if (o.bodyMode == BodyMode::VisualOnly) return true;
     BodyInfo fi{o.collisionGroup, o.collisionMask, -1, o.recordIndex};
     btRigidBody* body = nullptr;
+    if (groundRulePlane(o)) groundPlanes.insert(o.recordIndex);
+    if (groundRuleBody(o)) groundRuleBodies.insert(o.recordIndex);
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
       body = addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
@@ -1107,20 +1129,28 @@ std::optional<NonFinite> World::nonFinite() const {
 const std::vector<StartOverlap>& World::startOverlaps() const { return impl_->startOverlaps; }
 
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
+  if (o.link.empty()) return startOverlapDiagnostic(doc, o.recordIndex, o.otherRecordIndex, o.depth);
   auto pathOf = [&](int recordIndex) -> std::string {
-    if (recordIndex < 0 || static_cast<std::size_t>(recordIndex) >= doc.records.size()) return "a robot's link";
     Diagnostics unused;
     RecordReader r(doc, static_cast<std::size_t>(recordIndex), unused);
-    return "'" + r.text("path").value_or("") + "'";
+    return r.text("path").value_or("");
   };
+  const bool valid = o.recordIndex >= 0 && static_cast<std::size_t>(o.recordIndex) < doc.records.size();
+  Diagnostics unused;
+  const bool written =
+      valid && RecordReader(doc, static_cast<std::size_t>(o.recordIndex), unused).has("generalizedCoordinate");
   char depth[48];
   std::snprintf(depth, sizeof depth, "%.3g m", o.depth);
   Diagnostics one;
-  reportAt(&doc, o.recordIndex, "position", rs::RS7013,
-           "dynamic body " + pathOf(o.recordIndex) + " starts " + depth + " inside " + pathOf(o.otherRecordIndex) +
-               "; the solver pushes it out over the first steps, which moves it and what it touches",
-           one, Severity::Warning, "place it clear of what it starts inside");
-  return one.front();  // reportAt() reports at the record, or bare
+  reportAt(&doc, o.recordIndex, written ? "generalizedCoordinate" : "position", rs::RS7057,
+           "articulated system '" + (valid ? pathOf(o.recordIndex) : std::string("?")) + "' starts with link '" +
+               o.link + "' " + depth + " inside '" +
+               (o.otherRecordIndex >= 0 && static_cast<std::size_t>(o.otherRecordIndex) < doc.records.size()
+                    ? pathOf(o.otherRecordIndex)
+                    : std::string("the ground")) +
+               "'; the solver pushes it out over the first steps",
+           one, Severity::Warning, "raise the robot or change its start pose");
+  return one.front();
 }
 
 Diagnostic departureWarning(const Document& doc, const Departure& d) {

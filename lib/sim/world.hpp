@@ -46,6 +46,7 @@
 #include "core/document.hpp"
 #include "robot/instance.hpp"
 #include "robot/trajectory_format.hpp"
+#include "scene/start_pose.hpp"
 #include "scene/scene.hpp"
 #include "sim/particle_systems.hpp"
 
@@ -182,16 +183,22 @@ Diagnostic departureWarning(const Document& doc, const Departure& departure);
 // A dynamic body that started inside another (or inside the ground) by
 // more than kStartOverlap, as the first step's contacts found it.
 struct StartOverlap {
-  int recordIndex = -1;       // the dynamic body's record
+  int recordIndex = -1;       // the dynamic body's record (a robot's: its articulated record)
   int otherRecordIndex = -1;  // what it is inside (-1: a robot's link)
   double depth = 0;           // m
+  std::string link;           // a robot's link in the ground (RS7057); empty: a body (RS7013)
 };
-inline constexpr double kStartOverlap = 0.01;  // m: closer than this is contact, not a mistake
+inline constexpr double kStartOverlap = kStartOverlapDepth;  // 1 cm: closer than this is contact, not a mistake
 // Penetration the solver is still removing: no body in such a contact may
 // sleep, and the world is not at rest, until it is below this.
 inline constexpr double kRestPenetration = 0.005;  // m
 
-// The warning (RS7013) for a start overlap, at the body record's position.
+// A primitive body below a ground or half_space is not among them: the
+// scene model says that (scene/start_pose.hpp, checkScene()), for
+// validate too.
+// The warning for a start overlap: RS7013 at the body record's position;
+// RS7057 for a robot's link in the ground, at the robot record's
+// generalizedCoordinate (or position when it writes none).
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& overlap);
 
 class World {

@@ -279,6 +279,55 @@ TEST(Mjcf, HopperRootIsTwoSlidesAndAHingeFromAMasslessWorld) {
   EXPECT_NEAR((*leg.visuals[0].color - Eigen::Vector4d(0.8, 0.6, 0.4, 1)).norm(), 0, 1e-6);
 }
 
+// A record without coordinates starts where MuJoCo's model does: the
+// neutral coordinate is qpos0 entry for entry (joint refs, a free body's
+// pos and quat), and the links stand where mj_kinematics puts them there.
+void expectNeutralIsQpos0(const std::string& path) {
+  SCOPED_TRACE(path);
+  MjModelPtr m = compile(path);
+  ASSERT_TRUE(m);
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(path, LoadOptions{}, model, diags)) << dump(diags);
+  Coordinates c;
+  makeCoordinates(model, {}, c);
+  ASSERT_EQ(c.coordinateDim, m->nq);
+  Eigen::VectorXd q = neutralCoordinate(model, c, Pose{});
+  for (int i = 0; i < m->nq; ++i) EXPECT_NEAR(q[i], m->qpos0[i], 1e-12) << "qpos entry " << i;
+}
+
+TEST(Mjcf, NeutralCoordinateIsQpos0) {
+  expectNeutralIsQpos0(kFixtures + "joints.xml");
+  if (!haveGymnasium()) GTEST_SKIP() << kGymnasium << " is absent";
+  for (const char* file : {"ant.xml", "half_cheetah.xml", "hopper.xml", "humanoid.xml", "inverted_pendulum.xml"})
+    expectNeutralIsQpos0(kGymnasium + file);
+}
+
+TEST(Mjcf, HopperStartsStandingAtRootzRef) {
+  if (!haveGymnasium()) GTEST_SKIP() << kGymnasium << " is absent";
+  Model model;
+  Diagnostics diags;
+  ASSERT_TRUE(loadMjcf(kGymnasium + "hopper.xml", LoadOptions{}, model, diags)) << dump(diags);
+  Coordinates c;
+  makeCoordinates(model, {}, c);
+  const int rootz = model.findJoint("rootz");
+  EXPECT_DOUBLE_EQ(model.joints[static_cast<std::size_t>(rootz)].initial, 1.25);
+  Pose base;
+  base.position = {2, 0, 0.5};  // the record's pose places MuJoCo's world
+  Eigen::VectorXd q = neutralCoordinate(model, c, base);
+  EXPECT_DOUBLE_EQ(q[c.coordinateIndex[static_cast<std::size_t>(rootz)]], 1.25);
+  std::vector<Pose> poses = linkPoses(model, c, base, q);
+  EXPECT_NEAR(poses[static_cast<std::size_t>(model.findLink("torso"))].position.z(), 1.75, 1e-12);
+  // A scaled robot starts at its scaled height.
+  Model big;
+  ASSERT_TRUE(loadMjcf(kGymnasium + "hopper.xml", LoadOptions{}, big, diags)) << dump(diags);
+  scaleModel(big, Eigen::Vector3d::Constant(2));
+  Coordinates cb;
+  makeCoordinates(big, {}, cb);
+  std::vector<Pose> bigPoses = linkPoses(big, cb, Pose{}, neutralCoordinate(big, cb, Pose{}));
+  EXPECT_NEAR(bigPoses[static_cast<std::size_t>(big.findLink("torso"))].position.z(), 2.5, 1e-12);
+}
+
 TEST(Mjcf, HumanoidWarnsAboutItsTendons) {
   if (!haveGymnasium()) GTEST_SKIP() << kGymnasium << " is absent";
   Model model;

@@ -337,13 +337,78 @@ TEST(SceneCheck, BodiesOnlyBuildKeepsWhatWiresName) {
     EXPECT_EQ(scene.wires[2].endB, WireEnd::World);
     EXPECT_EQ(scene.wires[2].endA, WireEnd::Body);
     EXPECT_TRUE(scene.wires[2].simulated());
-    EXPECT_EQ(scene.objects.size(), bodiesOnly ? 0u : 3u);  // all three are plain
+    // The visual-only two are plain; the dynamic box is kept for the ground
+    // rule (scene/start_pose.hpp).
+    EXPECT_EQ(scene.objects.size(), bodiesOnly ? 1u : 3u);
   }
 }
 
 TEST(SceneCheck, FindingsMergeInLineOrder) {
   Diagnostics ds = validate(H + object("box", "1 1 1", "0.5", "0") + "objcet /World/x\n");
   EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS4008", "RS3001"})) << describe(ds);
+}
+
+
+// RS7013 from the scene model: a dynamic primitive starting more than 1 cm
+// below a ground or half_space, as rscene-sim's first step would find it.
+std::string atZ(const std::string& prim, const std::string& z, const std::string& scale = "1 1 1",
+                const std::string& radius = "0.5", const std::string& orientation = "1 0 0 0",
+                const std::string& mask = "18446744073709551615") {
+  return "object /World/b " + prim + " 0 0 " + z + " " + orientation + " " + scale + " " + radius +
+         " 1 1 default engine_default false true false - dynamic true 1 " + mask + "\n";
+}
+const std::string G = "object /World/g ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615\n";
+
+int count(const Diagnostics& ds, const std::string& code) {
+  int n = 0;
+  for (const Diagnostic& d : ds) n += d.code == code;
+  return n;
+}
+
+TEST(GroundStart, PrimitiveBelowTheGroundWarnsAtItsPosition) {
+  Diagnostics ds = validate(H + G + atZ("box", "0.3"));  // 1 m box, centre 0.3: 0.2 m inside
+  ASSERT_EQ(count(ds, "RS7013"), 1) << describe(ds);
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS7013") {
+      EXPECT_EQ(d.severity, Severity::Warning);
+      EXPECT_EQ(d.line, 3u);
+      EXPECT_NE(d.message.find("dynamic body '/World/b' starts 0.2 m inside '/World/g'"), std::string::npos) << d.message;
+    }
+}
+
+TEST(GroundStart, EachPrimitiveByItsLowestPoint) {
+  EXPECT_EQ(count(validate(H + G + atZ("box", "0.495")), "RS7013"), 0);  // 5 mm: contact
+  EXPECT_EQ(count(validate(H + G + atZ("box", "0.5")), "RS7013"), 0);
+  EXPECT_EQ(count(validate(H + G + atZ("sphere", "0.45")), "RS7013"), 1);   // radius 0.5
+  EXPECT_EQ(count(validate(H + G + atZ("sphere", "0.495")), "RS7013"), 0);
+  // A box turned 45 degrees about x reaches 0.5 * sqrt(2) down.
+  const std::string turned = "0.9238795 0.3826834 0 0";
+  EXPECT_EQ(count(validate(H + G + atZ("box", "0.6", "1 1 1", "0.5", turned)), "RS7013"), 1);
+  EXPECT_EQ(count(validate(H + G + atZ("box", "0.71", "1 1 1", "0.5", turned)), "RS7013"), 0);
+  // Capsule (radius 0.2, height 1 between the caps' centres) upright: 0.7 down.
+  EXPECT_EQ(count(validate(H + G + atZ("capsule", "0.65", "1 1 1", "0.2")), "RS7013"), 1);
+  EXPECT_EQ(count(validate(H + G + atZ("capsule", "0.7", "1 1 1", "0.2")), "RS7013"), 0);
+  // Cylinder (radius 0.2, height 1) lying on its side: 0.2 down.
+  const std::string lying = "0.7071068 0.7071068 0 0";
+  EXPECT_EQ(count(validate(H + G + atZ("cylinder", "0.15", "1 1 1", "0.2", lying)), "RS7013"), 1);
+  EXPECT_EQ(count(validate(H + G + atZ("cylinder", "0.2", "1 1 1", "0.2", lying)), "RS7013"), 0);
+  // A half_space is a ground too; static bodies and no ground at all are not judged.
+  EXPECT_EQ(count(validate(H + replaced(G, " ground ", " half_space ") + atZ("sphere", "0")), "RS7013"), 1);
+  EXPECT_EQ(count(validate(H + G + replaced(atZ("sphere", "0"), " dynamic ", " static ")), "RS7013"), 0);
+  EXPECT_EQ(count(validate(H + atZ("sphere", "-3")), "RS7013"), 0);
+}
+
+TEST(GroundStart, APairTheFilterSeparatesIsNoOverlap) {
+  EXPECT_EQ(count(validate(H + G + atZ("sphere", "0", "1 1 1", "0.5", "1 0 0 0", "0")), "RS7013"), 0);
+}
+
+TEST(GroundStart, UnderAParentTheWorldPoseCounts) {
+  // Under a static body 3 m up the sphere at z = 0.45 stands 3.45 m up.
+  const std::string parent = replaced(replaced(atZ("box", "3"), " dynamic ", " static "), "/World/b", "/World/up");
+  std::string lifted = replaced(atZ("sphere", "0.45"), "\n", " parentGroupId=up\n");
+  Diagnostics ds = validate(H + G + replaced(parent, "\n", " id=up\n") + lifted);
+  EXPECT_EQ(count(ds, "RS7013"), 0) << describe(ds);
+  EXPECT_EQ(count(validate(H + G + atZ("sphere", "0.45")), "RS7013"), 1);
 }
 
 }  // namespace

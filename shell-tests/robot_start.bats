@@ -1,0 +1,80 @@
+#!/usr/bin/env bats
+# Where bodies and robots start (hostile input round two): an MJCF robot
+# at MuJoCo's qpos0, a start pose outside a joint's limits (RS7056), a
+# robot link in the ground (RS7057), and a primitive body below the ground
+# (RS7013), which validate and sim say alike.
+
+load helpers
+GYM="$CORPUS/robots/gymnasium"
+V="$BIN/rscene-validate"
+SIM="$BIN/rscene-sim"
+
+# hopper Z [KEYS]: the Gymnasium hopper with its record at height Z above a ground at 0.
+hopper() {
+  printf 'raisim_engine_scene 2\narticulated_resource r R %s\n' "$GYM/hopper.xml"
+  printf 'object /World/G ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default - false true true - static true 1 18446744073709551615\n'
+  printf 'articulated /World/H r 0 0 %s 1 0 0 0 true true id=h %s\n' "$1" "${2:-}"
+}
+
+setup() {
+  needs_tools rscene-validate rscene-sim
+  export NO_COLOR=1
+  in_workdir
+}
+
+@test "robots: an MJCF robot without coordinates starts at MuJoCo's qpos0 (hopper's rootz 1.25), standing on the ground" {
+  needs_shared corpus/robots/gymnasium/hopper.xml
+  hopper 0 > h.rscene
+  run -0 --separate-stderr "$SIM" --steps 0 h.rscene
+  [[ "$output" == *"articulated /World/H r 0 0 0 1 0 0 0 true true id=h generalizedCoordinate=0,1.25,0,0,0,0 "* ]]
+  [[ "$stderr" != *RS7057* && "$stderr" != *RS7056* ]]
+  # The record's own coordinates still win.
+  hopper 0 "generalizedCoordinate=0,1.5,0,0,0,0" > w.rscene
+  run -0 --separate-stderr "$SIM" --steps 0 w.rscene
+  [[ "$output" == *"generalizedCoordinate=0,1.5,0,0,0,0 "* ]]
+}
+
+@test "robots: a start pose outside a joint's limits is a warning at generalizedCoordinate (validate --check-files, sim) [RS7056]" {
+  needs_shared corpus/robots/gymnasium/hopper.xml
+  hopper 0 "generalizedCoordinate=0,1.25,0,1,0,0" > h.rscene
+  line=$(grep -n '^articulated ' h.rscene | cut -d: -f1)
+  run -0 "$V" --check-files h.rscene
+  [[ "$output" == *"h.rscene:$line:"*"warning: articulated system '/World/H' starts with joint 'thigh_joint' (entry 3 of generalizedCoordinate) at 1, outside its limits [-2.61799, 0]"*"[RS7056]"* ]]
+  [ "$(grep -c RS7056 <<<"$output")" -eq 1 ]
+  run -0 "$V" h.rscene  # robot files are --check-files' matter
+  [[ "$output" != *RS7056* ]]
+  run -0 --separate-stderr "$SIM" --steps 1 h.rscene
+  [[ "$stderr" == *"thigh_joint"*"[RS7056]"* ]]
+  [ "$(grep -c RS7056 <<<"$stderr")" -eq 1 ]
+}
+
+@test "robots: a robot that starts with a link in the ground is a warning from sim [RS7057]" {
+  needs_shared corpus/robots/gymnasium/hopper.xml
+  hopper -0.3 > h.rscene
+  line=$(grep -n '^articulated ' h.rscene | cut -d: -f1)
+  run -0 --separate-stderr "$SIM" --steps 2 h.rscene
+  [[ "$stderr" == *"h.rscene:$line:"*"warning: articulated system '/World/H' starts with link 'foot' "*" inside '/World/G'"*"[RS7057]"* ]]
+  [ "$(grep -c RS7057 <<<"$stderr")" -eq 1 ]
+}
+
+# box Z: a dynamic 1 m box at height Z over a ground at 0.
+box_scene() {
+  printf 'raisim_engine_scene 2\n'
+  printf 'object /World/G ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default - false true true - static true 1 18446744073709551615\n'
+  printf 'object /World/B box 0 0 %s 1 0 0 0 1 1 1 0.5 1 1 default - false true false - dynamic true 1 18446744073709551615\n' "$1"
+}
+
+@test "bodies: a primitive that starts in the ground is RS7013 from validate and sim alike, once each" {
+  box_scene 0.2 > b.rscene
+  run -0 "$V" b.rscene
+  [[ "$output" == *"b.rscene:3:"*"warning: dynamic body '/World/B' starts 0.3 m inside '/World/G'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$output")" -eq 1 ]
+  run -0 --separate-stderr "$SIM" --steps 2 b.rscene
+  [[ "$stderr" == *"b.rscene:3:"*"warning: dynamic body '/World/B' starts 0.3 m inside '/World/G'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
+  box_scene 0.495 > ok.rscene  # 5 mm: contact, not a mistake
+  run -0 "$V" ok.rscene
+  [[ "$output" != *RS7013* ]]
+  run -0 --separate-stderr "$SIM" --steps 2 ok.rscene
+  [[ "$stderr" != *RS7013* ]]
+}
