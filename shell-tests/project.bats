@@ -85,3 +85,39 @@ EOF
   sed -i 's|^raisim_engine2_project 1|raisim_engine2_project 9|' proj/raisim_engine2_project
   refused "proj/raisim_engine2_project:1:24: error: unsupported project version '9'" "$BIN/rscene-sim" --steps 1 proj
 }
+
+@test "project: a project file that is not a regular file is refused at once, never read" {
+  in_workdir
+  make_project
+  for kind in fifo zero dir loop; do
+    rm -rf proj/raisim_engine2_project
+    case $kind in
+      fifo) mkfifo proj/raisim_engine2_project ;;
+      zero) ln -s /dev/zero proj/raisim_engine2_project ;;
+      dir) mkdir proj/raisim_engine2_project ;;
+      loop) ln -s raisim_engine2_project proj/raisim_engine2_project ;;
+    esac
+    run -1 bounded 1000000 10 "$BIN/rscene-validate" proj
+    [[ "$output" == *"proj/raisim_engine2_project: error: cannot read the project file"*"[RS1201]"* ]] || { echo "$kind: $output"; false; }
+    run -2 --separate-stderr bounded 1000000 10 "$BIN/rscene-to-json" proj
+    [[ "$stderr" == *"proj/raisim_engine2_project: error: cannot read the project file"*"[RS1201]"* ]] || { echo "$kind: $stderr"; false; }
+  done
+  rm -f proj/raisim_engine2_project
+  printf '\xef\xbb\xbfraisim_engine2_project 1\nscene_directory scenes\n' > proj/raisim_engine2_project
+  run -1 "$BIN/rscene-validate" proj
+  [[ "$output" == *"proj/raisim_engine2_project:1:1: error: project file starts with a UTF-8 byte order mark [RS1201]"* ]]
+}
+
+@test "project: a stop signal ends a tool waiting to read a FIFO operand" {
+  needs_tools rscene-sim
+  in_workdir
+  mkfifo wait.rscene
+  "$BIN/rscene-sim" --steps 1 wait.rscene -o out.rscene &
+  pid=$!
+  sleep 0.5
+  kill -TERM "$pid"
+  rc=0
+  wait "$pid" || rc=$?
+  [ "$rc" -eq 143 ]
+  [ ! -e out.rscene ]
+}

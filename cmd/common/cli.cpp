@@ -99,6 +99,7 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
     in.display = stdinName.empty() ? "<stdin>" : stdinName;
     in.path = stdinName;
     std::string err;
+    WritingScope reading;  // as below: a stop signal ends a tool waiting for its input
     if (!readFile("/dev/stdin", in.text, &err)) {
       error("cannot read standard input: " + err);
       return false;
@@ -110,6 +111,10 @@ bool readInput(const std::string& operand, const std::string& stdinName, Input& 
   in.display = file;
   in.path = file;
   std::string err;
+  // Nothing is written yet: a stop signal ends the tool at once, even one
+  // blocked opening a FIFO that no writer opens (the stop flag alone would
+  // wait for the open, forever).
+  WritingScope reading;
   if (!readFile(file, in.text, &err)) {
     error("cannot read '" + file + "': " + err);
     return false;

@@ -41,7 +41,8 @@ Operands expandOperands(const std::vector<std::string>& operands, bool checkProj
       std::vector<std::string> scenes = projectScenes(project, errors);
       for (const std::string& e : errors) error(e);
       out.ok = out.ok && errors.empty();
-      if (scenes.empty() && errors.empty()) warning("no .rscene files in project '" + root + "'");
+      if (scenes.empty() && errors.empty() && !project.sceneDirectory.empty())
+        warning("no .rscene files in project '" + root + "'");
       out.files.insert(out.files.end(), scenes.begin(), scenes.end());
       continue;
     }

@@ -7,16 +7,18 @@
 
 #include "common/cli.hpp"
 #include "core/filesystem.hpp"
-#include "core/io.hpp"
 #include "core/project.hpp"
 
 namespace rscene::cli {
 
 bool readProjectFile(const std::string& root, std::string& text, ProjectRead& read) {
+  // Through the FileSystem: a FIFO, a device or a folder in the project
+  // file's place is refused at once (RS1201), and a read stops at the cap.
   std::string file = joinPath(root, kProjectFileName), err;
-  if (!readFile(file, text, &err, kMaxProjectFileBytes)) {
-    error("cannot read '" + file + "': " + err);
-    return false;
+  if (!diskFileSystem().read(file, text, &err, kMaxProjectFileBytes)) {
+    text.clear();
+    read = readProject(root, diskFileSystem());  // the same refusal, as a finding
+    return true;
   }
   read = parseProject(text, root, diskFileSystem());
   return true;

@@ -125,6 +125,11 @@ ProjectRead parseProject(std::string_view text, const std::string& root, const F
   p.root = root.empty() ? "." : root;
   p.file = joinPath(p.root, kProjectFileName);
   Diagnostics& ds = r.diagnostics;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") {
+    ds.push_back(finding(rs::RS1201, Severity::Error, 1, 1, "project file starts with a UTF-8 byte order mark",
+                         "save it without one: the first bytes are `raisim_engine2_project 1`"));
+    return r;
+  }
   if (!cleanText(text, ds)) return r;
   std::vector<Line> lines = records(text);
   const std::string header = std::string(kProjectFileName);
@@ -161,15 +166,15 @@ ProjectRead parseProject(std::string_view text, const std::string& root, const F
                            "known records: name, asset_directory, scene_directory, default_scene, description"));
       continue;
     }
+    if (it->path && l.value.empty()) {
+      ds.push_back(finding(rs::RS1203, Severity::Error, l.number, 1, "project record '" + std::string(l.key) + "' has no value",
+                           "write a path relative to the project folder"));
+      continue;
+    }
     if (*it->line != 0) {
       ds.push_back(finding(rs::RS1204, Severity::Error, l.number, 1,
                            "project record '" + std::string(l.key) + "' given twice (first at line " +
                                std::to_string(*it->line) + ")"));
-      continue;
-    }
-    if (it->path && l.value.empty()) {
-      ds.push_back(finding(rs::RS1203, Severity::Error, l.number, 1, "project record '" + std::string(l.key) + "' has no value",
-                           "write a path relative to the project folder"));
       continue;
     }
     *it->line = l.number;
@@ -226,7 +231,12 @@ bool isProject(const std::string& path, const FileSystem& files, std::string& ro
   if (path.empty() || path == "-") return false;
   FileKind kind = files.stat(path).kind;
   if (kind == FileKind::Directory) {
-    if (files.stat(joinPath(path, kProjectFileName)).kind != FileKind::Regular) return false;
+    // Whatever holds the name makes the folder a project, so that a FIFO,
+    // a folder or a link loop there is refused as a project file (RS1201)
+    // instead of the folder being taken for a plain folder of scenes.
+    std::string file = joinPath(path, kProjectFileName);
+    std::error_code ec;
+    if (files.stat(file).kind == FileKind::Missing && !fs::is_symlink(file, ec)) return false;
     root = path;
     while (root.size() > 1 && root.back() == '/') root.pop_back();
     return true;

@@ -125,9 +125,10 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
     reportAt(doc, d.recordIndex, "position", rs::RS7077,
              "deformable '" + d.path + "': particle " + std::to_string(particle) + " at (" + roundedNumber(at.x(), 6) +
                  ", " + roundedNumber(at.y(), 6) + ", " + roundedNumber(at.z(), 6) + ") starts " +
-                 roundedNumber(depth - r, 6) + " m inside the ground or another body (its sphere of collisionRadius " +
-                 roundedNumber(r, 6) + " m overlaps by " + roundedNumber(depth, 6) +
-                 " m); pushing it out in one substep would throw the body and what it touches",
+                 (depth > r ? roundedNumber(depth - r, 6) + " m inside" : roundedNumber(r - depth, 6) + " m above the surface of") +
+                 " the ground or another body, its sphere of collisionRadius " + roundedNumber(r, 6) + " m overlapping by " +
+                 roundedNumber(depth, 6) + " m (more than half the radius); pushing it out in one substep would throw "
+                 "the body and what it touches",
              diagnostics, Severity::Error,
              "place the deformable clear of the other bodies (at least its collisionRadius above the ground)");
     ok = false;

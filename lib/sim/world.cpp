@@ -370,6 +370,53 @@ struct World::Impl {
   // wires or springs; its pose stays what it was.
   // One entry per dynamic body of a pair (a body inside another dynamic
   // one is named once, by the first of the pair).
+  // A robot whose link starts inside the ground is refused (RS7057), before
+  // any step: Bullet's multibody solver, unlike the rigid bodies' split
+  // impulses, pushes such a link out with speed, and a hopper started
+  // 0.5 m deep left at tens of m/s to 257 m.  contactPairTest asks the
+  // narrow phase about one pair without touching the world's contact
+  // cache, so the run that follows is the run it would have been.
+  bool robotsAboveGround(const Document* doc, Diagnostics& diagnostics) {
+    if (!doc || robots.empty() || groundPlanes.empty()) return true;
+    std::vector<btCollisionObject*> grounds;
+    btCollisionObjectArray& objects = world->getCollisionObjectArray();
+    for (int i = 0; i < objects.size(); ++i) {
+      const BodyInfo& bi = info[static_cast<std::size_t>(objects[i]->getUserIndex())];
+      if (bi.robot < 0 && groundPlanes.count(bi.recordIndex)) grounds.push_back(objects[i]);
+    }
+    struct Deepest : btCollisionWorld::ContactResultCallback {
+      double depth = 0;
+      btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*,
+                               int, int) override {
+        depth = std::max(depth, -double(cp.getDistance()));
+        return 0;
+      }
+    };
+    bool ok = true;
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      StartOverlap worst{-1, -1, 0, {}};
+      for (btMultiBodyLinkCollider* c : robots[r]->colliders()) {
+        if (c->getCollisionShape()->getShapeType() == EMPTY_SHAPE_PROXYTYPE) continue;
+        const BodyInfo& bc = info[static_cast<std::size_t>(c->getUserIndex())];
+        for (btCollisionObject* g : grounds) {
+          if (!filter.groupsMeet(c, g)) continue;
+          Deepest deepest;
+          world->contactPairTest(c, g, deepest);
+          if (!(deepest.depth > kStartOverlap) || deepest.depth <= worst.depth) continue;
+          const RobotBody& body = robots[r]->layout().bodies[static_cast<std::size_t>(bc.body)];
+          std::string link = body.links.empty()
+                                 ? "?"
+                                 : robots[r]->instance().model->links[static_cast<std::size_t>(body.links.front())].name;
+          worst = {bc.recordIndex, info[static_cast<std::size_t>(g->getUserIndex())].recordIndex, deepest.depth, link};
+        }
+      }
+      if (worst.recordIndex < 0) continue;
+      diagnostics.push_back(robotInGround(*doc, worst));
+      ok = false;
+    }
+    return ok;
+  }
+
   void noteStartOverlap(const btPersistentManifold& m, double depth) {
     const btCollisionObject* a = m.getBody0();
     const btCollisionObject* b = m.getBody1();
@@ -377,21 +424,12 @@ struct World::Impl {
       const BodyInfo& bi = info[static_cast<std::size_t>(o->getUserIndex())];
       return bi.robot >= 0 ? -1 : bi.recordIndex;
     };
-    // A robot's link in the ground (RS7057): one entry per robot, its deepest link.
+    // A robot's link in the ground was refused before the first step
+    // (robotsAboveGround, RS7057); one that got there in the step is contact.
     for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
       const BodyInfo& bx = info[static_cast<std::size_t>(x->getUserIndex())];
       const BodyInfo& by = info[static_cast<std::size_t>(y->getUserIndex())];
-      if (bx.robot < 0 || by.robot >= 0 || !groundPlanes.count(by.recordIndex)) continue;
-      const SimRobot& r = *robots[static_cast<std::size_t>(bx.robot)];
-      const RobotBody& body = r.layout().bodies[static_cast<std::size_t>(bx.body)];
-      std::string link = body.links.empty() ? "?" : r.instance().model->links[static_cast<std::size_t>(body.links.front())].name;
-      for (StartOverlap& o : startOverlaps)
-        if (o.recordIndex == bx.recordIndex && !o.link.empty()) {
-          if (depth > o.depth) o = {bx.recordIndex, by.recordIndex, depth, link};
-          return;
-        }
-      startOverlaps.push_back({bx.recordIndex, by.recordIndex, depth, link});
-      return;
+      if (bx.robot >= 0 && by.robot < 0 && groundPlanes.count(by.recordIndex)) return;
     }
     auto dynamic = [](const btCollisionObject* o) {
       const btRigidBody* rb = btRigidBody::upcast(o);
@@ -943,6 +981,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   // Grains likewise (RS7091; the ground is the scene model's, checkScene()).
   if (w.surfaces && !w.particles.checkGranularStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
   if (!w.deformableMassRatios(scene, options.document, diagnostics)) return nullptr;
+  if (!w.robotsAboveGround(options.document, diagnostics)) return nullptr;
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 
@@ -1130,6 +1169,10 @@ const std::vector<StartOverlap>& World::startOverlaps() const { return impl_->st
 
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
   if (o.link.empty()) return startOverlapDiagnostic(doc, o.recordIndex, o.otherRecordIndex, o.depth);
+  return robotInGround(doc, o);
+}
+
+Diagnostic robotInGround(const Document& doc, const StartOverlap& o) {
   auto pathOf = [&](int recordIndex) -> std::string {
     Diagnostics unused;
     RecordReader r(doc, static_cast<std::size_t>(recordIndex), unused);
@@ -1148,8 +1191,9 @@ Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
                (o.otherRecordIndex >= 0 && static_cast<std::size_t>(o.otherRecordIndex) < doc.records.size()
                     ? pathOf(o.otherRecordIndex)
                     : std::string("the ground")) +
-               "'; the solver pushes it out over the first steps",
-           one, Severity::Warning, "raise the robot or change its start pose");
+               "', more than 1 cm: Bullet's multibody solver would throw it out of the ground; nothing was "
+               "simulated",
+           one, Severity::Error, "raise the robot's base or change its start pose so that no link is in the ground");
   return one.front();
 }
 

@@ -200,6 +200,9 @@ inline constexpr double kRestPenetration = 0.005;  // m
 // RS7057 for a robot's link in the ground, at the robot record's
 // generalizedCoordinate (or position when it writes none).
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& overlap);
+// RS7057, an error: robot `overlap.recordIndex` starts with link
+// `overlap.link` in the ground (World::create refuses it before any step).
+Diagnostic robotInGround(const Document& doc, const StartOverlap& overlap);
 
 class World {
  public:
