@@ -70,7 +70,7 @@ if ! diff -rq "$DIR/batch" "$DIR/single" > /dev/null; then
   echo "bench/batch/sim.sh: error: the batch's outputs differ from single runs'" >&2
   exit 1
 fi
-ratio=$(awk -v a="$batch" -v b="$single" 'BEGIN { printf "%.3f", b > 0 ? a / b : 0 }')
+ratio=$(awk -v a="$batch" -v b="$single" 'BEGIN { printf "%.3f", (b > 0) ? a / b : 0 }')
 verdict=$(awk -v r="$ratio" 'BEGIN { print (r <= 0.5 ? "PASS" : "MISS") }')
 echo "  one process ($N scenes):   $batch s"
 echo "  $N processes:              $single s"
