@@ -62,6 +62,7 @@ cpu() {
 echo "batches of scenes: $N small scenes (3 boxes on a ground, 0.5 s at 1 ms steps), CPU seconds, best of $REPEAT"
 cpu "$BIN/rscene-sim" --duration 0.5 -o "$DIR/batch/{stem}.rscene" "$DIR/scenes/" || exit 1
 batch=$CPU
+# shellcheck disable=SC2016  # expanded by the inner shell
 cpu bash -c 'for f in "$2"/scenes/*.rscene; do
   n=${f##*/}; "$1" --duration 0.5 -o "$2/single/$n" "$f" || exit 1
 done' loop "$BIN/rscene-sim" "$DIR" || exit 1
