@@ -121,7 +121,7 @@ setup() {
   jq -e 'has("scene") | not' <<<"$stderr"
 }
 
-@test "batch: robot files are read once, and every scene naming a broken one says so" {
+@test "batch: a robot file shared by scenes: every scene naming a broken one says so, the others match single runs" {
   cp "$DATA/robots/urdf/two_link.urdf" good.urdf
   cp "$DATA/robots/urdf/bad_xml.urdf" bad.urdf
   for r in good bad; do
@@ -170,4 +170,22 @@ setup() {
   [ ! -e out/z_long.rscene ] && [ ! -e out/z_long.jsonl ]
   [ -z "$(find . -name '*.tmp*')" ]
   grep -q "stopped by a signal after 3 of 4 scenes" err
+}
+
+@test "batch: a mesh shared by scenes: an unreadable one fails every scene naming it, the others match single runs" {
+  mkdir meshes
+  printf 'not an obj\001' > meshes/rock.obj
+  cp "$DATA/render_assets/crate.obj" meshes/
+  rm scenes/*.rscene
+  for i in 1 2; do
+    sed 's|meshes/rock.obj|../meshes/rock.obj|' "$DATA/sim_missing_mesh.rscene" > "scenes/rock$i.rscene"
+    sed 's|meshes/rock.obj|../meshes/crate.obj|' "$DATA/sim_missing_mesh.rscene" > "scenes/crate$i.rscene"
+  done
+  run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}.rscene' scenes/
+  [[ "$stderr" == *"scenes/rock1.rscene:2:93: error: body '/World/Rock': cannot read mesh"*"[RS7007]"* ]]
+  [[ "$stderr" == *"scenes/rock2.rscene:2:93: error: body '/World/Rock': cannot read mesh"*"[RS7007]"* ]]
+  [ "${stderr_lines[-1]}" = "rscene-sim: 2 scenes simulated, 2 failed" ]
+  for i in 1 2; do
+    "$SIM" --steps 10 "scenes/crate$i.rscene" | cmp - "out/crate$i.rscene"
+  done
 }

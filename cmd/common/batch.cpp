@@ -178,11 +178,16 @@ void BatchProgress::scene(std::size_t index) {
 }
 
 void BatchProgress::step(std::uint64_t done, std::uint64_t of) {
+  stepShown_ = true;
   show("scene " + std::to_string(index_ + 1) + "/" + std::to_string(total_) + ", step " + std::to_string(done) + "/" +
        std::to_string(of));
 }
 
-void BatchProgress::stepsDone() { show("scene " + std::to_string(index_ + 1) + "/" + std::to_string(total_)); }
+void BatchProgress::stepsDone() {
+  if (!stepShown_) return;
+  stepShown_ = false;
+  show("scene " + std::to_string(index_ + 1) + "/" + std::to_string(total_));
+}
 
 void BatchProgress::clear() {
   if (!tee_->progressShown) return;

@@ -67,7 +67,7 @@ class BatchProgress {
   class Tee;
   void show(const std::string& line);
   std::size_t total_, index_ = 0;
-  bool terminal_;
+  bool terminal_, stepShown_ = false;
   std::unique_ptr<Tee> tee_;
   std::streambuf* original_ = nullptr;
 };
