@@ -106,6 +106,15 @@ setup() {
     "$SIM" --steps 10 --every 5 --trajectory-format csv --trajectory alone.csv "scenes/s$i.rscene" > /dev/null
     cmp alone.csv "out/s$i.csv"
   done
+  # Scenes with sensors: each records into its own folder, as alone.
+  mkdir cell && cp -r "$ROOT/examples/robots" cell/
+  cp "$ROOT/examples/robot_cell.rscene" cell/a.rscene
+  cp "$ROOT/examples/robot_cell.rscene" cell/b.rscene
+  run -0 "$SIM" --duration 0.1 --pd-gains 100,2 --sensors 'out/{stem}-sensors' -o 'out/{stem}.cell.rscene' cell/
+  [ -f out/a-sensors/World+Robot+Imu.csv ] && [ -f out/b-sensors/World+Robot+Imu.csv ]
+  "$SIM" --duration 0.1 --pd-gains 100,2 --sensors alone -o alone.rscene cell/b.rscene
+  diff -r alone out/b-sensors
+  cmp alone.rscene out/b.cell.rscene
 }
 
 @test "batch: --report prints one JSON line per scene, a failed one with its status and first error" {
