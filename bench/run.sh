@@ -8,7 +8,9 @@
 # of CPU time on the 128 MB scene, peak RSS <= 3x) are marked PASS or MISS.  Quote the ratio to
 # `cat` from the same run; absolute MB/s move with the machine's load.
 # At the end, when rscene-sim is built, bench/sim/run.sh compares it with
-# a hand-written Bullet program (several minutes; SIM_BENCH_* there), and
+# a hand-written Bullet program (several minutes; SIM_BENCH_* there),
+# bench/batch/sim.sh times 500 small scenes in one rscene-sim against 500
+# processes, and
 # bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2, and
 # bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest; then
 # bench/soft/*.sh, bench/xml/convert.sh and rscene-xml-hostile-bench
@@ -201,6 +203,11 @@ fi
 if [[ -x $BIN/rscene-sim && -x $BIN/rscene-sim-baseline && -x $BIN/rscene-sim-bench-gen ]]; then
   echo
   bash "$(dirname "${BASH_SOURCE[0]}")/sim/run.sh" "$BIN" || status=1
+fi
+# Batches of scenes: 500 small scenes in one rscene-sim against 500 processes.
+if [[ -x $BIN/rscene-sim ]]; then
+  echo
+  bash "$(dirname "${BASH_SOURCE[0]}")/batch/sim.sh" "$BIN" || status=1
 fi
 [[ -x $BIN/rscene-render ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/render/run.sh" "$BIN" || status=1; }
 # Robots against MuJoCo (issue 11); skips itself without ../shared or MuJoCo.

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -12,9 +13,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "common/batch.hpp"
 #include "common/cli.hpp"
 #include "core/loader.hpp"
+#include "core/scene_pattern.hpp"
 #include "scene/scene.hpp"
+#include "robot/load.hpp"
 #include "robot/trajectory_format.hpp"
 #include "core/writer.hpp"
 #include "sensor_files.hpp"
@@ -32,7 +36,8 @@ using Clock = std::chrono::steady_clock;
 volatile std::sig_atomic_t gInterrupted = 0;  // the stop signal's number (cli::stopOnInterrupt)
 
 struct Options {
-  std::string file = "-", output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
+  std::vector<std::string> files;
+  std::string output = "-", stdinName, baseDir, trajectory, trajectoryFormat = "jsonl";
   std::string sensors, imuFormat = "csv", pcdEncoding = "binary";
   double duration = 1;
   long long steps = -1;
@@ -45,11 +50,33 @@ struct Options {
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
-int run(const Options& opt) {
+// One scene's operand and outputs (the patterns of a batch expanded).
+struct SceneJob {
+  std::string file = "-", output = "-", trajectory, sensors;
+};
+
+// What the scenes of one run share: meshes and robot files are read once.
+// Only what was read from disk: each scene builds its own model and world.
+struct Shared {
+  asset::AssetCache assets;
+  robot::ModelCache models;
+};
+
+// Simulates one scene as rscene-sim always has: diagnostics printed, the
+// outputs written atomically, a failed or interrupted run leaving none of
+// its own.  Returns the exit status (kInterrupted when a stop signal
+// stopped it: the caller ends by the signal); `report` gets the --report object of
+// a run that succeeded; `batch` (several scenes) takes the step progress.
+int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann::json* report,
+             cli::BatchProgress* batch) {
+  Options opt = base;  // the per-scene paths below
+  opt.output = job.output;
+  opt.trajectory = job.trajectory;
+  opt.sensors = job.sensors;
   bool color = cli::colorFor(2);
   Clock::time_point start = Clock::now();
   cli::Input in;
-  if (!cli::readInput(opt.file, opt.stdinName, in)) return cli::kTrouble;
+  if (!cli::readInput(job.file, opt.stdinName, in)) return cli::kTrouble;
   LoadResult loaded = parse(std::move(in.text));
   Clock::time_point parsedAt = Clock::now();
   Document& doc = loaded.document;
@@ -71,8 +98,9 @@ int run(const Options& opt) {
   po.pdGains = opt.pdGains;
   po.recordSensors = !opt.sensors.empty();
   po.imuFormat = opt.imuFormat == "jsonl" ? sim::ImuFormat::Jsonl : sim::ImuFormat::Csv;
+  po.models = &shared.models;
   Diagnostics ds = loaded.diagnostics;
-  asset::AssetCache assets;
+  asset::AssetCache& assets = shared.assets;
   sim::Prepared prepared;
   std::string usage;
   bool ok = sim::prepareSimulation(doc, po, assets, prepared, ds, usage);
@@ -128,7 +156,10 @@ int run(const Options& opt) {
   ro.maxPairs = po.maxPairs;
   ro.interrupted = &gInterrupted;
   ro.sample = record;
-  if (isatty(2)) {
+  if (batch && batch->terminal()) {
+    ro.progress = [batch](std::uint64_t n, std::uint64_t of) { batch->step(n, of); };
+    ro.progressDone = [batch] { batch->stepsDone(); };
+  } else if (!batch && isatty(2)) {
     ro.progress = [](std::uint64_t n, std::uint64_t of) {
       std::cerr << "\r" << cli::toolName() << ": step " << n << "/" << of << std::flush;
     };
@@ -157,7 +188,7 @@ int run(const Options& opt) {
   bool simulated = recorder ? files.run(withTrajectory, &gInterrupted) : withTrajectory();
   if (!simulated || gInterrupted) {
     files.discard();  // a failed or interrupted run leaves no sensor files
-    return gInterrupted ? cli::endBySignal(gInterrupted) : cli::kTrouble;
+    return gInterrupted ? cli::kInterrupted : cli::kTrouble;  // the caller ends by the signal
   }
   Diagnostics departures;
   for (const sim::StartOverlap& o : world->startOverlaps()) departures.push_back(sim::startOverlapWarning(doc, o));
@@ -171,18 +202,101 @@ int run(const Options& opt) {
   if (auto w = sim::deformablesAtStartPose(doc, prepared.scene)) print(Diagnostics{*w});
   if (!cli::writeOutput(opt.output, [&](Sink& s) { writeCanonical(doc, s); return true; })) return cli::kTrouble;
   Clock::time_point writtenAt = Clock::now();
-  if (opt.report) {
+  if (report) {
     sim::RunTimes t;
     t.wall = seconds(start, Clock::now());
     t.parse = seconds(start, parsedAt);
     t.build = seconds(parsedAt, loadedAt);
     t.step = seconds(loadedAt, steppedAt);
     t.write = seconds(steppedAt, writtenAt);
-    nlohmann::json r = sim::runReport(*world, result, t, sensors.size(), recorder ? recorder->scans() : 0,
-                                      recorder ? recorder->scanSeconds() : 0.0);
-    std::cerr << r.dump() << '\n';
+    *report = sim::runReport(*world, result, t, sensors.size(), recorder ? recorder->scans() : 0,
+                             recorder ? recorder->scanSeconds() : 0.0);
   }
   return cli::kSuccess;
+}
+
+// The outputs of the scene `file`: the patterns expanded ({stem} of `-` is
+// that of --stdin-filename, else "stdin").
+bool expandOutputs(const Options& opt, const std::string& file, SceneJob& job) {
+  job.file = file;
+  const std::string& named = file == "-" && !opt.stdinName.empty() ? opt.stdinName : file;
+  return cli::scenePath("-o", opt.output, named, job.output) &&
+         cli::scenePath("--trajectory", opt.trajectory, named, job.trajectory) &&
+         cli::scenePath("--sensors", opt.sensors, named, job.sensors);
+}
+
+// One scene: the operand and outputs as given (today's rscene-sim); a
+// pattern names the one scene's outputs too.
+int runOne(const Options& opt) {
+  SceneJob job;
+  if (!expandOutputs(opt, opt.files.empty() ? "-" : opt.files[0], job)) return cli::kTrouble;
+  // With --sensors, SensorFiles::prepare() checks them once the sensors'
+  // folders are known (an output inside a LiDAR's folder-to-be is refused
+  // as that, not as a file in a missing folder).
+  if (job.sensors.empty() && !cli::checkOutputs({{"-o", job.output}, {"--trajectory", job.trajectory}}))
+    return cli::kTrouble;
+  cli::stopOnInterrupt(&gInterrupted);
+  Shared shared;
+  nlohmann::json report;
+  int rc = simulate(opt, job, shared, opt.report ? &report : nullptr, nullptr);
+  if (rc == cli::kInterrupted) return cli::endBySignal(gInterrupted);
+  if (rc == cli::kSuccess && opt.report) std::cerr << report.dump() << '\n';
+  return rc;
+}
+
+// Several scenes (rscene-sim(1), BATCHES): every output named by a
+// pattern and checked before any work; a scene that fails does not stop
+// the others; a stop signal stops the batch.
+int runBatch(const Options& opt) {
+  cli::Operands operands = cli::expandOperands(opt.files);
+  const std::vector<std::string>& files = operands.files;
+  const std::size_t n = files.size();
+  if (!cli::requireScenePattern("-o", opt.output, n) ||
+      (!opt.trajectory.empty() && !cli::requireScenePattern("--trajectory", opt.trajectory, n)) ||
+      (!opt.sensors.empty() && !cli::requireScenePattern("--sensors", opt.sensors, n)))
+    return cli::kTrouble;
+  if (std::count(files.begin(), files.end(), std::string("-")) > 1) {
+    cli::error("standard input (-) is named more than once");
+    return cli::kTrouble;
+  }
+  std::vector<SceneJob> jobs(n);
+  std::vector<cli::SceneOutputs> outputs(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    SceneJob& job = jobs[i];
+    if (!expandOutputs(opt, files[i], job)) return cli::kTrouble;
+    outputs[i].scene = job.file != "-" ? job.file : opt.stdinName.empty() ? "<stdin>" : opt.stdinName;
+    // (Inside a scene, SensorFiles::prepare() also checks them against its
+    // sensors' folders, as a single run does.)
+    outputs[i].outputs = {{"-o", job.output}, {"--trajectory", job.trajectory}};
+    if (!job.sensors.empty()) outputs[i].folders = {{"--sensors", job.sensors}};
+  }
+  if (!cli::checkBatchOutputs(outputs)) return cli::kTrouble;
+  cli::stopOnInterrupt(&gInterrupted);
+  Shared shared;
+  cli::BatchProgress progress(n);
+  std::size_t failed = operands.ok ? 0 : 1, done = 0;  // an unreadable folder or project counts as one
+  for (std::size_t i = 0; i < n && !gInterrupted; ++i) {
+    progress.scene(i);
+    nlohmann::json report;
+    int rc = simulate(opt, jobs[i], shared, opt.report ? &report : nullptr, &progress);
+    if (rc == cli::kInterrupted) break;  // its outputs discarded; the scenes before it stay written
+    (rc == cli::kSuccess ? done : failed)++;
+    if (!opt.report) continue;
+    nlohmann::json line = nlohmann::json::object();
+    line["scene"] = outputs[i].scene;
+    line["status"] = rc;
+    if (rc == cli::kSuccess) line.update(report);
+    else line["error"] = progress.firstError();
+    std::cerr << line.dump() << '\n';
+  }
+  progress.clear();
+  if (gInterrupted) {
+    cli::error("stopped by a signal after " + std::to_string(done + failed) + " of " + std::to_string(n) +
+               " scenes; the finished scenes' outputs are written");
+    return cli::endBySignal(gInterrupted);
+  }
+  cli::batchSummary(done, failed, "simulated");
+  return failed ? cli::kTrouble : cli::kSuccess;
 }
 
 }  // namespace
@@ -191,8 +305,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Simulate the physics of a .rscene scene in Bullet and write the scene back."};
   cli::setup(app, "rscene-sim");
   Options opt;
-  cli::addInputOperand(app, opt.file);
-  cli::addOutputOption(app, opt.output, "Write the simulated scene to FILE (atomically) instead of standard output");
+  app.add_option("files", opt.files,
+                 "Scene files, or folders and projects to simulate every *.rscene of; none or - reads standard input")
+      ->type_name("FILE");
+  cli::addOutputOption(app, opt.output,
+                       "Write the simulated scene to FILE (atomically) instead of standard output; with several "
+                       "scenes a pattern naming each: {stem} (file name without .rscene), {dir} (its folder)");
   auto* duration = app.add_option("--duration", opt.duration, "Simulate S seconds (default 1)")->type_name("S")
                        ->check(cli::seconds());
   app.add_option("--steps", opt.steps, "Simulate N time steps")->type_name("N")->check(cli::count(0))
@@ -229,11 +347,5 @@ int main(int argc, char** argv) {
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
-  // With --sensors, SensorFiles::prepare() checks them once the sensors'
-  // folders are known (an output inside a LiDAR's folder-to-be is refused
-  // as that, not as a file in a missing folder).
-  if (opt.sensors.empty() && !cli::checkOutputs({{"-o", opt.output}, {"--trajectory", opt.trajectory}}))
-    return cli::kTrouble;
-  cli::stopOnInterrupt(&gInterrupted);
-  return run(opt);
+  return cli::isBatch(opt.files, hasSceneFields(opt.output)) ? runBatch(opt) : runOne(opt);
 }

@@ -1,7 +1,7 @@
 # fish completion for rscene-sim
 complete -c rscene-sim -s h -l help -d 'Print help and exit'
 complete -c rscene-sim -l version -d 'Print version and exit'
-complete -c rscene-sim -s o -l output -r -F -d 'Write the simulated scene to FILE atomically'
+complete -c rscene-sim -s o -l output -r -F -d 'Write the simulated scene to FILE atomically (several scenes: a pattern with {stem} or {dir})'
 complete -c rscene-sim -l duration -x -d 'Simulate S seconds'
 complete -c rscene-sim -l steps -x -d 'Simulate N time steps'
 complete -c rscene-sim -l max-steps -x -d 'Refuse a run of more than N time steps'

@@ -155,11 +155,21 @@ std::shared_ptr<const Model> ModelCache::get(const std::string& path, const Load
   Key key{path, options.resourceDirectory, options.modules, options.scale.x(), options.scale.y(), options.scale.z(),
           options.allowMissingMeshes};
   auto found = models_.find(key);
-  if (found != models_.end()) return found->second;
-  std::shared_ptr<const Model> model;
+  if (found != models_.end()) {
+    Entry& e = found->second;
+    if (e.reportedIn != scene_) {  // a later scene of a batch: said again, once
+      diagnostics.insert(diagnostics.end(), e.diagnostics.begin(), e.diagnostics.end());
+      e.reportedIn = scene_;
+    }
+    return e.model;
+  }
+  Entry e;
   Model m;
-  if (loadModel(path, options, m, diagnostics)) model = std::make_shared<const Model>(std::move(m));
-  models_.emplace(std::move(key), model);  // a failed load is remembered too: reported once
+  if (loadModel(path, options, m, e.diagnostics)) e.model = std::make_shared<const Model>(std::move(m));
+  e.reportedIn = scene_;
+  diagnostics.insert(diagnostics.end(), e.diagnostics.begin(), e.diagnostics.end());
+  std::shared_ptr<const Model> model = e.model;
+  models_.emplace(std::move(key), std::move(e));  // a failed load is remembered too: reported once a scene
   return model;
 }
 

@@ -6,6 +6,7 @@
 // library never prints.
 #pragma once
 #include <Eigen/Core>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -70,15 +71,26 @@ void scaleModel(Model& model, const Eigen::Vector3d& scale);
 
 // One load per distinct (file, resource directory, modules, scale) in a run:
 // sixteen robots of one URDF read it once.  Diagnostics of a load are
-// reported by the first request only.
+// reported by the first request only (of each scene: see nextScene()).
 class ModelCache {
  public:
   // The model, or nullptr when it did not load (diagnostics say why).
   std::shared_ptr<const Model> get(const std::string& path, const LoadOptions& options, Diagnostics& diagnostics);
 
+  // A cache kept across the scenes of a batch (rscene-sim's): from now on
+  // each model's load diagnostics are reported again, to its first request,
+  // so every scene naming a broken or odd file says so, as it would alone.
+  void nextScene() { ++scene_; }
+
  private:
   using Key = std::tuple<std::string, std::string, std::vector<std::string>, double, double, double, bool>;
-  std::map<Key, std::shared_ptr<const Model>> models_;
+  struct Entry {
+    std::shared_ptr<const Model> model;
+    Diagnostics diagnostics;  // of the load
+    std::uint64_t reportedIn = 0;
+  };
+  std::map<Key, Entry> models_;
+  std::uint64_t scene_ = 0;
 };
 
 }  // namespace rscene::robot

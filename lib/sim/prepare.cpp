@@ -83,7 +83,7 @@ bool prepareSimulation(const Document& doc, const PrepareOptions& o, asset::Asse
   wo.maxPairs = o.maxPairs;
   wo.document = &doc;
   wo.allowMissingAssets = o.allowMissingAssets;
-  ok = ok && makeRobots(doc, out.scene, out.robots, ds, o.allowMissingAssets);
+  ok = ok && makeRobots(doc, out.scene, out.robots, ds, o.allowMissingAssets, o.models);
   wo.robots = &out.robots;
   if (!parsePdGains(o.pdGains, wo.pd, usageError)) return false;
   const int robotsLeftOut = ok ? leftOut(out.scene) : 0;

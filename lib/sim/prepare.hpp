@@ -31,6 +31,10 @@ struct PrepareOptions {
   std::vector<std::string> pdGains;      // --pd-gains, as written
   bool recordSensors = false;            // --sensors: plan what to record
   ImuFormat imuFormat = ImuFormat::Csv;  // --imu-format
+  // Robot files loaded once for a batch of scenes (rscene-sim's several
+  // operands); null: loaded for this scene only.  Meshes are shared
+  // through the AssetCache passed to prepareSimulation().
+  robot::ModelCache* models = nullptr;
 };
 
 // A scene made ready to step.  Not movable: the world points into the

@@ -8,8 +8,10 @@
 namespace rscene::sim {
 
 bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::RobotInstance>& robots,
-                Diagnostics& diagnostics, bool allowMissingMeshes) {
-  robot::ModelCache cache;
+                Diagnostics& diagnostics, bool allowMissingMeshes, robot::ModelCache* models) {
+  robot::ModelCache own;
+  robot::ModelCache& cache = models ? *models : own;
+  cache.nextScene();  // a shared cache reports each file's load findings to this scene too
   robots.clear();
   robots.resize(scene.articulated.size());
   bool ok = true;

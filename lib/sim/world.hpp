@@ -89,8 +89,9 @@ std::vector<std::string> unknownPdJoints(const PdGains& pd, const std::vector<ro
 // (robot::leaveOutMissingRobots) gets an instance with no model; with
 // `allowMissingMeshes` (--allow-missing-assets) a URDF collision mesh that
 // is missing is dropped with a warning.  Returns false after an error.
+// `models`: a cache kept across scenes (a batch); null: one for this call.
 bool makeRobots(const Document& doc, const Scene& scene, std::vector<robot::RobotInstance>& robots,
-                Diagnostics& diagnostics, bool allowMissingMeshes = false);
+                Diagnostics& diagnostics, bool allowMissingMeshes = false, robot::ModelCache* models = nullptr);
 
 // Checks what Bullet cannot simulate sensibly: checkScene() of
 // scene/check.hpp (what rscene-validate reports too) with collision mesh

@@ -642,6 +642,28 @@ TEST(ModelCache, OneLoadPerKeyAndItsDiagnosticsOnce) {
   EXPECT_TRUE(broken2.empty());
 }
 
+// A cache kept across the scenes of a batch (rscene-sim's): each scene
+// gets a file's findings once, as it would alone, and the same model.
+TEST(ModelCache, NextSceneReportsAFilesFindingsAgainOnce) {
+  ModelCache cache;
+  Diagnostics warned1, again1, warned2, again2, broken1, broken2;
+  auto a = cache.get(kFixtures + "skipped.urdf", {}, warned1);
+  cache.get(kFixtures + "skipped.urdf", {}, again1);
+  EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken1));
+  cache.nextScene();
+  auto b = cache.get(kFixtures + "skipped.urdf", {}, warned2);
+  cache.get(kFixtures + "skipped.urdf", {}, again2);
+  EXPECT_FALSE(cache.get(kFixtures + "cycle.urdf", {}, broken2));
+  EXPECT_EQ(a, b);  // loaded once
+  EXPECT_EQ(warned1.size(), 11u);
+  EXPECT_EQ(warned2.size(), 11u);
+  EXPECT_TRUE(again1.empty());
+  EXPECT_TRUE(again2.empty());
+  ASSERT_FALSE(broken2.empty());
+  ASSERT_EQ(broken1.size(), broken2.size());
+  EXPECT_EQ(broken1[0].message, broken2[0].message);
+}
+
 // ---------------------------------------------------------------------------
 // The project's own robot (examples/robots/quadruped), which `make demo`
 // simulates and renders without ../shared.

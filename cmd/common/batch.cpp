@@ -1,0 +1,206 @@
+#include "common/batch.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <streambuf>
+#include <tuple>
+
+#include "core/assets.hpp"
+#include "core/filesystem.hpp"
+#include "core/project.hpp"
+#include "core/scene_pattern.hpp"
+
+namespace rscene::cli {
+
+bool isBatch(const std::vector<std::string>& operands, bool outputIsPattern) {
+  if (operands.size() > 1) return true;
+  if (operands.empty() || operands[0] == "-") return false;
+  std::string root;
+  if (isProject(operands[0], diskFileSystem(), root)) return outputIsPattern;
+  std::error_code ec;
+  return std::filesystem::is_directory(operands[0], ec);
+}
+
+bool requireScenePattern(const char* flag, const std::string& pattern, std::size_t scenes) {
+  if (hasSceneFields(pattern)) return true;
+  std::string n = std::to_string(scenes) + (scenes == 1 ? " scene" : " scenes");
+  if (pattern == "-")
+    error(std::string(flag) + " - (standard output) cannot take several scenes (" + n +
+          "): name each scene's output with a pattern, e.g. " + flag + " 'out/{stem}.rscene'");
+  else
+    error(std::string(flag) + " '" + pattern + "' names one file for " + n +
+          ": put {stem} (the scene's file name without .rscene) or {dir} (its folder) in it");
+  return false;
+}
+
+bool scenePath(const char* flag, const std::string& pattern, const std::string& scene, std::string& out) {
+  if (!hasSceneFields(pattern)) {
+    out = pattern;
+    return true;
+  }
+  std::string why;
+  if (expandScenePattern(pattern, sceneFields(scene), out, &why)) return true;
+  error(std::string(flag) + ": " + why);
+  return false;
+}
+
+namespace {
+
+// Where an output ends, for comparing many at once (cli::checkOutputs
+// compares pairs with sameOutputFile, quadratic in a batch of hundreds):
+// an existing file by its identity, a new one by its folder's identity
+// and its name, else (a folder that does not exist yet) by the path.
+using Place = std::tuple<dev_t, ino_t, std::string>;
+bool placeOf(const std::string& path, Place& out) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISCHR(st.st_mode)) return false;  // /dev/null, a terminal: writing both there loses nothing
+    out = {st.st_dev, st.st_ino, ""};
+    return true;
+  }
+  std::string dir = directoryOf(path);
+  std::string name = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
+  if (!name.empty() && name != "." && name != ".." && ::stat(dir.c_str(), &st) == 0) {
+    out = {st.st_dev, st.st_ino, name};
+    return true;
+  }
+  std::error_code ec;
+  out = {0, 0, std::filesystem::absolute(path, ec).lexically_normal().string()};
+  return true;
+}
+
+}  // namespace
+
+bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes) {
+  for (const SceneOutputs& s : scenes)
+    if (!checkOutputs(s.outputs)) return false;
+  struct Seen {
+    std::size_t scene;
+    const NamedOutput* output;
+  };
+  std::map<Place, Seen> seen;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    for (const std::vector<NamedOutput>* list : {&scenes[i].outputs, &scenes[i].folders}) {
+      for (const NamedOutput& o : *list) {
+        if (o.path.empty() || o.path == "-" || !o.written) continue;
+        Place p;
+        if (!placeOf(o.path, p)) continue;
+        auto [at, fresh] = seen.emplace(p, Seen{i, &o});
+        if (fresh || at->second.scene == i) continue;  // within one scene: checkOutputs' and SensorFiles' call
+        const Seen& first = at->second;
+        error("scenes '" + scenes[first.scene].scene + "' and '" + scenes[i].scene + "' would both write '" +
+              o.path + "' (" + first.output->flag + (std::string(first.output->flag) == o.flag ? "" : std::string(" and ") + o.flag) +
+              "); name each scene's output apart, e.g. with {dir} as well as {stem}");
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Forwards stderr to the stream it had, erasing the progress line before
+// the first character of anything else, and keeps the first error line.
+class BatchProgress::Tee : public std::streambuf {
+ public:
+  explicit Tee(std::streambuf* to) : to_(to) {}
+  bool progressShown = false;
+  bool capturing = false;
+  std::string firstError;
+
+  void raw(const std::string& s) { to_->sputn(s.data(), static_cast<std::streamsize>(s.size())); to_->pubsync(); }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    char ch = traits_type::to_char_type(c);
+    xsputn(&ch, 1);
+    return c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (progressShown && n > 0) {
+      progressShown = false;
+      raw("\r\033[K");
+    }
+    for (std::streamsize i = 0; i < n; ++i) take(s[i]);
+    return to_->sputn(s, n);
+  }
+  int sync() override { return to_->pubsync(); }
+
+ private:
+  void take(char c) {
+    if (!capturing || !firstError.empty()) return;
+    if (c != '\n') {
+      if (line_.size() < 4096) line_ += c;
+      return;
+    }
+    std::string plain;  // without color
+    for (std::size_t i = 0; i < line_.size(); ++i) {
+      if (line_[i] == '\033' && i + 1 < line_.size() && line_[i + 1] == '[') {
+        i += 2;
+        while (i < line_.size() && !(line_[i] >= '@' && line_[i] <= '~')) ++i;
+        continue;
+      }
+      plain += line_[i];
+    }
+    line_.clear();
+    if (plain.find("error:") != std::string::npos) firstError = plain;
+  }
+  std::streambuf* to_;
+  std::string line_;
+};
+
+BatchProgress::BatchProgress(std::size_t total) : total_(total), terminal_(::isatty(2) == 1) {
+  original_ = std::cerr.rdbuf();
+  tee_ = std::make_unique<Tee>(original_);
+  std::cerr.rdbuf(tee_.get());
+}
+
+BatchProgress::~BatchProgress() {
+  clear();
+  std::cerr.rdbuf(original_);
+}
+
+void BatchProgress::show(const std::string& line) {
+  if (!terminal_) return;
+  tee_->raw("\r\033[K" + toolName() + ": " + line);
+  tee_->progressShown = true;
+}
+
+void BatchProgress::scene(std::size_t index) {
+  index_ = index;
+  tee_->capturing = true;
+  tee_->firstError.clear();
+  show("scene " + std::to_string(index + 1) + "/" + std::to_string(total_));
+}
+
+void BatchProgress::step(std::uint64_t done, std::uint64_t of) {
+  stepShown_ = true;
+  show("scene " + std::to_string(index_ + 1) + "/" + std::to_string(total_) + ", step " + std::to_string(done) + "/" +
+       std::to_string(of));
+}
+
+void BatchProgress::stepsDone() {
+  if (!stepShown_) return;
+  stepShown_ = false;
+  show("scene " + std::to_string(index_ + 1) + "/" + std::to_string(total_));
+}
+
+void BatchProgress::clear() {
+  if (!tee_->progressShown) return;
+  tee_->progressShown = false;
+  tee_->raw("\r\033[K");
+}
+
+std::string BatchProgress::firstError() const { return tee_->firstError; }
+
+void batchSummary(std::size_t scenes, std::size_t failed, const char* verb) {
+  std::string line = toolName() + ": " + std::to_string(scenes) + (scenes == 1 ? " scene " : " scenes ") + verb;
+  if (failed > 0) line += ", " + std::to_string(failed) + " failed";
+  std::cerr << line << '\n';
+}
+
+}  // namespace rscene::cli
