@@ -74,12 +74,18 @@ class ViewsRun {
 
     // After the trajectory opened: a folder of -o is made only for a run that can start.
     if (!selectViews() || !checkSizes() || !planOutputs()) return cli::kTrouble;
+    if (opt_.planOnly) {
+      *opt_.planOnly = plan_.files;
+      return cli::kSuccess;
+    }
     // A view that sees nothing at rest: a trajectory may still bring something into it.
-    if (!reader)
+    if (!reader && !opt_.quiet)
       for (const std::string& w : render::unseenViewWarnings(views_, p_.renderScene)) cli::warning(w);
 
     auto tStart = Clock::now();
-    auto context = openContext(opt_.backend, opt_.verbose);
+    std::unique_ptr<render::GlContext> ownContext;
+    std::unique_ptr<render::GlContext>& context = opt_.context ? *opt_.context : ownContext;
+    if (!context) context = openContext(opt_.backend, opt_.verbose);
     if (!context) return cli::kTrouble;
     double startSeconds = since(tStart);
     Diagnostics diags;
@@ -158,6 +164,10 @@ class ViewsRun {
 
  private:
   bool print(Diagnostics& diags) {
+    if (opt_.quiet)
+      diags.erase(std::remove_if(diags.begin(), diags.end(),
+                                 [](const Diagnostic& d) { return d.severity != Severity::Error; }),
+                  diags.end());
     cli::hintStdinPaths(p_.input, p_.baseDir, diags);
     cli::printDiagnostics(diags, p_.input.display, p_.input.text, p_.color);
     bool ok = !hasErrors(diags);
@@ -183,7 +193,8 @@ class ViewsRun {
 
   // Prints what a step found; false when it refuses the run.
   bool print(render::ViewFindings& found) {
-    for (const std::string& w : found.warnings) cli::warning(w);
+    if (!opt_.quiet)
+      for (const std::string& w : found.warnings) cli::warning(w);
     if (!found.error.empty()) {
       cli::error(found.error);
       return false;
@@ -231,6 +242,7 @@ class ViewsRun {
       print(found);
       return false;
     }
+    if (opt_.planOnly) return true;  // a batch's first pass: checked with the other scenes' (main.cpp)
     std::vector<cli::NamedOutput> named;
     for (const std::string& file : plan_.files) {
       makeParentFolder(file);

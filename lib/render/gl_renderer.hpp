@@ -29,7 +29,12 @@
 namespace rscene::render::detail {
 
 // Compiles and links a program (renderer.cpp); 0 with the log appended.
+// The program belongs to the context, not the caller (never deleted
+// there): the same sources give the same program again, its uniforms set
+// back to zero, to every renderer made on the context.
 GLuint linkProgram(const char* vertex, const char* fragment, std::string& log);
+// Forgets the programs when their context ends (gl_context.cpp).
+void forgetPrograms(void* eglContext);
 
 struct GpuMesh {
   GLuint vbo = 0, ebo = 0, colorVbo = 0;
