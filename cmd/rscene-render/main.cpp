@@ -266,14 +266,19 @@ int main(int argc, char** argv) {
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
   // Several scenes: a batch (runBatch()); one keeps the single-scene run.
+  // A project alone is its default scene, as for the other one-scene
+  // tools, unless -o names scenes ({stem}, {dir}): then all its scenes.
   if (opt.files.empty()) opt.files.push_back("-");
   std::vector<std::string> scenes;
   bool batch = opt.files.size() > 1;
-  if (!batch) {
-    std::error_code ec;
+  if (!batch && opt.files[0] != "-") {
     std::string root;
-    batch = opt.files[0] != "-" &&
-            (std::filesystem::is_directory(opt.files[0], ec) || isProject(opt.files[0], diskFileSystem(), root));
+    if (isProject(opt.files[0], diskFileSystem(), root))
+      batch = hasSceneFields(opt.output);
+    else {
+      std::error_code ec;
+      batch = std::filesystem::is_directory(opt.files[0], ec);
+    }
   }
   if (batch) {
     if (std::count(opt.files.begin(), opt.files.end(), "-")) {
@@ -295,6 +300,7 @@ int main(int argc, char** argv) {
     scenes = std::move(operands.files);
   } else {
     opt.file = opt.files[0];
+    if (hasSceneFields(opt.output)) opt.output = withSceneFields(opt.output, sceneFields(opt.file));
   }
 
   if (int rc = checkViewFlags(app, opt); rc >= 0) return rc;
