@@ -287,14 +287,17 @@ class ViewsRun {
   void report(const render::Renderer& renderer, const ImageWriter& writer, std::uint64_t frames, double seconds) const {
     render::RenderTimings t = renderer.timings();
     double perView = frames && !views_.empty() ? drawSeconds_ / double(frames * views_.size()) : 0;
-    char line[400];
+    char line[600];
     std::snprintf(line, sizeof line,
                   "%s: %zu view(s) x %llu frame(s), %zu files in %.3f s; upload %.3f s, drawing %.3f s (%.4f s "
-                  "per view per frame, post-processing %.3f s of it); on %u thread(s) beside it: encoding %.3f s, "
-                  "writing %.3f s\n",
+                  "per view per frame, post-processing %.3f s of it; shadow passes %.3f s, lit layers %.3f s); "
+                  "on %u thread(s) beside it: encoding %.3f s, writing %.3f s; %llu jittered view(s), %llu shadow "
+                  "map(s) drawn, %llu instance(s) left out as hidden\n",
                   cli::toolName().c_str(), views_.size(), (unsigned long long)frames, writer.filesWritten(), seconds,
-                  t.uploadSeconds, drawSeconds_, perView, t.postSeconds, writer.threads(), writer.encodeSeconds(),
-                  writer.writeSeconds());
+                  t.uploadSeconds, drawSeconds_, perView, t.postSeconds, t.shadowSeconds, t.drawSeconds,
+                  writer.threads(), writer.encodeSeconds(), writer.writeSeconds(),
+                  (unsigned long long)t.jitteredViews, (unsigned long long)t.shadowMapsDrawn,
+                  (unsigned long long)t.occludedInstances);
     std::cerr << line;
   }
 
@@ -302,13 +305,15 @@ class ViewsRun {
   void reportOne(const render::Renderer& renderer, double startSeconds, double encodeSeconds) const {
     render::RenderTimings t = renderer.timings();
     const Camera& c = views_[0].camera;
-    char line[320];
+    char line[480];
     std::snprintf(line, sizeof line,
                   "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
+                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s; %llu jittered "
+                  "view(s), %llu shadow map(s) drawn, %llu instance(s) left out as hidden\n",
                   cli::toolName().c_str(), c.width, c.height, p_.renderScene.drawables.size(), p_.renderScene.robots,
                   startSeconds, p_.buildSeconds, t.uploadSeconds, t.shadowSeconds, t.drawSeconds, t.postSeconds,
-                  encodeSeconds);
+                  encodeSeconds, (unsigned long long)t.jitteredViews, (unsigned long long)t.shadowMapsDrawn,
+                  (unsigned long long)t.occludedInstances);
     std::cerr << line;
   }
 

@@ -389,8 +389,8 @@ const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, s
 InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided,
                             bool castShadow, const Eigen::Affine3d& world, const Eigen::Vector4f& color,
                             const Eigen::Vector4f& pbr, const Eigen::Vector3f& emissive, int segment,
-                            const Eigen::AlignedBox3d& bounds, bool worldObject, bool background) {
-  auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow);
+                            const Eigen::AlignedBox3d& bounds, bool worldObject, bool background, bool particles) {
+  auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow, particles);
   auto [it, inserted] = batchIndex_.emplace(key, batches_.size());
   if (inserted) {
     Batch b;
@@ -563,7 +563,7 @@ bool GlRenderer::uploadInstanced() {
       InstanceRef r = add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i],
                           placeholder ? kPlaceholderColor : b.colors[i],
                           placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
-                          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject);
+                          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject, false, refs != nullptr);
       if (refs) refs->push_back(r);
       if (refs && std::find(particleBatches_.begin(), particleBatches_.end(), r.batch) == particleBatches_.end())
         particleBatches_.insert(std::upper_bound(particleBatches_.begin(), particleBatches_.end(), r.batch), r.batch);
