@@ -98,8 +98,10 @@ namespace {
 // Keyed by their sources; forgotten when the context ends (gl_context.cpp).
 using ProgramCache = std::map<std::pair<std::string, std::string>, GLuint>;
 std::map<void*, ProgramCache>& programCaches() {
-  static std::map<void*, ProgramCache> caches;  // by EGL context
-  return caches;
+  // By EGL context; never destroyed, so that a context kept in a static
+  // (the render tests') may still forget its programs at exit.
+  static auto* caches = new std::map<void*, ProgramCache>;
+  return *caches;
 }
 
 // A program handed out again is set back to what linking gave it: every
