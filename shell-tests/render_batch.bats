@@ -55,6 +55,20 @@ setup() {
   ! cmp -s thumbs/a.png thumbs/b.png
 }
 
+@test "batch: after a scene with post-processing and other lights, a plain scene gives its own bytes" {
+  # a0 (bloom, SSAO, FXAA, an emissive sphere) sets uniforms of programs
+  # the next scenes use again: they must start as a fresh program's.
+  cp "$DATA/render_post.rscene" scenes/a0.rscene
+  echo "light /World/Spot 0 0 -1 5 type=spot position=0,0,3 coneDegrees=40 shadows=true" >> scenes/a0.rscene
+  run -0 "$RENDER" -o 'thumbs/{stem}.png' scenes/a0.rscene scenes/a.rscene scenes/b.rscene
+  run -0 "$RENDER" -o a0.png scenes/a0.rscene
+  cmp a0.png thumbs/a0.png
+  for s in a b; do
+    run -0 "$RENDER" -o "$s.png" "scenes/$s.rscene"
+    cmp "$s.png" "thumbs/$s.png"
+  done
+}
+
 @test "batch: a broken scene is named, the others are written, exit 2" {
   printf 'raisim_engine_scene 2\nobject /World/X box oops\n' > scenes/broken.rscene
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' scenes/
