@@ -4,12 +4,19 @@
 // against a baseline: the flags and the scene here, the one drawing
 // pipeline in views_run.cpp and lib/render (view_select.hpp).
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <map>
 
 #include "common/cli.hpp"
 #include "core/assets.hpp"
 #include "core/loader.hpp"
+#include "core/project.hpp"
+#include "core/scene_pattern.hpp"
 #include "render/render_scene.hpp"
 #include "render/views.hpp"
 #include "render/renderer.hpp"
@@ -22,6 +29,7 @@ using namespace rscene;
 using Clock = std::chrono::steady_clock;
 
 struct Options {
+  std::vector<std::string> files;
   std::string file = "-", output, stdinName, baseDir, camera, backend = "auto";
   int width = 0, height = 0, samples = 4;
   std::uint64_t maxPixels = render::kDefaultMaxPixels;
@@ -40,12 +48,23 @@ std::string skippedLine(const std::map<std::string, int>& skipped) {
   return s;
 }
 
-int run(const Options& opt) {
+// Without errors, `diags` less its warnings and notes (a batch's second
+// pass: the first printed them).
+void keepErrors(Diagnostics& diags, bool quiet) {
+  if (!quiet) return;
+  diags.erase(std::remove_if(diags.begin(), diags.end(), [](const Diagnostic& d) { return d.severity != Severity::Error; }),
+              diags.end());
+}
+
+// One scene: read, built and drawn (or with views.planOnly, its outputs
+// planned).  The views options are the run's, with a batch's -o expanded.
+int run(const Options& opt, const render_cli::ViewsOptions& views) {
   bool color = cli::colorFor(2);
   cli::Input in;
   if (!cli::readInput(opt.file, opt.stdinName, in)) return cli::kTrouble;
   std::string text = in.text;
   LoadResult loaded = parse(std::move(text));
+  keepErrors(loaded.diagnostics, views.quiet);
   cli::printDiagnostics(loaded.diagnostics, in.display, in.text, color);
   if (!loaded.ok()) return cli::kTrouble;
 
@@ -67,16 +86,94 @@ int run(const Options& opt) {
   limits.allowMissingAssets = opt.allowMissing;
   bool built = render::buildRenderScene(loaded.document, so, model, scene, diags, limits, &assets);
   cli::hintStdinPaths(in, opt.baseDir, diags);
+  keepErrors(diags, views.quiet);
   cli::printDiagnostics(diags, in.display, in.text, color);
   if (!built) return cli::kTrouble;
-  if (!scene.skipped.empty()) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
+  if (!scene.skipped.empty() && !views.quiet) cli::warning("skipped records it does not draw yet: " + skippedLine(scene.skipped));
 
   ro.samples = opt.samples;
   ro.transparent = opt.transparent;
   ro.allowMissingAssets = opt.allowMissing;
   ro.post = !opt.noPost;
   render_cli::Prepared prepared{in, loaded.document, model, scene, ro, opt.baseDir, color, since(tBuild)};
-  return render_cli::renderViews(opt.views, prepared);
+  return render_cli::renderViews(views, prepared);
+}
+
+// Several scenes (more than one operand, a folder, a project): each one's
+// outputs named by -o with {stem}/{dir}; every output of every scene
+// planned and checked before anything is drawn; then drawn one by one on
+// one OpenGL context (its programs compiled once).  A scene that fails is
+// named and the others go on; exit 2 when one failed.
+int runBatch(Options& opt, const std::vector<std::string>& scenes) {
+  auto patternOf = [&](const std::string& file) { return withSceneFields(opt.output, sceneFields(file)); };
+  std::vector<char> failed(scenes.size(), 0);
+  auto fail = [&](std::size_t i) {
+    failed[i] = 1;
+    cli::error(scenes[i] + ": not rendered");
+  };
+  // First pass: the views and outputs of every scene, nothing drawn.
+  std::map<std::string, std::size_t> owner;  // an output's file -> the scene that writes it
+  bool clash = false;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    render_cli::ViewsOptions views = opt.views;
+    views.output = patternOf(scenes[i]);
+    std::vector<std::string> files;
+    views.planOnly = &files;
+    Options one = opt;
+    one.file = scenes[i];
+    if (run(one, views) != cli::kSuccess) {
+      fail(i);
+      continue;
+    }
+    for (const std::string& f : files) {
+      std::string key = std::filesystem::path(f).lexically_normal().string();
+      auto [it, added] = owner.emplace(key, i);
+      if (!added && it->second != i) {
+        cli::error("-o: " + scenes[it->second] + " and " + scenes[i] + " would both write '" + f +
+                   "': put {stem} or {dir} where they differ");
+        clash = true;
+      }
+    }
+  }
+  if (clash) return cli::kTrouble;  // nothing drawn, nothing written
+  // Second pass: drawn, on one context; the first pass printed the warnings.
+  std::unique_ptr<render::GlContext> context;
+  std::size_t done = 0, total = scenes.size();
+  bool progress = !opt.verbose && isatty(2);
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    if (failed[i]) continue;
+    if (progress) std::fprintf(stderr, "\r%s: scene %zu/%zu", cli::toolName().c_str(), i + 1, total);
+    render_cli::ViewsOptions views = opt.views;
+    views.output = patternOf(scenes[i]);
+    views.quiet = true;
+    views.context = &context;
+    Options one = opt;
+    one.file = scenes[i];
+    int rc = run(one, views);
+    if (rc > cli::kTrouble) {  // a signal: the scenes drawn stay
+      if (progress) std::fputc('\n', stderr);
+      return rc;
+    }
+    if (rc != cli::kSuccess) {
+      if (progress) std::fputc('\n', stderr);
+      fail(i);
+    } else {
+      ++done;
+    }
+  }
+  if (progress) std::fputc('\n', stderr);
+  std::size_t bad = static_cast<std::size_t>(std::count(failed.begin(), failed.end(), 1));
+  std::string line = cli::toolName() + ": " + std::to_string(total) + " scene" + (total == 1 ? "" : "s") + ": " +
+                     std::to_string(done) + " rendered";
+  if (bad) {
+    line += ", " + std::to_string(bad) + " failed:";
+    std::size_t shown = 0;
+    for (std::size_t i = 0; i < scenes.size() && shown < 10; ++i)
+      if (failed[i]) line += (shown++ ? ", " : " ") + scenes[i];
+    if (bad > shown) line += ", ...";
+  }
+  std::fprintf(stderr, "%s\n", line.c_str());
+  return bad ? cli::kTrouble : cli::kSuccess;
 }
 
 // The many-view flags that do not go together; -1 when they do.
@@ -108,10 +205,13 @@ int main(int argc, char** argv) {
   CLI::App app{"Render a .rscene scene headlessly (EGL, no window system) to a PNG image."};
   cli::setup(app, "rscene-render");
   Options opt;
-  cli::addInputOperand(app, opt.file);
+  app.add_option("files", opt.files,
+                 "Scene file; several, or folders to search for *.rscene (or Engine 2 projects), render a batch "
+                 "(-o with {stem} or {dir}); none or - reads standard input")
+      ->type_name("FILE");
   cli::addOutputOption(app, opt.output,
                        "Write the PNG to FILE (atomically; - writes standard output), or to a PATTERN with "
-                       "{name} {id} {kind} {frame} {time} for many views and frames (default: each drawn record's outputPath)");
+                       "{name} {id} {kind} {frame} {time} for many views and frames, {stem} {dir} for many scenes (default: each drawn record's outputPath)");
   app.add_option("--width", opt.width,
                  "Image width in pixels (default: the camera's, else " + std::to_string(render::kDefaultImageWidth) + ")")
       ->check(CLI::Range(1, render::kMaxImageSide));
@@ -165,6 +265,44 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");
   if (int rc = cli::parseArgs(app, argc, argv); rc >= 0) return rc;
 
+  // Several scenes: a batch (runBatch()); one keeps the single-scene run.
+  // A project alone is its default scene, as for the other one-scene
+  // tools, unless -o names scenes ({stem}, {dir}): then all its scenes.
+  if (opt.files.empty()) opt.files.push_back("-");
+  std::vector<std::string> scenes;
+  bool batch = opt.files.size() > 1;
+  if (!batch && opt.files[0] != "-") {
+    std::string root;
+    if (isProject(opt.files[0], diskFileSystem(), root))
+      batch = hasSceneFields(opt.output);
+    else {
+      std::error_code ec;
+      batch = std::filesystem::is_directory(opt.files[0], ec);
+    }
+  }
+  if (batch) {
+    if (std::count(opt.files.begin(), opt.files.end(), "-")) {
+      cli::error("standard input cannot be one of several scenes: name the files");
+      return cli::kTrouble;
+    }
+    if (!hasSceneFields(opt.output)) {
+      cli::error("-o: several scenes need an output pattern naming each one, with {stem} or {dir} (such as "
+                 "-o 'thumbs/{stem}.png')");
+      return cli::kTrouble;
+    }
+    if (!opt.views.trajectory.empty() || !opt.baseline.reference.empty()) {
+      cli::error(std::string(opt.views.trajectory.empty() ? "--reference" : "--trajectory") +
+                 " belongs to one scene: not with several");
+      return cli::kTrouble;
+    }
+    cli::Operands operands = cli::expandOperands(opt.files);
+    if (!operands.ok) return cli::kTrouble;
+    scenes = std::move(operands.files);
+  } else {
+    opt.file = opt.files[0];
+    if (hasSceneFields(opt.output)) opt.output = withSceneFields(opt.output, sceneFields(opt.file));
+  }
+
   if (int rc = checkViewFlags(app, opt); rc >= 0) return rc;
   if (!opt.baseline.diffOutput.empty() && opt.baseline.reference.empty()) {
     cli::error("--diff-output needs --reference");
@@ -191,5 +329,6 @@ int main(int argc, char** argv) {
   }
   opt.baseline.reportToStderr = opt.output == "-";
   opt.views.baseline = opt.baseline;
-  return run(opt);
+  if (batch) return runBatch(opt, scenes);
+  return run(opt, opt.views);
 }

@@ -74,12 +74,18 @@ class ViewsRun {
 
     // After the trajectory opened: a folder of -o is made only for a run that can start.
     if (!selectViews() || !checkSizes() || !planOutputs()) return cli::kTrouble;
+    if (opt_.planOnly) {
+      *opt_.planOnly = plan_.files;
+      return cli::kSuccess;
+    }
     // A view that sees nothing at rest: a trajectory may still bring something into it.
-    if (!reader)
+    if (!reader && !opt_.quiet)
       for (const std::string& w : render::unseenViewWarnings(views_, p_.renderScene)) cli::warning(w);
 
     auto tStart = Clock::now();
-    auto context = openContext(opt_.backend, opt_.verbose);
+    std::unique_ptr<render::GlContext> ownContext;
+    std::unique_ptr<render::GlContext>& context = opt_.context ? *opt_.context : ownContext;
+    if (!context) context = openContext(opt_.backend, opt_.verbose);
     if (!context) return cli::kTrouble;
     double startSeconds = since(tStart);
     Diagnostics diags;
@@ -158,6 +164,10 @@ class ViewsRun {
 
  private:
   bool print(Diagnostics& diags) {
+    if (opt_.quiet)
+      diags.erase(std::remove_if(diags.begin(), diags.end(),
+                                 [](const Diagnostic& d) { return d.severity != Severity::Error; }),
+                  diags.end());
     cli::hintStdinPaths(p_.input, p_.baseDir, diags);
     cli::printDiagnostics(diags, p_.input.display, p_.input.text, p_.color);
     bool ok = !hasErrors(diags);
@@ -183,7 +193,8 @@ class ViewsRun {
 
   // Prints what a step found; false when it refuses the run.
   bool print(render::ViewFindings& found) {
-    for (const std::string& w : found.warnings) cli::warning(w);
+    if (!opt_.quiet)
+      for (const std::string& w : found.warnings) cli::warning(w);
     if (!found.error.empty()) {
       cli::error(found.error);
       return false;
@@ -231,6 +242,7 @@ class ViewsRun {
       print(found);
       return false;
     }
+    if (opt_.planOnly) return true;  // a batch's first pass: checked with the other scenes' (main.cpp)
     std::vector<cli::NamedOutput> named;
     for (const std::string& file : plan_.files) {
       makeParentFolder(file);
@@ -275,14 +287,17 @@ class ViewsRun {
   void report(const render::Renderer& renderer, const ImageWriter& writer, std::uint64_t frames, double seconds) const {
     render::RenderTimings t = renderer.timings();
     double perView = frames && !views_.empty() ? drawSeconds_ / double(frames * views_.size()) : 0;
-    char line[400];
+    char line[600];
     std::snprintf(line, sizeof line,
                   "%s: %zu view(s) x %llu frame(s), %zu files in %.3f s; upload %.3f s, drawing %.3f s (%.4f s "
-                  "per view per frame, post-processing %.3f s of it); on %u thread(s) beside it: encoding %.3f s, "
-                  "writing %.3f s\n",
+                  "per view per frame, post-processing %.3f s of it; shadow passes %.3f s, lit layers %.3f s); "
+                  "on %u thread(s) beside it: encoding %.3f s, writing %.3f s; %llu jittered view(s), %llu shadow "
+                  "map(s) drawn, %llu instance(s) left out as hidden\n",
                   cli::toolName().c_str(), views_.size(), (unsigned long long)frames, writer.filesWritten(), seconds,
-                  t.uploadSeconds, drawSeconds_, perView, t.postSeconds, writer.threads(), writer.encodeSeconds(),
-                  writer.writeSeconds());
+                  t.uploadSeconds, drawSeconds_, perView, t.postSeconds, t.shadowSeconds, t.drawSeconds,
+                  writer.threads(), writer.encodeSeconds(), writer.writeSeconds(),
+                  (unsigned long long)t.jitteredViews, (unsigned long long)t.shadowMapsDrawn,
+                  (unsigned long long)t.occludedInstances);
     std::cerr << line;
   }
 
@@ -290,13 +305,15 @@ class ViewsRun {
   void reportOne(const render::Renderer& renderer, double startSeconds, double encodeSeconds) const {
     render::RenderTimings t = renderer.timings();
     const Camera& c = views_[0].camera;
-    char line[320];
+    char line[480];
     std::snprintf(line, sizeof line,
                   "%s: %dx%d, %zu objects, %zu robots; start-up %.3f s, scene build %.3f s, upload %.3f s, "
-                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s\n",
+                  "shadow passes %.3f s, drawing %.3f s, post-processing %.3f s, png encoding %.3f s; %llu jittered "
+                  "view(s), %llu shadow map(s) drawn, %llu instance(s) left out as hidden\n",
                   cli::toolName().c_str(), c.width, c.height, p_.renderScene.drawables.size(), p_.renderScene.robots,
                   startSeconds, p_.buildSeconds, t.uploadSeconds, t.shadowSeconds, t.drawSeconds, t.postSeconds,
-                  encodeSeconds);
+                  encodeSeconds, (unsigned long long)t.jitteredViews, (unsigned long long)t.shadowMapsDrawn,
+                  (unsigned long long)t.occludedInstances);
     std::cerr << line;
   }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/cli.hpp"
 #include "core/document.hpp"
@@ -29,6 +30,13 @@ struct ViewsOptions {
   std::string backend = "auto";
   bool verbose = false;
   BaselineOptions baseline;  // reference "" = no --reference; else one camera record's color image is compared
+  // A batch of scenes (main.cpp): its first pass only plans, the files
+  // each scene would write put here, nothing drawn and no folder made;
+  // its second pass prints errors only (quiet) and draws on the one
+  // context kept here (opened by the first scene that draws).
+  std::vector<std::string>* planOnly = nullptr;
+  bool quiet = false;
+  std::unique_ptr<render::GlContext>* context = nullptr;
 };
 
 // The scene read and built by main.cpp's run(), and how to report.

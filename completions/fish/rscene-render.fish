@@ -1,7 +1,7 @@
 # fish completion for rscene-render
 complete -c rscene-render -s h -l help -d 'Print help and exit'
 complete -c rscene-render -l version -d 'Print version and exit'
-complete -c rscene-render -s o -l output -r -F -d 'Write the PNG to FILE (- for standard output) or a PATTERN with {name} {kind} {frame}'
+complete -c rscene-render -s o -l output -r -F -d 'Write the PNG to FILE (- for standard output) or a PATTERN with {name} {kind} {frame}, {stem} {dir} for many scenes'
 complete -c rscene-render -l width -x -d 'Image width in pixels'
 complete -c rscene-render -l height -x -d 'Image height in pixels'
 complete -c rscene-render -l samples -x -a '1 2 4 8' -d 'Multisample anti-aliasing samples'

@@ -143,8 +143,13 @@ std::unique_ptr<GlContext> GlContext::create(Backend backend, std::string* error
   return nullptr;
 }
 
+namespace detail {
+void forgetPrograms(void* eglContext);  // renderer.cpp
+}
+
 GlContext::~GlContext() {
   if (!display_) return;
+  detail::forgetPrograms(context_);
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (context_) eglDestroyContext(display_, context_);
   eglTerminate(display_);

@@ -51,7 +51,6 @@ LightEffects::~LightEffects() {
   glDeleteTextures(3, textures);
   glDeleteBuffers(3, buffers);
   if (atlasFbo_) glDeleteFramebuffers(1, &atlasFbo_);
-  if (depthProg_) glDeleteProgram(depthProg_);
   for (GLuint vao : shadowVaos_)
     if (vao) glDeleteVertexArrays(1, &vao);
 }

@@ -36,9 +36,7 @@ void setTargetTexel(GLuint p, const PostTarget& t) {
 }  // namespace
 
 PostEffects::~PostEffects() {
-  for (GLuint p : {depthResolveProg_, ssaoProg_, ssaoMsProg_, ssaoBlurProg_, prefilterProg_, downProg_, upProg_, luminanceProg_, dofProg_, finalProg_,
-                   fxaaProg_})
-    if (p) glDeleteProgram(p);
+  // The programs stay with the context (linkProgram()).
   auto free = [](PostTarget& t) {
     if (t.texture) glDeleteTextures(1, &t.texture);
     if (t.fbo) glDeleteFramebuffers(1, &t.fbo);

@@ -125,8 +125,7 @@ Camera faceCamera(const Eigen::Vector3d& at, int face, int size, double farPlane
 }  // namespace
 
 ReflectionEffects::~ReflectionEffects() {
-  for (GLuint p : {backgroundProg_, prefilterProg_})
-    if (p) glDeleteProgram(p);
+  // The programs stay with the context (linkProgram()).
   GLuint textures[4] = {hdr_, envSpecular_, brdfLut_, probeCubes_};
   glDeleteTextures(4, textures);
   if (fbo_) glDeleteFramebuffers(1, &fbo_);

@@ -29,7 +29,12 @@
 namespace rscene::render::detail {
 
 // Compiles and links a program (renderer.cpp); 0 with the log appended.
+// The program belongs to the context, not the caller (never deleted
+// there): the same sources give the same program again, its uniforms set
+// back to zero, to every renderer made on the context.
 GLuint linkProgram(const char* vertex, const char* fragment, std::string& log);
+// Forgets the programs when their context ends (gl_context.cpp).
+void forgetPrograms(void* eglContext);
 
 struct GpuMesh {
   GLuint vbo = 0, ebo = 0, colorVbo = 0;
@@ -150,7 +155,7 @@ class GlRenderer final : public Renderer {
   InstanceRef add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided, bool castShadow,
                   const Eigen::Affine3d& world, const Eigen::Vector4f& color, const Eigen::Vector4f& pbr,
                   const Eigen::Vector3f& emissive, int segment, const Eigen::AlignedBox3d& bounds, bool worldObject,
-                  bool background = false);
+                  bool background = false, bool particles = false);
   bool uploadDrawables();
   void uploadTerrains();
   bool uploadInstanced();
@@ -206,7 +211,11 @@ class GlRenderer final : public Renderer {
   std::vector<std::shared_ptr<GpuMesh>> meshes_;
   std::vector<Batch> batches_;
   std::vector<std::size_t> drawOrder_;  // into batches_: background batches last
-  std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool>, std::size_t> batchIndex_;
+  // By mesh, texture, blend, double-sided, casting shadows, and granular
+  // particles: those keep batches of their own, whose sphere
+  // setParticleViews() re-tessellates for each frame's views (sharing one
+  // with a large sphere near the camera kept 2,916 grains at 48 slices).
+  std::map<std::tuple<GpuMesh*, GLuint, bool, bool, bool, bool>, std::size_t> batchIndex_;
   std::vector<std::vector<InstanceRef>> drawableRefs_;  // per RenderScene::drawables
   // Per RenderScene::surfaces: its vertex buffer and the version uploaded
   // (updatePoses() rewrites the vertices when the surface's moved on).

@@ -8,6 +8,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
+
+#include <EGL/egl.h>
+#include <utility>
 
 #include "core/codes.hpp"
 #include "core/assets.hpp"
@@ -87,9 +91,82 @@ void writeMatrix(float* data, const Eigen::Affine3d& world) {
 
 }  // namespace
 
-GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
-  return program(vertex, fragment, log);
+namespace {
+
+// Programs live as long as the context (rscene-render keeps one across the
+// scenes of a batch): each one is compiled once, whichever renderer asks.
+// Keyed by their sources; forgotten when the context ends (gl_context.cpp).
+using ProgramCache = std::map<std::pair<std::string, std::string>, GLuint>;
+std::map<void*, ProgramCache>& programCaches() {
+  // By EGL context; never destroyed, so that a context kept in a static
+  // (the render tests') may still forget its programs at exit.
+  static auto* caches = new std::map<void*, ProgramCache>;
+  return *caches;
 }
+
+// A program handed out again is set back to what linking gave it: every
+// uniform zero (the samplers unit 0), so that nothing a previous scene set
+// reaches the next one (same pixels as a program of its own).
+void resetUniforms(GLuint p) {
+  GLint previous = 0, count = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &previous);
+  glUseProgram(p);
+  glGetProgramiv(p, GL_ACTIVE_UNIFORMS, &count);
+  std::vector<float> zeros;
+  std::vector<GLint> izeros;
+  std::vector<GLuint> uzeros;
+  for (GLint i = 0; i < count; ++i) {
+    char name[256];
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(p, GLuint(i), sizeof name, nullptr, &size, &type, name);
+    GLint at = glGetUniformLocation(p, name);
+    if (at < 0 || size < 1) continue;
+    zeros.assign(std::size_t(size) * 16, 0.0f);
+    izeros.assign(std::size_t(size) * 4, 0);
+    uzeros.assign(std::size_t(size) * 4, 0u);
+    switch (type) {
+      case GL_FLOAT: glUniform1fv(at, size, zeros.data()); break;
+      case GL_FLOAT_VEC2: glUniform2fv(at, size, zeros.data()); break;
+      case GL_FLOAT_VEC3: glUniform3fv(at, size, zeros.data()); break;
+      case GL_FLOAT_VEC4: glUniform4fv(at, size, zeros.data()); break;
+      case GL_FLOAT_MAT2: glUniformMatrix2fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT3: glUniformMatrix3fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT4: glUniformMatrix4fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT2x3: glUniformMatrix2x3fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT2x4: glUniformMatrix2x4fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT3x2: glUniformMatrix3x2fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT3x4: glUniformMatrix3x4fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT4x2: glUniformMatrix4x2fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_FLOAT_MAT4x3: glUniformMatrix4x3fv(at, size, GL_FALSE, zeros.data()); break;
+      case GL_INT_VEC2: case GL_BOOL_VEC2: glUniform2iv(at, size, izeros.data()); break;
+      case GL_INT_VEC3: case GL_BOOL_VEC3: glUniform3iv(at, size, izeros.data()); break;
+      case GL_INT_VEC4: case GL_BOOL_VEC4: glUniform4iv(at, size, izeros.data()); break;
+      case GL_UNSIGNED_INT: glUniform1uiv(at, size, uzeros.data()); break;
+      case GL_UNSIGNED_INT_VEC2: glUniform2uiv(at, size, uzeros.data()); break;
+      case GL_UNSIGNED_INT_VEC3: glUniform3uiv(at, size, uzeros.data()); break;
+      case GL_UNSIGNED_INT_VEC4: glUniform4uiv(at, size, uzeros.data()); break;
+      default: glUniform1iv(at, size, izeros.data()); break;  // int, bool and every sampler kind
+    }
+  }
+  glUseProgram(GLuint(previous));
+}
+
+}  // namespace
+
+GLuint linkProgram(const char* vertex, const char* fragment, std::string& log) {
+  auto key = std::make_pair(std::string(vertex), std::string(fragment));
+  auto& cache = programCaches()[eglGetCurrentContext()];
+  if (auto it = cache.find(key); it != cache.end()) {
+    resetUniforms(it->second);
+    return it->second;
+  }
+  GLuint p = program(vertex, fragment, log);
+  if (p) cache.emplace(std::move(key), p);
+  return p;
+}
+
+void forgetPrograms(void* context) { programCaches().erase(context); }
 
 GlRenderer::GlRenderer(const RenderScene& scene, const RenderOptions& options, Diagnostics& diagnostics,
                        std::vector<Camera> lodCameras)
@@ -114,9 +191,7 @@ GlRenderer::~GlRenderer() {
   if (pointVao_) glDeleteVertexArrays(1, &pointVao_);
   if (pointVbo_) glDeleteBuffers(1, &pointVbo_);
   if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
-  for (GLuint p : {surfaceProg_, shadowProg_, pointProg_, postProg_, dataProg_, pointDataProg_, prepassProg_,
-                   averageProg_, idProg_, edgeProg_, clearProg_, spreadProg_})
-    if (p) glDeleteProgram(p);
+  // The programs stay with the context (linkProgram()).
   if (jitter_.fbo) {
     glDeleteFramebuffers(1, &jitter_.fbo);
     glDeleteTextures(1, &jitter_.color);
@@ -316,8 +391,8 @@ const std::vector<TexturedPart>* GlRenderer::meshFile(const std::string& path, s
 InstanceRef GlRenderer::add(const std::shared_ptr<GpuMesh>& mesh, GLuint tex, bool blend, bool doubleSided,
                             bool castShadow, const Eigen::Affine3d& world, const Eigen::Vector4f& color,
                             const Eigen::Vector4f& pbr, const Eigen::Vector3f& emissive, int segment,
-                            const Eigen::AlignedBox3d& bounds, bool worldObject, bool background) {
-  auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow);
+                            const Eigen::AlignedBox3d& bounds, bool worldObject, bool background, bool particles) {
+  auto key = std::make_tuple(mesh.get(), tex, blend, doubleSided, castShadow, particles);
   auto [it, inserted] = batchIndex_.emplace(key, batches_.size());
   if (inserted) {
     Batch b;
@@ -490,7 +565,7 @@ bool GlRenderer::uploadInstanced() {
       InstanceRef r = add(mesh, 0, b.colors[i].w() < 0.999f, b.doubleSided, b.castShadow, b.worlds[i],
                           placeholder ? kPlaceholderColor : b.colors[i],
                           placeholder ? Eigen::Vector4f(0, 0.6f, 0, 1) : Eigen::Vector4f(mat.metallic, mat.roughness, 0, 0),
-                          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject);
+                          Eigen::Vector3f::Zero(), b.segment, b.instanceBounds[i], b.worldObject, false, refs != nullptr);
       if (refs) refs->push_back(r);
       if (refs && std::find(particleBatches_.begin(), particleBatches_.end(), r.batch) == particleBatches_.end())
         particleBatches_.insert(std::upper_bound(particleBatches_.begin(), particleBatches_.end(), r.batch), r.batch);
@@ -551,18 +626,18 @@ bool GlRenderer::buildPrograms() {
   VolumeEffects::configure(scene_, surface);
   LightEffects::configure(scene_, surface);
   VolumeEffects::configure(scene_, post);
-  surfaceProg_ = program(shaders::kSurfaceVertex, surface.c_str(), log);
-  shadowProg_ = program(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
-  pointProg_ = program(shaders::kPointVertex, shaders::kPointFragment, log);
-  postProg_ = program(shaders::kPostVertex, post.c_str(), log);
-  dataProg_ = program(shaders::kDataVertex, shaders::kDataFragment, log);
-  pointDataProg_ = program(shaders::kPointDataVertex, shaders::kDataFragment, log);
-  prepassProg_ = program(shaders::kSurfaceVertex, kPrepassFragment, log);
-  averageProg_ = program(shaders::kPostVertex, kAverageFragment, log);
-  idProg_ = program(kIdVertex, kIdFragment, log);
-  edgeProg_ = program(shaders::kPostVertex, kEdgeFragment, log);
-  clearProg_ = program(shaders::kPostVertex, kClearFragment, log);
-  spreadProg_ = program(shaders::kPostVertex, kSpreadFragment, log);
+  surfaceProg_ = linkProgram(shaders::kSurfaceVertex, surface.c_str(), log);
+  shadowProg_ = linkProgram(shaders::kSurfaceVertex, shaders::kDepthFragment, log);
+  pointProg_ = linkProgram(shaders::kPointVertex, shaders::kPointFragment, log);
+  postProg_ = linkProgram(shaders::kPostVertex, post.c_str(), log);
+  dataProg_ = linkProgram(shaders::kDataVertex, shaders::kDataFragment, log);
+  pointDataProg_ = linkProgram(shaders::kPointDataVertex, shaders::kDataFragment, log);
+  prepassProg_ = linkProgram(shaders::kSurfaceVertex, kPrepassFragment, log);
+  averageProg_ = linkProgram(shaders::kPostVertex, kAverageFragment, log);
+  idProg_ = linkProgram(kIdVertex, kIdFragment, log);
+  edgeProg_ = linkProgram(shaders::kPostVertex, kEdgeFragment, log);
+  clearProg_ = linkProgram(shaders::kPostVertex, kClearFragment, log);
+  spreadProg_ = linkProgram(shaders::kPostVertex, kSpreadFragment, log);
   if (surfaceProg_ && shadowProg_ && pointProg_ && postProg_ && dataProg_ && pointDataProg_ && prepassProg_ &&
       averageProg_ && idProg_ && edgeProg_ && clearProg_ && spreadProg_)
     return true;
