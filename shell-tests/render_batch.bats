@@ -97,6 +97,13 @@ setup() {
   [ ! -e thumbs ]
 }
 
+@test "batch: an output that is one of the input scenes is refused before anything is drawn" {
+  cp scenes/a.rscene a.before
+  run -2 --separate-stderr "$RENDER" -o 'scenes/{stem}.rscene' scenes/
+  [[ "$stderr" == *"-o: 'scenes/a.rscene' is the scene scenes/a.rscene, an input: it would be replaced by an image"* ]]
+  cmp a.before scenes/a.rscene
+}
+
 @test "batch: several scenes need -o with {stem} or {dir}; not --trajectory, --reference or standard input" {
   before=$(find . | LC_ALL=C sort)
   run -2 --separate-stderr "$RENDER" -o out.png scenes/a.rscene scenes/b.rscene

@@ -114,6 +114,15 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes) {
   // First pass: the views and outputs of every scene, nothing drawn.
   std::map<std::string, std::size_t> owner;  // an output's file -> the scene that writes it
   bool clash = false;
+  // A pattern such as 'scenes/{stem}.rscene' would put images where the
+  // scenes are: an output that is one of the inputs is refused.
+  auto resolved = [](const std::string& path) {
+    std::error_code ec;
+    std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+    return ec ? std::filesystem::path(path).lexically_normal().string() : p.string();
+  };
+  std::map<std::string, std::size_t> inputs;
+  for (std::size_t i = 0; i < scenes.size(); ++i) inputs.emplace(resolved(scenes[i]), i);
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     render_cli::ViewsOptions views = opt.views;
     views.output = patternOf(scenes[i]);
@@ -126,6 +135,12 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes) {
       continue;
     }
     for (const std::string& f : files) {
+      if (auto in = inputs.find(resolved(f)); in != inputs.end()) {
+        cli::error("-o: '" + f + "' is the scene " + scenes[in->second] +
+                   ", an input: it would be replaced by an image; write the images elsewhere");
+        clash = true;
+        continue;
+      }
       std::string key = std::filesystem::path(f).lexically_normal().string();
       auto [it, added] = owner.emplace(key, i);
       if (!added && it->second != i) {
