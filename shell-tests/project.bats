@@ -30,8 +30,11 @@ EOF
   run -0 --separate-stderr "$BIN/rscene-validate" --check-files proj/
   [ "$output" = "" ]
   [ "$stderr" = "no issues in 3 files" ]
-  # The same scene named directly finds the same mesh: its project is found from its folder.
+  # The same scene named directly finds the same mesh: its project is found from its folder,
+  # however the scene is named (a bare name, ./, an absolute path).
   run -0 "$BIN/rscene-validate" --check-files proj/scenes/crate.rscene
+  (cd proj/scenes && "$BIN/rscene-validate" --check-files crate.rscene && "$BIN/rscene-validate" --check-files ./crate.rscene)
+  run -0 "$BIN/rscene-validate" --check-files "$PWD/proj/scenes/crate.rscene"
   # Outside the project, the mesh is not found.
   cp proj/scenes/crate.rscene lone.rscene
   run -1 "$BIN/rscene-validate" --check-files lone.rscene

@@ -252,6 +252,10 @@ std::string projectRootOf(const std::string& sceneDir, const FileSystem& files) 
   std::error_code ec;
   fs::path absolute = fs::absolute(sceneDir.empty() ? "." : sceneDir, ec).lexically_normal();
   if (ec) return {};
+  // "/a/scenes/." normalises to "/a/scenes/", whose parent is "/a/scenes"
+  // again: without its empty last element each step goes one folder up.
+  if (!absolute.has_filename() && absolute.has_parent_path() && absolute != absolute.root_path())
+    absolute = absolute.parent_path();
   std::string dir = sceneDir.empty() ? "." : sceneDir;
   for (fs::path at = absolute;; at = at.parent_path()) {
     if (files.stat((at / kProjectFileName).string()).kind == FileKind::Regular) {
