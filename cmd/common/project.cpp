@@ -14,13 +14,7 @@ namespace rscene::cli {
 bool readProjectFile(const std::string& root, std::string& text, ProjectRead& read) {
   // Through the FileSystem: a FIFO, a device or a folder in the project
   // file's place is refused at once (RS1201), and a read stops at the cap.
-  std::string file = joinPath(root, kProjectFileName), err;
-  if (!diskFileSystem().read(file, text, &err, kMaxProjectFileBytes)) {
-    text.clear();
-    read = readProject(root, diskFileSystem());  // the same refusal, as a finding
-    return true;
-  }
-  read = parseProject(text, root, diskFileSystem());
+  read = readProject(root, diskFileSystem(), &text);
   return true;
 }
 
@@ -46,13 +40,7 @@ ProjectPlace projectPlace(const Input& in, const std::string& baseDir) {
   // folder asks the disk once.
   static std::map<std::string, ProjectPlace> known;
   if (auto it = known.find(dir); it != known.end()) return it->second;
-  ProjectPlace place;
-  std::string root = projectRootOf(dir, diskFileSystem());
-  if (!root.empty()) {
-    ProjectRead read = readProject(root, diskFileSystem());
-    if (read.ok()) place = read.project.place();
-  }
-  return known[dir] = place;
+  return known[dir] = projectPlaceOf(dir, diskFileSystem());
 }
 
 bool defaultSceneOf(const std::string& operand, std::string& scene) {

@@ -214,10 +214,12 @@ ProjectRead parseProject(std::string_view text, const std::string& root, const F
   return r;
 }
 
-ProjectRead readProject(const std::string& root, const FileSystem& files) {
+ProjectRead readProject(const std::string& root, const FileSystem& files, std::string* textOut) {
   std::string file = joinPath(root.empty() ? "." : root, kProjectFileName);
-  std::string text, error;
+  std::string own, error;
+  std::string& text = textOut ? *textOut : own;
   if (!files.read(file, text, &error, kMaxProjectFileBytes)) {
+    text.clear();
     ProjectRead r;
     r.project.root = root.empty() ? "." : root;
     r.project.file = file;
@@ -248,7 +250,7 @@ bool isProject(const std::string& path, const FileSystem& files, std::string& ro
   return true;
 }
 
-std::string projectRootOf(const std::string& sceneDir, const FileSystem& files) {
+ProjectPlace projectPlaceOf(const std::string& sceneDir, const FileSystem& files) {
   std::error_code ec;
   fs::path absolute = fs::absolute(sceneDir.empty() ? "." : sceneDir, ec).lexically_normal();
   if (ec) return {};
@@ -260,12 +262,12 @@ std::string projectRootOf(const std::string& sceneDir, const FileSystem& files) 
   for (fs::path at = absolute;; at = at.parent_path()) {
     if (files.stat((at / kProjectFileName).string()).kind == FileKind::Regular) {
       ProjectRead read = readProject(dir, files);
-      if (!read.project.sceneDirectory.empty()) {
+      if (read.ok() && !read.project.sceneDirectory.empty()) {
         const Project& p = read.project;
-        if (within(sceneDir, p.under(p.sceneDirectory))) return dir;
+        if (within(sceneDir, p.under(p.sceneDirectory))) return p.place();
         if (!p.defaultScene.empty() && within(sceneDir, directoryOf(p.under(p.defaultScene))) &&
             within(directoryOf(p.under(p.defaultScene)), sceneDir))
-          return dir;
+          return p.place();
       }
       return {};  // the nearest project decides, even when the scene is not one of its scenes
     }

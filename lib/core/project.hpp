@@ -51,8 +51,10 @@ struct ProjectRead {
 };
 
 // Reads and checks the project file of the folder `root`: its header, its
-// records, and that its folders and default scene exist.
-ProjectRead readProject(const std::string& root, const FileSystem& files);
+// records, and that its folders and default scene exist.  `text`, when
+// given, gets the file's bytes (empty when it cannot be read), for a
+// report that shows the lines of its findings.
+ProjectRead readProject(const std::string& root, const FileSystem& files, std::string* text = nullptr);
 
 // Reads project text already in memory (tests; `root` places its paths).
 ProjectRead parseProject(std::string_view text, const std::string& root, const FileSystem& files);
@@ -61,12 +63,14 @@ ProjectRead parseProject(std::string_view text, const std::string& root, const F
 // project file itself.  Sets `root` to the folder.
 bool isProject(const std::string& path, const FileSystem& files, std::string& root);
 
-// The project a scene in folder `sceneDir` belongs to: the nearest folder
-// at or above it that holds a project file whose scene_directory contains
-// the scene's folder ("" when none does).  A scene outside the project's
-// scene folder is not the project's (a project file in a home folder does
-// not capture every scene below it).
-std::string projectRootOf(const std::string& sceneDir, const FileSystem& files);
+// The project a scene in folder `sceneDir` belongs to, as its assets need
+// it: the nearest folder at or above it that holds a project file whose
+// scene_directory contains the scene's folder (or whose default_scene is
+// in it), read once.  Empty when there is none, or when that project file
+// has errors.  A scene outside the project's scene folder is not the
+// project's (a project file in a home folder does not capture every scene
+// below it).
+ProjectPlace projectPlaceOf(const std::string& sceneDir, const FileSystem& files);
 
 // The project's scene files: *.rscene under scene_directory (the order of
 // findScenes), and the default scene when it lies outside that folder.
