@@ -89,12 +89,57 @@ setup() {
   mkdir other
   scene other/a.rscene 2
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' scenes/ other/
-  [[ "$stderr" == *"scenes/a.rscene and other/a.rscene would both write 'thumbs/a.png'"* ]]
+  [[ "$stderr" == *"scenes/a.rscene and other/a.rscene would both write 'thumbs/a.png': they share a file name in different folders: put {dir} in it as well"* ]]
   [ ! -e thumbs ]
   # The same scene twice is the same clash.
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' scenes/a.rscene scenes/a.rscene
-  [[ "$stderr" == *"would both write"* ]]
+  [[ "$stderr" == *"would both write 'thumbs/a.png': the scene is named twice: name it once"* ]]
   [ ! -e thumbs ]
+  # {dir} alone: two scenes of one folder
+  run -2 --separate-stderr "$RENDER" -o 'thumbs/{dir}.png' scenes/a.rscene scenes/b.rscene
+  [[ "$stderr" == *"would both write 'thumbs/scenes.png': they are in one folder: put {stem} in it as well"* ]]
+  [ ! -e thumbs ]
+}
+
+@test "batch: a size no scene can take is said once, before any scene is read" {
+  run -2 --separate-stderr "$RENDER" --width 64 --height 48 --max-pixels 3000 -o 'thumbs/{stem}.png' scenes/
+  [ "$stderr" = "rscene-render: error: --width/--height: 64x48 is 3072 pixels, more than --max-pixels 3000" ]
+  [ ! -e thumbs ]
+}
+
+@test "batch: a project among the operands that cannot be read is said; the other scenes are drawn" {
+  mkdir proj
+  printf 'raisim_engine2_project 9\n' > proj/raisim_engine2_project
+  run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' proj scenes/a.rscene
+  [[ "${stderr_lines[0]}" == "proj/raisim_engine2_project:1:"*"error: "* ]]
+  is_png thumbs/a.png
+  [ "${stderr_lines[${#stderr_lines[@]} - 1]}" = "rscene-render: 1 scene: 1 rendered; 1 operand could not be read" ]
+}
+
+@test "batch: a pattern's missing folders are made; a plain -o's folder must exist" {
+  run -0 "$RENDER" -o 'new/{stem}/thumb.png' scenes/a.rscene
+  is_png new/a/thumb.png
+  run -2 --separate-stderr "$RENDER" -o nowhere/a.png scenes/a.rscene
+  [[ "$stderr" == "rscene-render: error: nowhere/a.png: cannot create a file in 'nowhere'"* ]]
+  [ ! -e nowhere ]
+}
+
+@test "batch: a stop signal ends the batch by it after the scene being drawn, saying how far it got" {
+  mkdir many
+  for i in $(seq 40); do scene "many/s$(printf %02d "$i").rscene" 1; done
+  "$RENDER" --width 320 --height 200 -o 'thumbs/{stem}.png' many/ 2> err &
+  pid=$!
+  for _ in $(seq 200); do [ -f thumbs/s02.png ] && break; sleep 0.05; done
+  kill -TERM "$pid"
+  status=0
+  wait "$pid" || status=$?
+  [ "$status" -eq 143 ]
+  grep -q "rscene-render: error: stopped by a signal after [0-9]* of 40 scenes; the finished scenes' outputs are written" err
+  n=$(grep -o 'after [0-9]*' err | grep -o '[0-9]*')
+  [ "$n" -lt 40 ]
+  [ "$(ls thumbs | wc -l)" -eq "$n" ]
+  for f in thumbs/*.png; do is_png "$f"; done
+  [ -z "$(find . -name '.*tmp*')" ]
 }
 
 @test "batch: an output that is one of the input scenes is refused before anything is drawn" {

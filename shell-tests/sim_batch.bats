@@ -25,7 +25,7 @@ setup() {
 @test "batch: a folder's scenes are written by the -o pattern, with a summary line" {
   run -0 --separate-stderr "$SIM" --steps 50 -o 'out/{stem}.settled.rscene' scenes/
   [ -z "$output" ]
-  [ "$stderr" = "rscene-sim: 3 scenes simulated" ]
+  [ "$stderr" = "rscene-sim: 3 scenes: 3 simulated" ]
   [ "$(ls out)" = "$(printf 's1.settled.rscene\ns2.settled.rscene\ns3.settled.rscene')" ]
   # {dir} is the folder as given.
   mkdir -p out/scenes
@@ -53,34 +53,67 @@ setup() {
   [ -z "$output" ]
   [[ "$stderr" == *"scenes/s2a.rscene:2:"*"error: "* ]]
   [[ "$stderr" == *"scenes/s0.rscene:2:"*"error: "* ]]
-  [ "${stderr_lines[-1]}" = "rscene-sim: 3 scenes simulated, 2 failed" ]
+  [ "${stderr_lines[-1]}" = "rscene-sim: 5 scenes: 3 simulated, 2 failed: scenes/s0.rscene, scenes/s2a.rscene" ]
   [ -f out/s1.rscene ] && [ -f out/s2.rscene ] && [ -f out/s3.rscene ]
   [ ! -e out/s2a.rscene ] && [ ! -e out/s0.rscene ]
   # A missing file operand is one failed scene too.
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}.b.rscene' scenes/s1.rscene nothere.rscene
   [[ "$stderr" == *"rscene-sim: error: cannot read 'nothere.rscene'"* ]]
-  [ "${stderr_lines[-1]}" = "rscene-sim: 1 scene simulated, 1 failed" ]
+  [ "${stderr_lines[-1]}" = "rscene-sim: 2 scenes: 1 simulated, 1 failed: nothere.rscene" ]
   [ -f out/s1.b.rscene ]
 }
 
 @test "batch: two scenes whose outputs are one file are refused before any work" {
   mkdir other && cp scenes/s1.rscene other/
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}.rscene' scenes/ other/
-  [ "$stderr" = "rscene-sim: error: scenes 'scenes/s1.rscene' and 'other/s1.rscene' would both write 'out/s1.rscene' (-o); name each scene's output apart, e.g. with {dir} as well as {stem}" ]
+  [ "$stderr" = "rscene-sim: error: scenes 'scenes/s1.rscene' and 'other/s1.rscene' would both write 'out/s1.rscene' (-o): they share a file name in different folders: put {dir} in it as well" ]
   [ -z "$(ls out)" ]
   # -o of one scene and --trajectory of another.
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}' --trajectory 'out/s2' scenes/s1.rscene scenes/s2.rscene
   [[ "$stderr" == "rscene-sim: error: --trajectory 'out/s2' names one file for 2 scenes"* ]]
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}' --trajectory 'out/{stem}x' scenes/s1.rscene scenes/s1x.rscene scenes/s2.rscene
-  [[ "$stderr" == "rscene-sim: error: scenes 'scenes/s1.rscene' and 'scenes/s1x.rscene' would both write 'out/s1x' (--trajectory and -o);"* ]]
+  [[ "$stderr" == "rscene-sim: error: scenes 'scenes/s1.rscene' and 'scenes/s1x.rscene' would both write 'out/s1x' (--trajectory and -o):"* ]]
   [ -z "$(ls out)" ]
   # The same scene twice.
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}' scenes/s1.rscene scenes/s1.rscene
   [[ "$stderr" == *"would both write 'out/s1'"* ]]
-  # An output the existing checks refuse (a missing folder), for any scene.
-  run -2 --separate-stderr "$SIM" --steps 10 -o 'missing/{stem}.rscene' scenes/
-  [[ "$stderr" == "rscene-sim: error: missing/s1.rscene: "* ]]
+  [[ "$stderr" == *"would both write 'out/s1' (-o): the scene is named twice: name it once" ]]
+  # {dir} alone: two scenes of one folder
+  run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{dir}.rscene' scenes/s1.rscene scenes/s2.rscene
+  [[ "$stderr" == *"would both write 'out/scenes.rscene' (-o): they are in one folder: put {stem} in it as well" ]]
+  # An output folder that cannot be made (a file is in the way), for any scene.
+  touch afile
+  run -2 --separate-stderr "$SIM" --steps 10 -o 'afile/{stem}.rscene' scenes/
+  [[ "$stderr" == "rscene-sim: error: -o: cannot create the folder 'afile': "* ]]
   [ -z "$(ls out)" ]
+}
+
+@test "batch: the missing folders of a pattern's outputs are made; a plain -o's folder must exist" {
+  run -0 --separate-stderr "$SIM" --steps 5 -o 'new/{dir}/{stem}.rscene' --trajectory 'traj/{dir}/{stem}.jsonl' scenes/
+  [ -s new/scenes/s1.rscene ] && [ -s new/scenes/s3.rscene ] && [ -s traj/scenes/s2.jsonl ]
+  # one scene named by a pattern: the same
+  run -0 "$SIM" --steps 5 -o 'one/{stem}/settled.rscene' scenes/s1.rscene
+  [ -s one/s1/settled.rscene ]
+  run -2 --separate-stderr "$SIM" --steps 5 -o nowhere/x.rscene scenes/s1.rscene
+  [[ "$stderr" == "rscene-sim: error: nowhere/x.rscene: cannot create a file in 'nowhere'"* ]]
+  [ ! -e nowhere ]
+}
+
+@test "batch: an output pattern that names the scenes themselves simulates them in place" {
+  cp -r scenes before
+  run -0 --separate-stderr "$SIM" --steps 50 -o 'scenes/{stem}.rscene' scenes/
+  [ "$stderr" = "rscene-sim: 3 scenes: 3 simulated" ]
+  for i in 1 2 3; do
+    "$SIM" --steps 50 -o "alone$i.rscene" "before/s$i.rscene"
+    cmp "alone$i.rscene" "scenes/s$i.rscene"
+    ! cmp -s "before/s$i.rscene" "scenes/s$i.rscene"
+  done
+}
+
+@test "batch: --sensors makes no folder for a scene without sensors" {
+  run -0 --separate-stderr "$SIM" --steps 5 -o 'out/{stem}.rscene' --sensors 'sens/{stem}' scenes/
+  [ -f out/s1.rscene ]
+  [ ! -e sens/s1 ] && [ ! -e sens/s2 ] && [ ! -e sens/s3 ]
 }
 
 @test "batch: -o without {stem} or {dir}, or standard output, is refused for several scenes" {
@@ -142,7 +175,7 @@ setup() {
   run -2 --separate-stderr "$SIM" --steps 20 -o 'out/{stem}.rscene' scenes/
   [ "$(grep -c 'bad.urdf:.*error' <<<"$stderr")" -ge 2 ]
   [[ "$stderr" == *"error"*"error"* ]]
-  [ "${stderr_lines[-1]}" = "rscene-sim: 5 scenes simulated, 2 failed" ]
+  [ "${stderr_lines[-1]}" = "rscene-sim: 7 scenes: 5 simulated, 2 failed: scenes/bad1.rscene, scenes/bad2.rscene" ]
   for i in 1 2; do
     "$SIM" --steps 20 -o "alone$i.rscene" "scenes/good$i.rscene"
     cmp "alone$i.rscene" "out/good$i.rscene"
@@ -157,7 +190,7 @@ setup() {
   cp scenes/s1.rscene proj/scenes/
   cp scenes/s2.rscene proj/scenes/more/
   run -0 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}.rscene' proj
-  [ "$stderr" = "rscene-sim: 2 scenes simulated" ]
+  [ "$stderr" = "rscene-sim: 2 scenes: 2 simulated" ]
   [ -f out/s1.rscene ] && [ -f out/s2.rscene ]
   run -0 --separate-stderr "$SIM" --steps 10 -o out/default.rscene proj
   [ -z "$stderr" ]
@@ -193,7 +226,7 @@ setup() {
   run -2 --separate-stderr "$SIM" --steps 10 -o 'out/{stem}.rscene' scenes/
   [[ "$stderr" == *"scenes/rock1.rscene:2:93: error: body '/World/Rock': cannot read mesh"*"[RS7007]"* ]]
   [[ "$stderr" == *"scenes/rock2.rscene:2:93: error: body '/World/Rock': cannot read mesh"*"[RS7007]"* ]]
-  [ "${stderr_lines[-1]}" = "rscene-sim: 2 scenes simulated, 2 failed" ]
+  [ "${stderr_lines[-1]}" = "rscene-sim: 4 scenes: 2 simulated, 2 failed: scenes/rock1.rscene, scenes/rock2.rscene" ]
   for i in 1 2; do
     "$SIM" --steps 10 "scenes/crate$i.rscene" | cmp - "out/crate$i.rscene"
   done

@@ -71,7 +71,7 @@ scenes() {
   # fails for its broken s5, and submit.sh --wait says so
   CHUNK=3 run -1 "$RECIPE/submit.sh" scenes.txt out --wait
   [[ $output == *"submit: 7 scenes, 3 tasks of 3"* ]]
-  [[ $output == *"rerun-failed: 1 of 3 tasks failed or did not run: 1"* ]]
+  [[ $output == *"batch $PWD/out: 1 of 3 tasks failed or did not run (task numbers 1); rerun them with: "*"/rerun-failed.sh $PWD/out"* ]]
   # Slurm's own record of the tasks (jobcomp/filetxt; no sacct here)
   local job state
   job=$(grep -o 'Submitted batch job [0-9]*' <<<"$output" | grep -o '[0-9]*$')
@@ -107,8 +107,8 @@ scenes() {
   kept=$(stat -c '%i %n' out/status/[02] out/scenes/* out/reports/s[1234679].json)
   logs_before=$(ls out/logs | wc -l)
   run -0 "$RECIPE/rerun-failed.sh" out --wait
-  [[ $output == *"rerun-failed: --array=1"* ]]
-  [[ $output == *"rerun-failed: all 3 tasks ok"* ]]
+  [[ $output == *"rerun-failed: resubmitting task numbers 1 (--array=1)"* ]]
+  [[ $output == *"batch $PWD/out: all 3 tasks ok"* ]]
   [ "$(ls out/logs | wc -l)" -eq $((logs_before + 1)) ]
   [ "$(cat out/status/1)" = "ok 3" ]
   [ "$(stat -c '%i %n' out/status/[02] out/scenes/s[1234679].rscene out/reports/s[1234679].json)" = "$kept" ]

@@ -75,9 +75,34 @@ bool placeOf(const std::string& path, Place& out) {
 
 }  // namespace
 
-bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes) {
-  for (const SceneOutputs& s : scenes)
-    if (!checkOutputs(s.outputs)) return false;
+std::string clashHint(const std::string& pattern, const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec))
+    return "the scene is named twice: name it once";
+  SceneFields fa = sceneFields(a), fb = sceneFields(b);
+  bool stem = pattern.find("{stem}") != std::string::npos, dir = pattern.find("{dir}") != std::string::npos;
+  if (fa.stem == fb.stem && !dir) return "they share a file name in different folders: put {dir} in it as well";
+  if (fa.dir == fb.dir && !stem) return "they are in one folder: put {stem} in it as well";
+  return "name each scene's output apart, with {stem} and {dir}";
+}
+
+bool makeOutputFolders(const std::vector<NamedOutput>& outputs) {
+  for (const NamedOutput& o : outputs) {
+    if (o.path.empty() || o.path == "-" || !o.written) continue;
+    std::filesystem::path parent = std::filesystem::path(o.path).parent_path();
+    std::error_code ec;
+    if (parent.empty() || std::filesystem::is_directory(parent, ec)) continue;
+    std::filesystem::create_directories(parent, ec);
+    if (ec || !std::filesystem::is_directory(parent, ec)) {
+      error(std::string(o.flag) + ": cannot create the folder '" + parent.string() +
+            "': " + (ec ? ec.message() : std::string("something else is there")));
+      return false;
+    }
+  }
+  return true;
+}
+
+bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns) {
   struct Seen {
     std::size_t scene;
     const NamedOutput* output;
@@ -92,13 +117,20 @@ bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes) {
         auto [at, fresh] = seen.emplace(p, Seen{i, &o});
         if (fresh || at->second.scene == i) continue;  // within one scene: checkOutputs' and SensorFiles' call
         const Seen& first = at->second;
+        std::string pattern;
+        for (const NamedOutput& named : patterns)
+          if (std::string(named.flag) == o.flag) pattern = named.path;
         error("scenes '" + scenes[first.scene].scene + "' and '" + scenes[i].scene + "' would both write '" +
               o.path + "' (" + first.output->flag + (std::string(first.output->flag) == o.flag ? "" : std::string(" and ") + o.flag) +
-              "); name each scene's output apart, e.g. with {dir} as well as {stem}");
+              "): " + clashHint(pattern, scenes[first.scene].scene, scenes[i].scene));
         return false;
       }
     }
   }
+  // No two scenes clash: the folders of the outputs are made, then each
+  // scene's outputs are checked as a single run checks its own.
+  for (const SceneOutputs& s : scenes)
+    if (!makeOutputFolders(s.outputs) || !checkOutputs(s.outputs)) return false;
   return true;
 }
 
@@ -197,10 +229,23 @@ void BatchProgress::clear() {
 
 std::string BatchProgress::firstError() const { return tee_->firstError; }
 
-void batchSummary(std::size_t scenes, std::size_t failed, const char* verb) {
-  std::string line = toolName() + ": " + std::to_string(scenes) + (scenes == 1 ? " scene " : " scenes ") + verb;
-  if (failed > 0) line += ", " + std::to_string(failed) + " failed";
+void batchSummary(std::size_t total, std::size_t done, const std::vector<std::string>& failed,
+                  std::size_t unnamed, const char* verb) {
+  std::string line = toolName() + ": " + std::to_string(total) + (total == 1 ? " scene: " : " scenes: ") +
+                     std::to_string(done) + " " + verb;
+  if (!failed.empty()) {
+    line += ", " + std::to_string(failed.size()) + " failed";
+    constexpr std::size_t kNamed = 10;
+    for (std::size_t i = 0; i < failed.size() && i < kNamed; ++i) line += (i ? ", " : ": ") + failed[i];
+    if (failed.size() > kNamed) line += ", ...";
+  }
+  if (unnamed > 0) line += "; " + std::to_string(unnamed) + (unnamed == 1 ? " operand" : " operands") + " could not be read";
   std::cerr << line << '\n';
+}
+
+void batchStopped(std::size_t finished, std::size_t total) {
+  error("stopped by a signal after " + std::to_string(finished) + " of " + std::to_string(total) +
+        " scenes; the finished scenes' outputs are written");
 }
 
 }  // namespace rscene::cli

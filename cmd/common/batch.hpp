@@ -38,10 +38,24 @@ struct SceneOutputs {
   std::vector<NamedOutput> outputs;  // checked by checkOutputs()
   std::vector<NamedOutput> folders;  // folders it writes into (--sensors): only compared between scenes
 };
-// Before any work: each scene's outputs as checkOutputs() checks them,
-// and no two scenes writing one file (or one folder).  Prints the first
-// problem, naming both scenes.
-bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes);
+// The missing folders on the way to `outputs` (those written), made as
+// `mkdir -p` would: outputs named by a pattern ({stem}, {dir}) go where no
+// one made a folder yet.  Prints the error and returns false when one
+// cannot be made.
+bool makeOutputFolders(const std::vector<NamedOutput>& outputs);
+
+// Before any work: no two scenes writing one file (or one folder), then
+// each scene's output folders made (makeOutputFolders()) and its outputs
+// checked as checkOutputs() checks them.  Prints the first problem, naming
+// both scenes, with clashHint() of the flag's pattern (`patterns`: each
+// flag with its pattern as given).
+bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns);
+
+// What to change in `pattern` when the scenes `a` and `b` have one file
+// by it: the field it lacks ({dir} for two scenes of one name in two
+// folders, {stem} for two scenes of one folder), or that one scene was
+// named twice.
+std::string clashHint(const std::string& pattern, const std::string& a, const std::string& b);
 
 // While it lives, and stderr is a terminal, a progress line
 // `tool: scene k/N` (with the step count of the scene stepping), erased
@@ -72,8 +86,15 @@ class BatchProgress {
   std::streambuf* original_ = nullptr;
 };
 
-// The last line of a batch on stderr: `tool: N scenes VERB` and `, K
-// failed` when some did.
-void batchSummary(std::size_t scenes, std::size_t failed, const char* verb);
+// The last line of a batch on stderr: `tool: N scenes: D VERB`, and `, K
+// failed: a.rscene, b.rscene` (the first ten named) when some did.
+// `unnamed`: operands that could not be read (a folder, a project), said
+// after it.
+void batchSummary(std::size_t total, std::size_t done, const std::vector<std::string>& failed,
+                  std::size_t unnamed, const char* verb);
+
+// The line of a batch a stop signal ended: how far it got, and that the
+// finished scenes' outputs stay.
+void batchStopped(std::size_t finished, std::size_t total);
 
 }  // namespace rscene::cli

@@ -8,15 +8,19 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 
+#include "common/batch.hpp"
 #include "common/cli.hpp"
 #include "core/assets.hpp"
 #include "core/loader.hpp"
 #include "core/project.hpp"
 #include "core/scene_pattern.hpp"
+#include "render/limits.hpp"
 #include "render/render_scene.hpp"
 #include "render/views.hpp"
 #include "render/renderer.hpp"
@@ -103,8 +107,10 @@ int run(const Options& opt, const render_cli::ViewsOptions& views) {
 // outputs named by -o with {stem}/{dir}; every output of every scene
 // planned and checked before anything is drawn; then drawn one by one on
 // one OpenGL context (its programs compiled once).  A scene that fails is
-// named and the others go on; exit 2 when one failed.
-int runBatch(Options& opt, const std::vector<std::string>& scenes) {
+// named and the others go on; exit 2 when one failed.  A stop signal ends
+// the batch after the scene being drawn (its frames whole), saying how far
+// it got.
+int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operandsRead) {
   auto patternOf = [&](const std::string& file) { return withSceneFields(opt.output, sceneFields(file)); };
   std::vector<char> failed(scenes.size(), 0);
   auto fail = [&](std::size_t i) {
@@ -145,7 +151,7 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes) {
       auto [it, added] = owner.emplace(key, i);
       if (!added && it->second != i) {
         cli::error("-o: " + scenes[it->second] + " and " + scenes[i] + " would both write '" + f +
-                   "': put {stem} or {dir} where they differ");
+                   "': " + cli::clashHint(opt.output, scenes[it->second], scenes[i]));
         clash = true;
       }
     }
@@ -153,42 +159,43 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes) {
   if (clash) return cli::kTrouble;  // nothing drawn, nothing written
   // Second pass: drawn, on one context; the first pass printed the warnings.
   std::unique_ptr<render::GlContext> context;
-  std::size_t done = 0, total = scenes.size();
-  bool progress = !opt.verbose && isatty(2);
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    if (failed[i]) continue;
-    if (progress) std::fprintf(stderr, "\r%s: scene %zu/%zu", cli::toolName().c_str(), i + 1, total);
-    render_cli::ViewsOptions views = opt.views;
-    views.output = patternOf(scenes[i]);
-    views.quiet = true;
-    views.context = &context;
-    Options one = opt;
-    one.file = scenes[i];
-    int rc = run(one, views);
-    if (rc > cli::kTrouble) {  // a signal: the scenes drawn stay
-      if (progress) std::fputc('\n', stderr);
-      return rc;
-    }
-    if (rc != cli::kSuccess) {
-      if (progress) std::fputc('\n', stderr);
-      fail(i);
-    } else {
-      ++done;
+  std::size_t done = 0, finished = 0, total = scenes.size();
+  volatile std::sig_atomic_t& stop = render_cli::stopFlag();
+  cli::stopOnInterrupt(&stop);
+  {
+    std::optional<cli::BatchProgress> progress;
+    if (!opt.verbose) progress.emplace(total);
+    for (std::size_t i = 0; i < scenes.size() && !stop; ++i) {
+      if (failed[i]) {
+        ++finished;
+        continue;
+      }
+      if (progress) progress->scene(i);
+      render_cli::ViewsOptions views = opt.views;
+      views.output = patternOf(scenes[i]);
+      views.quiet = true;
+      views.context = &context;
+      views.returnOnSignal = true;
+      Options one = opt;
+      one.file = scenes[i];
+      int rc = run(one, views);
+      if (rc == cli::kInterrupted || stop) break;  // the scenes drawn stay
+      ++finished;
+      if (rc == cli::kSuccess)
+        ++done;
+      else
+        fail(i);
     }
   }
-  if (progress) std::fputc('\n', stderr);
-  std::size_t bad = static_cast<std::size_t>(std::count(failed.begin(), failed.end(), 1));
-  std::string line = cli::toolName() + ": " + std::to_string(total) + " scene" + (total == 1 ? "" : "s") + ": " +
-                     std::to_string(done) + " rendered";
-  if (bad) {
-    line += ", " + std::to_string(bad) + " failed:";
-    std::size_t shown = 0;
-    for (std::size_t i = 0; i < scenes.size() && shown < 10; ++i)
-      if (failed[i]) line += (shown++ ? ", " : " ") + scenes[i];
-    if (bad > shown) line += ", ...";
+  if (stop) {
+    cli::batchStopped(finished, total);
+    return cli::endBySignal(stop);
   }
-  std::fprintf(stderr, "%s\n", line.c_str());
-  return bad ? cli::kTrouble : cli::kSuccess;
+  std::vector<std::string> bad;
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    if (failed[i]) bad.push_back(scenes[i]);
+  cli::batchSummary(total, done, bad, operandsRead ? 0 : 1, "rendered");
+  return bad.empty() && operandsRead ? cli::kSuccess : cli::kTrouble;
 }
 
 // The many-view flags that do not go together; -1 when they do.
@@ -285,6 +292,8 @@ int main(int argc, char** argv) {
   // tools, unless -o names scenes ({stem}, {dir}): then all its scenes.
   if (opt.files.empty()) opt.files.push_back("-");
   std::vector<std::string> scenes;
+  bool operandsRead = true;
+  bool scenePattern = false;  // -o named this one scene by {stem}/{dir}: a pattern still (its folders are made)
   bool batch = opt.files.size() > 1;
   if (!batch && opt.files[0] != "-") {
     std::string root;
@@ -311,14 +320,23 @@ int main(int argc, char** argv) {
       return cli::kTrouble;
     }
     cli::Operands operands = cli::expandOperands(opt.files);
-    if (!operands.ok) return cli::kTrouble;
+    operandsRead = operands.ok;  // an unreadable folder is said, and the others are drawn
     scenes = std::move(operands.files);
   } else {
     opt.file = opt.files[0];
-    if (hasSceneFields(opt.output)) opt.output = withSceneFields(opt.output, sceneFields(opt.file));
+    if (hasSceneFields(opt.output)) {
+      opt.output = withSceneFields(opt.output, sceneFields(opt.file));
+      scenePattern = true;
+    }
   }
 
   if (int rc = checkViewFlags(app, opt); rc >= 0) return rc;
+  // A size that no scene can take is said once, before any scene is read.
+  if (opt.width > 0 && opt.height > 0)
+    if (std::string problem = render::imageSizeProblem(opt.width, opt.height, opt.maxPixels); !problem.empty()) {
+      cli::error("--width/--height: " + problem);
+      return cli::kTrouble;
+    }
   if (!opt.baseline.diffOutput.empty() && opt.baseline.reference.empty()) {
     cli::error("--diff-output needs --reference");
     return cli::kTrouble;
@@ -327,7 +345,7 @@ int main(int argc, char** argv) {
   // does not is where this render goes.
   bool referenceWritten = !opt.baseline.reference.empty() && !fileExistsOnDisk(opt.baseline.reference);
   // An -o pattern is checked file by file once the views are known.
-  bool pattern = opt.output.find('{') != std::string::npos;
+  bool pattern = scenePattern || opt.output.find('{') != std::string::npos;
   if (!cli::checkOutputs({{"-o", pattern ? std::string() : opt.output},
                           {"--diff-output", opt.baseline.diffOutput},
                           {"--reference", opt.baseline.reference, referenceWritten}}))
@@ -344,6 +362,6 @@ int main(int argc, char** argv) {
   }
   opt.baseline.reportToStderr = opt.output == "-";
   opt.views.baseline = opt.baseline;
-  if (batch) return runBatch(opt, scenes);
+  if (batch) return runBatch(opt, scenes, operandsRead);
   return run(opt, opt.views);
 }

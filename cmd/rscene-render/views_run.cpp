@@ -43,6 +43,10 @@ class ViewsRun {
  public:
   ViewsRun(const ViewsOptions& o, Prepared& p) : opt_(o), p_(p) {}
 
+  // A stop signal: the tool ends by it, or a batch (returnOnSignal) says
+  // how far it got first.
+  int stopped() const { return opt_.returnOnSignal ? cli::kInterrupted : cli::endBySignal(interrupted); }
+
   int run() {
     std::unique_ptr<std::istream> trajectoryStream;
     std::optional<robot::TrajectoryReader> reader;
@@ -112,7 +116,7 @@ class ViewsRun {
     for (;;) {
       if (interrupted) {
         writer.finish();
-        return cli::endBySignal(interrupted);
+        return stopped();
       }
       double time = 0;
       if (reader) {
@@ -143,7 +147,7 @@ class ViewsRun {
     }
     bool ok = writer.finish();
     if (progress) std::fputc('\n', stderr);
-    if (interrupted) return cli::endBySignal(interrupted);  // the frames written stay, each one whole
+    if (interrupted) return stopped();  // the frames written stay, each one whole
     double encodeSeconds = writer.encodeSeconds();
     std::string referencePng;
     if (ok && reference()) {
@@ -330,6 +334,8 @@ class ViewsRun {
 }  // namespace
 
 int renderViews(const ViewsOptions& options, Prepared& prepared) { return ViewsRun(options, prepared).run(); }
+
+volatile std::sig_atomic_t& stopFlag() { return interrupted; }
 
 std::unique_ptr<render::GlContext> openContext(const std::string& backend, bool verbose) {
   render::Backend b = backend == "gpu"   ? render::Backend::Gpu

@@ -5,6 +5,7 @@
 // the --reference comparison.  The scene is built and uploaded once; every
 // selected view is drawn for every frame.
 #pragma once
+#include <csignal>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -37,7 +38,13 @@ struct ViewsOptions {
   std::vector<std::string>* planOnly = nullptr;
   bool quiet = false;
   std::unique_ptr<render::GlContext>* context = nullptr;
+  // A stop signal returns cli::kInterrupted (stopFlag() holds the signal)
+  // instead of ending the tool: a batch says how far it got first.
+  bool returnOnSignal = false;
 };
+
+// The flag a stop signal sets while views are drawn (cli::stopOnInterrupt).
+volatile std::sig_atomic_t& stopFlag();
 
 // The scene read and built by main.cpp's run(), and how to report.
 struct Prepared {

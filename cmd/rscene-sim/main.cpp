@@ -233,6 +233,11 @@ int runOne(const Options& opt) {
   // With --sensors, SensorFiles::prepare() checks them once the sensors'
   // folders are known (an output inside a LiDAR's folder-to-be is refused
   // as that, not as a file in a missing folder).
+  // The folders of outputs named by a pattern are made, as in a batch.
+  std::vector<cli::NamedOutput> patterned;
+  if (hasSceneFields(opt.output)) patterned.push_back({"-o", job.output});
+  if (hasSceneFields(opt.trajectory)) patterned.push_back({"--trajectory", job.trajectory});
+  if (!cli::makeOutputFolders(patterned)) return cli::kTrouble;
   if (job.sensors.empty() && !cli::checkOutputs({{"-o", job.output}, {"--trajectory", job.trajectory}}))
     return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
@@ -270,17 +275,22 @@ int runBatch(const Options& opt) {
     outputs[i].outputs = {{"-o", job.output}, {"--trajectory", job.trajectory}};
     if (!job.sensors.empty()) outputs[i].folders = {{"--sensors", job.sensors}};
   }
-  if (!cli::checkBatchOutputs(outputs)) return cli::kTrouble;
+  if (!cli::checkBatchOutputs(outputs, {{"-o", opt.output}, {"--trajectory", opt.trajectory}, {"--sensors", opt.sensors}}))
+    return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
   Shared shared;
   cli::BatchProgress progress(n);
-  std::size_t failed = operands.ok ? 0 : 1, done = 0;  // an unreadable folder or project counts as one
+  std::vector<std::string> failed;
+  std::size_t done = 0;
   for (std::size_t i = 0; i < n && !gInterrupted; ++i) {
     progress.scene(i);
     nlohmann::json report;
     int rc = simulate(opt, jobs[i], shared, opt.report ? &report : nullptr, &progress);
     if (rc == cli::kInterrupted) break;  // its outputs discarded; the scenes before it stay written
-    (rc == cli::kSuccess ? done : failed)++;
+    if (rc == cli::kSuccess)
+      ++done;
+    else
+      failed.push_back(outputs[i].scene);
     if (!opt.report) continue;
     nlohmann::json line = nlohmann::json::object();
     line["scene"] = outputs[i].scene;
@@ -291,12 +301,12 @@ int runBatch(const Options& opt) {
   }
   progress.clear();
   if (gInterrupted) {
-    cli::error("stopped by a signal after " + std::to_string(done + failed) + " of " + std::to_string(n) +
-               " scenes; the finished scenes' outputs are written");
+    cli::batchStopped(done + failed.size(), n);
     return cli::endBySignal(gInterrupted);
   }
-  cli::batchSummary(done, failed, "simulated");
-  return failed ? cli::kTrouble : cli::kSuccess;
+  std::size_t unread = operands.ok ? 0 : 1;  // an unreadable folder or project (expandOperands said which)
+  cli::batchSummary(n, done, failed, unread, "simulated");
+  return failed.empty() && !unread ? cli::kSuccess : cli::kTrouble;
 }
 
 }  // namespace

@@ -154,6 +154,9 @@ SensorFiles::SensorFiles(std::string dir, const std::vector<sim::RecordedSensor>
 }
 
 bool SensorFiles::prepare(std::vector<cli::NamedOutput> outputs) {
+  // A scene with nothing to record makes no folder (a batch's
+  // 'sens/{stem}' would leave one empty folder per such scene).
+  if (sensors_.empty()) return cli::checkOutputs(outputs);
   if (!makeFolder(dir_, created_)) return false;
   const std::size_t given = outputs.size();  // -o, --trajectory
   // Every check first, then the temporary folders: a refusal makes none.

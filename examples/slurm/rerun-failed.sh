@@ -38,7 +38,7 @@ for ((t = 0; t < TASKS; t++)); do
   [[ $s == "ok "* ]] || failed+=("$t")
 done
 if [ "${#failed[@]}" -eq 0 ]; then
-  echo "rerun-failed: all $TASKS tasks ok" >&2
+  echo "batch $out: all $TASKS tasks ok" >&2
   exit 0
 fi
 # 3,4,5,9 -> 3-5,9
@@ -48,10 +48,12 @@ array=$(printf '%s\n' "${failed[@]}" | awk '
   { s = s (s == "" ? "" : ",") (a == b ? a : a "-" b); a = b = $1 }
   END { s = s (s == "" ? "" : ",") (a == b ? a : a "-" b); print s }')
 if $check; then
-  echo "rerun-failed: ${#failed[@]} of $TASKS tasks failed or did not run: $array" >&2
+  # (also what submit.sh --wait ends with: said as the batch's state, not
+  # as a rerun)
+  echo "batch $out: ${#failed[@]} of $TASKS tasks failed or did not run (task numbers $array); rerun them with: $here/rerun-failed.sh $out" >&2
   exit 1
 fi
-echo "rerun-failed: --array=$array${THROTTLE:+%$THROTTLE}" >&2
+echo "rerun-failed: resubmitting task numbers $array (--array=$array${THROTTLE:+%$THROTTLE})" >&2
 rc=0
 sbatch --array="$array${THROTTLE:+%$THROTTLE}" \
   --output="$out/logs/%A_%a.out" --export="ALL,CHUNK=$CHUNK" \
