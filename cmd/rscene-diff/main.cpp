@@ -113,7 +113,9 @@ int main(int argc, char** argv) {
       ->check(cli::nonNegative());
   app.add_flag("--ignore-editor-state", opt.ignoreEditorState,
                "Skip snapping, editor_ux, render_bake and the locked, expanded and selection* fields");
-  app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");
+  app.add_option("--ignore", ignoreList,
+                 "Skip these fields (NAME or TAG.NAME, comma-separated); id (or TAG.id) also matches records "
+                 "by path or name instead of id")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
   cli::addStdinFilename(app, stdinName, false);
   std::vector<char*> args = separateGitOperands(argc, argv);
