@@ -203,6 +203,12 @@ SideKeys matchedIdentityKeys(const Document& oldDoc, const Document& newDoc, con
   SideKeys out{numberRepeats(baseA), numberRepeats(baseB)};
   std::unordered_set<std::string_view> inA(out.oldKeys.begin(), out.oldKeys.end()),
       inB(out.newKeys.begin(), out.newKeys.end());
+  // Most diffs leave nothing unmatched on one side or the other: done.
+  auto unmatched = [](const std::vector<std::string>& keys, const std::unordered_set<std::string_view>& other) {
+    return std::any_of(keys.begin() + (keys.empty() ? 0 : 1), keys.end(),
+                       [&](const std::string& k) { return !other.count(k); });
+  };
+  if (!unmatched(out.oldKeys, inB) || !unmatched(out.newKeys, inA)) return out;
   // The keys records would have without ids: the same on both sides for a
   // node of the same tag and path, or a material of the same name.
   IdentityOptions noIds = options;
