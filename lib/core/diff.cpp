@@ -213,9 +213,16 @@ class Differ {
     std::vector<std::string_view> identity;
     for (const IdentityRule& rule : identityRules())
       if (rule.unordered && tag == rule.tag) identity = splitWords(rule.fields);
+    // A matched child has the same parent, named by path or by id: its
+    // reference to it (the first positional field) is no change.
+    std::string_view parentRef;
+    if (kind && kind->role == Role::Child)
+      if (const Layout* layout = kind->layoutFor(rb.positionalCount); layout && !layout->fields.empty())
+        parentRef = layout->fields.front().name;
     auto skip = [&](const DiffValue& v) {
       if (ignored(tag, v.name)) return true;
       if (v.positional && std::find(identity.begin(), identity.end(), v.name) != identity.end()) return true;
+      if (v.positional && !parentRef.empty() && v.name == parentRef) return true;
       return d.renamed() && v.positional && v.name == "path";
     };
     auto add = [&](const DiffValue& v, bool isOld) {

@@ -165,8 +165,12 @@ std::vector<std::string> baseKeys(const Document& doc, const IdentityOptions& op
         key += nodePath(doc, r);
       }
       if (auto o = overrides.find(i); o != overrides.end()) key = o->second;  // before its children
-      if (std::find(parentTags.begin(), parentTags.end(), k.tag) != parentTags.end())
+      if (std::find(parentTags.begin(), parentTags.end(), k.tag) != parentTags.end()) {
         parents[k.tag + kSep + nodePath(doc, r)] = key;
+        // A child may name its parent by id (`compound_child compound_table`)
+        // where the other side names it by path: the same parent either way.
+        if (std::string ref = nodeId(doc, r); !ref.empty() && ref != nodePath(doc, r)) parents[k.tag + kSep + ref] = key;
+      }
     } else if (const IdentityRule* rule = ruleFor(tag)) {
       key += ruleKey(doc, r, *rule, options.ignoresId(tag));
     } else {

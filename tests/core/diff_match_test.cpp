@@ -205,3 +205,27 @@ TEST(DiffMatch, JsonListsTheFieldsOfAddedRecordsButCountsOnlyChangedOnes) {
   }
   EXPECT_TRUE(sawLight);
 }
+
+TEST(DiffMatch, AChildNamingItsParentByIdOrByPathIsTheSameChild) {
+  const std::string byId =
+      "raisim_engine_scene 1\n"
+      "compound /World/Table 0 0 1 1 0 0 0 1 1 1 5 dynamic true true id=compound_table\n"
+      "compound_child compound_table box 0 0 0.72 1 0 0 0 1 1 1 size=1.2,0.7,0.06\n"
+      "compound_child compound_table box 0 0 0.35 1 0 0 0 1 1 1 size=0.06,0.06,0.7\n";
+  std::string byPath = byId;
+  for (std::size_t at; (at = byPath.find("compound_child compound_table")) != std::string::npos;)
+    byPath.replace(at, 29, "compound_child /World/Table");
+  EXPECT_TRUE(run(byId, byPath).same());
+  // As rscene-from-xml writes it: no id on the parent either.
+  DiffResult d = run(byId, replace(byPath, " id=compound_table", ""));
+  ASSERT_EQ(d.records.size(), 1u);
+  EXPECT_EQ(d.records[0].tag, "compound");
+  ASSERT_EQ(d.records[0].fields.size(), 1u);
+  EXPECT_EQ(d.records[0].fields[0].name, "id");
+  // A changed child still shows, under its parent's path.
+  d = run(byId, replace(byPath, "size=0.06,0.06,0.7", "size=0.06,0.06,0.8"));
+  ASSERT_EQ(d.records.size(), 1u);
+  EXPECT_EQ(d.records[0].path, "/World/Table[1]");
+  ASSERT_EQ(d.records[0].fields.size(), 1u);
+  EXPECT_EQ(d.records[0].fields[0].name, "size");
+}
