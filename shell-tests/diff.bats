@@ -24,7 +24,15 @@ expected_blocks() {
     heights[6]: 0 -> 0.03
     heights[17]: 0 -> 0.01
 + light /World/Sun
+    direction: 0,0,-1
+    intensity: 3
+    id: light_sun
+    type: directional
 - light /World/Fill
+    direction: 0,0,-1
+    intensity: 0.8
+    id: light_fill
+    type: point
 ~ object /World/Props/Box (moved from /World/Box)
 ~ object /World/Crate
     position: 1,0,0.5 -> 1,0,0.5000000001
@@ -165,11 +173,24 @@ EOF2
   run -0 "$DIFF" scene.rscene "$OLD" 1111111 100644 "$NEW" 2222222 100644
   [ "${lines[0]}" = "rscene-diff a/scene.rscene b/scene.rscene" ]
   [ "${lines[1]}" = "~ editor_ux" ]
+  # An added scene: /dev/null as git writes it, and every record with its
+  # values (issue 27); a deleted one the same way round.
   run -0 "$DIFF" new.rscene /dev/null . . "$NEW" 2222222 100644
+  [ "${lines[0]}" = "rscene-diff /dev/null b/new.rscene" ]
   [ "${lines[1]}" = "+ raisim_engine_scene" ]
-  [ "${lines[2]}" = "+ time_step" ]
+  [ "${lines[2]}" = "    version: 1" ]
+  [ "${lines[3]}" = "+ time_step" ]
+  [ "${lines[4]}" = "    dt: 0.0025" ]
+  [[ $output == *$'\n+ object /World/Crate\n    primitive: box\n    position: 1,0,0.5000000001\n'* ]]
+  [[ $output == *$'\n    mass: 3\n'* ]]
   run -0 "$DIFF" old.rscene "$OLD" 1111111 100644 /dev/null . .
-  [ "${lines[2]}" = "- time_step" ]
+  [ "${lines[0]}" = "rscene-diff a/old.rscene /dev/null" ]
+  [ "${lines[3]}" = "- time_step" ]
+  [ "${lines[4]}" = "    dt: 0.0025" ]
+  [[ $output == *$'\n- light /World/Fill\n    direction: 0,0,-1\n    intensity: 0.8\n'* ]]
+  # Outside git's mode, an added record lists its values too.
+  run -1 "$DIFF" "$OLD" "$NEW"
+  [[ $output == *$'\n+ light /World/Sun\n    direction: 0,0,-1\n    intensity: 3\n'* ]]
 }
 
 @test "git mode: a side that does not parse gives a header and a line diff, exit 0" {
@@ -189,8 +210,9 @@ EOF2
 @test "git mode: added or deleted broken scenes, binary junk, nine arguments for a rename" {
   printf 'not a scene\n' >broken.rscene
   run -0 --separate-stderr "$DIFF" new.rscene /dev/null . . broken.rscene 2222222 100644
-  [ "$output" = $'rscene-diff a/new.rscene b/new.rscene\n--- /dev/null\n+++ b/new.rscene\n@@ -0,0 +1,1 @@\n+not a scene' ]
+  [ "$output" = $'rscene-diff /dev/null b/new.rscene\n--- /dev/null\n+++ b/new.rscene\n@@ -0,0 +1,1 @@\n+not a scene' ]
   run -0 --separate-stderr "$DIFF" old.rscene broken.rscene 1111111 100644 /dev/null . .
+  [ "${lines[0]}" = "rscene-diff a/old.rscene /dev/null" ]
   [ "${lines[1]}" = "--- a/old.rscene" ]
   [ "${lines[2]}" = "+++ /dev/null" ]
   printf 'junk\0\001\n' >junk.rscene
@@ -307,4 +329,35 @@ walker() {  # $1: the knee value of the left leg; $2: the robot file
   git config diff.rscene.command "$DIFF"
   run -0 git diff
   [[ "$output" == *"generalizedCoordinate[L_KNEE]: -0.6 -> -0.5"* ]]
+}
+
+# Issue 27: a scene sent through rscene-to-xml and back has no ids; its
+# records are matched by path, not shown as removed and added.
+@test "a round trip through XML: records match by path; --ignore id matches by path alone" {
+  needs_tools rscene-to-xml rscene-from-xml
+  "$BIN/rscene-to-xml" -o crates.xml "$ROOT/examples/warehouse_crates.rscene" 2>/dev/null
+  "$BIN/rscene-from-xml" -o back.rscene crates.xml
+  ! grep -q ' id=' back.rscene  # the XML carries no ids
+  run -1 "$DIFF" "$ROOT/examples/warehouse_crates.rscene" back.rscene
+  [[ $output != *"+ object"* && $output != *"- object"* ]]
+  [[ $output == *$'\n~ object /World/Props/CrateA\n'*$'\n    - id: object_cratea\n    - parentGroupId: folder_props\n'* ]]
+  # What the XML cannot carry: lights, camera, materials' looks,
+  # environment, weather, groups (removed), an object's material, and the
+  # unused radius and height of a box.
+  run -1 "$DIFF" --stat "$ROOT/examples/warehouse_crates.rscene" back.rscene
+  [ "${lines[6]}" = " object       5 changed" ]
+  [ "${lines[8]}" = " 16 records: 5 changed, 11 removed" ]
+  run -1 "$DIFF" --ignore id,parentGroupId,radius,height,material --ignore-editor-state --tolerance 0.002 \
+    "$ROOT/examples/warehouse_crates.rscene" back.rscene
+  # Left: the ground's drawn size (a ground is a half-space in XML); the crates are the same.
+  [ "$(grep -A1 '^~' <<<"$output")" = $'~ object /World/Ground\n    scale: 18,18,1 -> 10,10,1' ]
+  # Another id at the same path is another record, unless ids are ignored.
+  sed 's/id=object_cratea/id=crate_one/' "$ROOT/examples/warehouse_crates.rscene" >renamed.rscene
+  run -1 "$DIFF" "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
+  [ "${lines[0]}" = "+ object /World/Props/CrateA" ]
+  [[ $output == *$'\n- object /World/Props/CrateA\n'* ]]
+  run -0 "$DIFF" --ignore id "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
+  [ -z "$output" ]
+  run -0 "$DIFF" --ignore object.id "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
+  run -1 "$DIFF" --ignore light.id "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
 }

@@ -254,6 +254,27 @@ EOF
   run -2 "$FMT" --textconv --check broken.rscene
 }
 
+@test "--textconv: git's temporary copy of a committed version is named by its file name, and said so (issue 27)" {
+  printf 'raisim_engine_scene 1\nobject /World/Box box 0 0\n' >broken.rscene
+  mkdir -p tmp/git-blob-Ab12Cd tmp/git-blob-long-name
+  cp broken.rscene tmp/git-blob-Ab12Cd/s.rscene       # git since 2.2x
+  cp broken.rscene tmp/Xy34Zw_s.rscene                # older git: $TMPDIR/XXXXXX_NAME
+  cp broken.rscene tmp/git-blob-long-name/s.rscene    # not git's: named as given
+  local said="object has 4 positional fields, expected 25, 19 or 17; shown as written"
+  local copy=" (a committed version: git gives textconv no folder or commit) [RS1007]"
+  run -0 --separate-stderr "$FMT" --textconv "$PWD/tmp/git-blob-Ab12Cd/s.rscene"
+  [ "$stderr" = ".../s.rscene:2:26: warning: $said$copy" ]
+  TMPDIR=$PWD/tmp/ run -0 --separate-stderr "$FMT" --textconv "$PWD/tmp/Xy34Zw_s.rscene"
+  [ "$stderr" = ".../s.rscene:2:26: warning: $said$copy" ]
+  TMPDIR=/elsewhere run -0 --separate-stderr "$FMT" --textconv "$PWD/tmp/Xy34Zw_s.rscene"
+  [ "$stderr" = "$PWD/tmp/Xy34Zw_s.rscene:2:26: warning: $said [RS1007]" ]
+  run -0 --separate-stderr "$FMT" --textconv tmp/git-blob-long-name/s.rscene
+  [ "$stderr" = "tmp/git-blob-long-name/s.rscene:2:26: warning: $said [RS1007]" ]
+  # A working-copy file: git passes its repository path, used as is.
+  run -0 --separate-stderr "$FMT" --textconv broken.rscene
+  [ "$stderr" = "broken.rscene:2:26: warning: $said [RS1007]" ]
+}
+
 @test "--stdin-filename names standard input in messages" {
   run --separate-stderr "$FMT" --stdin-filename scenes/a.rscene < <(printf 'raisim_engine_scene 1\ntime_step 1\nobject /World/A box 0 0\n')
   [ "$status" -eq 2 ]

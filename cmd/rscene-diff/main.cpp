@@ -57,11 +57,10 @@ std::string lineDiff(const Side& a, const Side& b, const std::string& oldName, c
     w.hint.clear();
     std::cerr << formatDiagnostic(w, s == &a ? oldName : newName, {}, cli::colorFor(2));
   }
-  std::string from = a.empty ? "/dev/null" : oldName, to = b.empty ? "/dev/null" : newName;
   std::string out = "rscene-diff " + oldName + " " + newName + "\n";
   if (looksBinary(a.text()) || looksBinary(b.text()))
-    return a.text() == b.text() ? std::string() : out + "Binary files " + from + " and " + to + " differ\n";
-  std::string lines = unifiedDiff(a.text(), b.text(), from, to);
+    return a.text() == b.text() ? std::string() : out + "Binary files " + oldName + " and " + newName + " differ\n";
+  std::string lines = unifiedDiff(a.text(), b.text(), oldName, newName);
   return lines.empty() ? lines : out + lines;
 }
 
@@ -114,7 +113,9 @@ int main(int argc, char** argv) {
       ->check(cli::nonNegative());
   app.add_flag("--ignore-editor-state", opt.ignoreEditorState,
                "Skip snapping, editor_ux, render_bake and the locked, expanded and selection* fields");
-  app.add_option("--ignore", ignoreList, "Skip these fields (NAME or TAG.NAME, comma-separated)")->type_name("KEY,...");
+  app.add_option("--ignore", ignoreList,
+                 "Skip these fields (NAME or TAG.NAME, comma-separated); id (or TAG.id) also matches records "
+                 "by path or name instead of id")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
   cli::addStdinFilename(app, stdinName, false);
   std::vector<char*> args = separateGitOperands(argc, argv);
@@ -145,8 +146,11 @@ int main(int argc, char** argv) {
   std::thread loader([&] { load(a); });
   load(b);
   loader.join();
-  const std::string oldName = git ? "a/" + files[0] : a.in.display;
-  const std::string newName = git ? "b/" + files[files.size() == 9 ? 7 : 0] : b.in.display;
+  // git names the scene by its repository path (its operands are
+  // temporary copies); a side that does not exist is /dev/null, as in
+  // git's own `--- /dev/null`.
+  const std::string oldName = !git ? a.in.display : a.empty ? "/dev/null" : "a/" + files[0];
+  const std::string newName = !git ? b.in.display : b.empty ? "/dev/null" : "b/" + files[files.size() == 9 ? 7 : 0];
   const bool parsed = a.loaded.ok() && b.loaded.ok();
   std::string out;
   bool different = false;
@@ -154,8 +158,8 @@ int main(int argc, char** argv) {
     out = lineDiff(a, b, oldName, newName);
   } else {
     bool color = cli::colorFor(2);
-    cli::printDiagnostics(a.loaded.diagnostics, a.in.display, a.text(), color);
-    cli::printDiagnostics(b.loaded.diagnostics, b.in.display, b.text(), color);
+    cli::printDiagnostics(a.loaded.diagnostics, oldName, a.text(), color);
+    cli::printDiagnostics(b.loaded.diagnostics, newName, b.text(), color);
     if (!parsed) return trouble;
     for (const std::string& entry : opt.ignore)
       if (auto problem = checkIgnoreName(entry, a.loaded.document, b.loaded.document)) {

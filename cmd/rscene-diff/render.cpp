@@ -25,6 +25,8 @@ std::string summary(const FieldDiff& f) {
   const char* unit =
       f.type == ValueType::NumberList || f.type == ValueType::IntegerList ? " values" : " entries";
   std::string s;
+  if (f.change != Change::Changed)  // a whole list one side has
+    return std::to_string(f.change == Change::Added ? f.newCount : f.oldCount) + unit;
   if (f.oldCount != f.newCount) {
     s = std::to_string(f.oldCount) + " -> " + std::to_string(f.newCount) + unit;
     if (f.changedCount) s += ", " + std::to_string(f.changedCount) + " of the common ones changed";
@@ -62,10 +64,12 @@ std::string blocks(const DiffResult& result, bool color) {
     out += std::string(sign) + " " + label(r);
     if (color) out += kReset;
     out.push_back('\n');
+    // An added or removed record's fields are all added or removed: no sign.
+    const bool whole = r.change != Change::Changed;
     for (const FieldDiff& f : r.fields) {
       out += "    ";
-      if (f.change == Change::Added) out += color ? std::string(kGreen) + "+ " + kReset : "+ ";
-      if (f.change == Change::Removed) out += color ? std::string(kRed) + "- " + kReset : "- ";
+      if (!whole && f.change == Change::Added) out += color ? std::string(kGreen) + "+ " + kReset : "+ ";
+      if (!whole && f.change == Change::Removed) out += color ? std::string(kRed) + "- " + kReset : "- ";
       // A key named like a positional field of its kind is another field.
       out += f.name + (f.keyForm ? " (key): " : ": ");
       if (f.summarized) out += summary(f);

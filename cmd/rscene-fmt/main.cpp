@@ -3,7 +3,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <iostream>
+#include <optional>
 
 #include "common/cli.hpp"
 #include "core/assets.hpp"
@@ -43,6 +46,27 @@ struct Options {
   bool textconv = false;
 };
 
+// git runs textconv on a committed version as a temporary copy,
+// $TMPDIR/git-blob-XXXXXX/NAME (older git: $TMPDIR/XXXXXX_NAME), and tells
+// it neither the repository path nor the commit: no argument, no
+// environment variable.  Returns NAME for such a copy, else nothing.
+std::optional<std::string> gitCopyName(std::string_view path) {
+  std::size_t slash = path.rfind('/');
+  if (slash == std::string_view::npos) return std::nullopt;  // git passes worktree files by repository path
+  std::string_view dir = path.substr(0, slash), name = path.substr(slash + 1);
+  std::string_view parent = dir.substr(dir.rfind('/') + 1);
+  auto random = [](std::string_view s) {
+    return s.size() == 6 && std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); });
+  };
+  if (parent.size() == 15 && parent.substr(0, 9) == "git-blob-" && random(parent.substr(9)) && !name.empty())
+    return std::string(name);
+  const char* tmp = std::getenv("TMPDIR");
+  std::string_view tmpdir = tmp && *tmp ? std::string_view(tmp) : std::string_view("/tmp");
+  while (tmpdir.size() > 1 && tmpdir.back() == '/') tmpdir.remove_suffix(1);
+  if (dir == tmpdir && name.size() > 7 && random(name.substr(0, 6)) && name[6] == '_') return std::string(name.substr(7));
+  return std::nullopt;
+}
+
 // git's textconv must not fail (git would stop `git log -p` there): a scene
 // that does not parse is shown as written, with one warning.
 int showAsWritten(std::string_view original, const std::string& display, const Diagnostics& ds,
@@ -52,7 +76,14 @@ int showAsWritten(std::string_view original, const std::string& display, const D
   w.severity = Severity::Warning;
   w.message += "; shown as written";
   w.hint.clear();  // one line per file in `git log -p`
-  std::cerr << formatDiagnostic(w, display, {}, cli::colorFor(2));
+  // Not git's temporary path, which would send people looking for a file
+  // that is gone: the scene's name, and what is not known.
+  std::string name = display;
+  if (auto copy = gitCopyName(display)) {
+    name = ".../" + *copy;
+    w.message += " (a committed version: git gives textconv no folder or commit)";
+  }
+  std::cerr << formatDiagnostic(w, name, {}, cli::colorFor(2));
   bool ok = cli::writeOutput(output, [&](Sink& s) {
     s.write(original);
     return true;

@@ -18,13 +18,20 @@ bool editorField(std::string_view name) {
 
 class Differ {
  public:
-  Differ(const Document& a, const Document& b, const DiffOptions& opt) : a_(a), b_(b), opt_(opt) {}
+  Differ(const Document& a, const Document& b, const DiffOptions& opt) : a_(a), b_(b), opt_(opt) {
+    // `--ignore id` (or TAG.id): ids take no part in matching either.
+    for (const std::string& i : opt_.ignore) {
+      if (i == "id") identity_.ignoreIdTags.push_back("*");
+      else if (i.size() > 3 && i.compare(i.size() - 3, 3, ".id") == 0) identity_.ignoreIdTags.push_back(i.substr(0, i.size() - 3));
+    }
+  }
 
   DiffResult run() {
     DiffResult result;
     result.oldRecords = a_.records.size();
     result.newRecords = b_.records.size();
-    std::vector<std::string> keysA = identityKeys(a_), keysB = identityKeys(b_);
+    SideKeys keys = matchedIdentityKeys(a_, b_, identity_);
+    const std::vector<std::string>&keysA = keys.oldKeys, &keysB = keys.newKeys;
     std::unordered_map<std::string_view, std::uint32_t> inA;
     inA.reserve(keysA.size());
     for (std::uint32_t i = 0; i < keysA.size(); ++i) inA.emplace(keysA[i], i);
@@ -37,7 +44,9 @@ class Differ {
       if (skipped(b_, rb)) continue;
       auto it = inA.find(keysB[j]);
       if (it == inA.end()) {
-        out.push_back({{rank(rb), j}, header(Change::Added, b_, rb, keysB[j])});
+        RecordDiff d = header(Change::Added, b_, rb, keysB[j]);
+        describe(b_, rb, false, d);
+        out.push_back({{rank(rb), j}, std::move(d)});
         continue;
       }
       matched[it->second] = 1;
@@ -54,6 +63,7 @@ class Differ {
       RecordDiff d = header(Change::Removed, a_, ra, keysA[i]);
       d.oldLine = ra.line;
       d.newLine = 0;
+      describe(a_, ra, true, d);
       out.push_back({{rank(ra), i}, std::move(d)});
     }
     std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first.first < y.first.first; });
@@ -80,11 +90,11 @@ class Differ {
     return false;
   }
 
-  static RecordDiff header(Change c, const Document& doc, const Record& r, const std::string& key) {
+  RecordDiff header(Change c, const Document& doc, const Record& r, const std::string& key) const {
     RecordDiff d;
     d.change = c;
     d.tag = doc.tag(r);
-    d.path = r.kind && r.kind->role == Role::Child ? childPath(doc, r, key) : nodePath(doc, r);
+    d.path = r.kind && r.kind->role == Role::Child ? childPath(doc, r, key, identity_) : nodePath(doc, r);
     d.newLine = r.line;
     // People read the key without the separators used for matching.
     std::string_view k = key;
@@ -102,6 +112,30 @@ class Differ {
     }
     if (d.key.empty()) d.key = d.tag;
     return d;
+  }
+
+  // The fields of a record only one side has, with their values: what an
+  // added record holds, what a removed one held.
+  void describe(const Document& doc, const Record& r, bool isOld, RecordDiff& d) const {
+    const std::string_view tag = doc.tag(r);
+    // A node's path, a child's parent path: the record's label says them.
+    const bool pathInLabel = r.kind && (r.kind->role == Role::Node || r.kind->role == Role::Child);
+    std::vector<DiffValue> vs = values(doc, r);
+    for (std::size_t k = 0; k < vs.size(); ++k) {
+      const DiffValue& v = vs[k];
+      if (ignored(tag, v.name) || (pathInLabel && k == 0 && v.positional)) continue;
+      std::size_t before = d.fields.size();
+      values_.whole(v, isOld, d.fields);
+      if (!v.positional && r.kind && hasPositional(*r.kind, v.name))
+        for (std::size_t i = before; i < d.fields.size(); ++i) d.fields[i].keyForm = true;
+    }
+  }
+
+  static bool hasPositional(const KindDef& kind, std::string_view name) {
+    for (const Layout& l : kind.layouts)
+      for (const FieldDef& f : l.fields)
+        if (f.name == name) return true;
+    return false;
   }
 
   static std::vector<DiffValue> values(const Document& doc, const Record& r) {
@@ -170,13 +204,7 @@ class Differ {
       return nullptr;
     };
     // A key whose kind also has a positional field of its name.
-    auto keyForm = [&](const DiffValue& v) {
-      if (v.positional || !kind) return false;
-      for (const Layout& l : kind->layouts)
-        for (const FieldDef& f : l.fields)
-          if (f.name == v.name) return true;
-      return false;
-    };
+    auto keyForm = [&](const DiffValue& v) { return !v.positional && kind && hasPositional(*kind, v.name); };
     if (kind && kind->role == Role::Node) {
       std::string pa = nodePath(a_, ra), pb = nodePath(b_, rb);
       if (pa != pb) d.oldPath = pa;
@@ -185,9 +213,16 @@ class Differ {
     std::vector<std::string_view> identity;
     for (const IdentityRule& rule : identityRules())
       if (rule.unordered && tag == rule.tag) identity = splitWords(rule.fields);
+    // A matched child has the same parent, named by path or by id: its
+    // reference to it (the first positional field) is no change.
+    std::string_view parentRef;
+    if (kind && kind->role == Role::Child)
+      if (const Layout* layout = kind->layoutFor(rb.positionalCount); layout && !layout->fields.empty())
+        parentRef = layout->fields.front().name;
     auto skip = [&](const DiffValue& v) {
       if (ignored(tag, v.name)) return true;
       if (v.positional && std::find(identity.begin(), identity.end(), v.name) != identity.end()) return true;
+      if (v.positional && !parentRef.empty() && v.name == parentRef) return true;
       return d.renamed() && v.positional && v.name == "path";
     };
     auto add = [&](const DiffValue& v, bool isOld) {
@@ -198,12 +233,7 @@ class Differ {
         else values_.compare(dv, v, d.fields);
         if (d.fields.size() > before) (isOld ? d.fields[before].newDefault : d.fields[before].oldDefault) = true;
       } else {
-        FieldDiff f;
-        f.name = v.name;
-        f.type = v.type;
-        f.change = isOld ? Change::Removed : Change::Added;
-        (isOld ? f.oldValue : f.newValue) = ValueComparer::display(v, isOld ? a_.version : b_.version);
-        d.fields.push_back(std::move(f));
+        values_.whole(v, isOld, d.fields);
       }
       return before;
     };
@@ -239,6 +269,7 @@ class Differ {
   const Document& a_;
   const Document& b_;
   const DiffOptions& opt_;
+  IdentityOptions identity_;
   ValueComparer values_{opt_, a_.version, b_.version};
 };
 

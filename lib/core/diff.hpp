@@ -63,6 +63,8 @@ struct RecordDiff {
   std::string path;
   std::string oldPath;   // when a node kept its id but changed its path
   std::uint32_t oldLine = 0, newLine = 0;
+  // What changed; for an added record every field it writes (added), for a
+  // removed one every field it wrote (removed), long lists as a count.
   std::vector<FieldDiff> fields;
   bool renamed() const { return !oldPath.empty(); }
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/text.hpp"
 
@@ -16,15 +17,28 @@ std::string normalized(std::string text) {
   return text;
 }
 
-std::string ruleKey(const Document& doc, const Record& r, const IdentityRule& rule) {
+// The alternatives of a rule's `a|b` word that count: all but `id` when
+// ids are ignored (and `id` is not the only one).
+std::vector<std::string_view> alternatives(std::string_view word, bool ignoreId) {
+  std::vector<std::string_view> out;
+  for (std::string_view rest = word;;) {
+    std::size_t bar = rest.find('|');
+    std::string_view a = rest.substr(0, bar);
+    if (!(ignoreId && a == "id")) out.push_back(a);
+    if (bar == std::string_view::npos) break;
+    rest = rest.substr(bar + 1);
+  }
+  if (out.empty()) out.push_back(word);
+  return out;
+}
+
+std::string ruleKey(const Document& doc, const Record& r, const IdentityRule& rule, bool ignoreId) {
   std::vector<std::string> parts;
   for (std::string_view word : splitWords(rule.fields)) {
     std::string value;
-    while (!word.empty()) {
-      std::size_t bar = word.find('|');
-      value = fieldText(doc, r, word.substr(0, bar));
-      if (!value.empty() || bar == std::string_view::npos) break;
-      word = word.substr(bar + 1);
+    for (std::string_view a : alternatives(word, ignoreId)) {
+      value = fieldText(doc, r, a);
+      if (!value.empty()) break;
     }
     parts.push_back(normalized(std::move(value)));
   }
@@ -51,7 +65,7 @@ const std::vector<IdentityRule>& identityRules() {
       {"contact_material", "materialA materialB", true},
       {"terrain_texture", "slot"},
       {"asset", "id|label"},
-      {"articulated_resource", "id"},
+      {"articulated_resource", "id|name"},
       {"prefab_override", "path property"},
       {"terrain_splat_layer", "slot"},
       {"terrain_foliage_layer", "id|name"},
@@ -74,22 +88,24 @@ std::string fieldText(const Document& doc, const Record& r, std::string_view nam
   return f ? percentDecode(doc.text(f->value)) : std::string();
 }
 
-std::string childPath(const Document& doc, const Record& r, std::string_view key) {
+bool IdentityOptions::ignoresId(std::string_view tag) const {
+  return std::any_of(ignoreIdTags.begin(), ignoreIdTags.end(),
+                     [&](const std::string& t) { return t == "*" || t == tag; });
+}
+
+std::string childPath(const Document& doc, const Record& r, std::string_view key, const IdentityOptions& options) {
   std::string out = percentDecode(doc.positionalText(r, 0));
   out.push_back('[');
   if (const IdentityRule* rule = ruleFor(doc.tag(r)); rule && *rule->fields) {
     // The field that gave the key: the first alternative of `id|name` that is set.
-    std::string_view word = splitWords(rule->fields).front();
-    std::string_view name = word.substr(0, word.find('|'));
-    for (std::string_view rest = word; !rest.empty();) {
-      std::size_t bar = rest.find('|');
-      std::string_view alternative = rest.substr(0, bar);
+    std::vector<std::string_view> names =
+        alternatives(splitWords(rule->fields).front(), options.ignoresId(doc.tag(r)));
+    std::string_view name = names.front();
+    for (std::string_view alternative : names)
       if (!fieldText(doc, r, alternative).empty()) {
         name = alternative;
         break;
       }
-      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
-    }
     out.append(name).push_back('=');
   }
   out.append(key.substr(key.rfind(kSep) + 1));
@@ -97,7 +113,12 @@ std::string childPath(const Document& doc, const Record& r, std::string_view key
   return out;
 }
 
-std::vector<std::string> identityKeys(const Document& doc) {
+namespace {
+
+// Keys before repeats are numbered; `overrides` replaces the key of a
+// record (by index) before its children are keyed under it.
+std::vector<std::string> baseKeys(const Document& doc, const IdentityOptions& options,
+                                  const std::unordered_map<std::size_t, std::string>& overrides) {
   static const std::vector<std::string> parentTags = [] {
     std::vector<std::string> v;
     for (const KindDef& k : Schema::get().kinds())
@@ -132,10 +153,10 @@ std::vector<std::string> identityKeys(const Document& doc) {
       std::string parent = it != parents.end() ? it->second : k.parentTag + kSep + parentPath;
       key = parent + kSep + key;
       const IdentityRule* rule = ruleFor(tag);
-      if (rule && *rule->fields) key += ruleKey(doc, r, *rule);
+      if (rule && *rule->fields) key += ruleKey(doc, r, *rule, options.ignoresId(tag));
       else key += std::to_string(siblings[parent + kSep + std::string(tag)]++);
     } else if (k.role == Role::Node) {
-      std::string id = nodeId(doc, r);
+      std::string id = options.ignoresId(tag) ? std::string() : nodeId(doc, r);
       if (!id.empty()) {
         key += "id";
         key.push_back(kSep);
@@ -143,14 +164,24 @@ std::vector<std::string> identityKeys(const Document& doc) {
       } else {
         key += nodePath(doc, r);
       }
-      if (std::find(parentTags.begin(), parentTags.end(), k.tag) != parentTags.end())
+      if (auto o = overrides.find(i); o != overrides.end()) key = o->second;  // before its children
+      if (std::find(parentTags.begin(), parentTags.end(), k.tag) != parentTags.end()) {
         parents[k.tag + kSep + nodePath(doc, r)] = key;
+        // A child may name its parent by id (`compound_child compound_table`)
+        // where the other side names it by path: the same parent either way.
+        if (std::string ref = nodeId(doc, r); !ref.empty() && ref != nodePath(doc, r)) parents[k.tag + kSep + ref] = key;
+      }
     } else if (const IdentityRule* rule = ruleFor(tag)) {
-      key += ruleKey(doc, r, *rule);
+      key += ruleKey(doc, r, *rule, options.ignoresId(tag));
     } else {
       key += percentDecode(doc.positionalText(r, 0));
     }
+    if (auto o = overrides.find(i); o != overrides.end()) key = o->second;
   }
+  return keys;
+}
+
+std::vector<std::string> numberRepeats(std::vector<std::string> keys) {
   // Repeats: the second record with a key is `key#2`, and so on.
   std::unordered_map<std::string_view, int> seen;
   seen.reserve(keys.size());
@@ -161,6 +192,56 @@ std::vector<std::string> identityKeys(const Document& doc) {
   }
   for (auto [i, n] : repeats) keys[i] += "#" + std::to_string(n);
   return keys;
+}
+
+bool hasExplicitId(const Document& doc, const Record& r) { return r.kind && !fieldText(doc, r, "id").empty(); }
+
+}  // namespace
+
+std::vector<std::string> identityKeys(const Document& doc, const IdentityOptions& options) {
+  return numberRepeats(baseKeys(doc, options, {}));
+}
+
+SideKeys matchedIdentityKeys(const Document& oldDoc, const Document& newDoc, const IdentityOptions& options) {
+  std::vector<std::string> baseA = baseKeys(oldDoc, options, {}), baseB = baseKeys(newDoc, options, {});
+  SideKeys out{numberRepeats(baseA), numberRepeats(baseB)};
+  std::unordered_set<std::string_view> inA(out.oldKeys.begin(), out.oldKeys.end()),
+      inB(out.newKeys.begin(), out.newKeys.end());
+  // Most diffs leave nothing unmatched on one side or the other: done.
+  auto unmatched = [](const std::vector<std::string>& keys, const std::unordered_set<std::string_view>& other) {
+    return std::any_of(keys.begin() + (keys.empty() ? 0 : 1), keys.end(),
+                       [&](const std::string& k) { return !other.count(k); });
+  };
+  if (!unmatched(out.oldKeys, inB) || !unmatched(out.newKeys, inA)) return out;
+  // The keys records would have without ids: the same on both sides for a
+  // node of the same tag and path, or a material of the same name.
+  IdentityOptions noIds = options;
+  noIds.ignoreIdTags.assign(1, "*");
+  std::vector<std::string> plainA = numberRepeats(baseKeys(oldDoc, noIds, {}));
+  std::vector<std::string> plainB = numberRepeats(baseKeys(newDoc, noIds, {}));
+  // Unmatched records of the old side by their key without ids, in file order.
+  std::unordered_map<std::string_view, std::vector<std::size_t>> waiting;
+  for (std::size_t i = 1; i < oldDoc.records.size(); ++i)
+    if (!inB.count(out.oldKeys[i]) && !options.ignoresId(oldDoc.tag(oldDoc.records[i])))
+      waiting[plainA[i]].push_back(i);
+  std::unordered_map<std::size_t, std::string> overridesA, overridesB;
+  for (std::size_t j = 1; j < newDoc.records.size() && !waiting.empty(); ++j) {
+    if (inA.count(out.newKeys[j])) continue;
+    auto it = waiting.find(plainB[j]);
+    if (it == waiting.end()) continue;
+    const bool idB = hasExplicitId(newDoc, newDoc.records[j]);
+    std::vector<std::size_t>& candidates = it->second;
+    auto partner = std::find_if(candidates.begin(), candidates.end(),
+                                [&](std::size_t i) { return hasExplicitId(oldDoc, oldDoc.records[i]) != idB; });
+    if (partner == candidates.end()) continue;
+    // The side without an id takes the key of the side with one.
+    if (idB) overridesA[*partner] = baseB[j];
+    else overridesB[j] = baseA[*partner];
+    candidates.erase(partner);
+  }
+  if (!overridesA.empty()) out.oldKeys = numberRepeats(baseKeys(oldDoc, options, overridesA));
+  if (!overridesB.empty()) out.newKeys = numberRepeats(baseKeys(newDoc, options, overridesB));
+  return out;
 }
 
 }  // namespace rscene

@@ -105,7 +105,8 @@ std::string diffToJson(const DiffResult& result) {
   out["same"] = result.same();
   std::size_t fields = 0;
   for (const RecordDiff& r : result.records)
-    for (const FieldDiff& f : r.fields) fields += f.entry ? 0 : 1;
+    if (r.change == Change::Changed)
+      for (const FieldDiff& f : r.fields) fields += f.entry ? 0 : 1;
   out["stat"] = {{"added", result.count(Change::Added)},
                  {"removed", result.count(Change::Removed)},
                  {"changed", result.count(Change::Changed)},
@@ -120,7 +121,7 @@ std::string diffToJson(const DiffResult& result) {
     if (r.renamed()) j["oldPath"] = r.oldPath;
     if (r.oldLine) j["oldLine"] = r.oldLine;
     if (r.newLine) j["newLine"] = r.newLine;
-    if (r.change == Change::Changed) {
+    {  // an added record's fields are added, a removed one's removed
       Json fs = Json::array();
       for (const FieldDiff& f : r.fields) fs.push_back(fieldJson(f));
       j["fields"] = std::move(fs);

@@ -385,6 +385,26 @@ bool ValueComparer::compareNamed(const DiffValue& a, const DiffValue& b, const s
   return true;
 }
 
+void ValueComparer::whole(const DiffValue& v, bool isOld, std::vector<FieldDiff>& out) const {
+  FieldDiff f;
+  f.name = v.name;
+  f.type = v.type;
+  f.change = isOld ? Change::Removed : Change::Added;
+  if (isList(v)) {
+    std::string storage;
+    Entries l;
+    split(decoded(v.tokens[0], storage), v.type, l);
+    if (l.items.size() > opt_.summarizeAbove) {
+      f.summarized = true;
+      (isOld ? f.oldCount : f.newCount) = l.size();
+      out.push_back(std::move(f));
+      return;
+    }
+  }
+  (isOld ? f.oldValue : f.newValue) = display(v, isOld ? oldVersion_ : newVersion_);
+  out.push_back(std::move(f));
+}
+
 std::string ValueComparer::display(const DiffValue& v, int version) {
   std::string out;
   const ValueType type = v.tokens.size() > 1 && !v.unknownTokens ? ValueType::Number : v.type;

@@ -41,6 +41,11 @@ class ValueComparer {
   bool compareNamed(const DiffValue& a, const DiffValue& b, const std::vector<std::string>& namesA,
                     const std::vector<std::string>& namesB, std::vector<FieldDiff>& out) const;
 
+  // A value only one side has (`isOld`: the old side): one FieldDiff,
+  // added or removed, with its canonical text, or, for a long list, a
+  // summary that counts its entries.
+  void whole(const DiffValue& v, bool isOld, std::vector<FieldDiff>& out) const;
+
   // Canonical text of a value, written for a file of `version`.
   static std::string display(const DiffValue& v, int version);
 
