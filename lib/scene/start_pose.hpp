@@ -35,12 +35,41 @@ std::vector<GroundStart> groundStarts(const Scene& scene);
 // above it).
 double depthBelow(const Object& body, double z);
 
+// Two primitive bodies that start inside each other by more than
+// kStartOverlapDepth: at least one dynamic, their groups meet (each group
+// in the other's mask), and no stiff wire joins them (rscene-sim does not
+// collide the two ends of a stiff wire).  The pair rule judges the shapes
+// it has an exact penetration depth for: box, sphere and capsule objects
+// (sphere and capsule pairs by segment distance, boxes by separating
+// axes).  Cylinders, meshes, compounds and robots are left to rscene-sim,
+// which warns from its first step's contacts.
+struct BodyStart {
+  int body = -1;   // Scene::objects index of a dynamic body of the pair (the later one when both are)
+  int other = -1;  // Scene::objects index of the other
+  double depth = 0;  // m: how far one must move to leave the other
+};
+
+// True for an object the pair rule judges (a collidable box, sphere or
+// capsule): rscene-sim leaves the start overlap of two such objects to the
+// scene model.
+bool pairRuleBody(const Object& o);
+
+// The penetration depth of two pair-rule bodies (<= 0: apart, touching at
+// 0); NaN for shapes the rule does not judge.
+double overlapDepth(const Object& a, const Object& b);
+
+// Every pair past kStartOverlapDepth, sorted by (body, other).  A sweep
+// over bounding boxes along the axis the bodies spread most on finds the
+// candidates: pairs of two non-dynamic bodies are never visited, so a
+// city of static boxes costs a sort.
+std::vector<BodyStart> bodyStarts(const Scene& scene);
+
 // RS7013 for a dynamic body that starts `depth` m inside another record
 // (`otherRecord` < 0: a robot's link), at the body record's position: the
 // one wording of validate and sim.
 Diagnostic startOverlapDiagnostic(const Document& doc, int bodyRecord, int otherRecord, double depth);
 
-// Appends RS7013 for groundStarts(scene).
+// Appends RS7013 for groundStarts(scene), then for bodyStarts(scene).
 void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 }  // namespace rscene
