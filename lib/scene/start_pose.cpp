@@ -271,6 +271,10 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
     if (dynamic[i]) dyn.push_back(i);
   std::vector<std::size_t> rank(n);
   for (std::size_t k = 0; k < n; ++k) rank[order[k]] = k;
+  // The sweep's work is bounded: bodies piled in one place have pairs
+  // quadratic in their number (rscene-sim's --max-pairs refuses such a
+  // pile); past kMaxStartPairVisits the rule stops with what it found.
+  std::uint64_t visits = 0;
   auto judge = [&](std::uint32_t x, std::uint32_t y) {
     const Solid& a = solids[x];
     const Solid& b = solids[y];
@@ -290,16 +294,24 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
   // that starts within its interval after it; a non-dynamic solid with
   // every dynamic one that starts within its interval after it.
   for (std::uint32_t d : dyn)
-    for (std::size_t k = rank[d] + 1; k < n && solids[order[k]].lo[axis] <= solids[d].hi[axis]; ++k)
+    for (std::size_t k = rank[d] + 1;
+         k < n && solids[order[k]].lo[axis] <= solids[d].hi[axis] && ++visits <= kMaxStartPairVisits; ++k)
       judge(d, order[k]);
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = 0; k < n && visits <= kMaxStartPairVisits; ++k) {
     const std::uint32_t s = order[k];
     if (dynamic[s]) continue;
     auto from = std::upper_bound(dyn.begin(), dyn.end(), s, before);
-    for (auto it = from; it != dyn.end() && solids[*it].lo[axis] <= solids[s].hi[axis]; ++it) judge(s, *it);
+    for (auto it = from; it != dyn.end() && solids[*it].lo[axis] <= solids[s].hi[axis] &&
+                         ++visits <= kMaxStartPairVisits;
+         ++it)
+      judge(s, *it);
   }
-  std::sort(out.begin(), out.end(),
-            [](const BodyStart& a, const BodyStart& b) { return std::pair(a.body, a.other) < std::pair(b.body, b.other); });
+  // One per dynamic body: the deepest it starts inside (ties: the first).
+  std::sort(out.begin(), out.end(), [](const BodyStart& a, const BodyStart& b) {
+    return a.body != b.body ? a.body < b.body : a.depth != b.depth ? a.depth > b.depth : a.other < b.other;
+  });
+  out.erase(std::unique(out.begin(), out.end(), [](const BodyStart& a, const BodyStart& b) { return a.body == b.body; }),
+            out.end());
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Where bodies start: the rules about a start pose that the scene model
 // decides once, so that rscene-validate and rscene-sim give one verdict.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "core/diagnostic.hpp"
@@ -58,10 +59,15 @@ bool pairRuleBody(const Object& o);
 // 0); NaN for shapes the rule does not judge.
 double overlapDepth(const Object& a, const Object& b);
 
-// Every pair past kStartOverlapDepth, sorted by (body, other).  A sweep
-// over bounding boxes along the axis the bodies spread most on finds the
-// candidates: pairs of two non-dynamic bodies are never visited, so a
-// city of static boxes costs a sort.
+// Candidate pairs bodyStarts() looks at, at most (a pile of thousands of
+// bodies in one place; about a second of work).
+inline constexpr std::uint64_t kMaxStartPairVisits = 200'000'000;
+
+// For each dynamic body in a pair past kStartOverlapDepth, the deepest
+// such pair (one per body: a pile of n bodies is n warnings, not n^2), in
+// body order.  A sweep over bounding boxes along the axis the bodies
+// spread most on finds the candidates: pairs of two non-dynamic bodies
+// are never visited, so a city of static boxes costs a sort.
 std::vector<BodyStart> bodyStarts(const Scene& scene);
 
 // RS7013 for a dynamic body that starts `depth` m inside another record

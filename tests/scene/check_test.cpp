@@ -529,6 +529,22 @@ TEST(BodyStart, TheGroundRuleAndThePairRuleSayEachPairOnce) {
             "4: dynamic body '/World/b' starts 0.5 m inside '/World/a'\n");
 }
 
+TEST(BodyStart, APileIsOneWarningPerBodyNamingTheDeepest) {
+  // Ten spheres in one place: 45 pairs, 9 warnings (each but the first
+  // starts inside an earlier one), each naming the first of its deepest.
+  std::string text = H;
+  for (int k = 0; k < 10; ++k) text += body("/World/s" + std::to_string(k), "sphere", "0 0 0");
+  Diagnostics ds = validate(text);
+  EXPECT_EQ(count(ds, "RS7013"), 9) << describe(ds);
+  std::set<std::uint32_t> lines;
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS7013") lines.insert(d.line);
+  EXPECT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines.count(2), 0u);  // /World/s0
+  EXPECT_NE(overlaps(text).find("11: dynamic body '/World/s9' starts 1 m inside '/World/s0'"), std::string::npos)
+      << overlaps(text);
+}
+
 // 20,000 boxes in two layers, the upper resting 5 mm into the lower
 // (contact, not overlap), side by side touching: no warning; one box
 // moved 3 cm into its neighbour is the one warning, wherever it is.
