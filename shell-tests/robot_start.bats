@@ -122,3 +122,13 @@ two_bodies() {
   [[ "$stderr" == *"warning: dynamic body '/World/"*"' starts 0.15 m inside '/World/"*"[RS7013]"* ]]
   [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
 }
+
+@test "bodies: a dynamic box inside a static one is rscene-sim's RS7013 (validate judges dynamic pairs)" {
+  two_bodies box 1.224 | sed 's|/World/Cube box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 10 default - false true false - dynamic|/World/Cube box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 10 default - false true false - static|' > st.rscene
+  grep -q 'Cube.* static ' st.rscene
+  run -0 "$V" st.rscene
+  [[ "$output" != *RS7013* ]]
+  run -0 --separate-stderr "$SIM" --steps 2 st.rscene
+  [[ "$stderr" == *"st.rscene:4:"*"warning: dynamic body '/World/Top' starts "*" inside '/World/Cube'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
+}

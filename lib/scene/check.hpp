@@ -57,7 +57,7 @@ struct SceneCheckOptions {
 //           (scene/sensor_check.hpp)
 //   RS7013  warning (with stepWarnings): a dynamic primitive body that
 //           starts more than 1 cm below a ground or half_space, or inside
-//           another box, sphere or capsule (scene/start_pose.hpp)
+//           another dynamic box, sphere or capsule (scene/start_pose.hpp)
 // Returns false when it added an error.
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
 

@@ -107,9 +107,8 @@ class Builder {
 
   // bodiesOnly: whether an object certainly passes checkScene(), so that
   // building it can be skipped: visual-only by its written #21 or #22, or
-  // a static or kinematic cylinder whose mass, scale, radius and height are
-  // all positive numbers, and no inertiaDiagonal (the start rules of
-  // scene/start_pose.hpp read every other primitive).
+  // a primitive other than a mesh whose mass, scale, radius and height are
+  // all positive numbers, whatever its mode, and no inertiaDiagonal.
   // Anything less plain is built and checked in full.
   bool plainBody(const Record& rec);
 

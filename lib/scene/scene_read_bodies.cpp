@@ -100,9 +100,8 @@ bool Builder::plainBody(const Record& rec) {
   std::string_view prim = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[0]));
   if (std::find(std::begin(kPlain), std::end(kPlain), prim) == std::end(kPlain)) return false;
   // The ground rule (scene/start_pose.hpp) reads the planes and the bodies
-  // that may move, its pair rule every box, sphere and capsule a dynamic
-  // body may start inside; only static and kinematic cylinders are left out.
-  if (prim != "cylinder" || slots[7] < 0) return false;
+  // that may move; only static and kinematic boxes and spheres are left out.
+  if (prim == "ground" || prim == "plane" || prim == "half_space" || slots[7] < 0) return false;
   if (std::string_view mode = doc_.positionalText(rec, static_cast<std::uint32_t>(slots[7]));
       mode != "static" && mode != "fixed" && mode != "kinematic")
     return false;

@@ -215,7 +215,7 @@ double solidDepth(const Solid& a, const Solid& b) {
 }  // namespace
 
 bool pairRuleBody(const Object& o) {
-  return o.bodyMode != BodyMode::VisualOnly && (o.primitive == "box" || o.primitive == "sphere" || o.primitive == "capsule");
+  return o.bodyMode == BodyMode::Dynamic && (o.primitive == "box" || o.primitive == "sphere" || o.primitive == "capsule");
 }
 
 double overlapDepth(const Object& a, const Object& b) {
@@ -297,6 +297,9 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
     for (std::size_t k = rank[d] + 1;
          k < n && solids[order[k]].lo[axis] <= solids[d].hi[axis] && ++visits <= kMaxStartPairVisits; ++k)
       judge(d, order[k]);
+  // (Every solid is dynamic today: a static or kinematic partner is
+  // rscene-sim's, see pairRuleBody().  The pass below keeps the rule whole
+  // should one be added.)
   for (std::size_t k = 0; k < n && visits <= kMaxStartPairVisits; ++k) {
     const std::uint32_t s = order[k];
     if (dynamic[s]) continue;

@@ -36,21 +36,24 @@ std::vector<GroundStart> groundStarts(const Scene& scene);
 // above it).
 double depthBelow(const Object& body, double z);
 
-// Two primitive bodies that start inside each other by more than
-// kStartOverlapDepth: at least one dynamic, their groups meet (each group
-// in the other's mask), and no stiff wire joins them (rscene-sim does not
-// collide the two ends of a stiff wire).  The pair rule judges the shapes
-// it has an exact penetration depth for: box, sphere and capsule objects
-// (sphere and capsule pairs by segment distance, boxes by separating
-// axes).  Cylinders, meshes, compounds and robots are left to rscene-sim,
-// which warns from its first step's contacts.
+// Two dynamic primitive bodies that start inside each other by more than
+// kStartOverlapDepth: their groups meet (each group in the other's mask),
+// and no stiff wire joins them (rscene-sim does not collide the two ends
+// of a stiff wire).  The pair rule judges the shapes it has an exact
+// penetration depth for: box, sphere and capsule objects (sphere and
+// capsule pairs by segment distance, boxes by separating axes).
+// Cylinders, meshes, compounds, robots, and static or kinematic partners
+// are left to rscene-sim, which warns from its first step's contacts:
+// validate's bodiesOnly build skips plain static and kinematic objects
+// (scene_builder.hpp plainBody(), which keeps its memory near the file's
+// size), so judging them here would need a compact list of them first.
 struct BodyStart {
   int body = -1;   // Scene::objects index of a dynamic body of the pair (the later one when both are)
   int other = -1;  // Scene::objects index of the other
   double depth = 0;  // m: how far one must move to leave the other
 };
 
-// True for an object the pair rule judges (a collidable box, sphere or
+// True for an object the pair rule judges (a dynamic box, sphere or
 // capsule): rscene-sim leaves the start overlap of two such objects to the
 // scene model.
 bool pairRuleBody(const Object& o);
