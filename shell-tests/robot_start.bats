@@ -83,3 +83,52 @@ box_scene() {
   run -0 --separate-stderr "$SIM" --steps 2 ok.rscene
   [[ "$stderr" != *RS7013* ]]
 }
+
+# two_bodies PRIM Z: a dynamic 1 m cube resting on a ground at 0 and a
+# dynamic PRIM (0.5 m box, or radius 0.25 and height 0.5) at height Z on it.
+two_bodies() {
+  printf 'raisim_engine_scene 2\n'
+  printf 'object /World/G ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default - false true true - static true 1 18446744073709551615\n'
+  printf 'object /World/Cube box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 10 default - false true false - dynamic true 1 18446744073709551615\n'
+  local scale="1 1 1"
+  [ "$1" = box ] && scale="0.5 0.5 0.5"
+  printf 'object /World/Top %s 0.2 0 %s 1 0 0 0 %s 0.25 0.5 1 default - false true false - dynamic true 1 18446744073709551615\n' "$1" "$2" "$scale"
+}
+
+@test "bodies: a box that starts inside another is RS7013 from validate and sim alike, once each; resting on it is not" {
+  two_bodies box 1.224 > in.rscene  # 2.6 cm into the cube
+  run -0 "$V" in.rscene
+  [[ "$output" == *"in.rscene:4:"*"warning: dynamic body '/World/Top' starts 0.026 m inside '/World/Cube'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$output")" -eq 1 ]
+  run -0 --separate-stderr "$SIM" --steps 2 in.rscene
+  [[ "$stderr" == *"in.rscene:4:"*"warning: dynamic body '/World/Top' starts 0.026 m inside '/World/Cube'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
+  for prim in box sphere capsule; do
+    z=1.245; [ $prim = capsule ] && z=1.495  # 5 mm into the cube: contact
+    two_bodies $prim $z > ok.rscene
+    run -0 "$V" ok.rscene
+    [[ "$output" != *RS7013* ]] || { echo "$prim: $output"; false; }
+    run -0 --separate-stderr "$SIM" --steps 2 ok.rscene
+    [[ "$stderr" != *RS7013* ]] || { echo "$prim: $stderr"; false; }
+  done
+}
+
+@test "bodies: a cylinder inside a box is rscene-sim's RS7013 (no exact test in validate)" {
+  two_bodies cylinder 1.1 > cyl.rscene
+  run -0 "$V" cyl.rscene
+  [[ "$output" != *RS7013* ]]
+  run -0 --separate-stderr "$SIM" --steps 2 cyl.rscene
+  # (named by the first body of Bullet's contact: either may come first)
+  [[ "$stderr" == *"warning: dynamic body '/World/"*"' starts 0.15 m inside '/World/"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
+}
+
+@test "bodies: a dynamic box inside a static one is rscene-sim's RS7013 (validate judges dynamic pairs)" {
+  two_bodies box 1.224 | sed 's|/World/Cube box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 10 default - false true false - dynamic|/World/Cube box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 10 default - false true false - static|' > st.rscene
+  grep -q 'Cube.* static ' st.rscene
+  run -0 "$V" st.rscene
+  [[ "$output" != *RS7013* ]]
+  run -0 --separate-stderr "$SIM" --steps 2 st.rscene
+  [[ "$stderr" == *"st.rscene:4:"*"warning: dynamic body '/World/Top' starts "*" inside '/World/Cube'"*"[RS7013]"* ]]
+  [ "$(grep -c RS7013 <<<"$stderr")" -eq 1 ]
+}

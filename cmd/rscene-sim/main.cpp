@@ -193,6 +193,11 @@ int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann:
   Diagnostics departures;
   for (const sim::StartOverlap& o : world->startOverlaps()) departures.push_back(sim::startOverlapWarning(doc, o));
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
+  // Bodies still deep in contact (RS7002): the run ended before the solver
+  // pushed them out, whether --until-rest ran out of time or no rest was asked.
+  if (!result.rested)
+    if (std::vector<sim::DeepContact> deep = world->deepContacts(); !deep.empty())
+      departures.push_back(sim::notAtRestWarning(doc, deep, world->time(), opt.untilRest));
   print(departures);
   Clock::time_point steppedAt = Clock::now();
 

@@ -263,7 +263,7 @@ bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions
   Checker(doc, scene, options, diagnostics).run();
   checkNumericLimits(doc, scene, diagnostics);
   checkSensors(doc, scene, diagnostics);
-  // RS7013 for a primitive starting in the ground: a warning about stepping.
+  // RS7013 for a primitive starting in the ground or in another: a warning about stepping.
   if (options.stepWarnings) checkGroundStarts(doc, scene, diagnostics);
   for (std::size_t i = before; i < diagnostics.size(); ++i)
     if (diagnostics[i].severity == Severity::Error) return false;

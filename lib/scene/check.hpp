@@ -56,8 +56,8 @@ struct SceneCheckOptions {
 //   RS7064-RS7069, RS2007  sensor records and camera outputPath
 //           (scene/sensor_check.hpp)
 //   RS7013  warning (with stepWarnings): a dynamic primitive body that
-//           starts more than 1 cm below a ground or half_space
-//           (scene/start_pose.hpp)
+//           starts more than 1 cm below a ground or half_space, or inside
+//           another dynamic box, sphere or capsule (scene/start_pose.hpp)
 // Returns false when it added an error.
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
 

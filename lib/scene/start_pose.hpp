@@ -1,6 +1,7 @@
 // Where bodies start: the rules about a start pose that the scene model
 // decides once, so that rscene-validate and rscene-sim give one verdict.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "core/diagnostic.hpp"
@@ -35,12 +36,49 @@ std::vector<GroundStart> groundStarts(const Scene& scene);
 // above it).
 double depthBelow(const Object& body, double z);
 
+// Two dynamic primitive bodies that start inside each other by more than
+// kStartOverlapDepth: their groups meet (each group in the other's mask),
+// and no stiff wire joins them (rscene-sim does not collide the two ends
+// of a stiff wire).  The pair rule judges the shapes it has an exact
+// penetration depth for: box, sphere and capsule objects (sphere and
+// capsule pairs by segment distance, boxes by separating axes).
+// Cylinders, meshes, compounds, robots, and static or kinematic partners
+// are left to rscene-sim, which warns from its first step's contacts:
+// validate's bodiesOnly build skips plain static and kinematic objects
+// (scene_builder.hpp plainBody(), which keeps its memory near the file's
+// size), so judging them here would need a compact list of them first.
+struct BodyStart {
+  int body = -1;   // Scene::objects index of a dynamic body of the pair (the later one when both are)
+  int other = -1;  // Scene::objects index of the other
+  double depth = 0;  // m: how far one must move to leave the other
+};
+
+// True for an object the pair rule judges (a dynamic box, sphere or
+// capsule): rscene-sim leaves the start overlap of two such objects to the
+// scene model.
+bool pairRuleBody(const Object& o);
+
+// The penetration depth of two pair-rule bodies (<= 0: apart, touching at
+// 0); NaN for shapes the rule does not judge.
+double overlapDepth(const Object& a, const Object& b);
+
+// Candidate pairs bodyStarts() looks at, at most (a pile of thousands of
+// bodies in one place; about a second of work).
+inline constexpr std::uint64_t kMaxStartPairVisits = 200'000'000;
+
+// For each dynamic body in a pair past kStartOverlapDepth, the deepest
+// such pair (one per body: a pile of n bodies is n warnings, not n^2), in
+// body order.  A sweep over bounding boxes along the axis the bodies
+// spread most on finds the candidates: pairs of two non-dynamic bodies
+// are never visited, so a city of static boxes costs a sort.
+std::vector<BodyStart> bodyStarts(const Scene& scene);
+
 // RS7013 for a dynamic body that starts `depth` m inside another record
 // (`otherRecord` < 0: a robot's link), at the body record's position: the
 // one wording of validate and sim.
 Diagnostic startOverlapDiagnostic(const Document& doc, int bodyRecord, int otherRecord, double depth);
 
-// Appends RS7013 for groundStarts(scene).
+// Appends RS7013 for groundStarts(scene), then for bodyStarts(scene).
 void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 }  // namespace rscene

@@ -285,6 +285,7 @@ struct World::Impl {
   std::vector<Departure> departures;
   std::vector<StartOverlap> startOverlaps;
   std::set<int> groundPlanes, groundRuleBodies;  // records: scene/start_pose.hpp's planes and bodies
+  std::set<int> pairRuleBodies;                  // records: scene/start_pose.hpp's pair rule
   bool penetrating = false;  // a contact of a dynamic body deeper than kRestPenetration after the last step
 
   std::vector<std::unique_ptr<btRigidBody>> bodies;
@@ -438,6 +439,7 @@ struct World::Impl {
     if (!dynamic(a)) std::swap(a, b);
     if (!dynamic(a) || record(a) < 0) return;
     if (groundRuleBodies.count(record(a)) && groundPlanes.count(record(b))) return;  // the scene model's RS7013
+    if (pairRuleBodies.count(record(a)) && pairRuleBodies.count(record(b))) return;  // its pair rule's RS7013
     for (StartOverlap& o : startOverlaps)
       if (o.recordIndex == record(a) && o.otherRecordIndex == record(b)) {
         o.depth = std::max(o.depth, depth);
@@ -771,6 +773,7 @@ struct World::Impl {
     btRigidBody* body = nullptr;
     if (groundRulePlane(o)) groundPlanes.insert(o.recordIndex);
     if (groundRuleBody(o)) groundRuleBodies.insert(o.recordIndex);
+    if (pairRuleBody(o)) pairRuleBodies.insert(o.recordIndex);
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
       body = addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
@@ -1166,6 +1169,69 @@ std::optional<NonFinite> World::nonFinite() const {
 }
 
 const std::vector<StartOverlap>& World::startOverlaps() const { return impl_->startOverlaps; }
+
+std::vector<DeepContact> World::deepContacts() const {
+  const Impl& w = *impl_;
+  std::map<std::pair<int, int>, DeepContact> deepest;  // by the pair's records
+  if (w.stepCount == 0) return {};
+  const btCollisionDispatcher& dispatcher = w.dispatcher;
+  for (int i = 0, m = dispatcher.getNumManifolds(); i < m; ++i) {
+    const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
+    double depth = 0;  // as World::step() measures it
+    for (int k = 0; k < manifold->getNumContacts(); ++k)
+      depth = std::max(depth, -double(manifold->getContactPoint(k).getDistance()));
+    if (!(depth > kRestPenetration)) continue;
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    auto record = [&](const btCollisionObject* o) {
+      const BodyInfo& bi = w.info[static_cast<std::size_t>(o->getUserIndex())];
+      return bi.robot >= 0 ? -1 : bi.recordIndex;
+    };
+    for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {  // the pair once, named by a dynamic body
+      const btRigidBody* rb = btRigidBody::upcast(x);
+      if (!rb || rb->isStaticOrKinematicObject() || record(x) < 0) continue;
+      DeepContact& d = deepest[{std::min(record(x), record(y)), std::max(record(x), record(y))}];
+      if (depth > d.depth) d = {record(x), record(y), depth};
+      break;
+    }
+  }
+  std::vector<DeepContact> out;
+  for (const auto& [record, d] : deepest) out.push_back(d);
+  std::stable_sort(out.begin(), out.end(), [](const DeepContact& x, const DeepContact& y) { return x.depth > y.depth; });
+  return out;
+}
+
+Diagnostic notAtRestWarning(const Document& doc, const std::vector<DeepContact>& contacts, double time,
+                            bool untilRest) {
+  auto pathOf = [&](int recordIndex) -> std::string {
+    if (recordIndex < 0 || static_cast<std::size_t>(recordIndex) >= doc.records.size()) return "a robot's link";
+    Diagnostics unused;
+    RecordReader r(doc, static_cast<std::size_t>(recordIndex), unused);
+    return "'" + r.text("path").value_or("") + "'";
+  };
+  std::string which;
+  const std::size_t named = std::min<std::size_t>(contacts.size(), 3);
+  for (std::size_t i = 0; i < named; ++i) {
+    char depth[48];
+    std::snprintf(depth, sizeof depth, "%.3g m", contacts[i].depth);
+    which += (i == 0 ? "" : i + 1 == named && contacts.size() == named ? " and " : ", ") +
+             pathOf(contacts[i].recordIndex) + " " + depth + " inside " + pathOf(contacts[i].otherRecordIndex);
+  }
+  if (contacts.size() > named) which += " and " + std::to_string(contacts.size() - named) + " more";
+  char at[64];
+  std::snprintf(at, sizeof at, "t = %.6g s", time);
+  const bool one = contacts.size() == 1;
+  const std::string still = std::string(one ? "dynamic body " : "dynamic bodies ") + which +
+                            " (more than 5 mm; the solver was still pushing " + (one ? "it" : "them") + " out)";
+  const std::string message =
+      untilRest ? std::string("--until-rest reached the end of the duration (") + at +
+                      ") before the scene came to rest: " + still + "; the scene written is not at rest"
+                : std::string("the run ended (") + at + ") with " + still + ": the scene written is not at rest";
+  Diagnostics found;
+  reportAt(&doc, contacts.empty() ? -1 : contacts.front().recordIndex, "position", rs::RS7002, message, found,
+           Severity::Warning, "run longer (--duration), or place the bodies clear of what they start inside");
+  return found.front();
+}
 
 Diagnostic startOverlapWarning(const Document& doc, const StartOverlap& o) {
   if (o.link.empty()) return startOverlapDiagnostic(doc, o.recordIndex, o.otherRecordIndex, o.depth);

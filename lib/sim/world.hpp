@@ -197,6 +197,21 @@ inline constexpr double kRestPenetration = 0.005;  // m
 // A primitive body below a ground or half_space is not among them: the
 // scene model says that (scene/start_pose.hpp, checkScene()), for
 // validate too.
+// A dynamic body more than kRestPenetration inside another body (or a
+// robot's link, otherRecordIndex -1) as the last step's contacts found it:
+// the solver was still pushing it out when the run ended.
+struct DeepContact {
+  int recordIndex = -1;       // the dynamic body's record
+  int otherRecordIndex = -1;  // what it is inside (-1: a robot's link)
+  double depth = 0;           // m
+};
+
+// RS7002 for a run that ended with `contacts` (World::deepContacts(), not
+// empty): at the deepest body's record, naming the first three;
+// `untilRest`: the run asked to stop at rest and its duration ran out.
+Diagnostic notAtRestWarning(const Document& doc, const std::vector<DeepContact>& contacts, double time,
+                            bool untilRest);
+
 // The warning for a start overlap: RS7013 at the body record's position;
 // RS7057 for a robot's link in the ground, at the robot record's
 // generalizedCoordinate (or position when it writes none).
@@ -230,6 +245,11 @@ class World {
   const ParticleSystems& particleSystems() const;  // counts and time spent (rscene-sim --report)
   const std::vector<Departure>& departures() const;  // in the order they happened
   const std::vector<StartOverlap>& startOverlaps() const;  // found by the first step
+  // Each pair of bodies, one of them dynamic (not a robot's), in a contact
+  // deeper than kRestPenetration after the last step, at its deepest,
+  // deepest first (ties in record order); empty before the first step.
+  // What keeps atRest() false while the solver pushes bodies apart.
+  std::vector<DeepContact> deepContacts() const;
   // The first body in record order whose pose or velocity is not finite
   // (NaN or infinite), or nullopt.  O(bodies); cheap next to a step.
   std::optional<NonFinite> nonFinite() const;

@@ -69,6 +69,7 @@ struct Case {
 };
 
 std::vector<Case> cases() {
+  const std::string beside = replaced(object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b"), " 0 0 1 ", " 2 0 1 ");
   return {
       {"RS4008", H + object("box", "1 1 1", "0.5", "0"), H + object("box", "1 1 1", "0.5", "0", "static")},
       {"RS7001", H + "point_cloud /World/p points=0,0,0;1,1,1 colors=1,0,0\n",
@@ -92,11 +93,10 @@ std::vector<Case> cases() {
       {"RS7027", H + "solver 2147483647 0 0.2 accurate\n", H + "solver 10000 0 0.2 accurate\n"},
       {"RS7027", H + "contact_material default default -1 0 0 0 0 0 0\n",
        H + "contact_material default default 0.8 0 0 0 0 0 0\n"},
+      // (a spring's ends collide: /World/b beside /World/a, not inside it, RS7013)
       {"RS7027",
-       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
-           "wire /World/w compliant /World/a /World/b 1 stiffness=1e308\n",
-       H + object("box") + object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/b") +
-           "wire /World/w compliant /World/a /World/b 1 stiffness=1e15\n"},
+       H + object("box") + beside + "wire /World/w compliant /World/a /World/b 1 stiffness=1e308\n",
+       H + object("box") + beside + "wire /World/w compliant /World/a /World/b 1 stiffness=1e15\n"},
       {"RS7028", H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 -1 10 rgb true\n",
        H + "camera /World/C 0 0 0 1 0 0 0 45 0.05 200 16384 10 rgb true\n"},
       {"RS7026", H + object("box", "1e300 1 1"), H + object("box", "1e12 1 1")},
@@ -324,6 +324,7 @@ TEST(SceneCheck, BodiesOnlyBuildKeepsWhatWiresName) {
                       "wire /World/w3 stiff /World/a - 1\n";
   Diagnostics ds = validate(H + object("box") + visual + hidden + wires);
   EXPECT_EQ(codes(ds), (std::vector<std::string>{"RS7011", "RS7011"})) << describe(ds);
+  // (the three boxes share one place, but only /World/a collides: no RS7013)
   LoadResult loaded = parse(H + object("box") + visual + hidden + wires);
   for (bool bodiesOnly : {false, true}) {
     SceneOptions so;
@@ -403,12 +404,170 @@ TEST(GroundStart, APairTheFilterSeparatesIsNoOverlap) {
 }
 
 TEST(GroundStart, UnderAParentTheWorldPoseCounts) {
-  // Under a static body 3 m up the sphere at z = 0.45 stands 3.45 m up.
-  const std::string parent = replaced(replaced(atZ("box", "3"), " dynamic ", " static "), "/World/b", "/World/up");
+  // Under a static body 3 m up the sphere at z = 0.45 stands 3.45 m up
+  // (the parent collides with nothing: the pair rule would judge them).
+  const std::string parent =
+      replaced(replaced(atZ("box", "3", "1 1 1", "0.5", "1 0 0 0", "0"), " dynamic ", " static "), "/World/b", "/World/up");
   std::string lifted = replaced(atZ("sphere", "0.45"), "\n", " parentGroupId=up\n");
   Diagnostics ds = validate(H + G + replaced(parent, "\n", " id=up\n") + lifted);
   EXPECT_EQ(count(ds, "RS7013"), 0) << describe(ds);
   EXPECT_EQ(count(validate(H + G + atZ("sphere", "0.45")), "RS7013"), 1);
+}
+
+
+// RS7013 from the scene model's pair rule: two dynamic box, sphere or
+// capsule objects starting more than 1 cm inside each other.
+std::string body(const std::string& path, const std::string& prim, const std::string& xyz,
+                 const std::string& scale = "1 1 1", const std::string& radius = "0.5",
+                 const std::string& orientation = "1 0 0 0", const std::string& mode = "dynamic",
+                 const std::string& group = "1", const std::string& mask = "18446744073709551615") {
+  return "object " + path + " " + prim + " " + xyz + " " + orientation + " " + scale + " " + radius +
+         " 1 1 default engine_default false true false - " + mode + " true " + group + " " + mask + "\n";
+}
+// The RS7013 messages, one per line.
+std::string overlaps(const std::string& text) {
+  std::string out;
+  for (const Diagnostic& d : validate(text))
+    if (d.code == "RS7013") out += std::to_string(d.line) + ": " + d.message.substr(0, d.message.find(';')) + "\n";
+  return out;
+}
+
+TEST(BodyStart, TwoBoxesNameBothAndTheDepth) {
+  // The crate: a 1 m cube on the ground, a box 2.6 cm inside it.
+  Diagnostics ds = validate(H + G + body("/World/cube", "box", "0 0 0.5") + body("/World/box", "box", "0.2 0 1.474"));
+  ASSERT_EQ(count(ds, "RS7013"), 1) << describe(ds);
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS7013") {
+      EXPECT_EQ(d.severity, Severity::Warning);
+      EXPECT_EQ(d.line, 4u);  // the later of two dynamic bodies
+      EXPECT_NE(d.message.find("dynamic body '/World/box' starts 0.026 m inside '/World/cube'"), std::string::npos)
+          << d.message;
+    }
+  // Resting on it (5 mm: contact) and touching: nothing.
+  EXPECT_EQ(overlaps(H + G + body("/World/cube", "box", "0 0 0.5") + body("/World/box", "box", "0.2 0 1.495")), "");
+  EXPECT_EQ(overlaps(H + G + body("/World/cube", "box", "0 0 0.5") + body("/World/box", "box", "1 0 0.5")), "");
+}
+
+TEST(BodyStart, EachPairOfShapesByItsExactDepth) {
+  auto one = [](const std::string& a, const std::string& b) { return overlaps(H + a + b); };
+  const std::string unit = body("/World/a", "box", "0 0 0");
+  // Spheres (radius 0.5): centres 0.98 apart are 2 cm in, 0.995 apart 5 mm.
+  EXPECT_EQ(one(body("/World/a", "sphere", "0 0 0"), body("/World/b", "sphere", "0.98 0 0")),
+            "3: dynamic body '/World/b' starts 0.02 m inside '/World/a'\n");
+  EXPECT_EQ(one(body("/World/a", "sphere", "0 0 0"), body("/World/b", "sphere", "0 0.995 0")), "");
+  // Sphere and box: by the nearest point of the box; a centre inside the
+  // box must leave through the nearest face.
+  EXPECT_EQ(one(unit, body("/World/b", "sphere", "0.98 0 0")), "3: dynamic body '/World/b' starts 0.02 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "sphere", "0.995 0 0")), "");
+  EXPECT_EQ(one(unit, body("/World/b", "sphere", "0.9 0.9 0")), "");  // 0.566 from the corner
+  EXPECT_EQ(one(unit, body("/World/b", "sphere", "0.8 0.8 0")), "3: dynamic body '/World/b' starts 0.0757 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "sphere", "0.3 0 0")), "3: dynamic body '/World/b' starts 0.7 m inside '/World/a'\n");
+  // Boxes: a box turned 45 degrees about z reaches 0.707 along x.
+  const std::string turned = "0.9238795 0 0 0.3826834";
+  EXPECT_EQ(one(unit, body("/World/b", "box", "1.177 0 0", "1 1 1", "0.5", turned)),
+            "3: dynamic body '/World/b' starts 0.0301 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "box", "1.2 0 0", "1 1 1", "0.5", turned)), "");
+  // Two edges crossing: b turned 45 degrees about x and about z sits on a
+  // turned edge; only the edge-edge axis sees them apart.
+  EXPECT_EQ(one(body("/World/a", "box", "0 0 0", "1 1 1", "0.5", "0.9238795 0.3826834 0 0"),
+                body("/World/b", "box", "0 0 1.42", "1 1 1", "0.5", "0.9238795 0 0.3826834 0")),
+            "");
+  EXPECT_EQ(one(body("/World/a", "box", "0 0 0", "1 1 1", "0.5", "0.9238795 0.3826834 0 0"),
+                body("/World/b", "box", "0 0 1.38", "1 1 1", "0.5", "0.9238795 0 0.3826834 0")),
+            "3: dynamic body '/World/b' starts 0.0342 m inside '/World/a'\n");
+  // Capsules (radius 0.2, 1 m between the caps' centres): side by side
+  // 0.38 apart, and crossing (each must leave by both radii).
+  const std::string up = body("/World/a", "capsule", "0 0 0", "1 1 1", "0.2");
+  const std::string lying = "0.7071068 0 0.7071068 0";  // its axis along x
+  EXPECT_EQ(one(up, body("/World/b", "capsule", "0.38 0 0", "1 1 1", "0.2")),
+            "3: dynamic body '/World/b' starts 0.02 m inside '/World/a'\n");
+  EXPECT_EQ(one(up, body("/World/b", "capsule", "0.395 0 0", "1 1 1", "0.2")), "");
+  EXPECT_EQ(one(up, body("/World/b", "capsule", "0 0 0.3", "1 1 1", "0.2", lying)),
+            "3: dynamic body '/World/b' starts 0.4 m inside '/World/a'\n");
+  EXPECT_EQ(one(up, body("/World/b", "sphere", "0 0.2 0.8")), "3: dynamic body '/World/b' starts 0.339 m inside '/World/a'\n");
+  // Capsule and box: on its cap, across the box (out sideways by half a
+  // side and the radius), and lying on a face.
+  EXPECT_EQ(one(unit, body("/World/b", "capsule", "0 0 1.18", "1 1 1", "0.2")),
+            "3: dynamic body '/World/b' starts 0.02 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "capsule", "0 0 1.195", "1 1 1", "0.2")), "");
+  EXPECT_EQ(one(unit, body("/World/b", "capsule", "0 0 0", "1 1 1", "0.2")),
+            "3: dynamic body '/World/b' starts 0.7 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "capsule", "0.3 0 0.68", "1 1 1", "0.2", lying)),
+            "3: dynamic body '/World/b' starts 0.02 m inside '/World/a'\n");
+  EXPECT_EQ(one(unit, body("/World/b", "capsule", "1.6 0 0.5", "1 1 1", "0.2", lying)), "");  // beyond its end
+}
+
+TEST(BodyStart, PairsThatNeverCollideAreNotJudged) {
+  const std::string a = body("/World/a", "box", "0 0 0");
+  const std::string in = body("/World/b", "box", "0.5 0 0");  // half inside
+  EXPECT_NE(overlaps(H + a + in), "");
+  // Neither dynamic.
+  EXPECT_EQ(overlaps(H + replaced(a, " dynamic ", " static ") + replaced(in, " dynamic ", " kinematic ")), "");
+  // A static or kinematic partner is rscene-sim's (validate does not build them).
+  EXPECT_EQ(overlaps(H + replaced(a, " dynamic ", " static ") + in), "");
+  // Visual only, collidable=false, or groups outside each other's masks.
+  EXPECT_EQ(overlaps(H + replaced(a, " dynamic ", " visual_only ") + in), "");
+  auto b = [](const std::string& group, const std::string& mask) {
+    return body("/World/b", "box", "0.5 0 0", "1 1 1", "0.5", "1 0 0 0", "dynamic", group, mask);
+  };
+  EXPECT_EQ(overlaps(H + replaced(a, " dynamic true ", " dynamic false ") + in), "");
+  EXPECT_EQ(overlaps(H + a + b("2", "2")), "");  // b's mask leaves a's group (1) out
+  EXPECT_EQ(overlaps(H + replaced(a, " 18446744073709551615", " 18446744073709551613") + b("2", "3")), "");  // a's leaves b's out
+  EXPECT_NE(overlaps(H + a + b("2", "3")), "");
+  // A stiff wire joins them (rscene-sim does not collide its ends); a
+  // compliant one is a spring and does.
+  EXPECT_EQ(overlaps(H + a + in + "wire /World/w stiff /World/a /World/b 1\n"), "");
+  EXPECT_NE(overlaps(H + a + in + "wire /World/w compliant /World/a /World/b 1\n"), "");
+  // Shapes without an exact test are rscene-sim's: a cylinder, a mesh.
+  EXPECT_EQ(overlaps(H + a + body("/World/b", "cylinder", "0.5 0 0", "1 1 1", "0.2")), "");
+}
+
+TEST(BodyStart, TheGroundRuleAndThePairRuleSayEachPairOnce) {
+  // Both below the ground and inside each other: one warning per pair.
+  EXPECT_EQ(overlaps(H + G + body("/World/a", "box", "0 0 0.3") + body("/World/b", "box", "0.5 0 0.3")),
+            "3: dynamic body '/World/a' starts 0.2 m inside '/World/g'\n"
+            "4: dynamic body '/World/b' starts 0.2 m inside '/World/g'\n"
+            "4: dynamic body '/World/b' starts 0.5 m inside '/World/a'\n");
+}
+
+TEST(BodyStart, APileIsOneWarningPerBodyNamingTheDeepest) {
+  // Ten spheres in one place: 45 pairs, 9 warnings (each but the first
+  // starts inside an earlier one), each naming the first of its deepest.
+  std::string text = H;
+  for (int k = 0; k < 10; ++k) text += body("/World/s" + std::to_string(k), "sphere", "0 0 0");
+  Diagnostics ds = validate(text);
+  EXPECT_EQ(count(ds, "RS7013"), 9) << describe(ds);
+  std::set<std::uint32_t> lines;
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS7013") lines.insert(d.line);
+  EXPECT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines.count(2), 0u);  // /World/s0
+  EXPECT_NE(overlaps(text).find("11: dynamic body '/World/s9' starts 1 m inside '/World/s0'"), std::string::npos)
+      << overlaps(text);
+}
+
+// 20,000 boxes in two layers, the upper resting 5 mm into the lower
+// (contact, not overlap), side by side touching: no warning; one box
+// moved 3 cm into its neighbour is the one warning, wherever it is.
+TEST(BodyStart, ABroadPhaseOverTwentyThousandBoxesFindsTheOneOverlap) {
+  auto scene = [](int moved) {
+    std::string s = H + G;
+    char line[200];
+    for (int k = 0; k < 20000; ++k) {
+      const int layer = k / 10000, i = k % 100, j = (k / 100) % 100;
+      const double x = i + (k == moved ? 0.03 : 0.0), z = 0.5 + layer * 0.995;
+      std::snprintf(line, sizeof line,
+                    "object /World/b%d box %.17g %d %.17g 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true "
+                    "false - %s true 1 18446744073709551615\n",
+                    k, x, j, z, k % 7 == 0 ? "static" : "dynamic");
+      s += line;
+    }
+    return s;
+  };
+  EXPECT_EQ(overlaps(scene(-1)), "");
+  // b12345 (upper layer, i 45, j 23) moved 3 cm along x: into b12346
+  // and resting 5 mm on b2345 and b2346 (contact).
+  EXPECT_EQ(overlaps(scene(12345)), "12349: dynamic body '/World/b12346' starts 0.03 m inside '/World/b12345'\n");
 }
 
 }  // namespace

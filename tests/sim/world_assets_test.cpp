@@ -218,3 +218,56 @@ TEST(SimAssets, BodiesRestingOnTheGroundNeverLeave) {
   steps(*r->world, 3);
   EXPECT_TRUE(r->world->departures().empty());
 }
+
+// World::deepContacts(): what keeps atRest() false while the solver pushes
+// a body out, and what rscene-sim's end-of-run warning (RS7002) names.
+TEST(SimRest, ABodyDeepInTheGroundIsNamedUntilItIsPushedOut) {
+  // A 1 m cube 30 cm into the ground (line 3), one resting on it (line 4).
+  auto r = make(kGround + object("/World/Cube", "box", 0, 0, 0.2, "1 1 1", 10, "dynamic") +
+                object("/World/Resting", "box", 4, 0, 0.25, "0.5 0.5 0.5", 2, "dynamic"));
+  EXPECT_TRUE(r->world->deepContacts().empty());  // before the first step
+  r->world->step();
+  std::vector<DeepContact> deep = r->world->deepContacts();
+  ASSERT_EQ(deep.size(), 1u);
+  EXPECT_EQ(deep[0].recordIndex, 2);  // records[0] is the header
+  EXPECT_EQ(deep[0].otherRecordIndex, 1);
+  EXPECT_NEAR(deep[0].depth, 0.3, 0.01);
+  EXPECT_FALSE(r->world->atRest());
+  for (bool untilRest : {true, false}) {
+    Diagnostic w = notAtRestWarning(r->doc, deep, r->world->time(), untilRest);
+    EXPECT_EQ(w.code, "RS7002");
+    EXPECT_EQ(w.severity, Severity::Warning);
+    EXPECT_EQ(w.line, 3u);
+    EXPECT_NE(w.message.find("dynamic body '/World/Cube' 0.3 m inside '/World/Ground'"), std::string::npos) << w.message;
+    EXPECT_EQ(w.message.find("--until-rest") != std::string::npos, untilRest) << w.message;
+  }
+  for (int i = 0; i < 8000 && !r->world->atRest(); ++i) r->world->step();
+  EXPECT_TRUE(r->world->atRest());
+  EXPECT_TRUE(r->world->deepContacts().empty());
+  EXPECT_NEAR(state(*r->world, "/World/Cube").position.z(), 0.5, 0.005);
+}
+
+TEST(SimRest, RestingContactsAreNeverDeep) {
+  // A stack of three boxes on the ground, each resting on the one below.
+  auto r = make(kGround + object("/World/A", "box", 0, 0, 0.25, "0.5 0.5 0.5", 20, "dynamic") +
+                object("/World/B", "box", 0, 0, 0.75, "0.5 0.5 0.5", 20, "dynamic") +
+                object("/World/C", "box", 0, 0, 1.25, "0.5 0.5 0.5", 20, "dynamic"));
+  for (int i = 0; i < 400; ++i) {
+    r->world->step();
+    ASSERT_TRUE(r->world->deepContacts().empty()) << "step " << r->world->steps();
+  }
+}
+
+TEST(SimRest, APairTheSceneModelJudgesIsNotWarnedTwice) {
+  // Box in box: the scene model's RS7013 (scene/start_pose.hpp), not the
+  // first step's; a cylinder in a box: the first step's alone.
+  auto boxes = make(kGround + object("/World/A", "box", 0, 0, 0.5, "1 1 1", 1, "dynamic") +
+                    object("/World/B", "box", 0.5, 0, 0.5, "1 1 1", 1, "dynamic"));
+  boxes->world->step();
+  EXPECT_TRUE(boxes->world->startOverlaps().empty());
+  auto cylinder = make(kGround + object("/World/A", "box", 0, 0, 0.5, "1 1 1", 1, "dynamic") +
+                       object("/World/B", "cylinder", 0.5, 0, 0.5, "1 1 1", 1, "dynamic"));
+  cylinder->world->step();
+  ASSERT_EQ(cylinder->world->startOverlaps().size(), 1u);
+  EXPECT_GT(cylinder->world->startOverlaps()[0].depth, 0.3);
+}
