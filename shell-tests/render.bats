@@ -261,7 +261,7 @@ setup() {
 @test "--camera-position/--look-at/--fov: the image of the equivalent camera record" {
   printf '%s\n' 'raisim_engine_scene 1' \
     'material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red' \
-    'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default default false true true - static true 1 18446744073709551615' \
+    'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615' \
     'object /World/Box box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default red false true false - static true 1 18446744073709551615' \
     'camera /World/Cam -5 0 1 1 0 0 0 40 0.05 1000 96 64 rgb true id=cam' > s.rscene
   "$RENDER" s.rscene --camera /World/Cam -o record.png
