@@ -15,7 +15,8 @@ setup() {
   [ "$status" -eq 0 ]
   for f in --output --width --height --samples --max-pixels --max-instances --max-texture-pixels \
            --transparent --no-post --backend --camera --all-cameras --trajectory --every --stdin-filename \
-           --base-dir --allow-missing-assets --reference --threshold --diff-output --verbose --version; do
+           --base-dir --allow-missing-assets --reference --threshold --fail-pixels --pixel-threshold --diff-output \
+           --camera-position --look-at --fov --verbose --version; do
     [[ "$output" == *"$f"* ]] || { echo "missing $f"; return 1; }
   done
 }
@@ -198,7 +199,7 @@ setup() {
   is_png base.png
   run "$RENDER" "$DATA/render_mesh.rscene" --reference base.png --threshold 0
   [ "$status" -eq 0 ]
-  [[ "$output" == "difference 0.000000 (pixels off by more than 16/255), threshold 0, mean error 0.000000, max 0/255" ]]
+  [[ "$output" == "difference 0.000000 (pixels off by more than 16/255), threshold 0, mean error 0.000000, max 0/255; 0 pixel(s) off by more than 32/255, fail pixels 50" ]]
 }
 
 @test "--reference/--threshold/--diff-output: a different render exits 1 and writes the diff" {
@@ -208,8 +209,96 @@ setup() {
   [ "$status" -eq 1 ]
   [[ "$output" == "difference 0."* ]]
   is_png diff.png
+  # --threshold 1 accepts any fraction; the local measure still finds the
+  # strongly changed pixels, unless --fail-pixels allows them all.
   run "$RENDER" "$DATA/render_minimal.rscene" --width 64 --height 36 --reference base.png --threshold 1
+  [ "$status" -eq 1 ]
+  run "$RENDER" "$DATA/render_minimal.rscene" --width 64 --height 36 --reference base.png --threshold 1 \
+      --fail-pixels 2304
   [ "$status" -eq 0 ]
+}
+
+# Issue 27: a crate moved 10 cm changes under 1 % of the image, which the
+# fraction (--threshold) forgives; the local measure (--fail-pixels,
+# --pixel-threshold) finds it, and an identical render passes both.
+@test "--fail-pixels/--pixel-threshold: a crate moved 10 cm fails, the same scene passes" {
+  sed 's|^object /World/Props/CrateC box 0.35 |object /World/Props/CrateC box 0.45 |' "$ROOT/examples/warehouse_crates.rscene" > moved.rscene
+  ! cmp -s moved.rscene "$ROOT/examples/warehouse_crates.rscene"
+  "$RENDER" "$ROOT/examples/warehouse_crates.rscene" --width 480 --height 270 -o base.png
+  run "$RENDER" "$ROOT/examples/warehouse_crates.rscene" --width 480 --height 270 --reference base.png
+  [ "$status" -eq 0 ]
+  [[ "$output" == *"; 0 pixel(s) off by more than 32/255, fail pixels 50" ]]
+  # The fraction alone passes the moved crate ...
+  run "$RENDER" moved.rscene --width 480 --height 270 --reference base.png --fail-pixels 100000
+  [ "$status" -eq 0 ]
+  [[ "$output" =~ ^difference\ 0\.00[0-9]+\ .*threshold\ 0\.01 ]]
+  # ... the local measure does not, with its defaults.
+  run "$RENDER" moved.rscene --width 480 --height 270 --reference base.png --diff-output diff.png
+  [ "$status" -eq 1 ]
+  n=$(sed -E 's/.*; ([0-9]+) pixel\(s\) off by more than 32\/255.*/\1/' <<< "$output")
+  [ "$n" -gt 50 ]
+  is_png diff.png
+  # A higher --pixel-threshold counts fewer pixels.
+  run "$RENDER" moved.rscene --width 480 --height 270 --reference base.png --pixel-threshold 255
+  [ "$status" -eq 0 ]
+  [[ "$output" == *"; 0 pixel(s) off by more than 255/255, fail pixels 50" ]]
+}
+
+@test "--fail-pixels and --pixel-threshold need --reference and take whole numbers in range" {
+  run -2 --separate-stderr "$RENDER" "$DATA/render_mesh.rscene" -o x.png --fail-pixels 3
+  [ "$stderr" = "rscene-render: error: --fail-pixels needs --reference" ]
+  run -2 --separate-stderr "$RENDER" "$DATA/render_mesh.rscene" -o x.png --pixel-threshold 3
+  [ "$stderr" = "rscene-render: error: --pixel-threshold needs --reference" ]
+  for bad in "--pixel-threshold 256" "--pixel-threshold -1" "--fail-pixels -1" "--fail-pixels nan" "--pixel-threshold 1.5"; do
+    run -2 "$RENDER" "$DATA/render_mesh.rscene" --reference r.png $bad
+  done
+  [ ! -e x.png ] && [ ! -e r.png ]
+}
+
+# Issue 27: a camera placed by two points instead of a quaternion.  Seen
+# from (-5,0,1) towards (0,0,1) it is the camera record with the identity
+# orientation at (-5,0,1): the same image, pixel for pixel.
+@test "--camera-position/--look-at/--fov: the image of the equivalent camera record" {
+  printf '%s\n' 'raisim_engine_scene 1' \
+    'material red 0.8 0.1 0.1 1 0 0.6 0 0 0 0 false - - - - - - id=red' \
+    'object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615' \
+    'object /World/Box box 0 0 1 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default red false true false - static true 1 18446744073709551615' \
+    'camera /World/Cam -5 0 1 1 0 0 0 40 0.05 1000 96 64 rgb true id=cam' > s.rscene
+  "$RENDER" s.rscene --camera /World/Cam -o record.png
+  run "$RENDER" s.rscene --camera-position -5,0,1 --look-at 0,0,1 --fov 40 --width 96 --height 64 \
+      --reference record.png --fail-pixels 0 --pixel-threshold 0 --threshold 0
+  [ "$status" -eq 0 ]
+  # An -o pattern names the view look-at.
+  run "$RENDER" s.rscene --camera-position -5,0,1 --look-at 0,0,1 --width 32 --height 24 -o '{name}.png'
+  [ "$status" -eq 0 ]
+  [ "$(png_size look-at.png)" = "32x24" ]
+}
+
+@test "--camera-position/--look-at: refused with --camera or --all-cameras, alone, equal, not finite, or not three numbers" {
+  s="$DATA/render_mesh.rscene"
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position 1,2,3 --look-at 0,0,0 --camera /World/Cam
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at place a camera of their own: not with --camera" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o '{name}.png' --camera-position 1,2,3 --look-at 0,0,0 --all-cameras
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at place a camera of their own: not with --all-cameras" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --look-at 0,0,0
+  [ "$stderr" = "rscene-render: error: --look-at needs --camera-position X,Y,Z and --look-at X,Y,Z together" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position 0,0,0
+  [ "$stderr" = "rscene-render: error: --camera-position needs --camera-position X,Y,Z and --look-at X,Y,Z together" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --fov 30
+  [ "$stderr" = "rscene-render: error: --fov needs --camera-position X,Y,Z and --look-at X,Y,Z together" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position 1,2,3 --look-at 1,2,3
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at/--fov: the camera position and the look-at point are the same point" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position nan,2,3 --look-at 0,0,0
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at/--fov: the camera position is not a finite point" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position 1,2,3 --look-at 0,inf,0
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at/--fov: the look-at point is not a finite point" ]
+  run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position 1,2,3 --look-at 0,0,0 --fov 180
+  [ "$stderr" = "rscene-render: error: --camera-position/--look-at/--fov: the field of view must be 1 to 175 degrees" ]
+  for bad in 1,2 1,2,3,4 1,,3 a,b,c "1, 2,3" ""; do
+    run -2 --separate-stderr "$RENDER" "$s" -o x.png --camera-position "$bad" --look-at 0,0,0
+    [ "$stderr" = "rscene-render: error: --camera-position '$bad': give three numbers X,Y,Z (metres, +z up)" ] || { echo "$bad: $stderr"; false; }
+  done
+  [ ! -e x.png ]
 }
 
 @test "--reference with another size exits 1" {

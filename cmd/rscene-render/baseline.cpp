@@ -34,13 +34,17 @@ int checkBaseline(const render::Image& image, const std::string& png, const Base
            << "x" << reference.height << '\n';
     return cli::kFindings;
   }
-  char line[200];
-  std::snprintf(line, sizeof line, "difference %.6f (pixels off by more than %d/255), threshold %g, mean error %.6f, max %d/255",
+  std::uint64_t strong = c.pixelsOver(opt.pixelThreshold);
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "difference %.6f (pixels off by more than %d/255), threshold %g, mean error %.6f, max %d/255; "
+                "%llu pixel(s) off by more than %d/255, fail pixels %llu",
                 c.differingFraction, render::kPixelTolerance, opt.threshold, c.meanAbsoluteError,
-                c.maxChannelDifference);
+                c.maxChannelDifference, (unsigned long long)strong, opt.pixelThreshold,
+                (unsigned long long)opt.failPixels);
   report << line << '\n';
   if (!opt.diffOutput.empty() && !writePng(opt.diffOutput, render::encodePng(c.diff))) return cli::kTrouble;
-  return c.differingFraction > opt.threshold ? cli::kFindings : cli::kSuccess;
+  return c.differingFraction > opt.threshold || strong > opt.failPixels ? cli::kFindings : cli::kSuccess;
 }
 
 }  // namespace rscene::render_cli

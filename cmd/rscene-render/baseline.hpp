@@ -1,6 +1,7 @@
 // --reference handling: compare with a baseline PNG, or write the first
 // baseline when it is missing.  Prints its findings; returns an exit code.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "render/image.hpp"
@@ -11,6 +12,10 @@ struct BaselineOptions {
   std::string reference;
   std::string diffOutput;
   double threshold = 0.01;
+  // The local measure (render::kLocalPixelThreshold): fail when more than
+  // failPixels pixels differ by more than pixelThreshold/255.
+  int pixelThreshold = render::kLocalPixelThreshold;
+  std::uint64_t failPixels = render::kLocalFailPixels;
   bool reportToStderr = false;  // stdout carries the PNG
 };
 

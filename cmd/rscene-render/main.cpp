@@ -7,6 +7,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <chrono>
 #include <csignal>
 #include <optional>
@@ -20,6 +24,7 @@
 #include "core/loader.hpp"
 #include "core/project.hpp"
 #include "core/scene_pattern.hpp"
+#include "render/camera.hpp"
 #include "render/limits.hpp"
 #include "render/render_scene.hpp"
 #include "render/views.hpp"
@@ -35,6 +40,8 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   std::vector<std::string> files;
   std::string file = "-", output, stdinName, baseDir, camera, backend = "auto";
+  std::string cameraPosition, lookAt;  // --camera-position, --look-at: "X,Y,Z"
+  double fov = 50;
   int width = 0, height = 0, samples = 4;
   std::uint64_t maxPixels = render::kDefaultMaxPixels;
   render::DrawLimits limits;
@@ -43,6 +50,23 @@ struct Options {
   render_cli::BaselineOptions baseline;
   render_cli::ViewsOptions views;
 };
+
+// "X,Y,Z" of --camera-position and --look-at: three numbers (finite or
+// not: lookAtProblem() says which is wrong).  False when it is not three.
+bool parsePoint(const std::string& text, Eigen::Vector3d& out) {
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    std::size_t end = text.find(',', start);
+    if ((end == std::string::npos) != (i == 2)) return false;
+    std::string part = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    char* stop = nullptr;
+    errno = 0;
+    out[i] = std::strtod(part.c_str(), &stop);
+    if (part.empty() || *stop != '\0' || std::isspace(static_cast<unsigned char>(part[0]))) return false;
+    start = end + 1;
+  }
+  return true;
+}
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -206,6 +230,25 @@ int checkViewFlags(const CLI::App& app, Options& opt) {
     return static_cast<int>(cli::kTrouble);
   };
   if (v.allCameras && !opt.camera.empty()) return refuse("--all-cameras and --camera: give one of them");
+  const bool lookAt = app.count("--look-at") || app.count("--camera-position");
+  if (lookAt || app.count("--fov")) {
+    if (!app.count("--look-at") || !app.count("--camera-position"))
+      return refuse(std::string(app.count("--fov") && !lookAt ? "--fov" : app.count("--look-at") ? "--look-at" : "--camera-position") +
+                    " needs --camera-position X,Y,Z and --look-at X,Y,Z together");
+    if (!opt.camera.empty() || v.allCameras)
+      return refuse(std::string("--camera-position/--look-at place a camera of their own: not with ") +
+                    (v.allCameras ? "--all-cameras" : "--camera"));
+    Eigen::Vector3d from, to;
+    if (!parsePoint(opt.cameraPosition, from))
+      return refuse("--camera-position '" + opt.cameraPosition + "': give three numbers X,Y,Z (metres, +z up)");
+    if (!parsePoint(opt.lookAt, to)) return refuse("--look-at '" + opt.lookAt + "': give three numbers X,Y,Z (metres, +z up)");
+    if (std::string why = render::lookAtProblem(from, to, opt.fov); !why.empty())
+      return refuse("--camera-position/--look-at/--fov: " + why);
+    v.lookAt = true;
+    v.lookFrom = from;
+    v.lookTo = to;
+    v.lookFov = opt.fov;
+  }
   if (app.count("--every") && v.trajectory.empty()) return refuse("--every needs --trajectory");
   if (v.trajectory == "-" && (opt.file == "-" || opt.file.empty()))
     return refuse("--trajectory - reads standard input, which the scene is read from: name the scene file");
@@ -263,6 +306,13 @@ int main(int argc, char** argv) {
                  "Camera or camera-like sensor by path or id (ROBOT/SET/SENSOR for a URDF sensor), or auto for a "
                  "three-quarter view of everything")
       ->type_name("PATH|ID|auto");
+  app.add_option("--camera-position", opt.cameraPosition,
+                 "Draw from a camera at X,Y,Z (metres, +z up) looking at --look-at, instead of the scene's camera")
+      ->type_name("X,Y,Z");
+  app.add_option("--look-at", opt.lookAt, "With --camera-position, the point X,Y,Z the camera looks at (image centre)")
+      ->type_name("X,Y,Z");
+  app.add_option("--fov", opt.fov, "With --look-at, the vertical field of view in degrees (default 50)")
+      ->type_name("DEG");
   app.add_flag("--all-cameras", opt.views.allCameras,
                "Render every enabled camera record and camera-like sensor (URDF sensor sets too), in all of its passes");
   app.add_option("--trajectory", opt.views.trajectory,
@@ -277,11 +327,22 @@ int main(int argc, char** argv) {
                "Warn instead of failing on a missing asset: a missing mesh is drawn as a magenta box, a missing "
                "texture left out");
   app.add_option("--reference", opt.baseline.reference,
-                 "Compare with baseline PNG FILE; exit 1 above --threshold; a missing FILE is written")
+                 "Compare with baseline PNG FILE; exit 1 above --threshold or --fail-pixels; a missing FILE is "
+                 "written")
       ->type_name("FILE");
   app.add_option("--threshold", opt.baseline.threshold,
                  "Largest accepted fraction (0..1) of pixels differing by more than 16/255 (default 0.01)")
       ->check(cli::fraction());
+  app.add_option("--fail-pixels", opt.baseline.failPixels,
+                 "With --reference, exit 1 when more than N pixels differ by more than --pixel-threshold: a small "
+                 "object moved (default " + std::to_string(render::kLocalFailPixels) + ")")
+      ->type_name("N")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 40));
+  app.add_option("--pixel-threshold", opt.baseline.pixelThreshold,
+                 "The difference, in 1/255 of any channel, past which a pixel counts for --fail-pixels (default " +
+                     std::to_string(render::kLocalPixelThreshold) + ")")
+      ->type_name("T")
+      ->check(CLI::Range(0, 255));
   app.add_option("--diff-output", opt.baseline.diffOutput, "With --reference, write a difference image to FILE")
       ->type_name("FILE");
   app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");
@@ -337,10 +398,11 @@ int main(int argc, char** argv) {
       cli::error("--width/--height: " + problem);
       return cli::kTrouble;
     }
-  if (!opt.baseline.diffOutput.empty() && opt.baseline.reference.empty()) {
-    cli::error("--diff-output needs --reference");
-    return cli::kTrouble;
-  }
+  for (const char* flag : {"--diff-output", "--fail-pixels", "--pixel-threshold"})
+    if (app.count(flag) && opt.baseline.reference.empty()) {
+      cli::error(std::string(flag) + " needs --reference");
+      return cli::kTrouble;
+    }
   // A reference that exists is an input no output may replace; one that
   // does not is where this render goes.
   bool referenceWritten = !opt.baseline.reference.empty() && !fileExistsOnDisk(opt.baseline.reference);

@@ -188,6 +188,10 @@ class ViewsRun {
     r.width = opt_.width;
     r.height = opt_.height;
     r.maxPixels = opt_.maxPixels;
+    r.lookAt = opt_.lookAt;
+    r.lookFrom = opt_.lookFrom;
+    r.lookTo = opt_.lookTo;
+    r.lookFov = opt_.lookFov;
     return r;
   }
 

@@ -5,6 +5,7 @@
 // the --reference comparison.  The scene is built and uploaded once; every
 // selected view is drawn for every frame.
 #pragma once
+#include <Eigen/Core>
 #include <csignal>
 #include <cstdint>
 #include <memory>
@@ -26,6 +27,9 @@ struct ViewsOptions {
   std::string output;      // -o FILE or PATTERN; "" = each record's outputPath
   std::string trajectory;  // --trajectory FILE, "-" = standard input; "" = the scene's own state
   std::uint64_t every = 1;
+  bool lookAt = false;  // --camera-position/--look-at/--fov (render::ViewRequest)
+  Eigen::Vector3d lookFrom = Eigen::Vector3d::Zero(), lookTo = Eigen::Vector3d::UnitX();
+  double lookFov = 50;
   int width = 0, height = 0;  // --width/--height: camera records only (a sensor's intrinsics fix its size)
   std::uint64_t maxPixels = 0;
   std::string backend = "auto";

@@ -12,6 +12,19 @@ constexpr double kPi = 3.14159265358979323846;
 double radians(double d) { return d * kPi / 180; }
 // The automatic view's aspect when no size is known yet: the default image's.
 constexpr double kDefaultAspect = double(kDefaultImageWidth) / kDefaultImageHeight;
+
+// The orientation looking along `forward` (unit) with +z up: local +x
+// forward, +y left, +z up (the scene's camera frame).  Straight up or
+// down, +y is the image's up.
+Eigen::Quaterniond lookingAlong(const Eigen::Vector3d& forward) {
+  Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(forward);
+  if (left.norm() < 1e-9) left = Eigen::Vector3d::UnitY().cross(forward);
+  left.normalize();
+  Eigen::Vector3d up = forward.cross(left);
+  Eigen::Matrix3d r;
+  r.col(0) = forward, r.col(1) = left, r.col(2) = up;
+  return Eigen::Quaterniond(r).normalized();
+}
 }  // namespace
 
 bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera& out, std::string* error) {
@@ -76,15 +89,36 @@ Camera autoCamera(const RenderScene& scene, double aspect) {
   Eigen::Vector3d toCamera = Eigen::Vector3d(-std::cos(pitch) * std::cos(radians(45)),
                                              -std::cos(pitch) * std::sin(radians(45)), std::sin(pitch));
   c.world.position = center + distance * toCamera;
-  Eigen::Vector3d forward = -toCamera;
-  Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(forward).normalized();
-  Eigen::Vector3d up = forward.cross(left);
-  Eigen::Matrix3d r;
-  r.col(0) = forward, r.col(1) = left, r.col(2) = up;  // local +x forward, +y left, +z up
-  c.world.orientation = Eigen::Quaterniond(r);
+  c.world.orientation = lookingAlong(-toCamera);
   c.local = c.world;
   c.nearPlane = std::max(0.01, (distance - radius) * 0.2);
   c.farPlane = (distance + radius) * 50 + 500;
+  return c;
+}
+
+std::string lookAtProblem(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double fovDeg) {
+  if (!position.allFinite()) return "the camera position is not a finite point";
+  if (!target.allFinite()) return "the look-at point is not a finite point";
+  if ((target - position).norm() < 1e-9) return "the camera position and the look-at point are the same point";
+  if (!std::isfinite(fovDeg) || fovDeg < 1 || fovDeg > 175) return "the field of view must be 1 to 175 degrees";
+  return "";
+}
+
+Camera lookAtCamera(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double fovDeg, int width,
+                    int height) {
+  Camera c;
+  c.path = "look-at";
+  c.verticalFov = fovDeg;
+  c.width = width;
+  c.height = height;
+  c.enabled = true;
+  Eigen::Vector3d along = target - position;
+  double distance = along.norm();
+  c.world.position = position;
+  c.world.orientation = lookingAlong(along / distance);
+  c.local = c.world;
+  c.nearPlane = std::clamp(0.01 * distance, 0.005, 0.1);
+  c.farPlane = std::max(1000.0, 100 * distance);
   return c;
 }
 

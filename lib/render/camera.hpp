@@ -17,6 +17,19 @@ bool chooseCamera(const RenderScene& scene, const std::string& selector, Camera&
 // Three-quarter view (from -x,-y, 15 degrees up) framing scene.bounds.
 Camera autoCamera(const RenderScene& scene, double aspect);
 
+// The look-at form (rscene-render --camera-position --look-at --fov): a
+// camera at `position` looking at `target` with the scene's up, +z (gravity
+// is -z), vertical field of view fovDeg, for a width x height image.  Clip
+// planes from the distance: near 1 % of it (0.005 to 0.1 m), far 100 times
+// it and at least 1000 m.  Looking straight up or down the image's up is
+// +y.  Check lookAtProblem() first: equal or non-finite points make no
+// camera.
+Camera lookAtCamera(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double fovDeg, int width,
+                    int height);
+// Why these values make no look-at camera ("" when they do): a
+// non-finite coordinate, position == target, fovDeg outside [1, 175].
+std::string lookAtProblem(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double fovDeg);
+
 Eigen::Matrix4d viewMatrix(const Camera& camera);
 Eigen::Matrix4d projectionMatrix(const Camera& camera, double aspect);
 // The perspective projection of pinhole intrinsics in pixels for a

@@ -13,6 +13,7 @@ Comparison compareImages(const Image& render, const Image& reference) {
   c.diff.width = render.width;
   c.diff.height = render.height;
   c.diff.rgba.resize(render.rgba.size());
+  c.histogram.assign(256, 0);
   std::size_t differing = 0;
   double sum = 0;
   int maxDiff = 0;
@@ -24,6 +25,7 @@ Comparison compareImages(const Image& render, const Image& reference) {
       sum += d;
     }
     maxDiff = std::max(maxDiff, worst);
+    ++c.histogram[std::size_t(worst)];
     std::uint8_t* o = &c.diff.rgba[p];
     if (worst > kPixelTolerance) {
       ++differing;
@@ -40,6 +42,12 @@ Comparison compareImages(const Image& render, const Image& reference) {
   c.meanAbsoluteError = pixels ? sum / (double(pixels) * 4 * 255) : 0;
   c.maxChannelDifference = maxDiff;
   return c;
+}
+
+std::uint64_t Comparison::pixelsOver(int t) const {
+  std::uint64_t n = 0;
+  for (std::size_t d = std::size_t(std::clamp(t + 1, 0, 256)); d < histogram.size(); ++d) n += histogram[d];
+  return n;
 }
 
 }  // namespace rscene::render

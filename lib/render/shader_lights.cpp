@@ -134,6 +134,12 @@ vec3 brdf(Surface s, vec3 l, float nl, vec3 light, vec3 f0, vec3 diffuse, float 
   return ((1.0 - F) * diffuse / PI + spec) * light * nl;
 }
 
+// The first directional light's shadow at this pixel (1: lit), for
+// indirectLight(): its shadow also dims the environment's reflection, or a
+// metallic floor (lit mostly by the sky it mirrors) shows no shadow and a
+// robot on it seems to float.
+float gSunVisibility = 1.0;
+
 // Directional light `i` (< uHeadCount) from the uniforms; its shadow map
 // is orthographic.
 vec3 sunLight(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, float nv) {
@@ -155,6 +161,7 @@ vec3 sunLight(int i, Surface s, vec3 f0, vec3 diffuse, float a2, float rough, fl
       vis = mix(1.0, shadowFilter(uv, z, cell, sh.z), sh.x);
     }
   }
+  if (i == 0) gSunVisibility = vis;
   return brdf(s, l, nl, headTexel(i, 2).rgb * vis, f0, diffuse, a2, rough, nv);
 }
 

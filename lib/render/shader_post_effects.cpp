@@ -90,10 +90,13 @@ void main() {
 }
 )";
 
-// Scalable ambient obscurance (McGuire et al. 2012) at half size: eye
-// positions from the depth buffer, the normal from the neighbours on the
-// flatter side (no smearing across silhouettes), 10 samples on a golden
-// spiral rotated by a 4x4 Bayer pattern that the blur then averages out.
+// Ambient obscurance at half size: eye positions from the depth buffer,
+// the normal from the neighbours on the flatter side (no smearing across
+// silhouettes), 10 samples on a golden spiral rotated by a 4x4 Bayer
+// pattern that the blur then averages out.  Each sample counts the cosine
+// of its rise over the surface, faded by distance (0 past uRadius): the
+// mean is bounded, where McGuire's 1/distance weight of scalable ambient
+// obscurance went to black at contacts (issue 27's dark smudges).
 // Writes (occlusion, view depth) for the depth-aware blur.  It reads the
 // depth buffer itself (sample 0 of a multisampled one: ssaoFragment(true))
 // unless depth of field had it resolved already.
@@ -108,6 +111,7 @@ uniform float uRadius;         // metres
 uniform float uIntensity;
 uniform float uMaxPixels;
 const int N = 10;
+const float kBias = 0.1, kStrength = 4.0;
 
 vec3 eyePos(ivec2 p, ivec2 size) {
   float z = texelFetch(uDepth, p, 0).r;
@@ -139,18 +143,22 @@ void main() {
   ivec2 cell = ivec2(gl_FragCoord.xy) & 3;
   float angle = (bayer[cell.y * 4 + cell.x] + 0.5) * (6.2831853 / 16.0);
   float r2 = uRadius * uRadius;
-  float bias = 0.02 * uRadius;
   float sum = 0.0;
   for (int i = 0; i < N; ++i) {
     float s = (float(i) + 0.5) / float(N);
     float a = angle + float(i) * 2.3999632;  // the golden angle
     ivec2 q = clamp(p + ivec2(round(vec2(cos(a), sin(a)) * (s * rPx))), ivec2(0), size - 1);
     vec3 v = eyePos(q, size) - P;
-    float vv = dot(v, v), vn = dot(v, n);
-    float f = max(r2 - vv, 0.0);
-    sum += f * f * f * max((vn - bias) / (vv + 0.01 * r2), 0.0);
+    float vv = dot(v, v);
+    // How far above the surface's plane the sample rises (the cosine,
+    // less a bias of ~6 degrees against depth noise), faded to nothing at
+    // the radius: bounded, so that a sample next to a contact counts as
+    // much as one further up the wall and a contact is not a black smudge.
+    float falloff = max(1.0 - vv / r2, 0.0);
+    float rise = dot(v, n) * inversesqrt(max(vv, 1e-8));
+    sum += falloff * max(rise - kBias, 0.0);
   }
-  float ao = max(0.0, 1.0 - sum * uIntensity * 5.0 / (float(N) * r2 * r2 * r2));
+  float ao = clamp(1.0 - uIntensity * kStrength * sum / float(N), 0.0, 1.0);
   fragColor = vec4(ao, -P.z, 0.0, 0.0);
 }
 )";

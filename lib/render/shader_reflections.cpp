@@ -107,8 +107,12 @@ vec3 indirectLight(Surface s, vec3 irradiance) {
   vec3 envDiffuse, envSpecular;
   surroundings(s, reflect(-s.V, s.N), envDiffuse, envSpecular);
   vec3 ambient = toLinear(uAmbient) * (0.75 + 0.25 * s.N.z);
+  // Specular occlusion by the main light's shadow (gSunVisibility,
+  // shader_lights.cpp): what lies in its shadow mirrors the object above it
+  // more than the sky.
+  float occlusion = mix(1.0, gSunVisibility, 0.6);
   return (diffuseColor + f0 * 0.5) * ambient + diffuseColor * irradiance +
-         diffuseColor * (1.0 - specularColor) * envDiffuse + specularColor * envSpecular;
+         diffuseColor * (1.0 - specularColor) * envDiffuse + specularColor * envSpecular * occlusion;
 }
 )";
 

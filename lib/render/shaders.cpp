@@ -98,7 +98,8 @@ void main() {
   if ((flags & 1) != 0) {
     color = s.base.rgb;
   } else {
-    color = directLight(s) + indirectLight(s, volumeIrradiance(s));
+    color = directLight(s);  // first: it sets gSunVisibility, which indirectLight() reads
+    color += indirectLight(s, volumeIrradiance(s));
   }
   color += s.emissive;
   color = applyFog(color, s.P, uCameraPos);

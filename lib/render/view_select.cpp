@@ -87,6 +87,15 @@ std::vector<View> selectViews(std::vector<View> all, const ViewRequest& request,
     return views;
   }
   int chosen = -1;
+  if (request.lookAt) {
+    ImageSize size = cameraImageSize(Camera{}, request.width, request.height);
+    View v;
+    v.camera = lookAtCamera(request.lookFrom, request.lookTo, request.lookFov, size.width, size.height);
+    v.name = "look-at";
+    v.passes = {Pass::Color};
+    views.push_back(std::move(v));
+    return views;
+  }
   if (request.camera.empty()) {
     for (std::size_t i = 0; i < all.size() && chosen < 0; ++i)
       if (!all[i].sensor && all[i].camera.enabled) chosen = static_cast<int>(i);

@@ -27,6 +27,12 @@ struct ViewRequest {
   std::string camera;         // "": the first enabled camera record, else auto; "auto"; a path or id
   int width = 0, height = 0;  // --width/--height, 0 when not given: camera records and auto only
   std::uint64_t maxPixels = kDefaultMaxPixels;
+  // The look-at form (--camera-position --look-at --fov): a view named
+  // "look-at" drawn like the automatic one from lookAtCamera(); camera and
+  // allCameras are then empty (the driver refuses both with it).
+  bool lookAt = false;
+  Eigen::Vector3d lookFrom = Eigen::Vector3d::Zero(), lookTo = Eigen::Vector3d::UnitX();
+  double lookFov = 50;
 };
 
 // The scene the views come from, for choosing them and for messages.
@@ -51,7 +57,7 @@ struct ViewFindings {
 // enabled one with allCameras (none is an error); else the one
 // request.camera names (a disabled one or a sensor too; a name two views
 // share is an error listing both); else the first enabled camera record;
-// else, or with "auto", the automatic three-quarter view (autoCamera()) at
+// else, with request.lookAt, the look-at view; else, or with "auto", the automatic three-quarter view (autoCamera()) at
 // cameraImageSize() of the request, drawing its color image.  Empty with
 // findings.error set when none can be chosen.
 std::vector<View> selectViews(std::vector<View> all, const ViewRequest& request, const ViewSources& sources,

@@ -35,6 +35,25 @@ TEST(Compare, CountsPixelsBeyondTheTolerance) {
   EXPECT_EQ(c.diff.pixel(0, 0)[1], 0);
 }
 
+// The local measure (--fail-pixels/--pixel-threshold): pixels by their
+// largest channel difference, counted past any T.
+TEST(Compare, CountsStronglyDifferingPixelsForTheLocalMeasure) {
+  Image a = solid(100, 100, 50, 60, 70), b = a;
+  for (int i = 0; i < 30; ++i) b.pixel(i, 3)[0] = 50 + 100;  // 30 pixels off by 100
+  for (int i = 0; i < 5; ++i) b.pixel(i, 7)[3] = 255 - 65;   // 5 by 65, in alpha
+  b.pixel(9, 9)[2] = 70 + 64;                                 // 1 by exactly 64
+  Comparison c = compareImages(b, a);
+  EXPECT_DOUBLE_EQ(c.differingFraction, 0.0036);  // 36 of 10000: far under the default 0.01
+  EXPECT_EQ(c.pixelsOver(kLocalPixelThreshold), 36u);  // 32: all three kinds
+  EXPECT_EQ(c.pixelsOver(64), 35u);
+  EXPECT_EQ(c.pixelsOver(63), 36u);
+  EXPECT_EQ(c.pixelsOver(99), 30u);
+  EXPECT_EQ(c.pixelsOver(100), 0u);
+  EXPECT_EQ(c.pixelsOver(255), 0u);
+  EXPECT_EQ(c.pixelsOver(-1), 10000u);
+  EXPECT_EQ(compareImages(a, a).pixelsOver(0), 0u);
+}
+
 TEST(Compare, SizeMismatch) { EXPECT_FALSE(compareImages(solid(2, 2, 0, 0, 0), solid(3, 2, 0, 0, 0)).sameSize); }
 
 TEST(Mesh, PrimitivesAreClosedAndUnitSized) {

@@ -268,7 +268,10 @@ TEST(Post, SsaoDarkensACornerMoreThanAnOpenFloor) {
   Eigen::Vector2i corner = pixelOf(v, {6.85, 0, -0.88}), open = pixelOf(v, {4.0, 0, -0.9});
   double cornerRatio = meanLuma(ao, corner.x(), corner.y(), 1) / meanLuma(flat, corner.x(), corner.y(), 1);
   double openRatio = meanLuma(ao, open.x(), open.y(), 2) / meanLuma(flat, open.x(), open.y(), 2);
-  EXPECT_LT(cornerRatio, 0.85);
+  // 0.85 until issue 27: the bounded estimator darkens this far, grazing
+  // corner less than McGuire's 1/distance weight did (0.91 here), and
+  // contacts no longer go black (look_test's Ssao test).
+  EXPECT_LT(cornerRatio, 0.93);
   EXPECT_GT(openRatio, 0.97);
 }
 

@@ -186,3 +186,32 @@ TEST(OutputPlan, AnOutputPathASceneMayNotWriteIsAnErrorAtTheField) {
   EXPECT_EQ(found.diagnostics[0].line, 3u);
   EXPECT_TRUE(plan.files.empty());
 }
+
+// Issue 27: the look-at form is a view of its own, drawn as the automatic
+// one is (its color image, the flags' size or the default), in place of
+// the scene's camera; sizeViews() keeps its size.
+TEST(ViewSelect, TheLookAtFormIsAViewOfItsOwn) {
+  Built b;
+  build(b, "camera /World/Cam -4 0 1 1 0 0 0 60 0.05 100 64 48 rgb_depth true id=cam\n");
+  ViewRequest r;
+  r.lookAt = true;
+  r.lookFrom = Eigen::Vector3d(-3, -4, 2.5);
+  r.lookTo = Eigen::Vector3d(1, 0, 0.5);
+  r.lookFov = 35;
+  r.width = 80;
+  r.height = 60;
+  ViewFindings found;
+  std::vector<View> views = selectViews(b.all, r, b.sources(), found);
+  ASSERT_TRUE(found.ok()) << found.error;
+  ASSERT_EQ(views.size(), 1u);
+  EXPECT_EQ(views[0].name, "look-at");
+  EXPECT_EQ(views[0].passes, std::vector<Pass>{Pass::Color});
+  EXPECT_FALSE(views[0].sensor);
+  EXPECT_TRUE(views[0].camera.world.position.isApprox(r.lookFrom));
+  EXPECT_DOUBLE_EQ(views[0].camera.verticalFov, 35);
+  sizeViews(views, r, b.sources(), found);
+  ASSERT_TRUE(found.ok()) << found.error;
+  EXPECT_EQ(views[0].camera.width, 80);
+  EXPECT_EQ(views[0].camera.height, 60);
+  EXPECT_EQ(keepOneImage(views[0], true), "");  // --reference compares it
+}
