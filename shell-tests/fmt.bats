@@ -546,7 +546,7 @@ make_tree() {
   [ -z "$output" ]
   [ "$stderr" = "rscene-fmt: warning: no .rscene files under 'empty'" ]
   run -2 --separate-stderr "$FMT" empty
-  [ "$stderr" = "rscene-fmt: error: a directory operand needs --check, --diff or --in-place" ]
+  [ "$stderr" = "rscene-fmt: error: a directory or project operand needs --check, --diff or --in-place" ]
   run -2 --separate-stderr "$FMT" -o out.rscene empty
   [ ! -e out.rscene ]
 }

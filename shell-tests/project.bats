@@ -53,6 +53,12 @@ EOF
   [[ "$output" == *"proj/raisim_engine2_project:1:24: error: unsupported project version '2' (only 1 exists) [RS1201]"* ]]
   run -0 "$BIN/rscene-validate" --list-checks
   [[ "$output" == *"RS1207"* ]]
+  # a default_scene that is no scene is the project file's finding, and not read as a scene
+  make_project
+  sed -i 's|^default_scene .*|default_scene assets/meshes/crate.obj|' proj/raisim_engine2_project
+  run -1 --separate-stderr "$BIN/rscene-validate" proj
+  [[ "$output" == *"proj/raisim_engine2_project:5:15: error: default_scene 'assets/meshes/crate.obj' is not a .rscene file"*"[RS1207]"* ]]
+  [[ "$output" != *"crate.obj:1:"* ]]
 }
 
 @test "project: rscene-fmt --check PROJECT formats its scenes, not its project file" {
@@ -67,6 +73,14 @@ EOF
   run -0 "$BIN/rscene-fmt" -i proj
   cmp before proj/raisim_engine2_project
   run -0 "$BIN/rscene-fmt" --check proj
+  # its project file stands for the project as the folder does: many
+  # scenes' text on one standard output is refused alike
+  for p in proj proj/raisim_engine2_project; do
+    run -2 --separate-stderr "$BIN/rscene-fmt" "$p"
+    [ -z "$output" ]
+    [ "$stderr" = "rscene-fmt: error: a directory or project operand needs --check, --diff or --in-place" ]
+  done
+  run -0 "$BIN/rscene-fmt" --check proj/raisim_engine2_project
 }
 
 @test "project: where one scene is meant, a project is its default scene" {

@@ -192,3 +192,13 @@ setup() {
   echo "rss 10: $(tail -1 rss10) KiB, 300: $(tail -1 rss300) KiB"
   [ "$(tail -1 rss300)" -le $(($(tail -1 rss10) + 20480)) ]
 }
+
+@test "batch: an output a single run would refuse stops the batch before anything is drawn" {
+  mkdir thumbs
+  echo y > thumbs/b.png
+  ln thumbs/b.png thumbs/other
+  run -2 --separate-stderr "$RENDER" --width 32 --height 20 -o 'thumbs/{stem}.png' scenes/a.rscene scenes/b.rscene
+  [[ "$stderr" == "rscene-render: error: thumbs/b.png: has 2 hard links"* ]]
+  [ ! -e thumbs/a.png ]
+  [ "$(cat thumbs/b.png)" = y ]
+}

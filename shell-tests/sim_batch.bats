@@ -231,3 +231,31 @@ setup() {
     "$SIM" --steps 10 "scenes/crate$i.rscene" | cmp - "out/crate$i.rscene"
   done
 }
+
+@test "no output replaces a scene being read: --trajectory on the scene, one scene's output on another's" {
+  cp scenes/s1.rscene single.rscene
+  cp single.rscene before.rscene
+  run -2 --separate-stderr "$SIM" --steps 5 -o out1.rscene --trajectory single.rscene single.rscene
+  [ "$stderr" = "rscene-sim: error: --trajectory 'single.rscene' is the scene itself: it would be replaced by what --trajectory writes; write it elsewhere" ]
+  cmp single.rscene before.rscene
+  [ ! -e out1.rscene ]
+  # in a batch: one scene's output is a later scene's input (order does not matter)
+  mkdir -p x/a/b
+  cp scenes/s1.rscene x/a/c.rscene
+  cp scenes/s2.rscene x/a/b/c.rscene
+  cp x/a/b/c.rscene c.before
+  for order in "x/a/c.rscene x/a/b/c.rscene" "x/a/b/c.rscene x/a/c.rscene"; do
+    # shellcheck disable=SC2086
+    run -2 --separate-stderr "$SIM" --steps 5 -o '{dir}/b/{stem}.rscene' $order
+    [[ "$stderr" == "rscene-sim: error: -o 'x/a/b/c.rscene' (of x/a/c.rscene) is the scene x/a/b/c.rscene, another input: it would be replaced before it is read; write it elsewhere" ]]
+    cmp x/a/b/c.rscene c.before
+  done
+  [ ! -e x/a/b/b ]
+  # a hard link to a scene is that scene
+  ln x/a/c.rscene link.jsonl
+  run -2 --separate-stderr "$SIM" --steps 5 -o 'o/{stem}.rscene' --trajectory link.jsonl x/a/c.rscene
+  [[ "$stderr" == "rscene-sim: error: --trajectory 'link.jsonl' is the scene itself"* ]]
+  rm link.jsonl
+  # -o may still write each scene back in place
+  run -0 "$SIM" --steps 5 -o '{dir}/{stem}.rscene' x/a/c.rscene x/a/b/c.rscene
+}

@@ -117,6 +117,17 @@ scenes() {
   # nothing is left to rerun
   run -0 "$RECIPE/rerun-failed.sh" out --wait
   [[ $output == *"all 3 tasks ok"* ]]
+  # a rerun simulates as the batch did: its DURATION is recorded, and
+  # another one in the environment is refused
+  grep -qx 'DURATION=0.2' out/batch
+  rm out/status/2
+  DURATION=1 run -2 "$RECIPE/rerun-failed.sh" out --wait
+  [[ $output == *"the batch ran with DURATION=0.2, the environment says 1: unset it, or submit a new batch"* ]]
+  unset DURATION
+  rm out/reports/s7.json
+  run -0 "$RECIPE/rerun-failed.sh" out --wait
+  run -0 jq -e '.report.simulatedTime > 0.19 and .report.simulatedTime < 0.21' out/reports/s7.json
+  export DURATION=0.2
 
   # one summary of every report, in the list's order: JSON Lines and CSV
   run -0 "$RECIPE/summarize.sh" out summary.jsonl
@@ -132,6 +143,8 @@ scenes() {
 
 @test "100,000 scenes fit within MaxArraySize in chunks of 100; chunks too small are refused" {
   needs_cluster
+  mkdir in
+  (cd in && seq -f 's%06g.rscene' 1 100000 | xargs touch)
   seq -f "$PWD/in/s%06g.rscene" 1 100000 > big.txt
   run -0 "$RECIPE/submit.sh" big.txt out --test-only
   [[ $output == *"submit: 100000 scenes, 1000 tasks of 100"* ]]
@@ -189,6 +202,17 @@ ended() {
   [ ! -e "$dir" ]
   # shellcheck disable=SC2086
   ended $pids
+}
+
+@test "submit refuses a list with carriage returns or scenes that cannot be read, before using the cluster" {
+  scenes 3
+  sed 's/$/\r/' scenes.txt > crlf.txt
+  run -2 "$RECIPE/submit.sh" crlf.txt out
+  [[ $output == "submit: $PWD/crlf.txt has carriage returns (Windows line ends): convert it first"* ]]
+  echo "$PWD/in/nothere.rscene" >> scenes.txt
+  run -2 "$RECIPE/submit.sh" scenes.txt out
+  [ "$output" = "submit: $PWD/scenes.txt names 1 scene(s) that cannot be read, such as: $PWD/in/nothere.rscene " ]
+  [ ! -e out ]
 }
 
 @test "stop leaves alone a folder it did not make" {

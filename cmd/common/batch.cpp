@@ -102,7 +102,32 @@ bool makeOutputFolders(const std::vector<NamedOutput>& outputs) {
   return true;
 }
 
-bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns) {
+bool checkInputsKept(const std::vector<SceneOutputs>& scenes, const char* inPlace) {
+  std::map<std::pair<dev_t, ino_t>, std::size_t> inputs;  // a scene file's identity -> its scene
+  struct stat st {};
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    if (!scenes[i].file.empty() && ::stat(scenes[i].file.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      inputs.emplace(std::make_pair(st.st_dev, st.st_ino), i);
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    for (const NamedOutput& o : scenes[i].outputs) {
+      if (o.path.empty() || o.path == "-" || !o.written || ::stat(o.path.c_str(), &st) != 0) continue;
+      auto in = inputs.find({st.st_dev, st.st_ino});
+      if (in == inputs.end()) continue;
+      if (in->second == i && std::string(o.flag) == inPlace) continue;  // the scene written back
+      std::string whose = scenes.size() > 1 ? " (of " + scenes[i].scene + ")" : "";
+      std::string what = in->second == i ? "the scene itself: it would be replaced by what " + std::string(o.flag) + " writes"
+                                         : "the scene " + scenes[in->second].scene +
+                                               ", another input: it would be replaced before it is read";
+      error(std::string(o.flag) + " '" + o.path + "'" + whose + " is " + what + "; write it elsewhere");
+      return false;
+    }
+  }
+  return true;
+}
+
+bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns,
+                       const char* inPlace) {
+  if (!checkInputsKept(scenes, inPlace)) return false;
   struct Seen {
     std::size_t scene;
     const NamedOutput* output;

@@ -34,22 +34,33 @@ bool scenePath(const char* flag, const std::string& pattern, const std::string& 
 
 // The outputs of one scene of a batch (checkOutputs() form).
 struct SceneOutputs {
-  std::string scene;
+  std::string scene;  // as named in messages
+  std::string file;   // the scene's file; "" for standard input
   std::vector<NamedOutput> outputs;  // checked by checkOutputs()
   std::vector<NamedOutput> folders;  // folders it writes into (--sensors): only compared between scenes
 };
+// No output replaces a scene being read: an output that is one of the
+// scenes' files (the same file, by identity: a hard link too) is refused,
+// except `inPlace`'s output of its own scene (rscene-sim -o 'x/{stem}.rscene'
+// x/ writes each scene back once it is read, as rscene-fmt -i does).  In a
+// batch, one scene's output would otherwise replace a later scene before
+// it is read.  Prints the problem and returns false.
+bool checkInputsKept(const std::vector<SceneOutputs>& scenes, const char* inPlace);
+
 // The missing folders on the way to `outputs` (those written), made as
 // `mkdir -p` would: outputs named by a pattern ({stem}, {dir}) go where no
 // one made a folder yet.  Prints the error and returns false when one
 // cannot be made.
 bool makeOutputFolders(const std::vector<NamedOutput>& outputs);
 
-// Before any work: no two scenes writing one file (or one folder), then
+// Before any work: checkInputsKept() (`inPlace` as there), no two scenes
+// writing one file (or one folder), then
 // each scene's output folders made (makeOutputFolders()) and its outputs
 // checked as checkOutputs() checks them.  Prints the first problem, naming
 // both scenes, with clashHint() of the flag's pattern (`patterns`: each
 // flag with its pattern as given).
-bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns);
+bool checkBatchOutputs(const std::vector<SceneOutputs>& scenes, const std::vector<NamedOutput>& patterns,
+                       const char* inPlace);
 
 // What to change in `pattern` when the scenes `a` and `b` have one file
 // by it: the field it lacks ({dir} for two scenes of one name in two

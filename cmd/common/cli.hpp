@@ -150,6 +150,7 @@ struct Operands {
   bool ok = true;
 };
 Operands expandOperands(const std::vector<std::string>& operands, bool checkProjects = true);
+// Whether an operand is a folder or an Engine 2 project (its folder or its file).
 bool anyDirectory(const std::vector<std::string>& operands);
 void addOutputOption(CLI::App& app, std::string& output, const char* what);
 // `assets`: stdin's name also places relative asset paths.

@@ -10,8 +10,10 @@ namespace rscene::cli {
 
 bool anyDirectory(const std::vector<std::string>& operands) {
   std::error_code ec;
+  std::string root;
+  // A project's file stands for the project's folder (its scenes), as the folder does.
   for (const std::string& op : operands)
-    if (op != "-" && std::filesystem::is_directory(op, ec)) return true;
+    if (op != "-" && (std::filesystem::is_directory(op, ec) || isProject(op, diskFileSystem(), root))) return true;
   return false;
 }
 

@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
       }
   // Many scenes' canonical text on one stdout would be of no use.
   if (!opt.inPlace && !opt.check && !opt.diff && cli::anyDirectory(opt.files)) {
-    cli::error("a directory operand needs --check, --diff or --in-place");
+    cli::error("a directory or project operand needs --check, --diff or --in-place");
     return cli::kTrouble;
   }
   cli::Operands operands = cli::expandOperands(opt.files);

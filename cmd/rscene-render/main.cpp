@@ -153,6 +153,7 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
   };
   std::map<std::string, std::size_t> inputs;
   for (std::size_t i = 0; i < scenes.size(); ++i) inputs.emplace(resolved(scenes[i]), i);
+  std::vector<std::vector<cli::NamedOutput>> planned(scenes.size());  // each scene's files
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     render_cli::ViewsOptions views = opt.views;
     views.output = patternOf(scenes[i]);
@@ -165,6 +166,7 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
       continue;
     }
     for (const std::string& f : files) {
+      planned[i].push_back({"-o", f});
       if (auto in = inputs.find(resolved(f)); in != inputs.end()) {
         cli::error("-o: '" + f + "' is the scene " + scenes[in->second] +
                    ", an input: it would be replaced by an image; write the images elsewhere");
@@ -181,6 +183,11 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
     }
   }
   if (clash) return cli::kTrouble;  // nothing drawn, nothing written
+  // Every file as a single run checks its own (a link, a device, a file
+  // with other hard links: refused), all before the first is drawn; their
+  // missing folders are made first.
+  for (const std::vector<cli::NamedOutput>& named : planned)
+    if (!cli::makeOutputFolders(named) || !cli::checkOutputs(named)) return cli::kTrouble;
   // Second pass: drawn, on one context; the first pass printed the warnings.
   std::unique_ptr<render::GlContext> context;
   std::size_t done = 0, finished = 0, total = scenes.size();

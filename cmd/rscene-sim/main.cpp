@@ -243,6 +243,9 @@ int runOne(const Options& opt) {
   if (hasSceneFields(opt.output)) patterned.push_back({"-o", job.output});
   if (hasSceneFields(opt.trajectory)) patterned.push_back({"--trajectory", job.trajectory});
   if (!cli::makeOutputFolders(patterned)) return cli::kTrouble;
+  // -o may write the scene back; --trajectory must not replace it.
+  cli::SceneOutputs self{job.file, job.file == "-" ? "" : job.file, {{"-o", job.output}, {"--trajectory", job.trajectory}}, {}};
+  if (!cli::checkInputsKept({self}, "-o")) return cli::kTrouble;
   if (job.sensors.empty() && !cli::checkOutputs({{"-o", job.output}, {"--trajectory", job.trajectory}}))
     return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
@@ -275,12 +278,14 @@ int runBatch(const Options& opt) {
     SceneJob& job = jobs[i];
     if (!expandOutputs(opt, files[i], job)) return cli::kTrouble;
     outputs[i].scene = job.file != "-" ? job.file : opt.stdinName.empty() ? "<stdin>" : opt.stdinName;
+    if (job.file != "-") outputs[i].file = job.file;
     // (Inside a scene, SensorFiles::prepare() also checks them against its
     // sensors' folders, as a single run does.)
     outputs[i].outputs = {{"-o", job.output}, {"--trajectory", job.trajectory}};
     if (!job.sensors.empty()) outputs[i].folders = {{"--sensors", job.sensors}};
   }
-  if (!cli::checkBatchOutputs(outputs, {{"-o", opt.output}, {"--trajectory", opt.trajectory}, {"--sensors", opt.sensors}}))
+  if (!cli::checkBatchOutputs(outputs, {{"-o", opt.output}, {"--trajectory", opt.trajectory}, {"--sensors", opt.sensors}},
+                              "-o"))
     return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
   Shared shared;

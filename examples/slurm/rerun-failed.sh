@@ -8,8 +8,11 @@
 #
 # Run it once the array has ended (`sbatch --wait`, or squeue shows none
 # of its tasks): a task still queued or running has no status yet and
-# would be submitted twice.  It reuses the LIST and CHUNK that submit.sh
-# recorded in OUT/batch, so each task number names the same scenes; a
+# would be submitted twice.  It reuses the LIST, CHUNK, DURATION and
+# RSCENE_SIM that submit.sh
+# recorded in OUT/batch, so each task number names the same scenes and
+# is simulated as before (a different DURATION or RSCENE_SIM in the
+# environment is refused); a
 # rerun task simulates again only its scenes without a good result
 # (sim-array.sh), after you have mended them or their inputs.  Prints
 # the --array it submits; exits 0 without submitting when every task is
@@ -27,9 +30,16 @@ check=false
 out=$(cd "$1" && pwd) || die "no folder $1"
 shift
 [ -r "$out/batch" ] || die "no $out/batch: submit the batch with submit.sh"
-LIST="" CHUNK="" TASKS=""
+given_duration=${DURATION-} given_sim=${RSCENE_SIM-}
+LIST="" CHUNK="" TASKS="" DURATION="" RSCENE_SIM=""
 # shellcheck source=/dev/null
 . "$out/batch"
+# A rerun simulates as the first run did (its settings are in OUT/batch);
+# a different setting in the environment would mix two runs in one batch.
+[ -z "$DURATION" ] || [ -z "$given_duration" ] || [ "$given_duration" = "$DURATION" ] ||
+  die "the batch ran with DURATION=$DURATION, the environment says $given_duration: unset it, or submit a new batch"
+[ -z "$given_sim" ] || [ "$given_sim" = "$RSCENE_SIM" ] ||
+  die "the batch ran with RSCENE_SIM=${RSCENE_SIM:-(rscene-sim on PATH)}, the environment says $given_sim: unset it, or submit a new batch"
 
 failed=()
 for ((t = 0; t < TASKS; t++)); do
@@ -56,7 +66,7 @@ fi
 echo "rerun-failed: resubmitting task numbers $array (--array=$array${THROTTLE:+%$THROTTLE})" >&2
 rc=0
 sbatch --array="$array${THROTTLE:+%$THROTTLE}" \
-  --output="$out/logs/%A_%a.out" --export="ALL,CHUNK=$CHUNK" \
+  --output="$out/logs/%A_%a.out" --export="ALL,CHUNK=$CHUNK${DURATION:+,DURATION=$DURATION}${RSCENE_SIM:+,RSCENE_SIM=$RSCENE_SIM}" \
   "$@" "$here/sim-array.sh" "$LIST" "$out" || rc=$?
 case " $* " in
   # sbatch --wait's own status can miss a failed task of an array (one

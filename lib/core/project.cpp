@@ -288,7 +288,9 @@ std::vector<std::string> projectScenes(const Project& project, std::vector<std::
   if (!project.defaultScene.empty()) {
     std::string scene = project.under(project.defaultScene);
     auto same = [&](const std::string& f) { return fs::equivalent(f, scene, ec); };
-    if (std::none_of(out.begin(), out.end(), same) && fs::is_regular_file(scene, ec)) out.push_back(scene);
+    // Not a .rscene file: the project file's finding (RS1207), not a scene to read.
+    if (std::none_of(out.begin(), out.end(), same) && fs::is_regular_file(scene, ec) && endsWith(scene, ".rscene"))
+      out.push_back(scene);
   }
   return out;
 }

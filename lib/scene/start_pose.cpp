@@ -100,14 +100,6 @@ Solid solidOf(const Object& o) {
   return s;
 }
 
-// Distance from p to segment [a, b].
-double pointSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d = b - a;
-  const double dd = d.squaredNorm();
-  const double t = dd > 0 ? std::clamp((p - a).dot(d) / dd, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
 // Distance between segments [p1, q1] and [p2, q2] (Ericson, Real-Time
 // Collision Detection 5.1.9).
 double segmentSegment(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
