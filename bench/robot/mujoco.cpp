@@ -9,6 +9,21 @@
 //       initial pose, steps it and prints one JSON line: compile time, steps,
 //       step time, steps per second, and the lowest / highest final base
 //       height and the largest base tilt (so a fallen robot shows)
+//   rscene-robot-bench-mujoco run URDF [world options] --feet
+//       the same run, untimed, measuring the feet (below) every 4 steps
+//   rscene-robot-bench-mujoco feet URDF [world options] --trajectory CSV
+//       the feet of rscene-sim's run of the same world, from its trajectory
+//       (--trajectory-format csv), measured by MuJoCo's kinematics and
+//       collision on each row's pose: both simulators by one yardstick
+//
+// The feet (ANYmal's sphere collision geometries): footPenetration, the
+// deepest any foot went into the ground or terrain from the first second
+// on (the start pose has them 2.7 mm in; both settle), and
+// footPenetrationEnd, at the end (m, MuJoCo's contact distance: its hfield
+// for the terrain, whose triangles may split the cells along the other
+// diagonal from Bullet's, a fraction of a millimetre on this terrain);
+// footSlip, the largest horizontal distance a foot's centre ended from
+// where it started (m).
 //
 // World options (the same in both modes, so both sides get one world):
 //   --robots N       robots on a square grid 1.5 m apart (default 1)
@@ -67,6 +82,8 @@ struct World {
   std::vector<double> pose{0, 0, 0.54, 1, 0, 0, 0, 0.03, 0.4, -0.8, -0.03, 0.4, -0.8,
                            0.03, -0.4, 0.8, -0.03, -0.4, 0.8};
   std::string keep;  // directory for the generated files (default: a temporary one, removed)
+  bool feet = false;       // run --feet
+  std::string trajectory;  // feet --trajectory
 };
 
 constexpr double kSpacing = 1.5;
@@ -105,7 +122,8 @@ int usage(const char* why) {
   std::fprintf(stderr,
                "rscene-robot-bench-mujoco: error: %s\n"
                "usage: rscene-robot-bench-mujoco scene URDF RESOURCE_DIR [options]\n"
-               "       rscene-robot-bench-mujoco run URDF [options] [--keep DIR]\n"
+               "       rscene-robot-bench-mujoco run URDF [options] [--keep DIR] [--feet]\n"
+               "       rscene-robot-bench-mujoco feet URDF [options] --trajectory CSV\n"
                "options: --robots N --terrain --pose CSV --dt S --duration S --kp KP --kd KD\n",
                why);
   return 2;
@@ -209,6 +227,11 @@ bool fail(const std::string& why) {
   return false;
 }
 
+int failed(const std::string& why) {
+  fail(why);
+  return 2;
+}
+
 bool compileWorld(const World& w, const fs::path& dir, Compiled& out) {
   XMLDocument urdf;
   if (urdf.LoadFile(w.urdf.c_str()) != tinyxml2::XML_SUCCESS) return fail("cannot read " + w.urdf);
@@ -254,10 +277,12 @@ bool compileWorld(const World& w, const fs::path& dir, Compiled& out) {
   if (!body || (!body->FirstChildElement("freejoint") && !body->FirstChildElement("joint")))
     return fail(saved + " has no free robot body under <worldbody>");
   // Contact and constraint buffers grow with the robots (MuJoCo 2.2.2
-  // sizes them once, from <size>).
+  // sizes them once, from <size>), rows up to 8000: its dense njmax x njmax
+  // buffers could not be made for 64 robots at 500 rows each (a robot
+  // standing uses about 25).
   XMLElement* size = top->FirstChildElement("size");
   if (!size) size = top->InsertNewChildElement("size");
-  size->SetAttribute("njmax", 500 * w.robots);
+  size->SetAttribute("njmax", std::min(500 * w.robots, 8000));
   size->SetAttribute("nconmax", 100 * w.robots);
   XMLElement* option = top->FirstChildElement("option");
   if (!option) option = top->InsertNewChildElement("option");
@@ -323,6 +348,53 @@ double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 // MuJoCo's own profiler (mjData::timer) reads this clock.
 mjtNum timerClock() { return now(); }
 
+// The feet of every robot (sphere geometries) and what they did: the
+// deepest contact of any of them and each one's start position.
+struct Feet {
+  std::vector<int> geoms;
+  std::vector<double> start;  // x y per foot
+  double penetration = 0, last = 0;  // from the first second on; at the last sample
+  bool started = false;
+
+  explicit Feet(const mjModel* m) {
+    for (int g = 0; g < m->ngeom; ++g)
+      if (m->geom_type[g] == mjGEOM_SPHERE && m->geom_bodyid[g] > 0) geoms.push_back(g);
+  }
+  bool isFoot(int g) const { return std::find(geoms.begin(), geoms.end(), g) != geoms.end(); }
+  // After mj_forward or mj_step (positions and contacts of the pose).
+  void sample(const mjData* d, double time) {
+    if (!started) {
+      for (int g : geoms) start.insert(start.end(), {d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1]});
+      started = true;
+    }
+    last = 0;
+    for (int c = 0; c < d->ncon; ++c)
+      if (isFoot(d->contact[c].geom1) || isFoot(d->contact[c].geom2))
+        last = std::max(last, -static_cast<double>(d->contact[c].dist));
+    if (time >= 1 - 1e-9) penetration = std::max(penetration, last);
+  }
+  double slip(const mjData* d) const {
+    double most = 0;
+    for (std::size_t k = 0; k < geoms.size(); ++k) {
+      int g = geoms[k];
+      most = std::max(most, std::hypot(d->geom_xpos[3 * g] - start[2 * k], d->geom_xpos[3 * g + 1] - start[2 * k + 1]));
+    }
+    return most;
+  }
+  void print(const mjData* d) const {
+    std::printf("{\"feet\":%zu,\"footPenetration\":%.6f,\"footPenetrationEnd\":%.6f,\"footSlip\":%.6f}\n",
+                geoms.size(), penetration, last, slip(d));
+  }
+};
+
+// Splits one CSV line.
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream s(line);
+  for (std::string f; std::getline(s, f, ',');) out.push_back(f);
+  return out;
+}
+
 int run(const World& w) {
   fs::path dir = w.keep;
   std::error_code ec;
@@ -373,9 +445,57 @@ int run(const World& w) {
     }
   }
   mj_forward(m.get(), d.get());
+  const long steps = std::lround(w.duration / w.dt);
+  if (w.feet) {  // untimed: the feet every 4 steps
+    Feet feet(m.get());
+    feet.sample(d.get(), 0);
+    for (long s = 0; s < steps; ++s) {
+      for (const Pd& p : pd) d->qfrc_applied[p.v] = w.kp * (p.target - d->qpos[p.q]) - w.kd * d->qvel[p.v];
+      mj_step(m.get(), d.get());
+      if ((s + 1) % 4 == 0 || s + 1 == steps) feet.sample(d.get(), static_cast<double>(s + 1) * w.dt);
+    }
+    feet.print(d.get());
+    return 0;
+  }
+  if (!w.trajectory.empty()) {  // mode feet: rscene-sim's poses, rows grouped by time
+    std::ifstream in(w.trajectory);
+    std::string line;
+    if (!std::getline(in, line)) return failed("cannot read " + w.trajectory);
+    std::vector<std::string> head = fields(line);
+    std::vector<int> column;  // per RaiSim joint: its column
+    for (const std::string& j : c.jointOrder) {
+      auto it = std::find(head.begin(), head.end(), "q." + j);
+      if (it == head.end()) return failed(w.trajectory + " has no column q." + j);
+      column.push_back(static_cast<int>(it - head.begin()));
+    }
+    if (head.size() < 9 || head[2] != "px" || head[5] != "qw") return failed(w.trajectory + " is not a csv trajectory");
+    Feet feet(m.get());
+    std::string time;
+    auto flush = [&] {
+      mj_fwdPosition(m.get(), d.get());
+      feet.sample(d.get(), std::stod(time));
+    };
+    while (std::getline(in, line)) {
+      std::vector<std::string> f = fields(line);
+      if (f.size() < head.size() - 1) return failed("short row in " + w.trajectory);
+      if (!time.empty() && f[0] != time) flush();
+      time = f[0];
+      const std::string prefix = "/World/Robot";
+      if (f[1].rfind(prefix, 0) != 0) continue;
+      std::size_t i = std::stoul(f[1].substr(prefix.size()));
+      if (i >= baseQ.size()) continue;
+      for (int k = 0; k < 7; ++k) d->qpos[baseQ[i] + k] = std::stod(f[static_cast<std::size_t>(2 + k)]);
+      for (int k = 0; k < joints; ++k)
+        d->qpos[pd[i * static_cast<std::size_t>(joints) + static_cast<std::size_t>(k)].q] =
+            std::stod(f[static_cast<std::size_t>(column[static_cast<std::size_t>(k)])]);
+    }
+    if (time.empty()) return failed(w.trajectory + " has no rows");
+    flush();
+    feet.print(d.get());
+    return 0;
+  }
   mjcb_time = timerClock;  // where MuJoCo's time goes: collision, constraint solver
   for (mjTimerStat& t : d->timer) t = mjTimerStat{};
-  const long steps = std::lround(w.duration / w.dt);
   double wall0 = now(), cpu0 = cpuSeconds();
   for (long s = 0; s < steps; ++s) {
     for (const Pd& p : pd) d->qfrc_applied[p.v] = w.kp * (p.target - d->qpos[p.q]) - w.kd * d->qvel[p.v];
@@ -414,7 +534,7 @@ int main(int argc, char** argv) {
   if (mode == "scene") {
     if (argc < 4) return usage("scene needs URDF and RESOURCE_DIR");
     w.resourceDir = argv[i++];
-  } else if (mode != "run") {
+  } else if (mode != "run" && mode != "feet") {
     return usage(("unknown mode '" + mode + "'").c_str());
   }
   for (; i < argc; ++i) {
@@ -445,6 +565,10 @@ int main(int argc, char** argv) {
       if (w.pose.size() < 7) return usage("--pose needs a floating base (7 numbers) and the joints");
     } else if (a == "--keep" && i + 1 < argc && mode == "run") {
       w.keep = argv[++i];
+    } else if (a == "--feet" && mode == "run") {
+      w.feet = true;
+    } else if (a == "--trajectory" && i + 1 < argc && mode == "feet") {
+      w.trajectory = argv[++i];
     } else {
       return usage(("unknown or incomplete option '" + a + "'").c_str());
     }
@@ -453,5 +577,6 @@ int main(int argc, char** argv) {
     writeScene(w);
     return std::fflush(stdout) == 0 ? 0 : 2;
   }
+  if (mode == "feet" && w.trajectory.empty()) return usage("feet needs --trajectory CSV");
   return run(w);
 }

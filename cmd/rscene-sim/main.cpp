@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <ctime>
 #include <cstdio>
 #include <optional>
 #include <iostream>
@@ -144,6 +145,7 @@ int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann:
     return !sensorsFailed;
   };
   Clock::time_point loadedAt = Clock::now();
+  std::clock_t loadedCpu = std::clock();
 
   // The stepping loop is the library's (sim/run.hpp): trajectory frames
   // streamed, every state checked before it is written anywhere.
@@ -200,6 +202,7 @@ int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann:
       departures.push_back(sim::notAtRestWarning(doc, deep, world->time(), opt.untilRest));
   print(departures);
   Clock::time_point steppedAt = Clock::now();
+  std::clock_t steppedCpu = std::clock();
 
   world->writeBack(doc);
   // Deformables keep their start pose in the scene written (RS7079): said
@@ -213,6 +216,7 @@ int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann:
     t.parse = seconds(start, parsedAt);
     t.build = seconds(parsedAt, loadedAt);
     t.step = seconds(loadedAt, steppedAt);
+    t.stepCpu = double(steppedCpu - loadedCpu) / CLOCKS_PER_SEC;
     t.write = seconds(steppedAt, writtenAt);
     *report = sim::runReport(*world, result, t, sensors.size(), recorder ? recorder->scans() : 0,
                              recorder ? recorder->scanSeconds() : 0.0);

@@ -126,7 +126,7 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
     if (oneDof(j.type) && j.type != JointType::Continuous && j.hasLimits && j.lower <= j.upper) {
       auto* limit = new btMultiBodyJointLimitConstraint(mb, i - 1, j.lower, j.upper);
       limit->setMaxAppliedImpulse(1e12);
-      r->constraints_.emplace_back(limit);
+      r->limits_.push_back({std::unique_ptr<btMultiBodyConstraint>(limit), i - 1, j.lower, j.upper, false});
     }
     Drive d;
     d.link = i - 1;
@@ -151,6 +151,24 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
   }
   r->computeJointInertia();
   return r;
+}
+
+void SimRobot::updateLimits(btMultiBodyDynamicsWorld& world) {
+  for (Limit& l : limits_) {
+    // Bullet's test (btMultiBodyJointLimitConstraint::createConstraintRows):
+    // a row for a bound whose distance q - lower or upper - q is not > 0.
+    double q = body_->getJointPos(l.link);
+    bool rows = !(q - l.lower > 0) || !(l.upper - q > 0);
+    if (rows && !l.inWorld) world.addMultiBodyConstraint(l.constraint.get());
+    if (!rows && l.inWorld) world.removeMultiBodyConstraint(l.constraint.get());
+    l.inWorld = rows;
+  }
+}
+
+void SimRobot::removeLimits(btMultiBodyDynamicsWorld& world) {
+  for (Limit& l : limits_)
+    if (l.inWorld) world.removeMultiBodyConstraint(l.constraint.get());
+  for (Limit& l : limits_) l.inWorld = false;
 }
 
 void SimRobot::addFriction(double dt) {

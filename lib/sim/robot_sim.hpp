@@ -29,7 +29,11 @@
 // whose impulse is capped at friction * dt (it holds a joint until the
 // load passes the friction, then resists with exactly the friction); joint
 // limits are Bullet's unilateral limit constraints (a hard stop, as
-// RaiSim's).  Friction and limits are for 1-dof joints; a spherical
+// RaiSim's), in the world only while the joint is at or past a limit:
+// Bullet 3.24 makes their rows only then, and a limit constraint in the
+// world costs every step even when it makes none (sorting, islands).
+// updateLimits() before each step puts in the world exactly those that
+// will make rows in it.  Friction and limits are for 1-dof joints; a spherical
 // joint's are not modelled.
 #pragma once
 #include <btBulletDynamicsCommon.h>
@@ -70,9 +74,15 @@ class SimRobot {
   // empty shape (hasShapes() false), which must collide with nothing.
   const std::vector<btMultiBodyLinkCollider*>& colliders() const { return colliders_; }
   bool hasShapes(int body) const { return colliders_[static_cast<std::size_t>(body)]->getCollisionShape()->getShapeType() != EMPTY_SHAPE_PROXYTYPE; }
-  // Multibody constraints it owns (limits, friction motors): added to the
-  // world by the caller.
+  // Multibody constraints it owns that act every step (friction motors):
+  // added to the world by the caller.  Its joint limits are added and
+  // removed by updateLimits().
   const std::vector<std::unique_ptr<btMultiBodyConstraint>>& constraints() const { return constraints_; }
+  // Puts in `world` the limit constraints of the joints now at or past a
+  // limit and takes out the others; call before each step.
+  void updateLimits(btMultiBodyDynamicsWorld& world);
+  // Takes all its limit constraints out of `world`.
+  void removeLimits(btMultiBodyDynamicsWorld& world);
 
   // Makes the Coulomb friction motors, whose impulse cap depends on the
   // time step; call once before constraints() is read.
@@ -111,6 +121,13 @@ class SimRobot {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> ownedColliders_;
   std::vector<std::unique_ptr<btCollisionShape>> compounds_;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
+  struct Limit {
+    std::unique_ptr<btMultiBodyConstraint> constraint;
+    int link = -1;
+    double lower = 0, upper = 0;
+    bool inWorld = false;
+  };
+  std::vector<Limit> limits_;
   std::vector<Drive> drives_;
   std::vector<std::pair<int, double>> friction_;  // Bullet link, Coulomb friction (until addFriction)
 };

@@ -78,6 +78,7 @@ nlohmann::json runReport(const World& world, const RunResult& result, const RunT
                       {"parseTime", times.parse},
                       {"buildTime", times.build},
                       {"stepTime", times.step},
+                      {"stepCpuTime", times.stepCpu},
                       {"writeTime", times.write},
                       {"stepsPerSecond", times.step > 0 ? steps / times.step : 0.0},
                       {"realtimeFactor", times.wall > 0 ? world.time() / times.wall : 0.0},

@@ -53,9 +53,11 @@ struct RunResult {
 RunResult runWorld(World& world, const Document& doc, const RunOptions& options, Sink* trajectory = nullptr,
                    const robot::TrajectoryWriter* lines = nullptr);
 
-// Wall times of the phases of one run, seconds.
+// Wall times of the phases of one run, seconds, and the process's CPU
+// time while stepping (as benchmarks judge it: a loaded machine moves it
+// far less than wall time).
 struct RunTimes {
-  double parse = 0, build = 0, step = 0, write = 0, wall = 0;
+  double parse = 0, build = 0, step = 0, write = 0, wall = 0, stepCpu = 0;
 };
 
 // The --report object (rscene-sim(1), REPORT): steps, times, rates, the

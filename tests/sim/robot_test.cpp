@@ -320,6 +320,40 @@ TEST(RobotSim, JointLimitHoldsWithinOneHundredthOfARadian) {
   EXPECT_NEAR(r->world->robotStates()[0].q[0], -0.3, 0.01);  // at rest against it
 }
 
+// A joint that starts exactly at its limit, pressed into it by gravity, is
+// held from the first step (its limit's constraint is in the world while
+// the joint is at or past a bound: robot_sim.hpp), and one released from
+// it swings away freely (out of the world again) and comes back.
+TEST(RobotSim, JointLimitHoldsFromTheFirstStepAtTheLimit) {
+  Eigen::VectorXd q0(1);
+  q0 << -0.3;
+  auto r = make("time_step 0.0025\n", {pendulum(2, 0.5, 0.02, true, -1.5, -0.3)}, {q0});
+  ASSERT_TRUE(r->world);
+  double most = -10;
+  for (int k = 0; k < 400; ++k) {
+    r->world->step();
+    most = std::max(most, r->world->robotStates()[0].q[0]);
+  }
+  EXPECT_LE(most, -0.3 + 1e-3);
+  EXPECT_NEAR(r->world->robotStates()[0].q[0], -0.3, 1e-3);
+  // Kicked away from the limit: it leaves it, then swings back against it.
+  Eigen::VectorXd q1(1), u1(1);
+  q1 << -0.3;
+  u1 << -4;
+  auto kicked = make("time_step 0.0025\n", {pendulum(2, 0.5, 0.02, true, -1.5, -0.3)}, {q1}, {u1});
+  ASSERT_TRUE(kicked->world);
+  double least = 10;
+  most = -10;
+  for (int k = 0; k < 2000; ++k) {
+    kicked->world->step();
+    least = std::min(least, kicked->world->robotStates()[0].q[0]);
+    most = std::max(most, kicked->world->robotStates()[0].q[0]);
+  }
+  EXPECT_LT(least, -0.6);  // it swung away
+  EXPECT_LE(most, -0.3 + 0.01);
+  EXPECT_NEAR(kicked->world->robotStates()[0].q[0], -0.3, 0.01);
+}
+
 // Viscous damping brings a swinging pendulum to rest.
 TEST(RobotSim, JointDampingStopsThePendulum) {
   auto m = pendulum(2, 0.5, 0.02);
