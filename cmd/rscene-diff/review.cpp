@@ -1,0 +1,269 @@
+// rscene-diff --review: the two scenes drawn from one camera on one
+// OpenGL context, the changes marked from the id pass (render/
+// review_highlight.hpp), and the folder written (review.hpp).
+#include "rscene-diff/review.hpp"
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <filesystem>
+#include <future>
+#include <optional>
+
+#include "core/assets.hpp"
+#include "render/camera.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+#include "render/limits.hpp"
+#include "render/render_scene.hpp"
+#include "render/renderer.hpp"
+#include "render/review_highlight.hpp"
+#include "render/view.hpp"
+
+namespace rscene::diffout {
+namespace {
+
+namespace review = render::review;
+
+std::string join(const std::string& dir, const char* name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+
+bool writeFile(const std::string& path, const std::string& bytes) {
+  return cli::writeOutput(path, [&](Sink& sink) {
+    sink.write(bytes);
+    return true;
+  });
+}
+
+// One side built for drawing; an empty side (/dev/null) draws nothing.
+struct Built {
+  render::RenderScene scene;
+  Scene model;
+  std::vector<review::Item> items;
+  render::ViewImages images;
+  bool empty = false;
+};
+
+bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
+  out.empty = side.empty;
+  if (side.empty) return true;
+  SceneOptions so;
+  so.sceneDir = side.input.path.empty() ? "." : directoryOf(side.input.path);
+  so.project = cli::projectPlace(side.input, "");
+  Diagnostics diags;
+  bool ok = render::buildRenderScene(side.document, so, out.model, out.scene, diags, {}, &assets);
+  cli::hintStdinPaths(side.input, "", diags);
+  // rscene-diff already said what the parser found; building says the rest.
+  cli::printDiagnostics(diags, side.name, side.text, cli::colorFor(2));
+  if (!ok) return false;
+  out.items = review::assignItemIds(out.scene);
+  return true;
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  auto close = [](double x, double y) { return std::abs(x - y) <= 1e-9; };
+  return a.path == b.path && (a.world.position - b.world.position).cwiseAbs().maxCoeff() <= 1e-9 &&
+         a.world.orientation.angularDistance(b.world.orientation) <= 1e-9 && close(a.verticalFov, b.verticalFov) &&
+         close(a.horizontalFov, b.horizontalFov) && a.projection == b.projection &&
+         close(a.orthoScale, b.orthoScale) && a.width == b.width && a.height == b.height;
+}
+
+const Camera* firstEnabled(const Built& b) {
+  if (b.empty) return nullptr;
+  for (const Camera& c : b.scene.cameras)
+    if (c.enabled) return &c;
+  return nullptr;
+}
+
+// The one camera both scenes are drawn from.  False (printed) when
+// --camera names none.
+bool chooseCamera(const ReviewOptions& o, const Built& a, const Built& b, const review::Marks& marks, Camera& out,
+                  std::string& how) {
+  Eigen::AlignedBox3d all;
+  for (const Built* s : {&a, &b})
+    if (!s->empty && !s->scene.bounds.isEmpty()) all.extend(s->scene.bounds);
+  if (all.isEmpty()) all = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1));
+  auto sized = [&](Camera c) {
+    render::ImageSize size = render::cameraImageSize(c, o.width, o.height);
+    c.width = size.width, c.height = size.height;
+    return c;
+  };
+  auto framed = [&](const Eigen::AlignedBox3d& box) {
+    Camera c;
+    render::ImageSize size = render::cameraImageSize(c, o.width, o.height);
+    c = review::frameBox(box, double(size.width) / size.height);
+    c.width = size.width, c.height = size.height;
+    return c;
+  };
+  if (o.camera == "auto") {
+    out = framed(all);
+    how = "the automatic view of both scenes";
+    return true;
+  }
+  if (!o.camera.empty()) {
+    for (const Built* s : {&b, &a}) {
+      if (s->empty) continue;
+      for (const Camera& c : s->scene.cameras)
+        if (c.path == o.camera || c.id == o.camera) {
+          out = sized(c);
+          how = "camera " + c.path + (s == &a ? " (the old scene's)" : "");
+          return true;
+        }
+    }
+    std::string error;
+    Camera unused;
+    render::chooseCamera((b.empty ? a : b).scene, o.camera, unused, &error);
+    cli::error("--camera: " + (error.empty() ? "no camera with path or id '" + o.camera + "'" : error));
+    return false;
+  }
+  const Camera* ca = firstEnabled(a);
+  const Camera* cb = firstEnabled(b);
+  if (ca && cb && sameCamera(*ca, *cb)) {
+    out = sized(*cb);
+    how = "camera " + cb->path + ", the scenes' own";
+    return true;
+  }
+  if (!marks.bounds.isEmpty()) {
+    // What changed, at least 2 m across (a moved cup is seen with what
+    // stands around it); autoCamera() leaves a margin of its own.
+    Eigen::AlignedBox3d box = marks.bounds;
+    Eigen::Vector3d grow = (Eigen::Vector3d::Constant(2.0) - box.sizes()).cwiseMax(0.0) / 2;
+    box.min() -= grow;
+    box.max() += grow;
+    out = framed(box);
+    how = "the automatic view of what changed";
+    return true;
+  }
+  out = framed(all);
+  how = "the automatic view of both scenes";
+  return true;
+}
+
+render::Image greyImage(int w, int h) {
+  render::Image im;
+  im.width = w, im.height = h;
+  im.rgba.assign(std::size_t(w) * h * 4, 255);
+  for (std::size_t i = 0; i < im.rgba.size(); i += 4) im.rgba[i] = im.rgba[i + 1] = im.rgba[i + 2] = 200;
+  return im;
+}
+
+bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::AssetCache& assets) {
+  if (side.empty) {
+    side.images.color = greyImage(camera.width, camera.height);
+    side.images.segmentation = render::Image{camera.width, camera.height,
+                                             std::vector<std::uint8_t>(std::size_t(camera.width) * camera.height * 4, 0)};
+    return true;
+  }
+  render::RenderOptions ro;
+  ro.assets = &assets;
+  Diagnostics diags;
+  auto renderer = render::createRenderer(side.scene, ro, diags, {camera});
+  bool ok = renderer != nullptr;
+  if (ok) {
+    render::View view;
+    view.name = camera.path;
+    view.camera = camera;
+    view.passes = {render::Pass::Color, render::Pass::Segmentation};
+    ok = renderer->render(view, side.images, diags);
+  }
+  cli::printDiagnostics(diags, source.name, source.text, cli::colorFor(2));
+  return ok && !hasErrors(diags);
+}
+
+std::string summaryNote(const std::string& how, const review::Marks& m) {
+  std::string s = "Drawn from " + how + ".";
+  if (m.undrawn)
+    s += " " + std::to_string(m.undrawn) + (m.undrawn == 1 ? " changed record is" : " changed records are") +
+         " not drawn as a body (lights, environment, cameras ...): see the table.";
+  return s;
+}
+
+}  // namespace
+
+bool prepareReviewDir(const std::string& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) == 0) {
+    if (S_ISLNK(st.st_mode)) {
+      cli::error("--review: '" + dir + "' is a symbolic link; give a folder (it is made when missing)");
+      return false;
+    }
+    if (!S_ISDIR(st.st_mode)) {
+      cli::error("--review: '" + dir + "' exists and is not a folder");
+      return false;
+    }
+  } else {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+      cli::error("--review: cannot make the folder '" + dir + "': " + ec.message());
+      return false;
+    }
+  }
+  std::vector<cli::NamedOutput> outputs;
+  for (const char* name : kReviewFiles) outputs.push_back({"--review", join(dir, name)});
+  return cli::checkOutputs(outputs);
+}
+
+int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSide& after, const DiffResult& result) {
+  // One cache for both scenes: a mesh or texture they share is read once.
+  render::RenderOptions defaults;
+  asset::AssetCache assets(diskFileSystem(), render::assetLimits(defaults));
+  Built a, b;
+  if (!build(before, a, assets) || !build(after, b, assets)) return cli::kTrouble;
+  review::Marks marks = review::markChanges(result, a.scene, a.items, b.scene, b.items);
+  Camera camera;
+  std::string how;
+  if (!chooseCamera(o, a, b, marks, camera, how)) return cli::kTrouble;
+  if (std::string problem = render::imageSizeProblem(camera.width, camera.height, render::kDefaultMaxPixels);
+      !problem.empty()) {
+    cli::error("--review: " + problem);
+    return cli::kTrouble;
+  }
+  render::Backend backend = o.backend == "gpu" ? render::Backend::Gpu
+                            : o.backend == "cpu" ? render::Backend::Cpu
+                                                 : render::Backend::Auto;
+  std::string error;
+  std::unique_ptr<render::GlContext> context;
+  if (!a.empty || !b.empty) {
+    context = render::GlContext::create(backend, &error);
+    if (!context) {
+      cli::error("--review: cannot create an OpenGL context: " + error);
+      return cli::kTrouble;
+    }
+  }
+  // One context: the old scene's renderer is gone before the new one's is made.
+  if (!draw(a, camera, before, assets) || !draw(b, camera, after, assets)) return cli::kTrouble;
+  auto encode = [](const render::Image* im) { return render::encodePng(*im); };
+  auto beforePng = std::async(std::launch::async, encode, &a.images.color);
+  auto afterPng = std::async(std::launch::async, encode, &b.images.color);
+  render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks);
+  std::string changesPng = render::encodePng(changes);
+  std::string bp = beforePng.get(), ap = afterPng.get();
+  std::string note = summaryNote(how, marks);
+  std::string md = reviewMarkdown(before.name, after.name, result, true, note);
+  std::string html = reviewHtml(before.name, after.name, result, bp, ap, changesPng, note, "");
+  if (!writeFile(join(o.dir, "before.png"), bp) || !writeFile(join(o.dir, "after.png"), ap) ||
+      !writeFile(join(o.dir, "changes.png"), changesPng) || !writeFile(join(o.dir, "review.md"), md) ||
+      !writeFile(join(o.dir, "index.html"), html))
+    return cli::kTrouble;
+  return result.same() ? cli::kSuccess : cli::kFindings;
+}
+
+int writeLineReview(const ReviewOptions& o, const std::string& oldName, const std::string& newName,
+                    const std::string& lines) {
+  DiffResult none;
+  std::string note = "A side does not parse: the change is shown as lines, and no images are drawn.";
+  std::string md = reviewMarkdown(oldName, newName, none, false, note);
+  md += "\n```diff\n" + lines + (lines.empty() || lines.back() == '\n' ? "" : "\n") + "```\n";
+  std::string html = reviewHtml(oldName, newName, none, "", "", "", note, lines);
+  // Images of an earlier review would show another change: removed.
+  for (const char* name : {"before.png", "after.png", "changes.png"}) {
+    std::error_code ec;
+    std::filesystem::remove(join(o.dir, name), ec);
+  }
+  if (!writeFile(join(o.dir, "review.md"), md) || !writeFile(join(o.dir, "index.html"), html)) return cli::kTrouble;
+  return cli::kTrouble;
+}
+
+}  // namespace rscene::diffout
