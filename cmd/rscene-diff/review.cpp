@@ -52,7 +52,12 @@ bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
   so.sceneDir = side.input.path.empty() ? "." : directoryOf(side.input.path);
   so.project = cli::projectPlace(side.input, "");
   Diagnostics diags;
-  bool ok = render::buildRenderScene(side.document, so, out.model, out.scene, diags, {}, &assets);
+  // A review shows what changed even where a mesh or texture is not at
+  // hand (a CI checkout without its LFS files): a missing one is a warning
+  // and drawn as rscene-render --allow-missing-assets draws it.
+  render::DrawLimits limits;
+  limits.allowMissingAssets = true;
+  bool ok = render::buildRenderScene(side.document, so, out.model, out.scene, diags, limits, &assets);
   cli::hintStdinPaths(side.input, "", diags);
   // rscene-diff already said what the parser found; building says the rest.
   cli::printDiagnostics(diags, side.name, side.text, cli::colorFor(2));
@@ -157,6 +162,7 @@ bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::As
   }
   render::RenderOptions ro;
   ro.assets = &assets;
+  ro.allowMissingAssets = true;
   Diagnostics diags;
   auto renderer = render::createRenderer(side.scene, ro, diags, {camera});
   bool ok = renderer != nullptr;
@@ -210,7 +216,21 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   render::RenderOptions defaults;
   asset::AssetCache assets(diskFileSystem(), render::assetLimits(defaults));
   Built a, b;
-  if (!build(before, a, assets) || !build(after, b, assets)) return cli::kTrouble;
+  // The scenes are built while the OpenGL context starts (the context is
+  // the calling thread's; the asset cache is the builder's alone until it
+  // is done).
+  auto built = std::async(std::launch::async, [&] { return build(before, a, assets) && build(after, b, assets); });
+  render::Backend backend = o.backend == "gpu" ? render::Backend::Gpu
+                            : o.backend == "cpu" ? render::Backend::Cpu
+                                                 : render::Backend::Auto;
+  std::string error;
+  std::unique_ptr<render::GlContext> context;
+  if (!before.empty || !after.empty) context = render::GlContext::create(backend, &error);
+  if (!built.get()) return cli::kTrouble;
+  if (!context && (!before.empty || !after.empty)) {
+    cli::error("--review: cannot create an OpenGL context: " + error);
+    return cli::kTrouble;
+  }
   review::Marks marks = review::markChanges(result, a.scene, a.items, b.scene, b.items);
   Camera camera;
   std::string how;
@@ -220,22 +240,12 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
     cli::error("--review: " + problem);
     return cli::kTrouble;
   }
-  render::Backend backend = o.backend == "gpu" ? render::Backend::Gpu
-                            : o.backend == "cpu" ? render::Backend::Cpu
-                                                 : render::Backend::Auto;
-  std::string error;
-  std::unique_ptr<render::GlContext> context;
-  if (!a.empty || !b.empty) {
-    context = render::GlContext::create(backend, &error);
-    if (!context) {
-      cli::error("--review: cannot create an OpenGL context: " + error);
-      return cli::kTrouble;
-    }
-  }
   // One context: the old scene's renderer is gone before the new one's is made.
-  if (!draw(a, camera, before, assets) || !draw(b, camera, after, assets)) return cli::kTrouble;
+  // before.png is encoded while the new scene is drawn.
   auto encode = [](const render::Image* im) { return render::encodePng(*im); };
+  if (!draw(a, camera, before, assets)) return cli::kTrouble;
   auto beforePng = std::async(std::launch::async, encode, &a.images.color);
+  if (!draw(b, camera, after, assets)) return cli::kTrouble;
   auto afterPng = std::async(std::launch::async, encode, &b.images.color);
   render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks);
   std::string changesPng = render::encodePng(changes);

@@ -92,6 +92,23 @@ std::pair<std::string, std::string> values(const FieldDiff& f) {
           f.change == Change::Removed ? "" : withDefault(f.newValue, f.newDefault)};
 }
 
+// An added or removed record in one row: its first fields as name=value.
+std::string wholeRecord(const RecordDiff& r, std::size_t shown) {
+  std::string s;
+  std::size_t n = 0;
+  for (const FieldDiff& f : r.fields) {
+    if (f.entry) continue;
+    if (n == shown) {
+      s += ", ...";
+      break;
+    }
+    auto [o, v] = values(f);
+    s += (n ? ", " : "") + f.name + "=" + (r.change == Change::Added ? v : o);
+    ++n;
+  }
+  return s;
+}
+
 std::map<std::string, std::vector<const RecordDiff*>> byFolder(const DiffResult& result) {
   std::map<std::string, std::vector<const RecordDiff*>> out;
   for (const RecordDiff& r : result.records) out[folderOf(r)].push_back(&r);
@@ -129,8 +146,10 @@ std::string reviewMarkdown(const std::string& oldName, const std::string& newNam
     out += "#### " + md(folder) + "\n\n| record | change | field | old | new |\n|---|---|---|---|---|\n";
     for (const RecordDiff* r : records) {
       std::string name = md(r->tag) + " " + md(recordName(*r));
-      if (r->fields.empty()) {
-        out += "| " + name + " | " + sign(r->change) + " | | | |\n";
+      if (r->fields.empty() || r->change != Change::Changed) {
+        std::string whole = md(wholeRecord(*r, 4));
+        out += "| " + name + " | " + sign(r->change) + " | | " + (r->change == Change::Removed ? whole : "") + " | " +
+               (r->change == Change::Added ? whole : "") + " |\n";
         continue;
       }
       bool first = true;
@@ -220,11 +239,19 @@ show(initial);
     out += "<h2>" + html(folder) + "</h2>\n<table>\n<tr><th>record</th><th>change</th><th>field</th><th>old</th>"
            "<th>new</th></tr>\n";
     for (const RecordDiff* r : records) {
-      std::size_t rows = std::max<std::size_t>(1, r->fields.size());
+      std::size_t rows = r->fields.size();
       std::string head = "<td rowspan=\"" + std::to_string(rows) + "\">" + html(r->tag + " " + recordName(*r)) +
                          "</td><td rowspan=\"" + std::to_string(rows) + "\" class=\"" + sign(r->change) + "\">" +
                          sign(r->change) + "</td>";
-      if (r->fields.empty()) out += "<tr>" + head + "<td></td><td></td><td></td></tr>\n";
+      if (r->fields.empty() || r->change != Change::Changed) {
+        std::string whole = "<details><summary>" + html(wholeRecord(*r, 4)) + "</summary>" +
+                            html(wholeRecord(*r, r->fields.size())) + "</details>";
+        head = "<td>" + html(r->tag + " " + recordName(*r)) + "</td><td class=\"" + sign(r->change) + "\">" +
+               sign(r->change) + "</td>";
+        out += "<tr>" + head + "<td></td><td>" + (r->change == Change::Removed ? whole : "") + "</td><td>" +
+               (r->change == Change::Added ? whole : "") + "</td></tr>\n";
+        continue;
+      }
       bool first = true;
       for (const FieldDiff& f : r->fields) {
         auto [o, n] = values(f);
