@@ -43,6 +43,7 @@ struct Built {
   std::vector<review::Item> items;
   render::ViewImages images;
   bool empty = false;
+  bool failed = false;  // did not build
 };
 
 bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
@@ -58,6 +59,7 @@ bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
   render::DrawLimits limits;
   limits.allowMissingAssets = true;
   bool ok = render::buildRenderScene(side.document, so, out.model, out.scene, diags, limits, &assets);
+  out.failed = !ok;
   cli::hintStdinPaths(side.input, "", diags);
   // rscene-diff already said what the parser found; building says the rest.
   cli::printDiagnostics(diags, side.name, side.text, cli::colorFor(2));
@@ -177,11 +179,19 @@ bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::As
   return ok && !hasErrors(diags);
 }
 
+// Images of an earlier review would show another change.
+void removeImages(const std::string& dir) {
+  for (const char* name : {"before.png", "after.png", "changes.png"}) {
+    std::error_code ec;
+    std::filesystem::remove(join(dir, name), ec);
+  }
+}
+
 std::string summaryNote(const std::string& how, const review::Marks& m) {
   std::string s = "Drawn from " + how + ".";
   if (m.undrawn)
-    s += " " + std::to_string(m.undrawn) + (m.undrawn == 1 ? " changed record is" : " changed records are") +
-         " not drawn as a body (lights, environment, cameras ...): see the table.";
+    s += " " + std::to_string(m.undrawn) + (m.undrawn == 1 ? " record of the change is" : " records of the change are") +
+         " not drawn as bodies (lights, environment, cameras ...): see the table.";
   return s;
 }
 
@@ -226,7 +236,15 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   std::string error;
   std::unique_ptr<render::GlContext> context;
   if (!before.empty || !after.empty) context = render::GlContext::create(backend, &error);
-  if (!built.get()) return cli::kTrouble;
+  if (!built.get()) {
+    // The change is still told, without images.
+    removeImages(o.dir);
+    std::string note = "A scene does not build (" + std::string(a.failed ? before.name : after.name) +
+                       "; rscene-validate says why): no images are drawn.";
+    writeFile(join(o.dir, "review.md"), reviewMarkdown(before.name, after.name, result, false, note));
+    writeFile(join(o.dir, "index.html"), reviewHtml(before.name, after.name, result, "", "", "", note, ""));
+    return cli::kTrouble;
+  }
   if (!context && (!before.empty || !after.empty)) {
     cli::error("--review: cannot create an OpenGL context: " + error);
     return cli::kTrouble;
@@ -267,11 +285,7 @@ int writeLineReview(const ReviewOptions& o, const std::string& oldName, const st
   std::string md = reviewMarkdown(oldName, newName, none, false, note);
   md += "\n```diff\n" + lines + (lines.empty() || lines.back() == '\n' ? "" : "\n") + "```\n";
   std::string html = reviewHtml(oldName, newName, none, "", "", "", note, lines);
-  // Images of an earlier review would show another change: removed.
-  for (const char* name : {"before.png", "after.png", "changes.png"}) {
-    std::error_code ec;
-    std::filesystem::remove(join(o.dir, name), ec);
-  }
+  removeImages(o.dir);
   if (!writeFile(join(o.dir, "review.md"), md) || !writeFile(join(o.dir, "index.html"), html)) return cli::kTrouble;
   return cli::kTrouble;
 }

@@ -99,7 +99,8 @@ std::vector<Item> assignItemIds(RenderScene& scene) {
     const Drawable& d = scene.drawables[i];
     std::uint32_t record = segmentLine(scene, d.segment);
     std::uint32_t part = d.file.empty() && d.line ? d.line : record;
-    items.push_back({ItemKind::Drawable, i, record, part, materialLine(scene, d.material), d.bounds});
+    items.push_back({ItemKind::Drawable, i, record, part, materialLine(scene, d.material), d.bounds,
+                     d.shape == Shape::Ground});
   }
   for (std::size_t i = 0; i < scene.terrains.size(); ++i) {
     const TerrainMesh& t = scene.terrains[i];
@@ -149,7 +150,7 @@ Marks markChanges(const DiffResult& diff, const RenderScene& oldScene, const std
     // Added and removed win over changed (a record added whose material
     // also changed is added).
     if (side[i] == Mark::None || what == Mark::Added || what == Mark::Removed) side[i] = what;
-    if (!items[i].bounds.isEmpty() && items[i].bounds.min().allFinite() && items[i].bounds.max().allFinite()) m.bounds.extend(items[i].bounds);
+    if (!items[i].ground && !items[i].bounds.isEmpty() && items[i].bounds.min().allFinite() && items[i].bounds.max().allFinite()) m.bounds.extend(items[i].bounds);
   };
   for (const RecordDiff& r : diff.records) {
     std::vector<std::size_t> before = r.change == Change::Added ? std::vector<std::size_t>{} : partsOf(oldItems, r.oldLine);

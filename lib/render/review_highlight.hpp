@@ -27,6 +27,7 @@ struct Item {
   std::uint32_t partLine = 0;     // a compound child's own line; else recordLine
   std::uint32_t materialLine = 0; // its material record's line (0: engine default or a robot file's)
   Eigen::AlignedBox3d bounds;
+  bool ground = false;  // a ground plane: never framed (as RenderScene::bounds leaves it out)
 };
 
 // The parts of `scene`, and its segments replaced by one per part whose
