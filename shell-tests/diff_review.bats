@@ -190,3 +190,36 @@ review() { "$DIFF" -q --review out --width "$W" --height "$H" "$@"; }
   [ "$status" -eq 1 ]
   grep -qF '| meshPath | a\_b.obj | a\|\*b\*.obj |' out/review.md
 }
+
+# chrome ARGS...: Debian's chromium, headless, with every host name
+# unresolvable (a request to the network fails instead of leaving).
+chrome() {
+  timeout 120 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars --force-color-profile=srgb \
+    --host-resolver-rules='MAP * ~NOTFOUND' --user-data-dir="$BATS_TEST_TMPDIR/chrome" "$@"
+}
+
+@test "review: index.html in a real headless browser: no console errors, no requests, the buttons switch the image, the screenshot shows it pixel for pixel" {
+  command -v chromium >/dev/null || skip "chromium not installed (scripts/install-deps.sh)"
+  sed 's|Box box 0 0 0.5|Box box 1.5 0 0.5|' old.rscene > new.rscene
+  run review old.rscene new.rscene
+  [ "$status" -eq 1 ]
+  # grep: the page has no <img src> or <link> outside data: URIs.
+  ! grep -qE '(src|href)="(https?:|//|file:)' out/index.html
+  page="file://$PWD/out/index.html"
+  # The page's own check, run on load, is read back from the DOM; the
+  # browser's log holds every console message (CONSOLE lines).
+  chrome --enable-logging=stderr --v=0 --virtual-time-budget=5000 --dump-dom "$page" > dom.html 2> log.txt
+  grep -o 'data-selfcheck="[^"]*"' dom.html
+  grep -q 'data-selfcheck="requests 0; images 2 decoded 2; before true; changes true; after true; slider true"' dom.html
+  ! grep -i 'CONSOLE' log.txt
+  # A screenshot of each view holds its image unscaled, pixel for pixel.
+  for view in after before changes; do
+    chrome --window-size=800,600 --screenshot="$PWD/shot-$view.png" "$page#$view" 2>/dev/null
+    run python3 "$PNG" --find "shot-$view.png" "out/$view.png"
+    echo "$view: $output"
+    [[ "$output" == "at "* ]]
+  done
+  # and not another view's image.
+  run python3 "$PNG" --find shot-before.png out/after.png
+  [ "$output" = absent ]
+}

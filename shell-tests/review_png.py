@@ -4,7 +4,10 @@ centroid of the pixels of each exact color of rscene-diff --review's
 palette, in the top ROWS rows (the picture, above the legend band).
 
 usage: review_png.py FILE [ROWS]
-prints: NAME COUNT CX CY per palette color, then `size W H`."""
+prints: NAME COUNT CX CY per palette color, then `size W H`.
+usage: review_png.py --find SHOT IMAGE
+prints `at X Y` where IMAGE appears pixel for pixel in SHOT (a browser's
+screenshot), or `absent`."""
 import struct
 import sys
 import zlib
@@ -51,7 +54,28 @@ def decode(path):
     return width, height, bpp, rows
 
 
+def find(shot, image):
+    sw, sh, sb, srows = decode(shot)
+    iw, ih, ib, irows = decode(image)
+    first = [b"".join(bytes(r[x * ib:x * ib + 3]) for x in range(iw)) for r in irows]
+    for y in range(sh - ih + 1):
+        line = b"".join(bytes(srows[y][x * sb:x * sb + 3]) for x in range(sw))
+        x = line.find(first[0])
+        while x >= 0:
+            if x % 3 == 0:
+                px = x // 3
+                if all(b"".join(bytes(srows[y + k][(px + i) * sb:(px + i) * sb + 3]) for i in range(iw)) == first[k]
+                       for k in range(ih)):
+                    print("at", px, y)
+                    return
+            x = line.find(first[0], x + 1)
+    print("absent")
+
+
 def main():
+    if sys.argv[1] == "--find":
+        find(sys.argv[2], sys.argv[3])
+        return
     width, height, bpp, rows = decode(sys.argv[1])
     top = int(sys.argv[2]) if len(sys.argv) > 2 else height
     for name, rgb in PALETTE.items():

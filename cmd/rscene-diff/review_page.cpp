@@ -224,6 +224,8 @@ document.addEventListener("keydown",e=>{const m={b:"before",a:"after",c:"changes
 // decode, and each button shows its image.
 window.addEventListener("load",()=>{
   const out=[];const imgs=[...document.images];
+  const fetched=performance.getEntriesByType("resource").filter(e=>!e.name.startsWith("data:"));
+  out.push("requests "+fetched.length);
   out.push("images "+imgs.length+" decoded "+imgs.filter(i=>i.complete&&i.naturalWidth>0).length);
   for(const k of ["before","changes","after"]){show(k);out.push(k+" "+(view.src===srcs[k]));}
   show("slider");out.push("slider "+(!overlay.hidden&&overlayImg.src===srcs.before&&view.src===srcs.after));
