@@ -223,3 +223,32 @@ chrome() {
   run python3 "$PNG" --find shot-before.png out/after.png
   [ "$output" = absent ]
 }
+
+@test "review: a robot whose knee turned marks the links that moved, not the whole robot" {
+  robots="$DATA/robots/check"
+  walker() {  # $1: the left knee; $2: the base's x
+    printf '%s\n' "raisim_engine_scene 1" "light /World/Sun 0.3 0.2 -1 3 type=directional shadows=true" \
+      "object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615" \
+      "articulated_resource walker_res Walker $robots/walker.urdf" \
+      "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true id=walker generalizedCoordinate=$2,0,0.5,1,0,0,0,0.3,$1,0.3,-0.6 generalizedVelocity=0,0,0,0,0,0,0,0,0,0"
+  }
+  walker -0.6 0 > a.rscene
+  walker -1.4 0 > knee.rscene
+  walker -0.6 0.05 > base.rscene
+  # One camera for both runs: the robot's whole body, seen from the front left.
+  cam='camera /World/Cam -1.2 -1.2 0.8 0.9188 -0.0400 0.0966 0.3806 50 0.05 50 160 96 rgb true'
+  for f in a knee base; do echo "$cam" >> $f.rscene; done
+  run review a.rscene knee.rscene
+  [ "$status" -eq 1 ]
+  grep -qF '| articulated /World/W | changed | generalizedCoordinate\[L\_KNEE\] | -0.6 | -1.4 |' out/review.md
+  knee=$(facts out/changes.png)
+  echo "knee: $knee"
+  run review a.rscene base.rscene
+  [ "$status" -eq 1 ]
+  base=$(facts out/changes.png)
+  echo "base: $base"
+  [ "$(count changed "$knee")" -gt 5 ]
+  [ "$(count ghost "$knee")" -gt 0 ]
+  # Every link moved with the base: far more marked than for one shin.
+  [ "$(count changed "$base")" -gt $(( 2 * $(count changed "$knee") )) ]
+}

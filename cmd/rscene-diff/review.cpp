@@ -132,10 +132,10 @@ bool chooseCamera(const ReviewOptions& o, const Built& a, const Built& b, const 
     return true;
   }
   if (!marks.bounds.isEmpty()) {
-    // What changed, at least 2 m across (a moved cup is seen with what
+    // What changed, at least 1 m across (a moved cup is seen with what
     // stands around it); autoCamera() leaves a margin of its own.
     Eigen::AlignedBox3d box = marks.bounds;
-    Eigen::Vector3d grow = (Eigen::Vector3d::Constant(2.0) - box.sizes()).cwiseMax(0.0) / 2;
+    Eigen::Vector3d grow = (Eigen::Vector3d::Constant(1.0) - box.sizes()).cwiseMax(0.0) / 2;
     box.min() -= grow;
     box.max() += grow;
     out = framed(box);
