@@ -134,7 +134,8 @@ std::string summary(const DiffResult& result) {
 
 std::string reviewMarkdown(const std::string& oldName, const std::string& newName, const DiffResult& result,
                            bool images, const std::string& note) {
-  std::string out = "### Scene review: `" + md(newName) + "`\n\n";
+  // A deleted scene is named by its old name.
+  std::string out = "### Scene review: `" + md(newName == "/dev/null" ? oldName : newName) + "`\n\n";
   out += "**" + summary(result) + "** (" + md(oldName) + " &rarr; " + md(newName) + ")";
   if (!note.empty()) out += ". " + md(note);
   out += "\n\n";
@@ -173,7 +174,7 @@ std::string reviewHtml(const std::string& oldName, const std::string& newName, c
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
       "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
-      "<title>Scene review: " + html(newName) + "</title>\n<style>\n"
+      "<title>Scene review: " + html(newName == "/dev/null" ? oldName : newName) + "</title>\n<style>\n"
       "body{font-family:system-ui,sans-serif;margin:1.5em;color:#222}\n"
       "table{border-collapse:collapse;margin:.5em 0 1.5em}\n"
       "td,th{border:1px solid #ccc;padding:.2em .5em;text-align:left;font-family:ui-monospace,monospace;"
@@ -186,7 +187,7 @@ std::string reviewHtml(const std::string& oldName, const std::string& newName, c
       "button{font-size:100%;margin-right:.3em}button[aria-pressed=true]{font-weight:bold}\n"
       "pre{background:#f6f6f6;padding:.5em;overflow:auto}\n"
       "</style>\n</head>\n<body>\n";
-  out += "<h1>Scene review: " + html(newName) + "</h1>\n";
+  out += "<h1>Scene review: " + html(newName == "/dev/null" ? oldName : newName) + "</h1>\n";
   out += "<p><b>" + html(summary(result)) + "</b> (" + html(oldName) + " &rarr; " + html(newName) + ")";
   if (!note.empty()) out += ". " + html(note);
   out += "</p>\n";
