@@ -80,3 +80,12 @@ setup() {
   [ "$status" -eq 2 ]
   [[ "$output" == *"'nosuchrev' is no commit"* ]]
 }
+
+@test "review range: the GitHub Actions and GitLab CI jobs of examples/ci are YAML and run the script" {
+  python3 -c 'import yaml' 2>/dev/null || skip "no python3-yaml"
+  for f in "$ROOT"/examples/ci/github-scene-review.yml "$ROOT"/examples/ci/gitlab-scene-review.yml; do
+    python3 -c 'import sys, yaml; yaml.safe_load(open(sys.argv[1]))' "$f"
+    grep -q 'scripts/rscene-review-range.sh -o scene-review' "$f"
+    grep -q 'scene-review/index.md' "$f"
+  done
+}
