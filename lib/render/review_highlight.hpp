@@ -71,10 +71,11 @@ struct Palette {
 // parts filled and outlined (added green, changed orange), the old side's
 // removed parts red where they stood and changed parts' old places as a
 // dashed blue outline; below the picture a legend band saying what each
-// color means with the counts.  All images the same size.
+// color means with the counts, and how many changed records draw nothing.  All images the same size.
 Image composeChanges(const Image& color, const Image& newIds, const Image& oldIds, const Marks& marks);
 
-// Height of the legend band composeChanges() adds below an image of height `h`.
+// Height of one line of the legend band composeChanges() adds below an
+// image of height `h` (more lines when its entries do not fit the width).
 int legendHeight(int width, int height);
 
 // Draws `text` (printable ASCII, a 5x7 font) at (x, y) scaled by `scale`.

@@ -126,23 +126,17 @@ int legendHeight(int width, int height) {
 Image composeChanges(const Image& color, const Image& newIds, const Image& oldIds, const Marks& marks) {
   const int w = color.width, h = color.height;
   const int scale = std::max(1, std::min(w / 320, h / 180));
-  const int band = legendHeight(w, h);
-  Image out;
-  out.width = w;
-  out.height = h + band;
-  out.rgba.assign(std::size_t(w) * out.height * 4, 255);
   // The scene faded to a light grey: what is marked stands out.
+  Image picture;
+  picture.width = w, picture.height = h;
+  picture.rgba.assign(std::size_t(w) * h * 4, 255);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::uint8_t* s = color.pixel(x, y);
-      std::uint8_t* d = out.pixel(x, y);
+      std::uint8_t* d = picture.pixel(x, y);
       float grey = 0.299f * s[0] + 0.587f * s[1] + 0.114f * s[2];
       for (int k = 0; k < 3; ++k) d[k] = std::uint8_t(std::lround(0.25f * s[k] + 0.45f * grey + 0.30f * 200.0f));
-      d[3] = 255;
     }
-  Image picture;  // the scene's part, painted in place
-  picture.width = w, picture.height = h;
-  picture.rgba.assign(out.rgba.begin(), out.rgba.begin() + std::ptrdiff_t(std::size_t(w) * h * 4));
   const int thick = std::max(1, scale);
   bool sized = oldIds.width == w && oldIds.height == h;
   std::vector<std::uint8_t> ghost, removed;
@@ -158,31 +152,18 @@ Image composeChanges(const Image& color, const Image& newIds, const Image& oldId
   }
   paint(picture, changed, Palette::changed, 0.55f, thick, 0);
   paint(picture, added, Palette::added, 0.55f, thick, 0);
-  std::copy(picture.rgba.begin(), picture.rgba.end(), out.rgba.begin());
 
-  // The legend band: a swatch and a word for each kind of mark shown.
-  const std::uint8_t ink[3] = {40, 40, 40};
-  const std::uint8_t paper[3] = {245, 245, 245};
-  fillRect(out, 0, h, w, band, paper);
-  int x = 2 * scale, y = h + 2 * scale;
+  // The legend: a swatch and a word for each kind of mark shown, on as
+  // many lines as the width needs.
+  struct Entry {
+    const std::uint8_t* rgb;
+    std::string text;
+    bool dashed;
+    int width;
+  };
+  std::vector<Entry> entries;
   auto entry = [&](const std::uint8_t* rgb, const std::string& text, bool dashed) {
-    if (rgb) {
-      for (int yy = 0; yy < 7 * scale; ++yy)
-        for (int xx = 0; xx < 7 * scale; ++xx) {
-          bool border = xx < scale || yy < scale || xx >= 6 * scale || yy >= 6 * scale;
-          if (dashed && (!border || ((xx + yy) / (2 * scale)) % 2)) continue;
-          const std::uint8_t light[3] = {mix(paper[0], rgb[0], 0.55f), mix(paper[1], rgb[1], 0.55f),
-                                         mix(paper[2], rgb[2], 0.55f)};
-          // Swatches in the fill's mixed color with a border one step
-          // darker than the outlines', so that the exact outline colors
-          // appear only on the scene's parts.
-          const std::uint8_t dark[3] = {mix(rgb[0], 0, 0.2f), mix(rgb[1], 0, 0.2f), mix(rgb[2], 0, 0.2f)};
-          put(out, x + xx, y + yy, border ? dark : light);
-        }
-      x += 9 * scale;
-    }
-    drawText(out, x, y, text, ink, scale);
-    x += textWidth(text, scale) + 4 * scale;
+    entries.push_back({rgb, text, dashed, (rgb ? 9 * scale : 0) + textWidth(text, scale) + 4 * scale});
   };
   auto count = [](std::size_t n) { return " " + std::to_string(n); };
   if (marks.added) entry(Palette::added, "added" + count(marks.added), false);
@@ -190,9 +171,49 @@ Image composeChanges(const Image& color, const Image& newIds, const Image& oldId
   if (marks.changed) entry(Palette::changed, "changed" + count(marks.changed), false);
   if (sized && any(ghost)) entry(Palette::ghost, "old place", true);
   if (marks.undrawn)
-    entry(nullptr, "+" + count(marks.undrawn).substr(1) + (marks.undrawn == 1 ? " change" : " changes") + " not drawn",
-          false);
+    entry(nullptr, "+" + std::to_string(marks.undrawn) + " not drawn", false);
   if (!marks.added && !marks.removed && !marks.changed && !marks.undrawn) entry(nullptr, "no change", false);
+  const int lineHeight = legendHeight(w, h);
+  std::vector<int> lineOf;
+  int lines = 1;
+  for (int x = 2 * scale; const Entry& e : entries) {
+    if (x > 2 * scale && x + e.width > w) {
+      ++lines;
+      x = 2 * scale;
+    }
+    lineOf.push_back(lines - 1);
+    x += e.width;
+  }
+  Image out;
+  out.width = w;
+  out.height = h + lines * lineHeight;
+  out.rgba.assign(std::size_t(w) * out.height * 4, 255);
+  std::copy(picture.rgba.begin(), picture.rgba.end(), out.rgba.begin());
+  const std::uint8_t ink[3] = {40, 40, 40};
+  const std::uint8_t paper[3] = {245, 245, 245};
+  fillRect(out, 0, h, w, lines * lineHeight, paper);
+  int x = 2 * scale, line = 0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const Entry& e = entries[i];
+    if (lineOf[i] != line) line = lineOf[i], x = 2 * scale;
+    int y = h + line * lineHeight + 2 * scale;
+    if (e.rgb) {
+      for (int yy = 0; yy < 7 * scale; ++yy)
+        for (int xx = 0; xx < 7 * scale; ++xx) {
+          bool border = xx < scale || yy < scale || xx >= 6 * scale || yy >= 6 * scale;
+          if (e.dashed && (!border || ((xx + yy) / (2 * scale)) % 2)) continue;
+          const std::uint8_t light[3] = {mix(paper[0], e.rgb[0], 0.55f), mix(paper[1], e.rgb[1], 0.55f),
+                                         mix(paper[2], e.rgb[2], 0.55f)};
+          // Swatches in the fill's mixed color with a border one step
+          // darker than the outlines', so that the exact outline colors
+          // appear only on the scene's parts.
+          const std::uint8_t dark[3] = {mix(e.rgb[0], 0, 0.2f), mix(e.rgb[1], 0, 0.2f), mix(e.rgb[2], 0, 0.2f)};
+          put(out, x + xx, y + yy, border ? dark : light);
+        }
+    }
+    drawText(out, x + (e.rgb ? 9 * scale : 0), y, e.text, ink, scale);
+    x += e.width;
+  }
   return out;
 }
 

@@ -145,7 +145,8 @@ TEST(ReviewImage, MarksAreFilledAndOutlinedInExactColorsAndTheLegendGoesBelow) {
   m.changed = 1;
   Image out = composeChanges(color, ids, oldIds, m);
   ASSERT_EQ(out.width, w);
-  EXPECT_EQ(out.height, h + legendHeight(w, h));
+  // Two entries (changed, old place), each wider than 12 pixels: two lines.
+  EXPECT_EQ(out.height, h + 2 * legendHeight(w, h));
   auto is = [&](int x, int y, const std::uint8_t* rgb) {
     const std::uint8_t* p = out.pixel(x, y);
     return p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
