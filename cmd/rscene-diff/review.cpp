@@ -5,6 +5,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <future>
@@ -155,11 +156,16 @@ render::Image greyImage(int w, int h) {
   return im;
 }
 
-bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::AssetCache& assets) {
+// Draws the side's colour image and, when it has marked parts (`ids`),
+// its id image (else one of background only: nothing of it is marked).
+bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::AssetCache& assets, bool ids) {
+  auto noIds = [&] {
+    side.images.segmentation = render::Image{
+        camera.width, camera.height, std::vector<std::uint8_t>(std::size_t(camera.width) * camera.height * 4, 0)};
+  };
   if (side.empty) {
     side.images.color = greyImage(camera.width, camera.height);
-    side.images.segmentation = render::Image{camera.width, camera.height,
-                                             std::vector<std::uint8_t>(std::size_t(camera.width) * camera.height * 4, 0)};
+    noIds();
     return true;
   }
   render::RenderOptions ro;
@@ -172,9 +178,11 @@ bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::As
     render::View view;
     view.name = camera.path;
     view.camera = camera;
-    view.passes = {render::Pass::Color, render::Pass::Segmentation};
+    view.passes = {render::Pass::Color};
+    if (ids) view.passes.push_back(render::Pass::Segmentation);
     ok = renderer->render(view, side.images, diags);
   }
+  if (!ids) noIds();
   cli::printDiagnostics(diags, source.name, source.text, cli::colorFor(2));
   return ok && !hasErrors(diags);
 }
@@ -261,9 +269,12 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   // One context: the old scene's renderer is gone before the new one's is made.
   // before.png is encoded while the new scene is drawn.
   auto encode = [](const render::Image* im) { return render::encodePng(*im); };
-  if (!draw(a, camera, before, assets)) return cli::kTrouble;
+  auto marked = [](const std::vector<review::Mark>& side) {
+    return std::any_of(side.begin(), side.end(), [](review::Mark k) { return k != review::Mark::None; });
+  };
+  if (!draw(a, camera, before, assets, marked(marks.oldSide))) return cli::kTrouble;
   auto beforePng = std::async(std::launch::async, encode, &a.images.color);
-  if (!draw(b, camera, after, assets)) return cli::kTrouble;
+  if (!draw(b, camera, after, assets, marked(marks.newSide))) return cli::kTrouble;
   auto afterPng = std::async(std::launch::async, encode, &b.images.color);
   render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks);
   std::string changesPng = render::encodePng(changes);

@@ -144,8 +144,13 @@ Image composeChanges(const Image& color, const Image& newIds, const Image& oldId
     ghost = maskOf(oldIds, marks.oldSide, Mark::Ghost);
     removed = maskOf(oldIds, marks.oldSide, Mark::Removed);
   }
-  std::vector<std::uint8_t> added = maskOf(newIds, marks.newSide, Mark::Added);
-  std::vector<std::uint8_t> changed = maskOf(newIds, marks.newSide, Mark::Changed);
+  // An id image of another size (none drawn) marks nothing.
+  const bool newSized = newIds.width == w && newIds.height == h;
+  std::vector<std::uint8_t> added(std::size_t(w) * h, 0), changed(std::size_t(w) * h, 0);
+  if (newSized) {
+    added = maskOf(newIds, marks.newSide, Mark::Added);
+    changed = maskOf(newIds, marks.newSide, Mark::Changed);
+  }
   if (sized) {
     paint(picture, ghost, Palette::ghost, 0.15f, thick, 3 * thick);
     paint(picture, removed, Palette::removed, 0.6f, thick, 0);

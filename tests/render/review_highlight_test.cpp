@@ -168,3 +168,15 @@ TEST(ReviewImage, MarksAreFilledAndOutlinedInExactColorsAndTheLegendGoesBelow) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) EXPECT_EQ(plain.pixel(x, y)[0], plain.pixel(0, 0)[0]);
 }
+
+TEST(ReviewImage, IdImagesOfAnotherSizeMarkNothing) {
+  Image color{4, 3, std::vector<std::uint8_t>(4 * 3 * 4, 100)};
+  Marks m;
+  m.newSide = {Mark::Added};
+  m.oldSide = {Mark::Removed};
+  m.added = m.removed = 1;
+  Image out = composeChanges(color, Image{}, Image{}, m);  // no id image drawn
+  ASSERT_EQ(out.width, 4);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(out.pixel(x, y)[0], out.pixel(0, 0)[0]);
+}
