@@ -252,3 +252,13 @@ chrome() {
   # Every link moved with the base: far more marked than for one shin.
   [ "$(count changed "$base")" -gt $(( 2 * $(count changed "$knee") )) ]
 }
+
+@test "review: a missing mesh is drawn as a placeholder, warned once for both scenes" {
+  sed 's|^object /World/Crates/Other box -2 1 0.5 1 0 0 0 1 1 1 1 1 1 default - false true false -|object /World/Crates/Other mesh -2 1 0.5 1 0 0 0 1 1 1 1 1 1 default - false true false missing.obj|' old.rscene > a.rscene
+  sed 's|Box box 0 0 0.5|Box box 1.5 0 0.5|' a.rscene > b.rscene
+  run --separate-stderr review a.rscene b.rscene
+  [ "$status" -eq 1 ]
+  echo "$stderr"
+  [ "$(grep -c "warning: mesh file 'missing.obj' does not exist" <<<"$stderr")" -eq 1 ]
+  [[ "$stderr" == "b.rscene:5:"* ]]
+}

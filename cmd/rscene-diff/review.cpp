@@ -45,7 +45,24 @@ struct Built {
   render::ViewImages images;
   bool empty = false;
   bool failed = false;  // did not build
+  Diagnostics diagnostics;  // of building, then of drawing; printed for both sides at once
 };
+
+// rscene-diff already said what the parser found; building says the rest:
+// the new scene's all, the old one's errors and the warnings the new one
+// has not (a mesh missing on both sides is said once).
+void printBuilt(Built& a, const ReviewSide& before, Built& b, const ReviewSide& after) {
+  auto same = [](const Diagnostic& x, const Diagnostic& y) {
+    return x.code == y.code && x.message == y.message && x.file == y.file;
+  };
+  Diagnostics old;
+  for (const Diagnostic& d : a.diagnostics)
+    if (d.severity == Severity::Error ||
+        std::none_of(b.diagnostics.begin(), b.diagnostics.end(), [&](const Diagnostic& n) { return same(d, n); }))
+      old.push_back(d);
+  cli::printDiagnostics(old, before.name, before.text, cli::colorFor(2));
+  cli::printDiagnostics(b.diagnostics, after.name, after.text, cli::colorFor(2));
+}
 
 bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
   out.empty = side.empty;
@@ -62,8 +79,7 @@ bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
   bool ok = render::buildRenderScene(side.document, so, out.model, out.scene, diags, limits, &assets);
   out.failed = !ok;
   cli::hintStdinPaths(side.input, "", diags);
-  // rscene-diff already said what the parser found; building says the rest.
-  cli::printDiagnostics(diags, side.name, side.text, cli::colorFor(2));
+  out.diagnostics = std::move(diags);
   if (!ok) return false;
   out.items = review::assignItemIds(out.scene);
   return true;
@@ -158,7 +174,7 @@ render::Image greyImage(int w, int h) {
 
 // Draws the side's colour image and, when it has marked parts (`ids`),
 // its id image (else one of background only: nothing of it is marked).
-bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::AssetCache& assets, bool ids) {
+bool draw(Built& side, const Camera& camera, asset::AssetCache& assets, bool ids) {
   auto noIds = [&] {
     side.images.segmentation = render::Image{
         camera.width, camera.height, std::vector<std::uint8_t>(std::size_t(camera.width) * camera.height * 4, 0)};
@@ -183,8 +199,9 @@ bool draw(Built& side, const Camera& camera, const ReviewSide& source, asset::As
     ok = renderer->render(view, side.images, diags);
   }
   if (!ids) noIds();
-  cli::printDiagnostics(diags, source.name, source.text, cli::colorFor(2));
-  return ok && !hasErrors(diags);
+  bool fine = ok && !hasErrors(diags);
+  side.diagnostics = std::move(diags);  // printed with the other side's (printBuilt)
+  return fine;
 }
 
 // Images of an earlier review would show another change.
@@ -237,7 +254,11 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   // The scenes are built while the OpenGL context starts (the context is
   // the calling thread's; the asset cache is the builder's alone until it
   // is done).
-  auto built = std::async(std::launch::async, [&] { return build(before, a, assets) && build(after, b, assets); });
+  auto built = std::async(std::launch::async, [&] {
+    bool ok = build(before, a, assets) && build(after, b, assets);
+    printBuilt(a, before, b, after);
+    return ok;
+  });
   render::Backend backend = o.backend == "gpu" ? render::Backend::Gpu
                             : o.backend == "cpu" ? render::Backend::Cpu
                                                  : render::Backend::Auto;
@@ -272,9 +293,14 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   auto marked = [](const std::vector<review::Mark>& side) {
     return std::any_of(side.begin(), side.end(), [](review::Mark k) { return k != review::Mark::None; });
   };
-  if (!draw(a, camera, before, assets, marked(marks.oldSide))) return cli::kTrouble;
+  if (!draw(a, camera, assets, marked(marks.oldSide))) {
+    printBuilt(a, before, b, after);
+    return cli::kTrouble;
+  }
   auto beforePng = std::async(std::launch::async, encode, &a.images.color);
-  if (!draw(b, camera, after, assets, marked(marks.newSide))) return cli::kTrouble;
+  bool drawn = draw(b, camera, assets, marked(marks.newSide));
+  printBuilt(a, before, b, after);  // what drawing found (a missing mesh), said once
+  if (!drawn) return cli::kTrouble;
   auto afterPng = std::async(std::launch::async, encode, &b.images.color);
   render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks);
   std::string changesPng = render::encodePng(changes);
