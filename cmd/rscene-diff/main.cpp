@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
                  "by path or name instead of id")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
   diffout::ReviewOptions review;
+#ifdef RSCENE_DIFF_REVIEW  // a text-only build (no lib/render) has no --review
   app.add_option("--review", review.dir,
                  "Write before.png, after.png, changes.png, review.md and index.html into DIR (made when missing): "
                  "both scenes from one camera, the changes marked, a page for a pull request")
@@ -131,6 +132,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", review.height, "With --review: image height in pixels (default: the camera's, else 720)")
       ->check(CLI::Range(1, 16384));
+#endif
   cli::addStdinFilename(app, stdinName, false);
   std::vector<char*> args = separateGitOperands(argc, argv);
   if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
@@ -147,22 +149,20 @@ int main(int argc, char** argv) {
     if (comma > start) opt.ignore.push_back(ignoreList.substr(start, comma - start));
     start = comma + 1;
   }
-  if (review.dir.empty() && (app.count("--camera") || app.count("--width") || app.count("--height"))) {
+  const bool reviewing = !review.dir.empty();
+#ifdef RSCENE_DIFF_REVIEW
+  if (!reviewing && (app.count("--camera") || app.count("--width") || app.count("--height"))) {
     cli::error("--camera, --width and --height go with --review DIR");
     return cli::kTrouble;
   }
-  const bool reviewing = !review.dir.empty();
   if (reviewing) {
-#ifndef RSCENE_DIFF_REVIEW
-    cli::error("--review: this rscene-diff was built without lib/render (EGL/OpenGL), which draws the images");
-    return cli::kTrouble;
-#endif
     if (git) {
       cli::error("--review takes OLD NEW, not git's external-diff arguments");
       return cli::kTrouble;
     }
     if (!diffout::prepareReviewDir(review.dir)) return cli::kTrouble;
   }
+#endif
   const std::string& oldFile = git ? files[1] : files[0];
   const std::string& newFile = git ? files[4] : files[1];
   if (oldFile == "-" && newFile == "-") {
