@@ -219,6 +219,7 @@ function clip(){overlay.style.width=slider.value+"%";overlayImg.style.width=view
 for(const k of ["before","after","changes","slider"])
   document.getElementById("show-"+k).addEventListener("click",()=>show(k));
 slider.addEventListener("input",clip);
+view.addEventListener("load",()=>{if(!overlay.hidden)clip();});
 window.addEventListener("resize",clip);
 document.addEventListener("keydown",e=>{const m={b:"before",a:"after",c:"changes",s:"slider"}[e.key];if(m)show(m);});
 // A self-check a headless browser reads back (--dump-dom): the images
