@@ -262,3 +262,17 @@ chrome() {
   [ "$(grep -c "warning: mesh file 'missing.obj' does not exist" <<<"$stderr")" -eq 1 ]
   [[ "$stderr" == "b.rscene:5:"* ]]
 }
+
+@test "review: a change out of the shared camera's view is said, on stderr and in review.md" {
+  # The camera looks away from the boxes (along -x, from x=-6).
+  cam='camera /World/Cam -6 0 2 0 0 0 1 50 0.1 100 160 96 rgb true'
+  { cat old.rscene; echo "$cam"; } > a.rscene
+  sed 's|Box box 0 0 0.5|Box box 0 1 0.5|' a.rscene > b.rscene
+  run --separate-stderr review a.rscene b.rscene
+  [ "$status" -eq 1 ]
+  [[ "$stderr" == *"rscene-diff: warning: --review: what changed is out of the view of camera /World/Cam, the scenes' own"* ]]
+  grep -q 'Note: what changed is out of the view of camera /World/Cam' out/review.md
+  run --separate-stderr review --camera auto a.rscene b.rscene
+  [ "$status" -eq 1 ]
+  [ -z "$stderr" ]
+}

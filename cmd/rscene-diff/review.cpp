@@ -212,6 +212,15 @@ void removeImages(const std::string& dir) {
   }
 }
 
+// Whether an id image shows a part marked on its side.
+bool showsMarks(const render::Image& ids, const std::vector<review::Mark>& marks) {
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x)
+      if (int i = review::itemAt(ids, x, y, marks.size()); i >= 0 && marks[std::size_t(i)] != review::Mark::None)
+        return true;
+  return false;
+}
+
 std::string summaryNote(const std::string& how, const review::Marks& m) {
   std::string s = "Drawn from " + how + ".";
   if (m.undrawn)
@@ -306,6 +315,13 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   std::string changesPng = render::encodePng(changes);
   std::string bp = beforePng.get(), ap = afterPng.get();
   std::string note = summaryNote(how, marks);
+  if (marks.added + marks.removed + marks.changed > 0 && !showsMarks(a.images.segmentation, marks.oldSide) &&
+      !showsMarks(b.images.segmentation, marks.newSide)) {
+    std::string unseen = "what changed is out of the view of " + how + ": --camera auto, or the default "
+                         "framing of what changed when the scenes have no camera in common, shows it";
+    cli::warning("--review: " + unseen);
+    note += " Note: " + unseen + ".";
+  }
   std::string md = reviewMarkdown(before.name, after.name, result, true, note);
   std::string html = reviewHtml(before.name, after.name, result, bp, ap, changesPng, note, "");
   if (!writeFile(join(o.dir, "before.png"), bp) || !writeFile(join(o.dir, "after.png"), ap) ||
