@@ -212,6 +212,8 @@ fi
 [[ -x $BIN/rscene-render ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/render/run.sh" "$BIN" || status=1; }
 # Batches (issue "Batches of scenes"): N thumbnails in one rscene-render against N runs.
 [[ -x $BIN/rscene-render ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/batch/render.sh" "$BIN" || status=1; }
+# rscene-diff --review of the warehouse against one render of it (issue 27); skips itself without ../shared.
+[[ -x $BIN/rscene-diff ]] && { echo; bash "$(dirname "${BASH_SOURCE[0]}")/review/warehouse.sh" "$BIN" || status=1; }
 # Robots against MuJoCo (issue 11); skips itself without ../shared or MuJoCo.
 echo
 bash "$(dirname "${BASH_SOURCE[0]}")/robot/run.sh" "$BIN" || status=1

@@ -10,6 +10,7 @@ libcli11-dev nlohmann-json3-dev libeigen3-dev
 libgtest-dev libgmock-dev bats
 clang libclang-rt-14-dev libfuzzer-14-dev
 mandoc jq time parallel libdtl-dev python3-yaml
+chromium
 slurm-wlm munge
 libbullet-dev libassimp-dev libtinyxml2-dev libmujoco-dev
 libpng-dev libjpeg-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri

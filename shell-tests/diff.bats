@@ -361,3 +361,10 @@ walker() {  # $1: the knee value of the left leg; $2: the robot file
   run -0 "$DIFF" --ignore object.id "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
   run -1 "$DIFF" --ignore light.id "$ROOT/examples/warehouse_crates.rscene" renamed.rscene
 }
+
+@test "--review DIR with --camera, --width and --height (diff_review.bats tests the review itself)" {
+  "$DIFF" --help | grep -q -- --review || skip "rscene-diff built without lib/render"
+  LP_NUM_THREADS=1 run "$DIFF" -q --review r --camera auto --width 48 --height 32 "$OLD" "$OLD"
+  [ "$status" -eq 0 ]
+  [ -s r/before.png ] && [ -s r/after.png ] && [ -s r/changes.png ] && [ -s r/review.md ] && [ -s r/index.html ]
+}

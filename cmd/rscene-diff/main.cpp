@@ -12,6 +12,7 @@
 #include "core/loader.hpp"
 #include "core/report.hpp"
 #include "rscene-diff/render.hpp"
+#include "rscene-diff/review.hpp"
 #include "rscene-diff/robot_names.hpp"
 
 namespace {
@@ -117,6 +118,21 @@ int main(int argc, char** argv) {
                  "Skip these fields (NAME or TAG.NAME, comma-separated); id (or TAG.id) also matches records "
                  "by path or name instead of id")->type_name("KEY,...");
   app.add_flag("-q,--quiet", quiet, "Print nothing; the exit status tells whether the scenes differ");
+  diffout::ReviewOptions review;
+#ifdef RSCENE_DIFF_REVIEW  // a text-only build (no lib/render) has no --review
+  app.add_option("--review", review.dir,
+                 "Write before.png, after.png, changes.png, review.md and index.html into DIR (made when missing): "
+                 "both scenes from one camera, the changes marked, a page for a pull request")
+      ->type_name("DIR");
+  app.add_option("--camera", review.camera,
+                 "With --review: the camera by path or id, or auto for a three-quarter view of both scenes "
+                 "(default: the scenes' shared camera, else a view framing what changed)")
+      ->type_name("PATH|ID|auto");
+  app.add_option("--width", review.width, "With --review: image width in pixels (default: the camera's, else 1280)")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--height", review.height, "With --review: image height in pixels (default: the camera's, else 720)")
+      ->check(CLI::Range(1, 16384));
+#endif
   cli::addStdinFilename(app, stdinName, false);
   std::vector<char*> args = separateGitOperands(argc, argv);
   if (int rc = cli::parseArgs(app, static_cast<int>(args.size()), args.data()); rc >= 0) return rc;
@@ -133,6 +149,20 @@ int main(int argc, char** argv) {
     if (comma > start) opt.ignore.push_back(ignoreList.substr(start, comma - start));
     start = comma + 1;
   }
+  const bool reviewing = !review.dir.empty();
+#ifdef RSCENE_DIFF_REVIEW
+  if (!reviewing && (app.count("--camera") || app.count("--width") || app.count("--height"))) {
+    cli::error("--camera, --width and --height go with --review DIR");
+    return cli::kTrouble;
+  }
+  if (reviewing) {
+    if (git) {
+      cli::error("--review takes OLD NEW, not git's external-diff arguments");
+      return cli::kTrouble;
+    }
+    if (!diffout::prepareReviewDir(review.dir)) return cli::kTrouble;
+  }
+#endif
   const std::string& oldFile = git ? files[1] : files[0];
   const std::string& newFile = git ? files[4] : files[1];
   if (oldFile == "-" && newFile == "-") {
@@ -142,7 +172,9 @@ int main(int argc, char** argv) {
   // In git mode a failure is reported but git goes on to the next file.
   const int trouble = git ? cli::kSuccess : cli::kTrouble;
   Side a, b;
-  if (!readSide(oldFile, stdinName, git, a) || !readSide(newFile, stdinName, git, b)) return trouble;
+  // A review of an added or deleted scene (a range in git) compares with /dev/null too.
+  if (!readSide(oldFile, stdinName, git || reviewing, a) || !readSide(newFile, stdinName, git || reviewing, b))
+    return trouble;
   std::thread loader([&] { load(a); });
   load(b);
   loader.join();
@@ -154,8 +186,12 @@ int main(int argc, char** argv) {
   const bool parsed = a.loaded.ok() && b.loaded.ok();
   std::string out;
   bool different = false;
-  if (git && !parsed) {
+  int reviewStatus = -1;
+  if ((git || reviewing) && !parsed) {
     out = lineDiff(a, b, oldName, newName);
+#ifdef RSCENE_DIFF_REVIEW
+    if (reviewing) reviewStatus = diffout::writeLineReview(review, oldName, newName, out);
+#endif
   } else {
     bool color = cli::colorFor(2);
     cli::printDiagnostics(a.loaded.diagnostics, oldName, a.text(), color);
@@ -181,6 +217,13 @@ int main(int argc, char** argv) {
       if (git) out = "rscene-diff " + oldName + " " + newName + "\n";
       out += statOnly ? diffout::stat(result) : diffout::blocks(result, cli::colorFor(1));
     }
+#ifdef RSCENE_DIFF_REVIEW
+    if (reviewing) {
+      diffout::ReviewSide before{a.in, a.loaded.document, a.text(), oldName, a.empty};
+      diffout::ReviewSide after{b.in, b.loaded.document, b.text(), newName, b.empty};
+      reviewStatus = diffout::writeReview(review, before, after, result);
+    }
+#endif
   }
   if (!quiet) {
     std::cout << out << std::flush;
@@ -189,5 +232,6 @@ int main(int argc, char** argv) {
       return trouble;
     }
   }
+  if (reviewStatus == cli::kTrouble) return cli::kTrouble;
   return git || !different ? cli::kSuccess : cli::kFindings;
 }
