@@ -190,3 +190,16 @@ setup() {
   [[ $stderr == *"more than 1e18 particles"*"[RS7082]"* ]]
   [[ $stderr != *18446744073709551615* ]]
 }
+
+@test "a bed thrown sideways that comes to rest is written at rest: velocity= becomes the grains' mean velocity" {
+  EXTRA=' velocity=1,0,0 angularVelocity=0,0,3' bed | sed 's/rollingFriction=0.02/rollingFriction=0.2/' > thrown.rscene
+  run -0 --separate-stderr "$SIM" --until-rest --duration 10 --report -o rest.rscene thrown.rscene
+  [[ $stderr == *'"atRest":true'* ]]
+  v=$(grep -o ' velocity=[^ ]*' rest.rscene | cut -d= -f2)
+  [ "$(awk -F, '{ print ($1 * $1 + $2 * $2 + $3 * $3 < 1e-4) }' <<<"$v")" = 1 ]
+  grep -q ' angularVelocity=0,0,0' rest.rscene
+  # reloaded, it stays where it was left
+  run -0 "$SIM" --duration 0.5 -o again.rscene rest.rscene
+  a=$(grep -o ' positions=[^;]*' rest.rscene | cut -d= -f2) b=$(grep -o ' positions=[^;]*' again.rscene | cut -d= -f2)
+  awk -F, -v a="$a" -v b="$b" 'BEGIN { split(a, p, ","); split(b, q, ","); d = (p[1] - q[1]) ^ 2 + (p[2] - q[2]) ^ 2 + (p[3] - q[3]) ^ 2; exit !(d < 1e-6) }'
+}

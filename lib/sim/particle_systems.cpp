@@ -281,6 +281,30 @@ void ParticleSystems::writeBack(Document& doc) const {
     }
     doc.setKey(static_cast<std::size_t>(g.recordIndex), "positions", positions);
     doc.setKey(static_cast<std::size_t>(g.recordIndex), "radii", radii);
+    // The record has one velocity for all its grains (its start velocity,
+    // in its frame): the grains' mean velocity now, so a bed that came to
+    // rest reloads at rest instead of launched again; the grains' own
+    // spins are not kept (angularVelocity becomes 0).
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& v : g.body->velocities()) mean += v;
+    if (!g.body->velocities().empty()) mean /= static_cast<double>(g.body->velocities().size());
+    mean = g.frame.orientation.conjugate() * mean;
+    std::string velocity;
+    for (int k = 0; k < 3; ++k) {
+      if (k) velocity += ',';
+      appendNumber(velocity, mean[k] == 0 ? 0.0 : mean[k]);
+    }
+    // (A record without them starts its grains at rest when reloaded.)
+    const Record& rec = doc.records[static_cast<std::size_t>(g.recordIndex)];
+    auto has = [&](std::string_view key) {
+      for (std::uint32_t j = 0; j < rec.fieldCount; ++j) {
+        const Field& f = doc.fields[rec.firstField + j];
+        if (f.isKey() && doc.text(f.key) == key) return true;
+      }
+      return false;
+    };
+    if (has("velocity")) doc.setKey(static_cast<std::size_t>(g.recordIndex), "velocity", velocity);
+    if (has("angularVelocity")) doc.setKey(static_cast<std::size_t>(g.recordIndex), "angularVelocity", "0,0,0");
   }
 }
 
