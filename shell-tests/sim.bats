@@ -739,13 +739,13 @@ object /World/Resting box 6 0 0.25 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_de
 SCENE
   # --until-rest whose duration runs out first: not at rest, and why.
   run -0 --separate-stderr "$SIM" --duration 0.01 --until-rest --report -o out.rscene deep.rscene
-  [[ $stderr == *"deep.rscene:5:24: warning: --until-rest reached the end of the duration (t = 0.01 s) before the scene came to rest: dynamic body '/World/Cube' 0."*" m inside '/World/Ground' (more than 5 mm; the solver was still pushing it out); the scene written is not at rest [RS7002]"* ]]
+  [[ $stderr == *"deep.rscene:5:24: warning: --until-rest reached the end of the duration (t = 0.01 s) before the scene came to rest: dynamic body '/World/Cube' 0."*" m inside '/World/Ground' (more than 5 mm deep: a longer run may push it out, unless it is trapped); the scene written is not at rest [RS7002]"* ]]
   [ "$(grep -c RS7002 <<<"$stderr")" -eq 1 ]
   jq -e '.atRest == false' <<<"${stderr_lines[-1]}"
   [ -s out.rscene ]
   # A plain run that ends as early: the same code, without --until-rest.
   run -0 --separate-stderr "$SIM" --duration 0.01 -o out.rscene deep.rscene
-  [[ $stderr == *"deep.rscene:5:24: warning: the run ended (t = 0.01 s) with dynamic body '/World/Cube' 0."*" m inside '/World/Ground' (more than 5 mm; the solver was still pushing it out): the scene written is not at rest [RS7002]"* ]]
+  [[ $stderr == *"deep.rscene:5:24: warning: the run ended (t = 0.01 s) with dynamic body '/World/Cube' 0."*" m inside '/World/Ground' (more than 5 mm deep: a longer run may push it out, unless it is trapped): the scene written is not at rest [RS7002]"* ]]
   # Long enough to push it out: no warning, with or without --until-rest.
   run -0 --separate-stderr "$SIM" --duration 3 -o out.rscene deep.rscene
   [[ $stderr != *RS7002* ]]

@@ -1253,7 +1253,8 @@ Diagnostic notAtRestWarning(const Document& doc, const std::vector<DeepContact>&
   std::snprintf(at, sizeof at, "t = %.6g s", time);
   const bool one = contacts.size() == 1;
   const std::string still = std::string(one ? "dynamic body " : "dynamic bodies ") + which +
-                            " (more than 5 mm; the solver was still pushing " + (one ? "it" : "them") + " out)";
+                            " (more than 5 mm deep: a longer run may push " + (one ? "it" : "them") +
+                            " out, unless " + (one ? "it is" : "they are") + " trapped)";
   const std::string message =
       untilRest ? std::string("--until-rest reached the end of the duration (") + at +
                       ") before the scene came to rest: " + still + "; the scene written is not at rest"
