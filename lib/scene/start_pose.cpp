@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -328,14 +329,24 @@ Diagnostic startOverlapDiagnostic(const Document& doc, int bodyRecord, int other
 }
 
 void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
-  for (const GroundStart& s : groundStarts(scene))
-    diagnostics.push_back(startOverlapDiagnostic(doc, scene.objects[static_cast<std::size_t>(s.body)].recordIndex,
-                                                 scene.objects[static_cast<std::size_t>(s.ground)].recordIndex,
-                                                 s.depth));
-  for (const BodyStart& s : bodyStarts(scene))
-    diagnostics.push_back(startOverlapDiagnostic(doc, scene.objects[static_cast<std::size_t>(s.body)].recordIndex,
-                                                 scene.objects[static_cast<std::size_t>(s.other)].recordIndex,
-                                                 s.depth));
+  // One warning per body, naming the deepest it starts inside: the ground
+  // or another body (a box sunk in the ground and into its neighbour is
+  // one finding).
+  struct Deepest {
+    int other;
+    double depth;
+  };
+  std::map<int, Deepest> deepest;  // body -> what it starts deepest inside
+  auto take = [&](int body, int other, double depth) {
+    auto [it, added] = deepest.emplace(body, Deepest{other, depth});
+    if (!added && depth > it->second.depth) it->second = {other, depth};
+  };
+  for (const GroundStart& s : groundStarts(scene)) take(s.body, s.ground, s.depth);
+  for (const BodyStart& s : bodyStarts(scene)) take(s.body, s.other, s.depth);
+  for (const auto& [body, d] : deepest)
+    diagnostics.push_back(startOverlapDiagnostic(doc, scene.objects[static_cast<std::size_t>(body)].recordIndex,
+                                                 scene.objects[static_cast<std::size_t>(d.other)].recordIndex,
+                                                 d.depth));
 }
 
 }  // namespace rscene

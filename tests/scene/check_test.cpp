@@ -522,12 +522,16 @@ TEST(BodyStart, PairsThatNeverCollideAreNotJudged) {
   EXPECT_EQ(overlaps(H + a + body("/World/b", "cylinder", "0.5 0 0", "1 1 1", "0.2")), "");
 }
 
-TEST(BodyStart, TheGroundRuleAndThePairRuleSayEachPairOnce) {
-  // Both below the ground and inside each other: one warning per pair.
+TEST(BodyStart, TheGroundRuleAndThePairRuleGiveOneWarningPerBodyNamingTheDeepest) {
+  // Both below the ground and inside each other: b is 0.2 m in the
+  // ground and 0.5 m in a, and is warned once, for a.
   EXPECT_EQ(overlaps(H + G + body("/World/a", "box", "0 0 0.3") + body("/World/b", "box", "0.5 0 0.3")),
             "3: dynamic body '/World/a' starts 0.2 m inside '/World/g'\n"
-            "4: dynamic body '/World/b' starts 0.2 m inside '/World/g'\n"
             "4: dynamic body '/World/b' starts 0.5 m inside '/World/a'\n");
+  // deeper in the ground than in its neighbour: the ground
+  EXPECT_EQ(overlaps(H + G + body("/World/a", "box", "0 0 0.3") + body("/World/b", "box", "0.9 0 0.1")),
+            "3: dynamic body '/World/a' starts 0.2 m inside '/World/g'\n"
+            "4: dynamic body '/World/b' starts 0.4 m inside '/World/g'\n");
 }
 
 TEST(BodyStart, APileIsOneWarningPerBodyNamingTheDeepest) {
