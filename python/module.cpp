@@ -1,0 +1,240 @@
+// The `rscene._rscene` extension: lib/core's documents (load, canonical
+// text, safe save, validate, diff, JSON) for Python.  The public API is
+// python/rscene/__init__.py, which wraps these functions; errors the C++
+// side finds come back as Python exceptions, never a crash.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "asset/cache.hpp"
+#include "asset/obj_surface.hpp"
+#include "core/assets.hpp"
+#include "core/check.hpp"
+#include "core/diff.hpp"
+#include "core/filesystem.hpp"
+#include "core/json.hpp"
+#include "core/loader.hpp"
+#include "core/output_file.hpp"
+#include "core/writer.hpp"
+#include "robot/check.hpp"
+#include "robot/load.hpp"
+#include "scene/validate.hpp"
+
+namespace py = pybind11;
+using namespace rscene;
+
+namespace {
+
+// A parsed scene as Python holds it: the lossless document, the text it was
+// read from (for validate's lines and carets), where it came from, and the
+// loader's warnings.
+struct PyDocument {
+  Document doc;
+  std::string source;  // as read (a document from JSON: its canonical text)
+  std::string path;    // "" when not read from a file
+  Diagnostics diagnostics;
+};
+
+struct Parsed {
+  std::shared_ptr<PyDocument> document;  // null when the text has errors
+  Diagnostics diagnostics;
+};
+
+Parsed parseText(std::string text, std::string path) {
+  if (text.size() > kMaxInputBytes) throw py::value_error("scene text is larger than 4 GiB, the loader's limit");
+  Parsed out;
+  std::string source = text;
+  LoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = parse(std::move(text));
+  }
+  out.diagnostics = std::move(r.diagnostics);
+  if (hasErrors(out.diagnostics)) return out;
+  auto d = std::make_shared<PyDocument>();
+  d->doc = std::move(r.document);
+  d->source = std::move(source);
+  d->path = std::move(path);
+  d->diagnostics = out.diagnostics;
+  out.document = std::move(d);
+  return out;
+}
+
+Parsed parseJson(const std::string& json) {
+  Parsed out;
+  JsonLoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = fromJson(json);
+  }
+  out.diagnostics = std::move(r.diagnostics);
+  if (hasErrors(out.diagnostics)) return out;
+  auto d = std::make_shared<PyDocument>();
+  d->doc = std::move(r.document);
+  d->source = canonicalText(d->doc);
+  // The canonical text is the document validate sees: reparse it so that
+  // records have lines in that text (records from JSON carry JSON lines).
+  LoadResult again = parse(d->source);
+  if (again.ok()) d->doc = std::move(again.document);
+  d->diagnostics = out.diagnostics;
+  out.document = std::move(d);
+  return out;
+}
+
+std::string formatDoc(const PyDocument& d) {
+  py::gil_scoped_release release;
+  return canonicalText(d.doc);
+}
+
+// Writes the canonical text through the tools' output routine; the message
+// of a refusal, or "" on success.
+std::string saveDoc(const PyDocument& d, const std::string& path) {
+  std::string error;
+  bool ok;
+  {
+    py::gil_scoped_release release;
+    ok = writeOutputFile(path, [&](Sink& sink) {
+      writeCanonical(d.doc, sink);
+      return true;
+    }, &error);
+  }
+  if (ok) return {};
+  return error.empty() ? std::string("cannot write") : error;
+}
+
+Diagnostics validateDoc(const PyDocument& d, const std::string& profile, bool checkFiles,
+                        const std::string& baseDir) {
+  CheckOptions co;
+  if (profile == "raisim") co.profile = Profile::RaiSim;
+  else if (profile == "engine2") co.profile = Profile::Engine2;
+  else throw py::value_error("profile must be 'engine2' or 'raisim', not '" + profile + "'");
+  co.checkFiles = checkFiles;
+  co.sceneDir = !baseDir.empty() ? baseDir : d.path.empty() ? std::string(".") : directoryOf(d.path);
+  py::gil_scoped_release release;
+  // As rscene-validate checks one scene (cmd/rscene-validate/main.cpp).
+  Document scratch;
+  CollectDiagnostics keep;
+  robot::ModelCache models;
+  asset::AssetCache meshes;
+  robot::RobotCheckOptions ro{co.checkFiles, co.fileExists, meshes.meshReader(asset::MeshContent::Geometry)};
+  validateScene(d.source, co, scratch, keep,
+                [&](const Document& doc, const Scene& s, std::vector<SceneFinding>& out) {
+                  robot::checkRobots(doc, s, ro, models, out);
+                },
+                asset::objSurfaceReader(diskFileSystem()), meshes.meshReader(asset::MeshContent::Geometry));
+  return std::move(keep.all);
+}
+
+py::dict diagnosticDict(const Diagnostic& d) {
+  py::dict o;
+  o["code"] = d.code;
+  o["severity"] = severityName(d.severity);
+  o["line"] = d.line;
+  o["column"] = d.column;
+  o["message"] = d.message;
+  o["hint"] = d.hint;
+  o["tag"] = d.tag;
+  o["field"] = d.field;
+  o["file"] = d.file;
+  return o;
+}
+
+py::list diagnosticList(const Diagnostics& ds) {
+  py::list l;
+  for (const Diagnostic& d : ds) l.append(diagnosticDict(d));
+  return l;
+}
+
+py::dict fieldDict(const FieldDiff& f) {
+  py::dict o;
+  o["name"] = f.name;
+  o["change"] = changeName(f.change);
+  o["type"] = std::string(typeName(f.type));
+  o["key_form"] = f.keyForm;
+  o["entry"] = f.entry;
+  o["old"] = f.oldValue;
+  o["new"] = f.newValue;
+  o["old_default"] = f.oldDefault;
+  o["new_default"] = f.newDefault;
+  o["summarized"] = f.summarized;
+  o["old_count"] = f.oldCount;
+  o["new_count"] = f.newCount;
+  o["changed_count"] = f.changedCount;
+  o["listed_count"] = f.listedCount;
+  o["max_delta"] = f.maxDelta;
+  return o;
+}
+
+py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, double relTolerance,
+                  bool ignoreEditorState, std::vector<std::string> ignore) {
+  if (!(tolerance >= 0) || !(relTolerance >= 0)) throw py::value_error("tolerances must be finite and >= 0");
+  DiffOptions o;
+  o.tolerance = tolerance;
+  o.relTolerance = relTolerance;
+  o.ignoreEditorState = ignoreEditorState;
+  for (const std::string& name : ignore)
+    if (auto bad = checkIgnoreName(name, a.doc, b.doc)) throw py::value_error("ignore: " + *bad);
+  o.ignore = std::move(ignore);
+  DiffResult r;
+  {
+    py::gil_scoped_release release;
+    r = diff(a.doc, b.doc, o);
+  }
+  py::list out;
+  for (const RecordDiff& rd : r.records) {
+    py::dict o2;
+    o2["change"] = changeName(rd.change);
+    o2["tag"] = rd.tag;
+    o2["key"] = rd.key;
+    o2["path"] = rd.path;
+    o2["old_path"] = rd.oldPath;
+    o2["old_line"] = rd.oldLine;
+    o2["new_line"] = rd.newLine;
+    py::list fs;
+    for (const FieldDiff& f : rd.fields) fs.append(fieldDict(f));
+    o2["fields"] = fs;
+    out.append(o2);
+  }
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_rscene, m) {
+  m.doc() = "rscene's C++ core (use the `rscene` package, not this module)";
+
+  py::class_<PyDocument, std::shared_ptr<PyDocument>>(m, "_Document")
+      .def_property_readonly("source", [](const PyDocument& d) { return py::bytes(d.source); })
+      .def_property_readonly("path", [](const PyDocument& d) { return d.path; })
+      .def_property_readonly("version", [](const PyDocument& d) { return d.doc.version; })
+      .def_property_readonly("record_count", [](const PyDocument& d) { return d.doc.records.size(); })
+      .def_property_readonly("diagnostics", [](const PyDocument& d) { return diagnosticList(d.diagnostics); })
+      .def("tags", [](const PyDocument& d) {
+        py::list l;
+        for (const Record& r : d.doc.records) l.append(std::string(d.doc.tag(r)));
+        return l;
+      });
+
+  // Each returns (document or None, diagnostics).
+  m.def("parse", [](py::bytes text, std::string path) {
+    Parsed p = parseText(std::string(text), std::move(path));
+    return py::make_tuple(p.document ? py::cast(p.document) : py::none(), diagnosticList(p.diagnostics));
+  }, py::arg("text"), py::arg("path") = "");
+  m.def("from_json_text", [](const std::string& json) {
+    Parsed p = parseJson(json);
+    return py::make_tuple(p.document ? py::cast(p.document) : py::none(), diagnosticList(p.diagnostics));
+  });
+  m.def("format", [](const PyDocument& d) { return py::bytes(formatDoc(d)); });
+  m.def("to_json_text", [](const PyDocument& d) {
+    py::gil_scoped_release release;
+    return toJson(d.doc, JsonStyle{false});
+  });
+  m.def("save", &saveDoc);
+  m.def("validate", [](const PyDocument& d, const std::string& profile, bool checkFiles, const std::string& baseDir) {
+    return diagnosticList(validateDoc(d, profile, checkFiles, baseDir));
+  });
+  m.def("diff", &diffDocs);
+}
