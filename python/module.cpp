@@ -92,6 +92,8 @@ std::string formatDoc(const PyDocument& d) {
 // Writes the canonical text through the tools' output routine; the message
 // of a refusal, or "" on success.
 std::string saveDoc(const PyDocument& d, const std::string& path) {
+  if (path.empty()) throw py::value_error("save() needs a path, not an empty string");
+  if (path.find('\0') != std::string::npos) throw py::value_error("embedded null byte in path");
   std::string error;
   bool ok;
   {
@@ -112,6 +114,7 @@ Diagnostics validateDoc(const PyDocument& d, const std::string& profile, bool ch
   else if (profile == "engine2") co.profile = Profile::Engine2;
   else throw py::value_error("profile must be 'engine2' or 'raisim', not '" + profile + "'");
   co.checkFiles = checkFiles;
+  if (baseDir.find('\0') != std::string::npos) throw py::value_error("embedded null byte in base_dir");
   co.sceneDir = !baseDir.empty() ? baseDir : d.path.empty() ? std::string(".") : directoryOf(d.path);
   py::gil_scoped_release release;
   // As rscene-validate checks one scene (cmd/rscene-validate/main.cpp).
@@ -128,17 +131,26 @@ Diagnostics validateDoc(const PyDocument& d, const std::string& profile, bool ch
   return std::move(keep.all);
 }
 
+// Text from the library as a Python str: scene values are percent-decoded
+// and may hold any bytes, so bytes that are not UTF-8 become U+FFFD rather
+// than a UnicodeDecodeError.
+py::str pystr(const std::string& s) {
+  PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace");
+  if (!o) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
 py::dict diagnosticDict(const Diagnostic& d) {
   py::dict o;
-  o["code"] = d.code;
+  o["code"] = pystr(d.code);
   o["severity"] = severityName(d.severity);
   o["line"] = d.line;
   o["column"] = d.column;
-  o["message"] = d.message;
-  o["hint"] = d.hint;
-  o["tag"] = d.tag;
-  o["field"] = d.field;
-  o["file"] = d.file;
+  o["message"] = pystr(d.message);
+  o["hint"] = pystr(d.hint);
+  o["tag"] = pystr(d.tag);
+  o["field"] = pystr(d.field);
+  o["file"] = pystr(d.file);
   return o;
 }
 
@@ -150,13 +162,13 @@ py::list diagnosticList(const Diagnostics& ds) {
 
 py::dict fieldDict(const FieldDiff& f) {
   py::dict o;
-  o["name"] = f.name;
+  o["name"] = pystr(f.name);
   o["change"] = changeName(f.change);
   o["type"] = std::string(typeName(f.type));
   o["key_form"] = f.keyForm;
   o["entry"] = f.entry;
-  o["old"] = f.oldValue;
-  o["new"] = f.newValue;
+  o["old"] = pystr(f.oldValue);
+  o["new"] = pystr(f.newValue);
   o["old_default"] = f.oldDefault;
   o["new_default"] = f.newDefault;
   o["summarized"] = f.summarized;
@@ -187,10 +199,10 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
   for (const RecordDiff& rd : r.records) {
     py::dict o2;
     o2["change"] = changeName(rd.change);
-    o2["tag"] = rd.tag;
-    o2["key"] = rd.key;
-    o2["path"] = rd.path;
-    o2["old_path"] = rd.oldPath;
+    o2["tag"] = pystr(rd.tag);
+    o2["key"] = pystr(rd.key);
+    o2["path"] = pystr(rd.path);
+    o2["old_path"] = pystr(rd.oldPath);
     o2["old_line"] = rd.oldLine;
     o2["new_line"] = rd.newLine;
     py::list fs;
@@ -208,19 +220,19 @@ PYBIND11_MODULE(_rscene, m) {
 
   py::class_<PyDocument, std::shared_ptr<PyDocument>>(m, "_Document")
       .def_property_readonly("source", [](const PyDocument& d) { return py::bytes(d.source); })
-      .def_property_readonly("path", [](const PyDocument& d) { return d.path; })
+      .def_property_readonly("path", [](const PyDocument& d) { return py::bytes(d.path); })
       .def_property_readonly("version", [](const PyDocument& d) { return d.doc.version; })
       .def_property_readonly("record_count", [](const PyDocument& d) { return d.doc.records.size(); })
       .def_property_readonly("diagnostics", [](const PyDocument& d) { return diagnosticList(d.diagnostics); })
       .def("tags", [](const PyDocument& d) {
         py::list l;
-        for (const Record& r : d.doc.records) l.append(std::string(d.doc.tag(r)));
+        for (const Record& r : d.doc.records) l.append(pystr(std::string(d.doc.tag(r))));
         return l;
       });
 
   // Each returns (document or None, diagnostics).
-  m.def("parse", [](py::bytes text, std::string path) {
-    Parsed p = parseText(std::string(text), std::move(path));
+  m.def("parse", [](py::bytes text, py::bytes path) {
+    Parsed p = parseText(std::string(text), std::string(path));
     return py::make_tuple(p.document ? py::cast(p.document) : py::none(), diagnosticList(p.diagnostics));
   }, py::arg("text"), py::arg("path") = "");
   m.def("from_json_text", [](const std::string& json) {
@@ -229,12 +241,16 @@ PYBIND11_MODULE(_rscene, m) {
   });
   m.def("format", [](const PyDocument& d) { return py::bytes(formatDoc(d)); });
   m.def("to_json_text", [](const PyDocument& d) {
-    py::gil_scoped_release release;
-    return toJson(d.doc, JsonStyle{false});
+    std::string json;
+    {
+      py::gil_scoped_release release;
+      json = toJson(d.doc, JsonStyle{false});
+    }
+    return pystr(json);
   });
-  m.def("save", &saveDoc);
-  m.def("validate", [](const PyDocument& d, const std::string& profile, bool checkFiles, const std::string& baseDir) {
-    return diagnosticList(validateDoc(d, profile, checkFiles, baseDir));
+  m.def("save", [](const PyDocument& d, py::bytes path) { return saveDoc(d, std::string(path)); });
+  m.def("validate", [](const PyDocument& d, const std::string& profile, bool checkFiles, py::bytes baseDir) {
+    return diagnosticList(validateDoc(d, profile, checkFiles, std::string(baseDir)));
   });
   m.def("diff", &diffDocs);
 }

@@ -113,7 +113,7 @@ class Document:
     @property
     def path(self) -> Optional[str]:
         """The file it was loaded from, or None."""
-        return self._doc.path or None
+        return _os.fsdecode(self._doc.path) or None
 
     @property
     def version(self) -> int:
@@ -128,7 +128,7 @@ class Document:
     @property
     def diagnostics(self) -> List[Diagnostic]:
         """The loader's warnings (a loaded document has no errors)."""
-        return _diagnostics(self._doc.diagnostics, self._doc.path)
+        return _diagnostics(self._doc.diagnostics, _os.fsdecode(self._doc.path))
 
     def tags(self) -> List[str]:
         """The tag of every record in file order, the header first."""
@@ -147,14 +147,12 @@ class Document:
         Refused with ``OSError``, nothing changed: a dangling link, a
         directory, a read-only or hard-linked file, an unwritable
         directory."""
-        target = _os.fspath(path)
-        if isinstance(target, bytes):
-            target = _os.fsdecode(target)
-        if not isinstance(target, str) or not target:
-            raise TypeError("save() needs a path (str or os.PathLike)")
+        if not isinstance(path, (str, bytes, _os.PathLike)):
+            raise TypeError("save() needs a path (str or os.PathLike), not %s" % type(path).__name__)
+        target = _os.fsencode(path)
         error = _rscene.save(self._doc, target)
         if error:
-            raise OSError("%s: %s" % (target, error))
+            raise OSError("%s: %s" % (_os.fsdecode(target), error))
 
     def __str__(self) -> str:
         return format(self)
@@ -182,7 +180,7 @@ def loads(text: Union[str, bytes], name: Optional[str] = None) -> Document:
         raise TypeError("loads() needs str or bytes, not %s" % type(text).__name__)
     if name is not None and not isinstance(name, str):
         raise TypeError("name must be a str")
-    raw, diags = _rscene.parse(data, name or "")
+    raw, diags = _rscene.parse(data, _os.fsencode(name or ""))
     if raw is None:
         raise ParseError(_diagnostics(diags, name or "<scene>"), name or "<scene>")
     return Document._wrap(raw)
@@ -191,9 +189,7 @@ def loads(text: Union[str, bytes], name: Optional[str] = None) -> Document:
 def load(path: Union[str, "os.PathLike[str]"]) -> Document:
     """Reads and parses the scene file at ``path``.  Raises ``OSError`` when
     it cannot be read and :class:`ParseError` when it does not parse."""
-    target = _os.fspath(path)
-    if isinstance(target, bytes):
-        target = _os.fsdecode(target)
+    target = _os.fsdecode(_os.fspath(path))
     with open(target, "rb") as f:
         data = f.read()
     return loads(data, name=target)
@@ -215,9 +211,8 @@ def validate(doc: Document, profile: str = "engine2", check_files: bool = False,
     raw = _check_document(doc)
     if not isinstance(profile, str):
         raise TypeError("profile must be a str")
-    if base_dir is not None:
-        base_dir = _os.fsdecode(_os.fspath(base_dir))
-    return _diagnostics(_rscene.validate(raw, profile, bool(check_files), base_dir or ""), raw.path)
+    base = _os.fsencode(base_dir) if base_dir is not None else b""
+    return _diagnostics(_rscene.validate(raw, profile, bool(check_files), base), _os.fsdecode(raw.path))
 
 
 class FieldChange:
@@ -286,8 +281,8 @@ def from_json(obj: dict) -> Document:
         raise TypeError("from_json() needs a dict (the parsed JSON form), not %s; use json.loads for text"
                         % type(obj).__name__)
     try:
-        text = _json.dumps(obj, allow_nan=False, ensure_ascii=False)
-    except (TypeError, ValueError) as e:
+        text = _json.dumps(obj, allow_nan=False)
+    except (TypeError, ValueError, RecursionError) as e:
         raise ValueError("from_json(): not JSON data: %s" % e) from None
     raw, diags = _rscene.from_json_text(text)
     if raw is None:

@@ -195,3 +195,38 @@ def test_save_writes_through_fifo(tmp_path):
     reader.join(timeout=30)
     assert got == [rscene.format(doc).encode()]
     assert stat.S_ISFIFO(os.lstat(fifo).st_mode)  # written through, not replaced
+
+
+def test_bytes_that_are_not_utf8_never_raise_unicode_errors():
+    # %FF decodes to a byte that is not UTF-8: kept, compared and shown.
+    scene = ("raisim_engine_scene 1\ntime_step 0.001\n"
+             "material m%{} 1 1 1 1 0 0.5 0 0 0 0 false - - - - - - id=x\n")
+    a, b = rscene.loads(scene.format("FF")), rscene.loads(scene.format("FE"))
+    [change] = rscene.diff(a, b)
+    assert [(f.name, f.old, f.new) for f in change.fields] == [("name", "m%FF", "m%FE")]
+    assert rscene.to_json(a)["records"][2]["fields"]["name"] == {"raw": "m%FF"}
+    assert rscene.format(rscene.from_json(rscene.to_json(a))) == rscene.format(a)
+
+
+def test_bad_paths_and_json_raise_cleanly(tmp_path):
+    doc = rscene.loads(BOX.format(x=0))
+    with pytest.raises(ValueError, match="null"):
+        doc.save(str(tmp_path / "a\0b"))
+    with pytest.raises(TypeError):
+        doc.save(None)
+    assert os.listdir(tmp_path) == []
+    deep = json.loads("[" * 900 + "]" * 900)
+    with pytest.raises(rscene.ParseError):
+        rscene.from_json({"format": "rscene", "version": 1, "records": deep})
+    with pytest.raises(rscene.ParseError):  # a lone surrogate is no JSON string
+        rscene.from_json({"format": "rscene", "version": 1,
+                          "records": [{"tag": "raisim_engine_scene", "fields": {"version": "\udcff"}}]})
+
+
+def test_threads_give_the_serial_results():
+    from concurrent.futures import ThreadPoolExecutor
+    docs = [rscene.load(p) for p in SCENES]
+    serial = [([str(d) for d in rscene.validate(doc)], rscene.format(doc)) for doc in docs]
+    with ThreadPoolExecutor(4) as pool:
+        parallel = list(pool.map(lambda doc: ([str(d) for d in rscene.validate(doc)], rscene.format(doc)), docs * 2))
+    assert parallel == serial * 2
