@@ -230,3 +230,17 @@ def test_threads_give_the_serial_results():
     with ThreadPoolExecutor(4) as pool:
         parallel = list(pool.map(lambda doc: ([str(d) for d in rscene.validate(doc)], rscene.format(doc)), docs * 2))
     assert parallel == serial * 2
+
+
+def test_readme_example_runs(tmp_path, monkeypatch, capsys):
+    # The README's Python example, exactly as printed there, in a folder
+    # where examples/ is the repository's.
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("\n## Python\n", 1)[1]
+    code = section.split("```python\n", 1)[1].split("```\n", 1)[0]
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    out = capsys.readouterr().out
+    assert "changed time_step" in out and "[RS1001]" in out
+    assert "time_step 0.002" in (tmp_path / "faster.rscene").read_text()
