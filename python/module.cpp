@@ -3,9 +3,11 @@
 // python/rscene/__init__.py, which wraps these functions; errors the C++
 // side finds come back as Python exceptions, never a crash.
 #include <pybind11/pybind11.h>
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -22,6 +24,9 @@
 #include "robot/check.hpp"
 #include "robot/load.hpp"
 #include "scene/validate.hpp"
+#include "sim/prepare.hpp"
+#include "sim/run.hpp"
+#include "sim/world.hpp"
 
 namespace py = pybind11;
 using namespace rscene;
@@ -213,6 +218,72 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
   return out;
 }
 
+// A scene made ready to step, as rscene-sim prepares it (sim/prepare.hpp),
+// stepped by the library's loop (sim/run.hpp) so that every state is
+// checked as the tool checks it.
+struct PySimulation {
+  std::shared_ptr<PyDocument> source;
+  Document doc;  // the document the world writes back into
+  asset::AssetCache assets;
+  sim::Prepared prepared;
+  Diagnostics diagnostics;  // warnings of the preparation
+  std::optional<Diagnostic> failure;  // a run that stopped: no more steps
+  // step() runs without the GIL: two Python threads that share one
+  // simulation take turns instead of racing in Bullet.
+  mutable std::mutex mutex;
+};
+
+// Prepares `d`; (simulation or None, diagnostics, usage error).
+py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d) {
+  auto s = std::make_unique<PySimulation>();
+  s->source = d;
+  s->doc = d->doc;
+  sim::PrepareOptions po;
+  po.scene.sceneDir = d->path.empty() ? std::string(".") : directoryOf(d->path);
+  po.steps = 0;
+  std::string usage;
+  bool ok;
+  {
+    py::gil_scoped_release release;
+    ok = sim::prepareSimulation(s->doc, po, s->assets, s->prepared, s->diagnostics, usage);
+  }
+  py::list diags = diagnosticList(s->diagnostics);
+  if (!usage.empty()) throw py::value_error(usage);
+  if (!ok || !s->prepared.world) return py::make_tuple(py::none(), diags);
+  return py::make_tuple(py::cast(std::move(s)), diags);
+}
+
+// Steps `n` times; a failure (a state that is not finite, the pair cap)
+// comes back as a diagnostic and ends the simulation.
+py::object stepSimulation(PySimulation& s, long long n) {
+  if (n < 0) throw py::value_error("step(n): n must be >= 0");
+  if (s.failure) throw py::value_error("the simulation stopped at an earlier failure: " + s.failure->message);
+  sim::RunResult r;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(s.mutex);
+    sim::RunOptions ro;
+    ro.steps = static_cast<std::uint64_t>(n);
+    r = sim::runWorld(*s.prepared.world, s.doc, ro);
+  }
+  if (r.failure) {
+    s.failure = r.failure;
+    return diagnosticDict(*r.failure);
+  }
+  return py::none();
+}
+
+py::array_t<double> poseArray(const Pose& p) {
+  py::array_t<double> a(7);
+  auto v = a.mutable_unchecked<1>();
+  for (int i = 0; i < 3; ++i) v(i) = p.position[i];
+  v(3) = p.orientation.w();
+  v(4) = p.orientation.x();
+  v(5) = p.orientation.y();
+  v(6) = p.orientation.z();
+  return a;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_rscene, m) {
@@ -253,4 +324,34 @@ PYBIND11_MODULE(_rscene, m) {
     return diagnosticList(validateDoc(d, profile, checkFiles, std::string(baseDir)));
   });
   m.def("diff", &diffDocs);
+
+  py::class_<PySimulation>(m, "_Simulation")
+      .def("step", &stepSimulation)
+      .def_property_readonly("time", [](const PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex); return s.prepared.world->time(); })
+      .def_property_readonly("steps", [](const PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex); return s.prepared.world->steps(); })
+      .def_property_readonly("time_step", [](const PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex); return s.prepared.world->timeStep(); })
+      .def_property_readonly("contact_count", [](const PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex); return s.prepared.world->contactCount(); })
+      .def_property_readonly("at_rest", [](const PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex); return s.prepared.world->atRest(); })
+      .def_property_readonly("diagnostics", [](const PySimulation& s) { return diagnosticList(s.diagnostics); })
+      .def("body_pose", [](const PySimulation& s, const std::string& name) -> py::object {
+        std::optional<Pose> p;
+        {
+          std::lock_guard<std::mutex> l(s.mutex);
+          p = s.prepared.world->bodyPose(name);
+        }
+        if (!p) return py::none();
+        return poseArray(*p);
+      })
+      .def("document_text", [](const PySimulation& s) {
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          std::lock_guard<std::mutex> l(s.mutex);
+          Document out = s.doc;
+          s.prepared.world->writeBack(out);
+          text = canonicalText(out);
+        }
+        return py::bytes(text);
+      });
+  m.def("simulation", &makeSimulation);
 }

@@ -27,13 +27,16 @@ from __future__ import annotations
 
 import json as _json
 import os as _os
-from typing import Any, Iterator, List, Optional, Union
+from typing import Any, List, Optional, Union
+
+import numpy as _np
 
 from . import _rscene
 
 __all__ = [
     "Diagnostic", "Document", "ParseError", "RecordChange", "FieldChange",
     "load", "loads", "format", "validate", "diff", "to_json", "from_json",
+    "Simulation", "SimulationError",
 ]
 
 
@@ -288,3 +291,98 @@ def from_json(obj: dict) -> Document:
     if raw is None:
         raise ParseError(_diagnostics(diags, "<json>"), "<json>")
     return Document._wrap(raw)
+
+
+class SimulationError(ValueError):
+    """A scene that cannot be simulated, or a step that failed (a state that
+    is not finite, the broadphase's pair cap).  ``diagnostics`` lists the
+    findings as rscene-sim prints them."""
+
+    def __init__(self, diagnostics: List[Diagnostic], name: str = "") -> None:
+        self.diagnostics = diagnostics
+        errors = [d for d in diagnostics if d.severity == "error"] or diagnostics
+        message = str(errors[0]).split("\n")[0] if errors else "%s: cannot be simulated" % (name or "<scene>")
+        if len(errors) > 1:
+            message += " (and %d more errors)" % (len(errors) - 1)
+        super().__init__(message)
+
+
+class Simulation:
+    """A scene in the physics engine, prepared as ``rscene-sim`` prepares it
+    (the same checks, robots, time step and solver settings).  Raises
+    :class:`SimulationError` when the scene cannot be simulated."""
+
+    __slots__ = ("_sim", "_doc")
+
+    def __init__(self, doc: Document) -> None:
+        raw = _check_document(doc)
+        name = _os.fsdecode(raw.path)
+        sim, diags = _rscene.simulation(raw)
+        if sim is None:
+            raise SimulationError(_diagnostics(diags, name), name)
+        self._sim = sim
+        self._doc = doc
+
+    def step(self, n: int = 1) -> None:
+        """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
+        Raises :class:`SimulationError` when a state stops being finite;
+        the simulation then takes no more steps."""
+        if isinstance(n, bool) or not isinstance(n, int):
+            raise TypeError("step(n): n must be an int, not %s" % type(n).__name__)
+        if n > 2**63 - 1:
+            raise ValueError("step(n): n is too large")
+        failure = self._sim.step(n)
+        if failure is not None:
+            raise SimulationError([Diagnostic(failure, _os.fsdecode(self._doc._doc.path))])
+
+    @property
+    def time(self) -> float:
+        """Simulated seconds since the start."""
+        return self._sim.time
+
+    @property
+    def steps(self) -> int:
+        """Steps taken since the start."""
+        return self._sim.steps
+
+    @property
+    def time_step(self) -> float:
+        """Seconds per step (the scene's time_step)."""
+        return self._sim.time_step
+
+    @property
+    def contact_count(self) -> int:
+        """Contact points after the last step."""
+        return self._sim.contact_count
+
+    @property
+    def at_rest(self) -> bool:
+        """Whether every dynamic body still in the world sleeps."""
+        return self._sim.at_rest
+
+    @property
+    def diagnostics(self) -> List[Diagnostic]:
+        """The warnings of preparing the scene (as rscene-sim prints them)."""
+        return _diagnostics(self._sim.diagnostics, _os.fsdecode(self._doc._doc.path))
+
+    def body_pose(self, path: str) -> "_np.ndarray":
+        """The world pose now of the dynamic or kinematic body named by
+        ``path`` (or id): a float64 array ``[x, y, z, qw, qx, qy, qz]``.
+        Raises ``KeyError`` for a name that is no moving body (a static body
+        stays where the scene puts it)."""
+        if not isinstance(path, str):
+            raise TypeError("body_pose(path): path must be a str, not %s" % type(path).__name__)
+        pose = self._sim.body_pose(path)
+        if pose is None:
+            raise KeyError("no dynamic or kinematic body named %r (a static body stays where the scene puts it)"
+                           % path)
+        return pose
+
+    def document(self) -> Document:
+        """The scene with the bodies' poses now and the robots' states
+        written back, as ``rscene-sim -o`` writes it."""
+        raw = self._doc._doc
+        return loads(self._sim.document_text(), name=_os.fsdecode(raw.path) or None)
+
+    def __repr__(self) -> str:
+        return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
