@@ -263,7 +263,8 @@ py::object stepSimulation(PySimulation& s, long long n) {
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(s.mutex);
     sim::RunOptions ro;
-    ro.steps = static_cast<std::uint64_t>(n);
+    // runWorld steps until the world has taken ro.steps in all.
+    ro.steps = s.prepared.world->steps() + static_cast<std::uint64_t>(n);
     r = sim::runWorld(*s.prepared.world, s.doc, ro);
   }
   if (r.failure) {

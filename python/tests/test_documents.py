@@ -244,3 +244,4 @@ def test_readme_example_runs(tmp_path, monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "changed time_step" in out and "[RS1001]" in out
     assert "time_step 0.002" in (tmp_path / "faster.rscene").read_text()
+    assert (tmp_path / "after.rscene").read_text() != (ROOT / "examples" / "robot_cell.rscene").read_text()
