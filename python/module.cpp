@@ -343,6 +343,19 @@ PYBIND11_MODULE(_rscene, m) {
         if (!p) return py::none();
         return poseArray(*p);
       })
+      .def("body_velocity", [](const PySimulation& s, const std::string& name) -> py::object {
+        // The velocity of the record frame's origin, as body_pose places it.
+        Eigen::Vector3d v, w;
+        {
+          std::lock_guard<std::mutex> l(s.mutex);
+          std::optional<Pose> p = s.prepared.world->bodyPose(name);
+          if (!p || !s.prepared.world->pointVelocity(name, p->position, v, w)) return py::none();
+        }
+        py::array_t<double> a(6);
+        auto r = a.mutable_unchecked<1>();
+        for (int i = 0; i < 3; ++i) r(i) = v[i], r(i + 3) = w[i];
+        return std::move(a);
+      })
       .def("document_text", [](const PySimulation& s) {
         std::string text;
         {

@@ -378,6 +378,19 @@ class Simulation:
                            % path)
         return pose
 
+    def body_velocity(self, path: str) -> "_np.ndarray":
+        """The world-frame velocity now of the moving body named by ``path``
+        (or id), at its record frame's origin (the point ``body_pose``
+        gives): a float64 array ``[vx, vy, vz, wx, wy, wz]`` (m/s, rad/s).
+        Raises ``KeyError`` as ``body_pose`` does."""
+        if not isinstance(path, str):
+            raise TypeError("body_velocity(path): path must be a str, not %s" % type(path).__name__)
+        velocity = self._sim.body_velocity(path)
+        if velocity is None:
+            raise KeyError("no dynamic or kinematic body named %r (a static body stays where the scene puts it)"
+                           % path)
+        return velocity
+
     def document(self) -> Document:
         """The scene with the bodies' poses now and the robots' states
         written back, as ``rscene-sim -o`` writes it."""

@@ -31,6 +31,19 @@ def test_box_falls_and_rests():
     assert pose[2] == pytest.approx(0.1, abs=2e-3)  # a 0.2 m box resting on the ground
     assert np.array_equal(pose, sim.body_pose("box"))  # by id too
     assert sim.contact_count > 0
+    velocity = sim.body_velocity("/World/Box")
+    assert velocity.shape == (6,) and np.all(np.abs(velocity) < 0.05)  # at rest
+
+
+def test_falling_velocity():
+    sim = rscene.Simulation(rscene.loads(DROP.format(z=5)))
+    assert sim.body_velocity("box").tolist() == [0] * 6
+    sim.step(100)  # 0.1 s of free fall
+    vx, vy, vz, wx, wy, wz = sim.body_velocity("box")
+    assert vz == pytest.approx(-9.81 * 0.1, rel=0.02)
+    assert (vx, vy, wx, wy, wz) == pytest.approx((0, 0, 0, 0, 0), abs=1e-9)
+    with pytest.raises(KeyError):
+        sim.body_velocity("/World/Ground")
 
 
 def test_document_matches_rscene_sim(tmp_path):
