@@ -245,3 +245,19 @@ def test_readme_example_runs(tmp_path, monkeypatch, capsys):
     assert "changed time_step" in out and "[RS1001]" in out
     assert "time_step 0.002" in (tmp_path / "faster.rscene").read_text()
     assert (tmp_path / "after.rscene").read_text() != (ROOT / "examples" / "robot_cell.rscene").read_text()
+
+
+def test_every_public_name_has_a_doc_string_and_a_stub():
+    import ast
+    import inspect
+    stub = ast.parse((ROOT / "python" / "rscene" / "__init__.pyi").read_text())
+    stubbed = {n.name for n in stub.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
+    assert set(rscene.__all__) <= stubbed
+    assert rscene.__doc__ and "ParseError" in rscene.__doc__
+    for name in rscene.__all__:
+        obj = getattr(rscene, name)
+        assert inspect.getdoc(obj), name
+        if inspect.isclass(obj):
+            for attr, value in vars(obj).items():
+                if not attr.startswith("_") and (callable(value) or isinstance(value, property)):
+                    assert inspect.getdoc(value), "%s.%s" % (name, attr)
