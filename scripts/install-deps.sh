@@ -14,6 +14,7 @@ chromium
 slurm-wlm munge
 libbullet-dev libassimp-dev libtinyxml2-dev libmujoco-dev
 libpng-dev libjpeg-dev libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+python3-dev python3-pybind11 python3-numpy python3-pytest
 "
 
 # One dpkg-query for all packages; a package it does not list as

@@ -1,0 +1,401 @@
+"""rscene: read, format, validate, diff and convert RaiSim Engine 2 scenes.
+
+The same library as the rscene command-line tools, for Python::
+
+    import rscene
+    doc = rscene.load("examples/pendulum.rscene")
+    for d in rscene.validate(doc):
+        print(d)                      # file:line:col: error: message [RSnnnn]
+    text = rscene.format(doc)         # what rscene-fmt writes
+    data = rscene.to_json(doc)        # what rscene-to-json writes, as dicts
+    same = rscene.from_json(data)     # and back
+    doc.save("out.rscene")            # canonical text, written as the tools write
+
+Documents are lossless: every record, unknown tag, unknown key and comment
+is kept, and ``format`` gives the canonical text (DESIGN.md, "Canonical
+form").
+
+A scene that does not parse raises :class:`ParseError`; its
+``diagnostics`` attribute lists the loader's findings (RS1xxx, or RS8xxx
+for JSON) with their lines and columns.  A scene that parses but has
+other errors (a wrong type, a dangling reference) loads, and
+:func:`validate` lists them.  Misuse (a wrong argument type, an unknown
+profile) raises ``TypeError`` or ``ValueError``; file problems raise
+``OSError``.
+"""
+from __future__ import annotations
+
+import json as _json
+import os as _os
+from typing import Any, List, Optional, Union
+
+import numpy as _np
+
+from . import _rscene
+
+__all__ = [
+    "Diagnostic", "Document", "ParseError", "RecordChange", "FieldChange",
+    "load", "loads", "format", "validate", "diff", "to_json", "from_json",
+    "Simulation", "SimulationError",
+]
+
+
+class Diagnostic:
+    """One finding: ``code`` (``"RS2001"``), ``severity`` (``"error"`` or
+    ``"warning"``), 1-based ``line`` and ``column`` (0 when unknown),
+    ``message``, ``hint`` (may be empty), ``tag`` and ``field`` of the record,
+    and ``file`` when the finding is in another file (a robot's URDF)."""
+
+    __slots__ = ("code", "severity", "line", "column", "message", "hint", "tag", "field", "file", "_scene")
+
+    def __init__(self, fields: dict, scene: str = "") -> None:
+        for k in ("code", "severity", "line", "column", "message", "hint", "tag", "field", "file"):
+            setattr(self, k, fields[k])
+        self._scene = scene
+
+    def __str__(self) -> str:
+        """The tools' form: ``file:line:col: severity: message [code]``."""
+        where = self.file or self._scene or "<scene>"
+        if self.line:
+            where += ":%d" % self.line
+            if self.column:
+                where += ":%d" % self.column
+        text = "%s: %s: %s [%s]" % (where, self.severity, self.message, self.code)
+        if self.hint:
+            text += "\n  hint: " + self.hint
+        return text
+
+    def __repr__(self) -> str:
+        return "Diagnostic(%r, %r, line=%d, column=%d, message=%r)" % (
+            self.code, self.severity, self.line, self.column, self.message)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Diagnostic):
+            return NotImplemented
+        return all(getattr(self, k) == getattr(other, k) for k in ("code", "severity", "line", "column", "message",
+                                                                  "hint", "tag", "field", "file"))
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+class ParseError(ValueError):
+    """A scene (or its JSON form) that does not parse.  ``diagnostics`` lists
+    the findings (errors and any warnings before them); ``str()`` shows the
+    first error as the tools print it."""
+
+    def __init__(self, diagnostics: List[Diagnostic], name: str = "") -> None:
+        self.diagnostics = diagnostics
+        self.name = name
+        errors = [d for d in diagnostics if d.severity == "error"]
+        first = errors[0] if errors else (diagnostics[0] if diagnostics else None)
+        message = str(first).split("\n")[0] if first else "%s: does not parse" % (name or "<scene>")
+        if len(errors) > 1:
+            message += " (and %d more errors)" % (len(errors) - 1)
+        super().__init__(message)
+
+
+def _diagnostics(raw: list, name: str) -> List[Diagnostic]:
+    return [Diagnostic(d, name) for d in raw]
+
+
+class Document:
+    """A parsed scene, lossless.  Make one with :func:`load`, :func:`loads`
+    or :func:`from_json`; ``str(doc)`` is its canonical text."""
+
+    __slots__ = ("_doc",)
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        raise TypeError("use rscene.load(path), rscene.loads(text) or rscene.from_json(obj) to make a Document")
+
+    @classmethod
+    def _wrap(cls, raw: "_rscene._Document") -> "Document":
+        self = object.__new__(cls)
+        self._doc = raw
+        return self
+
+    @property
+    def path(self) -> Optional[str]:
+        """The file it was loaded from, or None."""
+        return _os.fsdecode(self._doc.path) or None
+
+    @property
+    def version(self) -> int:
+        """The header's format version (1 or 2)."""
+        return self._doc.version
+
+    @property
+    def source(self) -> str:
+        """The text as read (for a document from JSON, its canonical text)."""
+        return self._doc.source.decode("utf-8", "surrogateescape")
+
+    @property
+    def diagnostics(self) -> List[Diagnostic]:
+        """The loader's warnings (a loaded document has no errors)."""
+        return _diagnostics(self._doc.diagnostics, _os.fsdecode(self._doc.path))
+
+    def tags(self) -> List[str]:
+        """The tag of every record in file order, the header first."""
+        return self._doc.tags()
+
+    def __len__(self) -> int:
+        """The number of records, the header included."""
+        return self._doc.record_count
+
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the canonical text to ``path`` through the tools' output
+        routine: a regular file is replaced atomically (temporary file and
+        rename, mode kept); a symbolic link keeps pointing where it did and
+        its target is replaced; a FIFO or character device is written
+        through (a FIFO waits for a reader; the GIL is released meanwhile).
+        Refused with ``OSError``, nothing changed: a dangling link, a
+        directory, a read-only or hard-linked file, an unwritable
+        directory."""
+        if not isinstance(path, (str, bytes, _os.PathLike)):
+            raise TypeError("save() needs a path (str or os.PathLike), not %s" % type(path).__name__)
+        target = _os.fsencode(path)
+        error = _rscene.save(self._doc, target)
+        if error:
+            raise OSError("%s: %s" % (_os.fsdecode(target), error))
+
+    def __str__(self) -> str:
+        return format(self)
+
+    def __repr__(self) -> str:
+        return "<rscene.Document %s, %d records>" % (repr(self.path) if self.path else "from text", len(self))
+
+
+def _check_document(doc: Any, name: str = "doc") -> "_rscene._Document":
+    if not isinstance(doc, Document):
+        raise TypeError("%s must be an rscene.Document, not %s" % (name, type(doc).__name__))
+    return doc._doc
+
+
+def loads(text: Union[str, bytes], name: Optional[str] = None) -> Document:
+    """Parses scene text (str, or bytes as read from a file) into a
+    :class:`Document`.  ``name`` is the file name diagnostics show; it is
+    also the directory relative asset paths start from in :func:`validate`.
+    Raises :class:`ParseError` when the text does not parse."""
+    if isinstance(text, str):
+        data = text.encode("utf-8", "surrogateescape")
+    elif isinstance(text, (bytes, bytearray, memoryview)):
+        data = bytes(text)
+    else:
+        raise TypeError("loads() needs str or bytes, not %s" % type(text).__name__)
+    if name is not None and not isinstance(name, str):
+        raise TypeError("name must be a str")
+    raw, diags = _rscene.parse(data, _os.fsencode(name or ""))
+    if raw is None:
+        raise ParseError(_diagnostics(diags, name or "<scene>"), name or "<scene>")
+    return Document._wrap(raw)
+
+
+def load(path: Union[str, "os.PathLike[str]"]) -> Document:
+    """Reads and parses the scene file at ``path``.  Raises ``OSError`` when
+    it cannot be read and :class:`ParseError` when it does not parse."""
+    target = _os.fsdecode(_os.fspath(path))
+    with open(target, "rb") as f:
+        data = f.read()
+    return loads(data, name=target)
+
+
+def format(doc: Document) -> str:
+    """The canonical text of ``doc``, byte for byte what ``rscene-fmt``
+    writes."""
+    return _rscene.format(_check_document(doc)).decode("utf-8", "surrogateescape")
+
+
+def validate(doc: Document, profile: str = "engine2", check_files: bool = False,
+             base_dir: Optional[str] = None) -> List[Diagnostic]:
+    """Everything ``rscene-validate`` reports for ``doc`` (syntax, types,
+    references, sizes, the scene model's checks and the robots'), in its
+    order.  ``profile`` is ``"engine2"`` or ``"raisim"``; ``check_files``
+    also checks that asset files exist (as ``--check-files``), relative to
+    ``base_dir`` or the document's directory.  An empty list: no findings."""
+    raw = _check_document(doc)
+    if not isinstance(profile, str):
+        raise TypeError("profile must be a str")
+    base = _os.fsencode(base_dir) if base_dir is not None else b""
+    return _diagnostics(_rscene.validate(raw, profile, bool(check_files), base), _os.fsdecode(raw.path))
+
+
+class FieldChange:
+    """A changed field of a :class:`RecordChange`: ``name``, ``change``
+    (``"added"``, ``"removed"``, ``"changed"``), ``type`` (the schema type,
+    e.g. ``"vec3"``), ``old`` and ``new`` (canonical text, ``""`` on the
+    missing side), ``old_default``/``new_default`` (not written: the
+    default), and for long lists ``summarized`` with ``old_count``,
+    ``new_count``, ``changed_count``, ``max_delta``."""
+
+    __slots__ = ("name", "change", "type", "key_form", "entry", "old", "new", "old_default", "new_default",
+                 "summarized", "old_count", "new_count", "changed_count", "listed_count", "max_delta")
+
+    def __init__(self, fields: dict) -> None:
+        for k in self.__slots__:
+            setattr(self, k, fields[k])
+
+    def __repr__(self) -> str:
+        return "FieldChange(%r, %s, %r -> %r)" % (self.name, self.change, self.old, self.new)
+
+
+class RecordChange:
+    """One record that differs (as ``rscene-diff`` reports it): ``change``
+    (``"added"``, ``"removed"``, ``"changed"``), ``tag``, ``key`` (its
+    identity), ``path``, ``old_path`` (a renamed node, else ``""``),
+    ``old_line``/``new_line``, and ``fields``: a list of
+    :class:`FieldChange`."""
+
+    __slots__ = ("change", "tag", "key", "path", "old_path", "old_line", "new_line", "fields")
+
+    def __init__(self, fields: dict) -> None:
+        for k in self.__slots__[:-1]:
+            setattr(self, k, fields[k])
+        self.fields = [FieldChange(f) for f in fields["fields"]]
+
+    def __repr__(self) -> str:
+        return "RecordChange(%s %s %r, %d fields)" % (self.change, self.tag, self.path or self.key, len(self.fields))
+
+
+def diff(a: Document, b: Document, tolerance: float = 0.0, rel_tolerance: float = 0.0,
+         ignore_editor_state: bool = False, ignore: Optional[List[str]] = None) -> List[RecordChange]:
+    """The semantic difference from ``a`` to ``b`` as ``rscene-diff``
+    computes it: records matched by identity, values compared by type (with
+    absolute and relative ``tolerance``), reordering is no change.
+    ``ignore`` lists field names (``NAME`` or ``TAG.NAME``) to leave out.
+    An empty list: the scenes are the same."""
+    ra, rb = _check_document(a, "a"), _check_document(b, "b")
+    names = list(ignore or [])
+    if not all(isinstance(n, str) for n in names):
+        raise TypeError("ignore must be a list of str")
+    return [RecordChange(r) for r in
+            _rscene.diff(ra, rb, float(tolerance), float(rel_tolerance), bool(ignore_editor_state), names)]
+
+
+def to_json(doc: Document) -> dict:
+    """The JSON form of ``doc`` (what ``rscene-to-json`` writes) as Python
+    objects: dicts, lists, str, int, float, bool."""
+    return _json.loads(_rscene.to_json_text(_check_document(doc)))
+
+
+def from_json(obj: dict) -> Document:
+    """The :class:`Document` of a JSON form (``to_json``'s result, or
+    ``json.load`` of ``rscene-to-json``'s output).  Raises
+    :class:`ParseError` (codes RS8001, RS8002) when it is not a scene."""
+    if not isinstance(obj, dict):
+        raise TypeError("from_json() needs a dict (the parsed JSON form), not %s; use json.loads for text"
+                        % type(obj).__name__)
+    try:
+        text = _json.dumps(obj, allow_nan=False)
+    except (TypeError, ValueError, RecursionError) as e:
+        raise ValueError("from_json(): not JSON data: %s" % e) from None
+    raw, diags = _rscene.from_json_text(text)
+    if raw is None:
+        raise ParseError(_diagnostics(diags, "<json>"), "<json>")
+    return Document._wrap(raw)
+
+
+class SimulationError(ValueError):
+    """A scene that cannot be simulated, or a step that failed (a state that
+    is not finite, the broadphase's pair cap).  ``diagnostics`` lists the
+    findings as rscene-sim prints them."""
+
+    def __init__(self, diagnostics: List[Diagnostic], name: str = "") -> None:
+        self.diagnostics = diagnostics
+        errors = [d for d in diagnostics if d.severity == "error"] or diagnostics
+        message = str(errors[0]).split("\n")[0] if errors else "%s: cannot be simulated" % (name or "<scene>")
+        if len(errors) > 1:
+            message += " (and %d more errors)" % (len(errors) - 1)
+        super().__init__(message)
+
+
+class Simulation:
+    """A scene in the physics engine, prepared as ``rscene-sim`` prepares it
+    (the same checks, robots, time step and solver settings).  Raises
+    :class:`SimulationError` when the scene cannot be simulated."""
+
+    __slots__ = ("_sim", "_doc")
+
+    def __init__(self, doc: Document) -> None:
+        raw = _check_document(doc)
+        name = _os.fsdecode(raw.path)
+        sim, diags = _rscene.simulation(raw)
+        if sim is None:
+            raise SimulationError(_diagnostics(diags, name), name)
+        self._sim = sim
+        self._doc = doc
+
+    def step(self, n: int = 1) -> None:
+        """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
+        Raises :class:`SimulationError` when a state stops being finite;
+        the simulation then takes no more steps."""
+        if isinstance(n, bool) or not isinstance(n, int):
+            raise TypeError("step(n): n must be an int, not %s" % type(n).__name__)
+        if n > 2**63 - 1:
+            raise ValueError("step(n): n is too large")
+        failure = self._sim.step(n)
+        if failure is not None:
+            raise SimulationError([Diagnostic(failure, _os.fsdecode(self._doc._doc.path))])
+
+    @property
+    def time(self) -> float:
+        """Simulated seconds since the start."""
+        return self._sim.time
+
+    @property
+    def steps(self) -> int:
+        """Steps taken since the start."""
+        return self._sim.steps
+
+    @property
+    def time_step(self) -> float:
+        """Seconds per step (the scene's time_step)."""
+        return self._sim.time_step
+
+    @property
+    def contact_count(self) -> int:
+        """Contact points after the last step."""
+        return self._sim.contact_count
+
+    @property
+    def at_rest(self) -> bool:
+        """Whether every dynamic body still in the world sleeps."""
+        return self._sim.at_rest
+
+    @property
+    def diagnostics(self) -> List[Diagnostic]:
+        """The warnings of preparing the scene (as rscene-sim prints them)."""
+        return _diagnostics(self._sim.diagnostics, _os.fsdecode(self._doc._doc.path))
+
+    def body_pose(self, path: str) -> "_np.ndarray":
+        """The world pose now of the dynamic or kinematic body named by
+        ``path`` (or id): a float64 array ``[x, y, z, qw, qx, qy, qz]``.
+        Raises ``KeyError`` for a name that is no moving body (a static body
+        stays where the scene puts it)."""
+        if not isinstance(path, str):
+            raise TypeError("body_pose(path): path must be a str, not %s" % type(path).__name__)
+        pose = self._sim.body_pose(path)
+        if pose is None:
+            raise KeyError("no dynamic or kinematic body named %r (a static body stays where the scene puts it)"
+                           % path)
+        return pose
+
+    def body_velocity(self, path: str) -> "_np.ndarray":
+        """The world-frame velocity now of the moving body named by ``path``
+        (or id), at its record frame's origin (the point ``body_pose``
+        gives): a float64 array ``[vx, vy, vz, wx, wy, wz]`` (m/s, rad/s).
+        Raises ``KeyError`` as ``body_pose`` does."""
+        if not isinstance(path, str):
+            raise TypeError("body_velocity(path): path must be a str, not %s" % type(path).__name__)
+        velocity = self._sim.body_velocity(path)
+        if velocity is None:
+            raise KeyError("no dynamic or kinematic body named %r (a static body stays where the scene puts it)"
+                           % path)
+        return velocity
+
+    def document(self) -> Document:
+        """The scene with the bodies' poses now and the robots' states
+        written back, as ``rscene-sim -o`` writes it."""
+        raw = self._doc._doc
+        return loads(self._sim.document_text(), name=_os.fsdecode(raw.path) or None)
+
+    def __repr__(self) -> str:
+        return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
