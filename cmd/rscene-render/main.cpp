@@ -210,12 +210,13 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
       Options one = opt;
       one.file = scenes[i];
       int rc = run(one, views);
-      if (rc == cli::kInterrupted || stop) break;  // the scenes drawn stay
+      if (rc == cli::kInterrupted) break;  // the scenes drawn before it stay
       ++finished;
       if (rc == cli::kSuccess)
         ++done;
       else
         fail(i);
+      if (stop) break;  // a signal after this scene's images were written
     }
   }
   if (stop) {

@@ -147,7 +147,9 @@ class ViewsRun {
     }
     bool ok = writer.finish();
     if (progress) std::fputc('\n', stderr);
-    if (interrupted) return stopped();  // the frames written stay, each one whole
+    // The frames written stay, each one whole.  A still whose images are
+    // all written is done: in a batch it counts as finished.
+    if (interrupted && (reader || !ok || !opt_.returnOnSignal)) return stopped();
     double encodeSeconds = writer.encodeSeconds();
     std::string referencePng;
     if (ok && reference()) {
