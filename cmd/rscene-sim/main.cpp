@@ -239,9 +239,6 @@ bool expandOutputs(const Options& opt, const std::string& file, SceneJob& job) {
 int runOne(const Options& opt) {
   SceneJob job;
   if (!expandOutputs(opt, opt.files.empty() ? "-" : opt.files[0], job)) return cli::kTrouble;
-  // With --sensors, SensorFiles::prepare() checks them once the sensors'
-  // folders are known (an output inside a LiDAR's folder-to-be is refused
-  // as that, not as a file in a missing folder).
   // The folders of outputs named by a pattern are made, as in a batch.
   std::vector<cli::NamedOutput> patterned;
   if (hasSceneFields(opt.output)) patterned.push_back({"-o", job.output});
@@ -250,6 +247,9 @@ int runOne(const Options& opt) {
   // -o may write the scene back; --trajectory must not replace it.
   cli::SceneOutputs self{job.file, job.file == "-" ? "" : job.file, {{"-o", job.output}, {"--trajectory", job.trajectory}}, {}};
   if (!cli::checkInputsKept({self}, "-o")) return cli::kTrouble;
+  // With --sensors, SensorFiles::prepare() checks them once the sensors'
+  // folders are known (an output inside a LiDAR's folder-to-be is refused
+  // as that, not as a file in a missing folder).
   if (job.sensors.empty() && !cli::checkOutputs({{"-o", job.output}, {"--trajectory", job.trajectory}}))
     return cli::kTrouble;
   cli::stopOnInterrupt(&gInterrupted);
