@@ -268,9 +268,17 @@ void batchSummary(std::size_t total, std::size_t done, const std::vector<std::st
   std::cerr << line << '\n';
 }
 
-void batchStopped(std::size_t finished, std::size_t total) {
-  error("stopped by a signal after " + std::to_string(finished) + " of " + std::to_string(total) +
-        " scenes; the finished scenes' outputs are written");
+namespace {
+std::string stoppedText(std::size_t finished, std::size_t total) {
+  return "stopped by a signal after " + std::to_string(finished) + " of " + std::to_string(total) +
+         " scenes; the finished scenes' outputs are written";
+}
+}  // namespace
+
+void batchStopped(std::size_t finished, std::size_t total) { error(stoppedText(finished, total)); }
+
+void batchReached(std::size_t finished, std::size_t total) {
+  setStopNote(finished < total ? toolName() + ": error: " + stoppedText(finished, total) + "\n" : std::string());
 }
 
 }  // namespace rscene::cli

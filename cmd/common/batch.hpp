@@ -107,5 +107,9 @@ void batchSummary(std::size_t total, std::size_t done, const std::vector<std::st
 // The line of a batch a stop signal ended: how far it got, and that the
 // finished scenes' outputs stay.
 void batchStopped(std::size_t finished, std::size_t total);
+// Before each scene (and with finished == total at the end): the same
+// line for a signal that ends the tool at once, inside a write
+// (setStopNote()).
+void batchReached(std::size_t finished, std::size_t total);
 
 }  // namespace rscene::cli

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <tuple>
 
@@ -27,6 +28,9 @@ std::string gTool = "rscene";
 // by what the thread it interrupts is doing.
 thread_local volatile std::sig_atomic_t gWriting = 0;
 volatile std::sig_atomic_t* gStopFlag = nullptr;     // stopOnInterrupt()
+// setStopNote(): written by the handler when a stop signal ends the tool at once.
+char gStopNote[512];
+volatile std::sig_atomic_t gStopNoteLength = 0;
 
 constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGALRM, SIGQUIT, SIGUSR1, SIGUSR2};
 
@@ -51,6 +55,10 @@ extern "C" void onTerminatingSignal(int sig) {
     return;
   }
   removeTemporaryFiles();
+  if (gStopNoteLength > 0) {
+    ssize_t unused = ::write(2, gStopNote, static_cast<std::size_t>(gStopNoteLength));
+    (void)unused;
+  }
   dieBySignal(sig);
   ::_exit(128 + sig);
 }
@@ -181,6 +189,13 @@ bool writeOutput(const std::string& path, const std::function<bool(Sink&)>& prod
 }
 
 void stopOnInterrupt(volatile std::sig_atomic_t* flag) { gStopFlag = flag; }
+
+void setStopNote(std::string_view line) {
+  gStopNoteLength = 0;  // the handler reads no half-copied note
+  std::size_t n = std::min(line.size(), sizeof gStopNote);
+  std::memcpy(gStopNote, line.data(), n);
+  gStopNoteLength = static_cast<std::sig_atomic_t>(n);
+}
 
 sigset_t stopSignals() {
   sigset_t set;

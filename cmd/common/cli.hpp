@@ -90,6 +90,11 @@ bool checkOutputs(const std::vector<NamedOutput>& outputs);
 // and calls endBySignal().
 void stopOnInterrupt(volatile std::sig_atomic_t* flag);
 
+// A line (ending in a newline) that a stop signal ending the tool at once,
+// inside a write, prints on stderr before the tool ends: a batch keeps it
+// saying how far it got (the flag path prints that itself).  "" clears it.
+void setStopNote(std::string_view line);
+
 // The signals above, for a tool that blocks them around a write.
 sigset_t stopSignals();
 

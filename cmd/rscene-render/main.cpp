@@ -202,6 +202,7 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
         continue;
       }
       if (progress) progress->scene(i);
+      cli::batchReached(finished, total);
       render_cli::ViewsOptions views = opt.views;
       views.output = patternOf(scenes[i]);
       views.quiet = true;
@@ -219,6 +220,7 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
       if (stop) break;  // a signal after this scene's images were written
     }
   }
+  cli::batchReached(total, total);
   if (stop) {
     cli::batchStopped(finished, total);
     return cli::endBySignal(stop);

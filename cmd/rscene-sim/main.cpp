@@ -298,6 +298,7 @@ int runBatch(const Options& opt) {
   std::size_t done = 0;
   for (std::size_t i = 0; i < n && !gInterrupted; ++i) {
     progress.scene(i);
+    cli::batchReached(done + failed.size(), n);
     nlohmann::json report;
     int rc = simulate(opt, jobs[i], shared, opt.report ? &report : nullptr, &progress);
     if (rc == cli::kInterrupted) break;  // its outputs discarded; the scenes before it stay written
@@ -314,6 +315,7 @@ int runBatch(const Options& opt) {
     std::cerr << line.dump() << '\n';
   }
   progress.clear();
+  cli::batchReached(n, n);
   if (gInterrupted) {
     cli::batchStopped(done + failed.size(), n);
     return cli::endBySignal(gInterrupted);
