@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "bindings.hpp"
+
 #include "asset/cache.hpp"
 #include "asset/obj_surface.hpp"
 #include "core/assets.hpp"
@@ -30,18 +32,9 @@
 
 namespace py = pybind11;
 using namespace rscene;
+using namespace rscene::python;
 
 namespace {
-
-// A parsed scene as Python holds it: the lossless document, the text it was
-// read from (for validate's lines and carets), where it came from, and the
-// loader's warnings.
-struct PyDocument {
-  Document doc;
-  std::string source;  // as read (a document from JSON: its canonical text)
-  std::string path;    // "" when not read from a file
-  Diagnostics diagnostics;
-};
 
 struct Parsed {
   std::shared_ptr<PyDocument> document;  // null when the text has errors
@@ -136,35 +129,6 @@ Diagnostics validateDoc(const PyDocument& d, const std::string& profile, bool ch
   return std::move(keep.all);
 }
 
-// Text from the library as a Python str: scene values are percent-decoded
-// and may hold any bytes, so bytes that are not UTF-8 become U+FFFD rather
-// than a UnicodeDecodeError.
-py::str pystr(const std::string& s) {
-  PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace");
-  if (!o) throw py::error_already_set();
-  return py::reinterpret_steal<py::str>(o);
-}
-
-py::dict diagnosticDict(const Diagnostic& d) {
-  py::dict o;
-  o["code"] = pystr(d.code);
-  o["severity"] = severityName(d.severity);
-  o["line"] = d.line;
-  o["column"] = d.column;
-  o["message"] = pystr(d.message);
-  o["hint"] = pystr(d.hint);
-  o["tag"] = pystr(d.tag);
-  o["field"] = pystr(d.field);
-  o["file"] = pystr(d.file);
-  return o;
-}
-
-py::list diagnosticList(const Diagnostics& ds) {
-  py::list l;
-  for (const Diagnostic& d : ds) l.append(diagnosticDict(d));
-  return l;
-}
-
 py::dict fieldDict(const FieldDiff& f) {
   py::dict o;
   o["name"] = pystr(f.name);
@@ -217,21 +181,6 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
   }
   return out;
 }
-
-// A scene made ready to step, as rscene-sim prepares it (sim/prepare.hpp),
-// stepped by the library's loop (sim/run.hpp) so that every state is
-// checked as the tool checks it.
-struct PySimulation {
-  std::shared_ptr<PyDocument> source;
-  Document doc;  // the document the world writes back into
-  asset::AssetCache assets;
-  sim::Prepared prepared;
-  Diagnostics diagnostics;  // warnings of the preparation
-  std::optional<Diagnostic> failure;  // a run that stopped: no more steps
-  // step() runs without the GIL: two Python threads that share one
-  // simulation take turns instead of racing in Bullet.
-  mutable std::mutex mutex;
-};
 
 // Prepares `d`; (simulation or None, diagnostics, usage error).
 py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d) {
@@ -286,6 +235,37 @@ py::array_t<double> poseArray(const Pose& p) {
 }
 
 }  // namespace
+
+namespace rscene::python {
+
+// Scene values are percent-decoded and may hold any bytes.
+py::str pystr(const std::string& s) {
+  PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace");
+  if (!o) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
+py::dict diagnosticDict(const Diagnostic& d) {
+  py::dict o;
+  o["code"] = pystr(d.code);
+  o["severity"] = severityName(d.severity);
+  o["line"] = d.line;
+  o["column"] = d.column;
+  o["message"] = pystr(d.message);
+  o["hint"] = pystr(d.hint);
+  o["tag"] = pystr(d.tag);
+  o["field"] = pystr(d.field);
+  o["file"] = pystr(d.file);
+  return o;
+}
+
+py::list diagnosticList(const Diagnostics& ds) {
+  py::list l;
+  for (const Diagnostic& d : ds) l.append(diagnosticDict(d));
+  return l;
+}
+
+}  // namespace rscene::python
 
 PYBIND11_MODULE(_rscene, m) {
   m.doc() = "rscene's C++ core (use the `rscene` package, not this module)";
