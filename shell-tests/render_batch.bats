@@ -89,15 +89,15 @@ setup() {
   mkdir other
   scene other/a.rscene 2
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' scenes/ other/
-  [[ "$stderr" == *"scenes/a.rscene and other/a.rscene would both write 'thumbs/a.png': they share a file name in different folders: put {dir} in it as well"* ]]
+  [[ "$stderr" == *"scenes 'scenes/a.rscene' and 'other/a.rscene' would both write 'thumbs/a.png' (-o): they share a file name in different folders: put {dir} in it as well"* ]]
   [ ! -e thumbs ]
   # The same scene twice is the same clash.
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{stem}.png' scenes/a.rscene scenes/a.rscene
-  [[ "$stderr" == *"would both write 'thumbs/a.png': the scene is named twice: name it once"* ]]
+  [[ "$stderr" == *"would both write 'thumbs/a.png' (-o): the scene is named twice: name it once"* ]]
   [ ! -e thumbs ]
   # {dir} alone: two scenes of one folder
   run -2 --separate-stderr "$RENDER" -o 'thumbs/{dir}.png' scenes/a.rscene scenes/b.rscene
-  [[ "$stderr" == *"would both write 'thumbs/scenes.png': they are in one folder: put {stem} in it as well"* ]]
+  [[ "$stderr" == *"would both write 'thumbs/scenes.png' (-o): they are in one folder: put {stem} in it as well"* ]]
   [ ! -e thumbs ]
 }
 
@@ -145,8 +145,13 @@ setup() {
 @test "batch: an output that is one of the input scenes is refused before anything is drawn" {
   cp scenes/a.rscene a.before
   run -2 --separate-stderr "$RENDER" -o 'scenes/{stem}.rscene' scenes/
-  [[ "$stderr" == *"-o: 'scenes/a.rscene' is the scene scenes/a.rscene, an input: it would be replaced by an image"* ]]
+  [ "$stderr" = "rscene-render: error: -o 'scenes/a.rscene' (of scenes/a.rscene) is the scene itself: it would be replaced by what -o writes; write it elsewhere" ]
   cmp a.before scenes/a.rscene
+  # A hard link to a scene is that scene: refused as well.
+  ln scenes/b.rscene b-link.rscene
+  run -2 --separate-stderr "$RENDER" -o '{stem}-link.rscene' scenes/a.rscene scenes/b.rscene
+  [ "$stderr" = "rscene-render: error: -o 'b-link.rscene' (of scenes/b.rscene) is the scene itself: it would be replaced by what -o writes; write it elsewhere" ]
+  [ ! -e a-link.rscene ]
 }
 
 @test "batch: several scenes need -o with {stem} or {dir}; not --trajectory, --reference or standard input" {

@@ -141,20 +141,16 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
     failed[i] = 1;
     cli::error(scenes[i] + ": not rendered");
   };
-  // First pass: the views and outputs of every scene, nothing drawn.
-  std::map<std::string, std::size_t> owner;  // an output's file -> the scene that writes it
-  bool clash = false;
-  // A pattern such as 'scenes/{stem}.rscene' would put images where the
-  // scenes are: an output that is one of the inputs is refused.
-  auto resolved = [](const std::string& path) {
-    std::error_code ec;
-    std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
-    return ec ? std::filesystem::path(path).lexically_normal().string() : p.string();
-  };
-  std::map<std::string, std::size_t> inputs;
-  for (std::size_t i = 0; i < scenes.size(); ++i) inputs.emplace(resolved(scenes[i]), i);
-  std::vector<std::vector<cli::NamedOutput>> planned(scenes.size());  // each scene's files
+  // First pass: the views and outputs of every scene, nothing drawn; then
+  // every output checked as rscene-sim's batch checks its own (one rule in
+  // cmd/common/batch.cpp): none is one of the scenes (by file identity, so
+  // a hard link too; a pattern such as 'scenes/{stem}.rscene' would put
+  // images where the scenes are), no two scenes write one file, and each
+  // file is one a single run could write; their folders are made first.
+  std::vector<cli::SceneOutputs> planned(scenes.size());
   for (std::size_t i = 0; i < scenes.size(); ++i) {
+    planned[i].scene = scenes[i];
+    planned[i].file = scenes[i];
     render_cli::ViewsOptions views = opt.views;
     views.output = patternOf(scenes[i]);
     std::vector<std::string> files;
@@ -165,29 +161,11 @@ int runBatch(Options& opt, const std::vector<std::string>& scenes, bool operands
       fail(i);
       continue;
     }
-    for (const std::string& f : files) {
-      planned[i].push_back({"-o", f});
-      if (auto in = inputs.find(resolved(f)); in != inputs.end()) {
-        cli::error("-o: '" + f + "' is the scene " + scenes[in->second] +
-                   ", an input: it would be replaced by an image; write the images elsewhere");
-        clash = true;
-        continue;
-      }
-      std::string key = std::filesystem::path(f).lexically_normal().string();
-      auto [it, added] = owner.emplace(key, i);
-      if (!added && it->second != i) {
-        cli::error("-o: " + scenes[it->second] + " and " + scenes[i] + " would both write '" + f +
-                   "': " + cli::clashHint(opt.output, scenes[it->second], scenes[i]));
-        clash = true;
-      }
-    }
+    for (const std::string& f : files) planned[i].outputs.push_back({"-o", f});
   }
-  if (clash) return cli::kTrouble;  // nothing drawn, nothing written
-  // Every file as a single run checks its own (a link, a device, a file
-  // with other hard links: refused), all before the first is drawn; their
-  // missing folders are made first.
-  for (const std::vector<cli::NamedOutput>& named : planned)
-    if (!cli::makeOutputFolders(named) || !cli::checkOutputs(named)) return cli::kTrouble;
+  // "" for checkBatchOutputs' in-place flag: an image never writes its
+  // scene back.
+  if (!cli::checkBatchOutputs(planned, {{"-o", opt.output}}, "")) return cli::kTrouble;  // nothing drawn
   // Second pass: drawn, on one context; the first pass printed the warnings.
   std::unique_ptr<render::GlContext> context;
   std::size_t done = 0, finished = 0, total = scenes.size();
