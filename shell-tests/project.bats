@@ -48,6 +48,10 @@ EOF
   run -1 --separate-stderr "$BIN/rscene-validate" proj
   [[ "$output" == *"proj/raisim_engine2_project:2:1: warning: unknown project record 'title' (ignored) [RS1202]"* ]]
   [[ "$output" == *"proj/raisim_engine2_project:4:17: error: scene_directory 'scenez' does not exist"*"[RS1206]"* ]]
+  # a symlink loop is there, but cannot be reached: said so, not "does not exist"
+  ln -s scenez2 proj/scenez && ln -s scenez proj/scenez2
+  run -1 --separate-stderr "$BIN/rscene-validate" proj
+  [[ "$output" == *"proj/raisim_engine2_project:4:17: error: scene_directory 'scenez' cannot be reached: Too many levels of symbolic links (looked for"*"[RS1206]"* ]]
   printf 'raisim_engine2_project 2\n' > proj/raisim_engine2_project
   run -1 "$BIN/rscene-validate" proj/raisim_engine2_project
   [[ "$output" == *"proj/raisim_engine2_project:1:24: error: unsupported project version '2' (only 1 exists) [RS1201]"* ]]

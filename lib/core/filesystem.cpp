@@ -33,7 +33,8 @@ struct Fd {
 
 FileStatus DiskFileSystem::stat(const std::string& path) const {
   struct stat st {};
-  if (path.empty() || ::stat(path.c_str(), &st) != 0) return {};
+  if (path.empty()) return {};
+  if (::stat(path.c_str(), &st) != 0) return {FileKind::Missing, 0, errno};
   return {kindOf(st.st_mode), S_ISREG(st.st_mode) ? static_cast<std::uint64_t>(st.st_size) : 0};
 }
 

@@ -15,6 +15,9 @@ enum class FileKind { Missing, Regular, Directory, Other };
 struct FileStatus {
   FileKind kind = FileKind::Missing;
   std::uint64_t size = 0;  // bytes, for regular files
+  // Why a path is Missing, as errno says: ENOENT (or 0) when nothing is
+  // there; ELOOP, EACCES, ENOTDIR... when something is in the way.
+  int error = 0;
 };
 
 class FileSystem {

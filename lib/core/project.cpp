@@ -1,6 +1,8 @@
 #include "core/project.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -13,6 +15,13 @@ namespace rscene {
 namespace fs = std::filesystem;
 
 namespace {
+
+// A path stat() found nothing at: missing, or unreachable (a symlink loop,
+// a folder without search permission), which "does not exist" would hide.
+std::string missingWhy(const FileStatus& st) {
+  if (st.error == 0 || st.error == ENOENT) return "does not exist";
+  return std::string("cannot be reached: ") + std::strerror(st.error);
+}
 
 Diagnostic finding(const char* code, Severity severity, std::uint32_t line, std::uint32_t column, std::string message,
                    std::string hint = {}) {
@@ -188,19 +197,20 @@ ProjectRead parseProject(std::string_view text, const std::string& root, const F
   auto folder = [&](const std::string& value, std::uint32_t line, std::uint32_t column, const char* key) {
     if (line == 0) return;
     std::string path = p.under(value);
-    FileKind kind = files.stat(path).kind;
-    if (kind == FileKind::Directory) return;
+    FileStatus st = files.stat(path);
+    if (st.kind == FileKind::Directory) return;
     ds.push_back(finding(rs::RS1206, Severity::Error, line, column,
                          std::string(key) + " '" + value + "' " +
-                             (kind == FileKind::Missing ? "does not exist" : "is not a folder") + " (looked for '" +
+                             (st.kind == FileKind::Missing ? missingWhy(st) : "is not a folder") + " (looked for '" +
                              path + "')"));
   };
   folder(p.assetDirectory, p.assetLine, columns[2], "asset_directory");
   folder(p.sceneDirectory, p.sceneLine, columns[3], "scene_directory");
   if (p.defaultLine != 0) {
     std::string path = p.under(p.defaultScene);
-    FileKind kind = files.stat(path).kind;
-    std::string why = kind == FileKind::Missing     ? "does not exist"
+    FileStatus st = files.stat(path);
+    FileKind kind = st.kind;
+    std::string why = kind == FileKind::Missing     ? missingWhy(st)
                       : kind != FileKind::Regular   ? "is not a regular file"
                       : !endsWith(path, ".rscene") ? "is not a .rscene file"
                                                     : "";
