@@ -114,6 +114,15 @@ report() {
   report "$missing"
 }
 
+@test "--help names each option's value in words, never CLI11's validator text (INT:INT in [1 - 16384])" {
+  require_tools
+  found=""
+  for t in $(tools); do
+    found+=$("$BIN/$t" --help | grep -E -- "^ +-.*:(U?INT|FLOAT|TEXT)( in |\b)" | sed "s|^|$t: |")
+  done
+  report "$found"
+}
+
 @test "every long option in --help is in the bash completion" {
   require_tools
   missing=""
