@@ -51,4 +51,7 @@ py::str pystr(const std::string& s);
 py::dict diagnosticDict(const Diagnostic& d);
 py::list diagnosticList(const Diagnostics& ds);
 
+// The further parts, each in its own file, registered from module.cpp.
+void bindRender(py::module_& m);  // render.cpp
+
 }  // namespace rscene::python

@@ -348,4 +348,5 @@ PYBIND11_MODULE(_rscene, m) {
         return py::bytes(text);
       });
   m.def("simulation", &makeSimulation);
+  bindRender(m);
 }

@@ -399,3 +399,7 @@ class Simulation:
 
     def __repr__(self) -> str:
         return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
+
+
+from ._render import LookAt, RenderError, Renderer, render, render_available, render_depth, render_segmentation, _render_error  # noqa: E402,F401
+__all__ += ["LookAt", "RenderError", "Renderer", "render", "render_depth", "render_segmentation", "render_available"]
