@@ -53,5 +53,6 @@ py::list diagnosticList(const Diagnostics& ds);
 
 // The further parts, each in its own file, registered from module.cpp.
 void bindRender(py::module_& m);  // render.cpp
+void bindScene(py::module_& m);   // scene.cpp
 
 }  // namespace rscene::python

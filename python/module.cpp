@@ -349,4 +349,5 @@ PYBIND11_MODULE(_rscene, m) {
       });
   m.def("simulation", &makeSimulation);
   bindRender(m);
+  bindScene(m);
 }
