@@ -157,8 +157,8 @@ class Renderer:
                     camera: Union[str, LookAt, None] = None, width: Optional[int] = None,
                     height: Optional[int] = None) -> Dict[str, Any]:
         """Draws the ``passes`` (``"rgb"``, ``"depth"``, ``"segmentation"``)
-        of one view in one go (``width``/``height`` given for a sensor,
-        which keeps its own size, warn with ``RuntimeWarning``): a dict with ``"rgb"`` (``(H, W, 4)`` uint8),
+        of one view in one go (``width``/``height`` given here for a
+        sensor, which keeps its own size, warn with ``RuntimeWarning``): a dict with ``"rgb"`` (``(H, W, 4)`` uint8),
         ``"depth"`` (``(H, W)`` float32 metres, NaN where nothing is hit),
         ``"segmentation"`` (``(H, W, 4)`` uint8, colours as in
         :attr:`legend`) for the passes asked, and ``"view"`` (the view's
@@ -185,8 +185,13 @@ class Renderer:
         w = self._width if width is None else _size(width, "width")
         h = self._height if height is None else _size(height, "height")
         out = self._r.draw(raw_sim, cam, look, w, h, names)
-        for text in out.pop("warnings"):
-            _warnings.warn(text, RuntimeWarning, stacklevel=3)
+        # A size this call gives that the view does not take; the
+        # renderer's own defaults apply where they can, silently.
+        if width is not None or height is not None:
+            for text in out.pop("warnings"):
+                _warnings.warn(text, RuntimeWarning, stacklevel=3)
+        else:
+            out.pop("warnings")
         return out
 
     def draw(self, sim: Optional[Simulation] = None, camera: Union[str, LookAt, None] = None,

@@ -206,3 +206,16 @@ def test_other_holders_keep_their_document():
     doc.set("time_step", "dt", 0.004)
     assert sim.time_step == 0.001
     assert rscene.Simulation(doc).time_step == 0.004
+
+
+def test_readme_typed_scene_runs(tmp_path, monkeypatch, capsys):
+    section = (ROOT / "README.md").read_text().split("\n### The typed scene\n", 1)[1]
+    code = section.split("```python\n", 1)[1].split("```\n", 1)[0]
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    out = capsys.readouterr().out.splitlines()
+    # What the comments in the example say it prints.
+    for line, printed in zip(code.splitlines()[5:7], out):
+        assert printed == line.split("# ", 1)[1].strip()
+    assert len(changed_lines(CELL.read_text(), (tmp_path / "heavier.rscene").read_text())) == 2
