@@ -325,7 +325,10 @@ std::size_t findRecord(const Document& doc, const std::string& selector) {
   if (found.size() == 1) return found[0];
   if (found.empty()) throw py::key_error("no record with path, id or tag '" + selector + "'");
   std::string list;
-  for (std::size_t k = 0; k < found.size() && k < 5; ++k) list += (k ? ", " : "") + describe(doc, found[k]);
+  for (std::size_t k = 0; k < found.size() && k < 5; ++k) {
+    if (k) list += ", ";
+    list += describe(doc, found[k]);
+  }
   throw py::value_error("'" + selector + "' names " + std::to_string(found.size()) + " records (" + list +
                         "): give its record number (the views' .record)");
 }

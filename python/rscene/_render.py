@@ -237,6 +237,13 @@ class Renderer:
         return self._r.views
 
     @property
+    def backend(self) -> Optional[Tuple[str, str]]:
+        """Where drawing happens: ``("gpu", renderer)`` or ``("cpu",
+        "llvmpipe ...")`` (the process's one OpenGL context, made by the
+        first draw), or None before any draw."""
+        return self._r.backend
+
+    @property
     def diagnostics(self) -> List[Diagnostic]:
         """Warnings of building and drawing the scene (as rscene-render
         prints them)."""

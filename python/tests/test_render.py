@@ -171,6 +171,7 @@ def test_renderer_cameras_and_sizes():
     r = rscene.Renderer(rscene.loads(FRONT))
     assert [v["name"] for v in r.views] == ["/World/Cam"]
     assert r.draw(camera="cam").shape == (48, 64, 4)
+    assert r.backend[0] in ("cpu", "gpu") and r.backend[1]
     assert r.draw(width=20, height=10).shape == (10, 20, 4)
     assert r.draw(camera="auto", width=30).shape == (720, 30, 4)
     # A look-at view from the camera's own place sees the same face.
