@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import json as _json
 import re as _re
-from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional
 
 import numpy as _np
 
 from . import _rscene
-from . import Diagnostic, Document, _check_document, _diagnostics
+from . import Document, _check_document, _diagnostics
 
 __all__ = ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "Robot", "Camera", "Sensor",
            "Light", "Material"]

@@ -1,7 +1,6 @@
 # Rendering from Python (issue 28): rscene.render/render_depth/
 # render_segmentation and Renderer, checked against closed-form pixels and
 # against rscene-render's own PNG of the same scene.
-import json
 import struct
 import threading
 import zlib

@@ -36,7 +36,7 @@ def test_views_of_robot_cell():
     s = rscene.load(CELL).scene()
     assert [o.path for o in s.objects] == ["/World/Ground", "/World/Crate"]
     crate = s.find("object_crate")
-    assert crate is s.objects[1] or crate.path == "/World/Crate"
+    assert crate.path == "/World/Crate" and crate.record == s.objects[1].record
     assert isinstance(crate, rscene.SceneObject)
     assert crate.primitive == "box" and crate.body_mode == "dynamic" and crate.mass == 4
     assert crate.position.dtype == np.float64 and list(crate.position) == [2.0, -0.9, 0.25]
@@ -86,8 +86,7 @@ def test_world_poses_and_defaults():
     assert list(lid.world_position) == pytest.approx([2, 0, 1.1])
     assert lid.semantic_class is None and lid.instance_id is None  # not written
     assert box.visible is True and box.collidable is True
-    (light_less,) = [s.lights == []]
-    assert light_less
+    assert s.lights == [] and [c.path for c in s.cameras] == ["/World/Cam"]
 
 
 def test_views_are_read_only():
