@@ -51,4 +51,8 @@ py::str pystr(const std::string& s);
 py::dict diagnosticDict(const Diagnostic& d);
 py::list diagnosticList(const Diagnostics& ds);
 
+// The further parts, each in its own file, registered from module.cpp.
+void bindRender(py::module_& m);  // render.cpp
+void bindScene(py::module_& m);   // scene.cpp
+
 }  // namespace rscene::python

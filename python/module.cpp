@@ -348,4 +348,6 @@ PYBIND11_MODULE(_rscene, m) {
         return py::bytes(text);
       });
   m.def("simulation", &makeSimulation);
+  bindRender(m);
+  bindScene(m);
 }

@@ -143,6 +143,12 @@ std::unique_ptr<GlContext> GlContext::create(Backend backend, std::string* error
   return nullptr;
 }
 
+bool GlContext::makeCurrent() const {
+  return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, static_cast<EGLContext>(context_)) == EGL_TRUE;
+}
+
+void GlContext::release() const { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+
 namespace detail {
 void forgetPrograms(void* eglContext);  // renderer.cpp
 }

@@ -29,6 +29,12 @@ class GlContext {
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
   const ContextInfo& info() const { return info_; }
+  // An EGL context is current on one thread at a time: a program that
+  // draws from several threads (the Python package) makes it current on
+  // the drawing thread first, and releases it after.  create() leaves it
+  // current on the creating thread.  False when EGL refuses.
+  bool makeCurrent() const;
+  void release() const;
 
  private:
   GlContext() = default;

@@ -141,7 +141,7 @@ class Document:
         """The number of records, the header included."""
         return self._doc.record_count
 
-    def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
+    def save(self, path: Union[str, "os.PathLike[str]"], as_written: bool = False) -> None:
         """Writes the canonical text to ``path`` through the tools' output
         routine: a regular file is replaced atomically (temporary file and
         rename, mode kept); a symbolic link keeps pointing where it did and
@@ -149,13 +149,49 @@ class Document:
         through (a FIFO waits for a reader; the GIL is released meanwhile).
         Refused with ``OSError``, nothing changed: a dangling link, a
         directory, a read-only or hard-linked file, an unwritable
-        directory."""
+        directory.  ``as_written=True`` writes :attr:`source` instead: the
+        text as read with the fields :meth:`set` changed, every other byte
+        as it was."""
         if not isinstance(path, (str, bytes, _os.PathLike)):
             raise TypeError("save() needs a path (str or os.PathLike), not %s" % type(path).__name__)
         target = _os.fsencode(path)
-        error = _rscene.save(self._doc, target)
+        save = _rscene.save_source if as_written else _rscene.save
+        error = save(self._doc, target)
         if error:
             raise OSError("%s: %s" % (_os.fsdecode(target), error))
+
+    def scene(self, load_robots: bool = True) -> "Scene":
+        """The typed scene (:class:`Scene`): objects, compounds, robots,
+        cameras, sensors, lights and materials as read-only views with
+        numpy fields, read by the model validate, sim and render share.
+        ``load_robots`` reads each robot's model for its joint and
+        coordinate names and start state."""
+        from . import _scene
+        return _scene.scene(self, load_robots)
+
+    def set(self, record: Any, field: str, value: Any) -> None:
+        """Sets one field of one record: ``record`` is a scene view, a
+        node's path or id, the tag of a record the scene has once
+        (``"time_step"``, ``"gravity"``), or a record number; ``field`` is
+        the schema's name (``"mass"``, ``"position"``,
+        ``"contactMaterial"``; snake_case works too).  The value is encoded
+        by the field's type as ``rscene-from-json`` encodes it (numbers,
+        bools, str, sequences or numpy arrays for vectors and lists); None
+        removes a key (its default applies).  Only that field's text
+        changes: :attr:`source` and ``save(path, as_written=True)`` keep
+        every other byte.  Raises ``KeyError`` for an unknown record,
+        ``ValueError`` for an unknown field or a value the type refuses,
+        ``TypeError`` for a value that is no scene value."""
+        from . import _scene
+        if not isinstance(field, str):
+            raise TypeError("field must be a str, not %s" % type(field).__name__)
+        _scene.update(self, record, {field: value})
+
+    def update(self, record: Any, values: dict) -> None:
+        """Sets several fields of one record at once (``{field: value}``),
+        as :meth:`set` does each."""
+        from . import _scene
+        _scene.update(self, record, values)
 
     def __str__(self) -> str:
         return format(self)
@@ -399,3 +435,9 @@ class Simulation:
 
     def __repr__(self) -> str:
         return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
+
+
+from ._render import LookAt, RenderError, Renderer, render, render_available, render_depth, render_segmentation, _render_error  # noqa: E402,F401
+__all__ += ["LookAt", "RenderError", "Renderer", "render", "render_depth", "render_segmentation", "render_available"]
+from ._scene import Camera, Compound, CompoundChild, Light, Material, RecordView, Robot, Scene, SceneObject, Sensor  # noqa: E402,F401
+__all__ += ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "Robot", "Camera", "Sensor", "Light", "Material"]

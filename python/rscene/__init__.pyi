@@ -35,7 +35,10 @@ class Document:
     def diagnostics(self) -> List[Diagnostic]: ...
     def tags(self) -> List[str]: ...
     def __len__(self) -> int: ...
-    def save(self, path: _Path) -> None: ...
+    def save(self, path: _Path, as_written: bool = ...) -> None: ...
+    def scene(self, load_robots: bool = ...) -> Scene: ...
+    def set(self, record: Union[RecordView, str, int], field: str, value: Any) -> None: ...
+    def update(self, record: Union[RecordView, str, int], values: dict[str, Any]) -> None: ...
 
 class FieldChange:
     name: str
@@ -96,3 +99,230 @@ class Simulation:
     def body_pose(self, path: str) -> npt.NDArray[np.float64]: ...
     def body_velocity(self, path: str) -> npt.NDArray[np.float64]: ...
     def document(self) -> Document: ...
+
+# Rendering (python/rscene/_render.py).
+from typing import Iterator, Sequence
+def render_available() -> bool: ...
+
+class RenderError(ValueError):
+    diagnostics: List[Diagnostic]
+    def __init__(self, message: str, diagnostics: Optional[List[Diagnostic]] = ...) -> None: ...
+
+class LookAt:
+    position: tuple[float, float, float]
+    target: tuple[float, float, float]
+    fov: float
+    def __init__(self, position: Sequence[float], target: Sequence[float], fov: float = ...) -> None: ...
+
+_Camera = Union[str, LookAt, None]
+
+class Renderer:
+    def __init__(self, doc: Document, camera: _Camera = ..., width: Optional[int] = ...,
+                 height: Optional[int] = ..., *, samples: int = ..., post: bool = ...,
+                 transparent: bool = ...) -> None: ...
+    def draw_passes(self, sim: Optional[Simulation] = ..., passes: Sequence[str] = ..., camera: _Camera = ...,
+                    width: Optional[int] = ..., height: Optional[int] = ...) -> dict[str, Any]: ...
+    def draw(self, sim: Optional[Simulation] = ..., camera: _Camera = ..., width: Optional[int] = ...,
+             height: Optional[int] = ...) -> npt.NDArray[np.uint8]: ...
+    def draw_depth(self, sim: Optional[Simulation] = ..., camera: _Camera = ..., width: Optional[int] = ...,
+                   height: Optional[int] = ...) -> npt.NDArray[np.float32]: ...
+    def draw_segmentation(self, sim: Optional[Simulation] = ..., camera: _Camera = ...,
+                          width: Optional[int] = ..., height: Optional[int] = ...) -> npt.NDArray[np.uint8]: ...
+    @property
+    def legend(self) -> dict[str, Any]: ...
+    def segment_of(self, color: Sequence[int]) -> Optional[dict[str, Any]]: ...
+    @property
+    def views(self) -> List[dict[str, Any]]: ...
+    @property
+    def backend(self) -> Optional[tuple[str, str]]: ...
+    @property
+    def diagnostics(self) -> List[Diagnostic]: ...
+
+def render(doc: Document, camera: _Camera = ..., width: Optional[int] = ..., height: Optional[int] = ..., *,
+           samples: int = ..., post: bool = ..., transparent: bool = ...) -> npt.NDArray[np.uint8]: ...
+def render_depth(doc: Document, camera: _Camera = ..., width: Optional[int] = ...,
+                 height: Optional[int] = ...) -> npt.NDArray[np.float32]: ...
+def render_segmentation(doc: Document, camera: _Camera = ..., width: Optional[int] = ...,
+                        height: Optional[int] = ...) -> tuple[npt.NDArray[np.uint8], dict[str, Any]]: ...
+
+# The typed scene (python/rscene/_scene.py); Document.scene/set/update are
+# in Document's stub above.
+class RecordView:
+    record: int
+    tag: str
+    line: int
+    def __getattr__(self, name: str) -> Any: ...
+    def as_dict(self) -> dict[str, Any]: ...
+    def set(self, field: str, value: Any) -> None: ...
+
+class SceneObject(RecordView):
+    path: str
+    id: str
+    parent_id: str
+    primitive: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    world_position: npt.NDArray[np.float64]
+    world_orientation: npt.NDArray[np.float64]
+    scale: npt.NDArray[np.float64]
+    radius: float
+    height: float
+    mass: float
+    body_mode: str
+    material: str
+    contact_material: str
+    visible: bool
+    collidable: bool
+    collision_group: int
+    collision_mask: int
+    mesh_path: Optional[str]
+    collision_mesh_path: Optional[str]
+    semantic_class: Optional[str]
+    instance_id: Optional[int]
+    inertia_diagonal: Optional[npt.NDArray[np.float64]]
+
+class CompoundChild(RecordView):
+    primitive: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    scale: npt.NDArray[np.float64]
+    size: npt.NDArray[np.float64]
+    radius: float
+    height: float
+    material: str
+    contact_material: str
+    mesh_path: Optional[str]
+
+class Compound(RecordView):
+    path: str
+    id: str
+    parent_id: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    world_position: npt.NDArray[np.float64]
+    world_orientation: npt.NDArray[np.float64]
+    scale: npt.NDArray[np.float64]
+    mass: float
+    body_mode: str
+    material: str
+    contact_material: str
+    visible: bool
+    collidable: bool
+    center_of_mass: Optional[npt.NDArray[np.float64]]
+    inertia_diagonal: Optional[npt.NDArray[np.float64]]
+    children: List[CompoundChild]
+
+class Robot(RecordView):
+    path: str
+    id: str
+    parent_id: str
+    resource: str
+    source_path: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    world_position: npt.NDArray[np.float64]
+    world_orientation: npt.NDArray[np.float64]
+    scale: npt.NDArray[np.float64]
+    visible: bool
+    collidable: bool
+    generalized_coordinate: Optional[npt.NDArray[np.float64]]
+    generalized_velocity: Optional[npt.NDArray[np.float64]]
+    joint_order: List[str]
+    joint_names: Optional[List[str]]
+    coordinate_names: Optional[List[str]]
+    velocity_names: Optional[List[str]]
+    floating_base: Optional[bool]
+    q: Optional[npt.NDArray[np.float64]]
+    u: Optional[npt.NDArray[np.float64]]
+
+class Camera(RecordView):
+    path: str
+    id: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    world_position: npt.NDArray[np.float64]
+    world_orientation: npt.NDArray[np.float64]
+    vertical_fov: float
+    horizontal_fov: float
+    near_plane: float
+    far_plane: float
+    width: int
+    height: int
+    render_mode: str
+    projection: str
+    ortho_scale: float
+    enabled: bool
+    output_path: Optional[str]
+
+class Sensor(RecordView):
+    path: str
+    id: str
+    kind: str
+    parent_object: str
+    parent_link: str
+    position: npt.NDArray[np.float64]
+    orientation: npt.NDArray[np.float64]
+    world_position: npt.NDArray[np.float64]
+    world_orientation: npt.NDArray[np.float64]
+    width: int
+    height: int
+    vertical_fov: float
+    horizontal_fov: float
+    near_plane: float
+    far_plane: float
+    intrinsics: Optional[npt.NDArray[np.float64]]
+    update_rate: float
+    lidar_channels: int
+    lidar_samples: int
+    lidar_min_pitch: float
+    lidar_max_pitch: float
+    lidar_min_range: float
+    lidar_max_range: float
+    segmentation: bool
+    noise_mean: float
+    noise_stddev: float
+    noise_seed: int
+    enabled: bool
+    output_path: Optional[str]
+
+class Light(RecordView):
+    path: str
+    id: str
+    type: str
+    direction: npt.NDArray[np.float64]
+    position: npt.NDArray[np.float64]
+    intensity: float
+    color: npt.NDArray[np.float64]
+    range: float
+    cone_angle: float
+    inner_cone_angle: float
+    radius: float
+    area_size: npt.NDArray[np.float64]
+    shadows: bool
+    negative: bool
+    visible: bool
+
+class Material(RecordView):
+    id: str
+    name: str
+    color: npt.NDArray[np.float64]
+    metallic: float
+    roughness: float
+    emissive: npt.NDArray[np.float64]
+    emissive_strength: float
+    double_sided: bool
+    alpha_mode: str
+
+class Scene:
+    time_step: float
+    gravity: npt.NDArray[np.float64]
+    objects: List[SceneObject]
+    compounds: List[Compound]
+    robots: List[Robot]
+    cameras: List[Camera]
+    sensors: List[Sensor]
+    lights: List[Light]
+    materials: List[Material]
+    diagnostics: List[Diagnostic]
+    def records(self) -> Iterator[RecordView]: ...
+    def find(self, name: str) -> RecordView: ...
