@@ -144,6 +144,9 @@ review() { "$DIFF" -q --review out --width "$W" --height "$H" "$@"; }
   [ "$status" -eq 2 ]
   [ "$stderr" = "rscene-diff: error: --review takes OLD NEW, not git's external-diff arguments" ]
   [ ! -e out ]
+  run --separate-stderr "$DIFF" --review "" old.rscene new.rscene
+  [ "$status" -eq 2 ]
+  [ "$stderr" = "rscene-diff: error: --review: give a folder, not an empty string" ]
 }
 
 @test "review: the scenes' shared camera is used; --camera names another or auto" {
@@ -272,7 +275,11 @@ chrome() {
   [ "$status" -eq 1 ]
   [[ "$stderr" == *"rscene-diff: warning: --review: what changed is out of the view of camera /World/Cam, the scenes' own"* ]]
   grep -q 'Note: what changed is out of the view of camera /World/Cam' out/review.md
-  run --separate-stderr review --camera auto a.rscene b.rscene
+  [[ "$stderr" == *": --camera changes frames it" ]]
+  run --separate-stderr review --camera changes a.rscene b.rscene
   [ "$status" -eq 1 ]
   [ -z "$stderr" ]
+  grep -q 'Drawn from the automatic view of what changed' out/review.md
+  f=$(facts out/changes.png)
+  [ "$(count changed "$f")" -gt 20 ]
 }

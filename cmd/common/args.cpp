@@ -100,6 +100,10 @@ CLI::Validator count(long long min) {
   return CLI::Validator([min](std::string& s) { return checkCount(s, min); }, "", "count");
 }
 
+CLI::Validator range(long long min, long long max) {
+  return CLI::Range(min, max).description("");
+}
+
 int parseArgs(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);

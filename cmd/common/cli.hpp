@@ -174,5 +174,10 @@ CLI::Validator nonNegative();
 // A number from 0 to 1 (CLI::Range lets NaN through).
 CLI::Validator fraction();
 CLI::Validator count(long long min);
+// CLI::Range of whole numbers without its description: --help would
+// otherwise show "--width INT:INT in [1 - 16384]"; the help text says the
+// bounds in words where a user needs them, and a value out of range still
+// gets "Value 0 not in range 1 to 16384".
+CLI::Validator range(long long min, long long max);
 
 }  // namespace rscene::cli

@@ -125,13 +125,15 @@ int main(int argc, char** argv) {
                  "both scenes from one camera, the changes marked, a page for a pull request")
       ->type_name("DIR");
   app.add_option("--camera", review.camera,
-                 "With --review: the camera by path or id, or auto for a three-quarter view of both scenes "
-                 "(default: the scenes' shared camera, else a view framing what changed)")
-      ->type_name("PATH|ID|auto");
+                 "With --review: the camera by path or id, auto for a three-quarter view of both scenes, or changes "
+                 "for a view framing what changed (default: the scenes' shared camera, else changes)")
+      ->type_name("PATH|ID|auto|changes");
   app.add_option("--width", review.width, "With --review: image width in pixels (default: the camera's, else 1280)")
-      ->check(CLI::Range(1, 16384));
+      ->type_name("PIXELS")
+      ->check(cli::range(1, 16384));
   app.add_option("--height", review.height, "With --review: image height in pixels (default: the camera's, else 720)")
-      ->check(CLI::Range(1, 16384));
+      ->type_name("PIXELS")
+      ->check(cli::range(1, 16384));
 #endif
   cli::addStdinFilename(app, stdinName, false);
   std::vector<char*> args = separateGitOperands(argc, argv);
@@ -151,6 +153,10 @@ int main(int argc, char** argv) {
   }
   const bool reviewing = !review.dir.empty();
 #ifdef RSCENE_DIFF_REVIEW
+  if (app.count("--review") && review.dir.empty()) {
+    cli::error("--review: give a folder, not an empty string");
+    return cli::kTrouble;
+  }
   if (!reviewing && (app.count("--camera") || app.count("--width") || app.count("--height"))) {
     cli::error("--camera, --width and --height go with --review DIR");
     return cli::kTrouble;

@@ -120,7 +120,20 @@ bool chooseCamera(const ReviewOptions& o, const Built& a, const Built& b, const 
     c.width = size.width, c.height = size.height;
     return c;
   };
-  if (o.camera == "auto") {
+  // What changed, at least 1 m across (a moved cup is seen with what
+  // stands around it); autoCamera() leaves a margin of its own.
+  auto framedChanges = [&](Camera& c) {
+    if (marks.bounds.isEmpty()) return false;
+    Eigen::AlignedBox3d box = marks.bounds;
+    Eigen::Vector3d grow = (Eigen::Vector3d::Constant(1.0) - box.sizes()).cwiseMax(0.0) / 2;
+    box.min() -= grow;
+    box.max() += grow;
+    c = framed(box);
+    how = "the automatic view of what changed";
+    return true;
+  };
+  if (o.camera == "changes" && framedChanges(out)) return true;
+  if (o.camera == "auto" || o.camera == "changes") {  // changes: nothing drawn changed
     out = framed(all);
     how = "the automatic view of both scenes";
     return true;
@@ -148,17 +161,7 @@ bool chooseCamera(const ReviewOptions& o, const Built& a, const Built& b, const 
     how = "camera " + cb->path + ", the scenes' own";
     return true;
   }
-  if (!marks.bounds.isEmpty()) {
-    // What changed, at least 1 m across (a moved cup is seen with what
-    // stands around it); autoCamera() leaves a margin of its own.
-    Eigen::AlignedBox3d box = marks.bounds;
-    Eigen::Vector3d grow = (Eigen::Vector3d::Constant(1.0) - box.sizes()).cwiseMax(0.0) / 2;
-    box.min() -= grow;
-    box.max() += grow;
-    out = framed(box);
-    how = "the automatic view of what changed";
-    return true;
-  }
+  if (framedChanges(out)) return true;
   out = framed(all);
   how = "the automatic view of both scenes";
   return true;
@@ -317,8 +320,7 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   std::string note = summaryNote(how, marks);
   if (marks.added + marks.removed + marks.changed > 0 && !showsMarks(a.images.segmentation, marks.oldSide) &&
       !showsMarks(b.images.segmentation, marks.newSide)) {
-    std::string unseen = "what changed is out of the view of " + how + ": --camera auto, or the default "
-                         "framing of what changed when the scenes have no camera in common, shows it";
+    std::string unseen = "what changed is out of the view of " + how + ": --camera changes frames it";
     cli::warning("--review: " + unseen);
     note += " Note: " + unseen + ".";
   }
@@ -335,8 +337,7 @@ int writeLineReview(const ReviewOptions& o, const std::string& oldName, const st
                     const std::string& lines) {
   DiffResult none;
   std::string note = "A side does not parse: the change is shown as lines, and no images are drawn.";
-  std::string md = reviewMarkdown(oldName, newName, none, false, note);
-  md += "\n```diff\n" + lines + (lines.empty() || lines.back() == '\n' ? "" : "\n") + "```\n";
+  std::string md = reviewMarkdown(oldName, newName, none, false, note, lines);
   std::string html = reviewHtml(oldName, newName, none, "", "", "", note, lines);
   removeImages(o.dir);
   if (!writeFile(join(o.dir, "review.md"), md) || !writeFile(join(o.dir, "index.html"), html)) return cli::kTrouble;

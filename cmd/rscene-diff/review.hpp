@@ -20,7 +20,7 @@ inline constexpr const char* kReviewFiles[] = {"before.png", "after.png", "chang
 
 struct ReviewOptions {
   std::string dir;
-  std::string camera;         // "" (the scenes' shared camera, else the changes framed), "auto", a path or id
+  std::string camera;         // "" (the scenes' shared camera, else "changes"), "auto", "changes", a path or id
   int width = 0, height = 0;  // 0: the camera's, else 1280x720
   std::string backend = "auto";
 };
@@ -50,9 +50,10 @@ int writeReview(const ReviewOptions& options, const ReviewSide& before, const Re
 int writeLineReview(const ReviewOptions& options, const std::string& oldName, const std::string& newName,
                     const std::string& lines);
 
-// The pages, for tests.  `images`: whether the PNGs were drawn.
+// The pages, for tests.  `images`: whether the PNGs were drawn;
+// `lineDiff`: a side did not parse, these lines are shown instead.
 std::string reviewMarkdown(const std::string& oldName, const std::string& newName, const DiffResult& result,
-                           bool images, const std::string& note);
+                           bool images, const std::string& note, const std::string& lineDiff = "");
 std::string reviewHtml(const std::string& oldName, const std::string& newName, const DiffResult& result,
                        const std::string& beforePng, const std::string& afterPng, const std::string& changesPng,
                        const std::string& note, const std::string& lineDiff);

@@ -1,4 +1,5 @@
 // review.md and index.html of rscene-diff --review (review.hpp).
+#include <algorithm>
 #include <map>
 
 #include "rscene-diff/review.hpp"
@@ -17,8 +18,12 @@ std::string folderOf(const RecordDiff& r) {
   return slash == 0 ? "/" : p.substr(0, slash);
 }
 
+// The record as a row names it: its kind and path, or (no path) its kind
+// and key.
 std::string recordName(const RecordDiff& r) {
-  std::string s = r.path.empty() ? (r.key.empty() || r.key == r.tag ? r.tag : r.tag + " " + r.key) : r.path;
+  std::string s = r.tag;
+  if (!r.path.empty()) s += " " + r.path;
+  else if (!r.key.empty() && r.key != r.tag) s += " " + r.key;
   if (r.renamed()) s += " (was " + r.oldPath + ")";
   return s;
 }
@@ -44,6 +49,27 @@ std::string md(std::string_view v) {
     }
   }
   return s;
+}
+
+// The longest run of backticks in `v`.
+std::size_t longestTicks(std::string_view v) {
+  std::size_t best = 0, run = 0;
+  for (char c : v) {
+    run = c == '`' ? run + 1 : 0;
+    best = std::max(best, run);
+  }
+  return best;
+}
+
+// `v` as a Markdown code span: backslashes are literal there, so nothing is
+// escaped; the span's backtick string is longer than any run inside, and
+// padded with a space where `v` starts or ends with a backtick.
+std::string codeSpan(std::string_view v) {
+  std::string ticks(longestTicks(v) + 1, '`');
+  std::string body;
+  for (char c : v) body += c == '\n' || c == '\r' ? ' ' : c;
+  bool pad = !body.empty() && (body.front() == '`' || body.back() == '`');
+  return ticks + (pad ? " " : "") + body + (pad ? " " : "") + ticks;
 }
 
 std::string html(std::string_view v) {
@@ -83,7 +109,7 @@ std::string base64(std::string_view bytes) {
 std::pair<std::string, std::string> values(const FieldDiff& f) {
   auto withDefault = [](const std::string& v, bool d) { return d ? v + " (default)" : v; };
   if (f.summarized) {
-    std::string counts = std::to_string(f.oldCount) + " -> " + std::to_string(f.newCount) + " entries";
+    std::string counts = std::to_string(f.oldCount) + " \u2192 " + std::to_string(f.newCount) + " entries";
     if (f.changedCount) counts += ", " + std::to_string(f.changedCount) + " changed";
     return {f.change == Change::Added ? "" : std::to_string(f.oldCount) + " entries",
             f.change == Change::Removed ? "" : counts};
@@ -133,10 +159,11 @@ std::string summary(const DiffResult& result) {
 }  // namespace
 
 std::string reviewMarkdown(const std::string& oldName, const std::string& newName, const DiffResult& result,
-                           bool images, const std::string& note) {
+                           bool images, const std::string& note, const std::string& lineDiff) {
   // A deleted scene is named by its old name.
-  std::string out = "### Scene review: `" + md(newName == "/dev/null" ? oldName : newName) + "`\n\n";
-  out += "**" + summary(result) + "** (" + md(oldName) + " &rarr; " + md(newName) + ")";
+  std::string out = "### Scene review: " + codeSpan(newName == "/dev/null" ? oldName : newName) + "\n\n";
+  out += "**" + (lineDiff.empty() ? summary(result) : std::string("does not parse")) + "** (" + md(oldName) +
+         " &rarr; " + md(newName) + ")";
   if (!note.empty()) out += ". " + md(note);
   out += "\n\n";
   if (images) {
@@ -146,7 +173,7 @@ std::string reviewMarkdown(const std::string& oldName, const std::string& newNam
   for (const auto& [folder, records] : byFolder(result)) {
     out += "#### " + md(folder) + "\n\n| record | change | field | old | new |\n|---|---|---|---|---|\n";
     for (const RecordDiff* r : records) {
-      std::string name = md(r->tag) + " " + md(recordName(*r));
+      std::string name = md(recordName(*r));
       if (r->fields.empty() || r->change != Change::Changed) {
         std::string whole = md(wholeRecord(*r, 4));
         out += "| " + name + " | " + sign(r->change) + " | | " + (r->change == Change::Removed ? whole : "") + " | " +
@@ -162,6 +189,12 @@ std::string reviewMarkdown(const std::string& oldName, const std::string& newNam
       }
     }
     out += "\n";
+  }
+  if (!lineDiff.empty()) {
+    // A fence longer than any backtick run in the lines: a line of the
+    // scene cannot close it and turn the rest into Markdown.
+    std::string fence(std::max<std::size_t>(3, longestTicks(lineDiff) + 1), '`');
+    out += fence + "diff\n" + lineDiff + (lineDiff.back() == '\n' ? "" : "\n") + fence + "\n";
   }
   return out;
 }
@@ -188,7 +221,7 @@ std::string reviewHtml(const std::string& oldName, const std::string& newName, c
       "pre{background:#f6f6f6;padding:.5em;overflow:auto}\n"
       "</style>\n</head>\n<body>\n";
   out += "<h1>Scene review: " + html(newName == "/dev/null" ? oldName : newName) + "</h1>\n";
-  out += "<p><b>" + html(summary(result)) + "</b> (" + html(oldName) + " &rarr; " + html(newName) + ")";
+  out += "<p><b>" + html(lineDiff.empty() ? summary(result) : std::string("does not parse")) + "</b> (" + html(oldName) + " &rarr; " + html(newName) + ")";
   if (!note.empty()) out += ". " + html(note);
   out += "</p>\n";
   if (images) {

@@ -34,15 +34,6 @@
 
 namespace {
 
-// CLI::Range without its description: --help would otherwise show
-// "--width INT:INT in [1 - 16384]"; the help text says the bounds in words
-// where a user needs them, and an out-of-range value still gets CLI11's
-// "not in range" error.
-template <typename T>
-CLI::Validator quietRange(T min, T max) {
-  return CLI::Range(min, max).description("");
-}
-
 using namespace rscene;
 using Clock = std::chrono::steady_clock;
 
@@ -277,28 +268,28 @@ int main(int argc, char** argv) {
   app.add_option("--width", opt.width,
                  "Image width in pixels (default: the camera's, else " + std::to_string(render::kDefaultImageWidth) + ")")
       ->type_name("PIXELS")
-      ->check(quietRange(1, render::kMaxImageSide));
+      ->check(cli::range(1, render::kMaxImageSide));
   app.add_option("--height", opt.height,
                  "Image height in pixels (default: the camera's, else " + std::to_string(render::kDefaultImageHeight) +
                      ")")
       ->type_name("PIXELS")
-      ->check(quietRange(1, render::kMaxImageSide));
+      ->check(cli::range(1, render::kMaxImageSide));
   app.add_option("--samples", opt.samples, "Multisample anti-aliasing samples per pixel, 1 to 64 (default 4)")
       ->type_name("N")
-      ->check(quietRange(1, 64));
+      ->check(cli::range(1, 64));
   app.add_option("--max-pixels", opt.maxPixels,
                  "Largest image, width x height, before anything is drawn (default 16777216 = 4096x4096, at most 268435456)")
       ->type_name("N")
-      ->check(quietRange(std::uint64_t{1}, std::uint64_t{1} << 28));
+      ->check(cli::range(1, 1LL << 28));
   app.add_option("--max-instances", opt.limits.maxInstances,
                  "Most instances drawn in all: instanced_visual instances, terrain foliage and granular particles, "
                  "after maxRenderedInstances (default 1000000)")
       ->type_name("N")
-      ->check(quietRange(std::uint64_t{0}, std::uint64_t{1} << 32));
+      ->check(cli::range(0, 1LL << 32));
   app.add_option("--max-texture-pixels", opt.maxTexturePixels,
                  "Largest texture or HDR background decoded; a larger one is not drawn (default 67108864)")
       ->type_name("N")
-      ->check(quietRange(std::uint64_t{1}, std::uint64_t{1} << 28));
+      ->check(cli::range(1, 1LL << 28));
   app.add_flag("--transparent", opt.transparent, "Leave the background transparent (alpha 0)");
   app.add_flag("--no-post", opt.noPost,
                "Skip the post-processing the scene asks for (bloom, SSAO, FXAA, auto exposure, depth of field); "
@@ -323,7 +314,7 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   app.add_option("--every", opt.views.every, "With --trajectory, render every K-th frame (default 1: all)")
       ->type_name("K")
-      ->check(quietRange(std::uint64_t{1}, std::uint64_t{1} << 40));
+      ->check(cli::range(1, 1LL << 40));
   cli::addStdinFilename(app, opt.stdinName, true);
   cli::addBaseDir(app, opt.baseDir, "Resolve relative asset paths against DIR instead of the scene's folder");
   app.add_flag("--allow-missing-assets", opt.allowMissing,
@@ -340,12 +331,12 @@ int main(int argc, char** argv) {
                  "With --reference, exit 1 when more than N pixels differ by more than --pixel-threshold: a small "
                  "object moved (default " + std::to_string(render::kLocalFailPixels) + ")")
       ->type_name("N")
-      ->check(quietRange(std::uint64_t{0}, std::uint64_t{1} << 40));
+      ->check(cli::range(0, 1LL << 40));
   app.add_option("--pixel-threshold", opt.baseline.pixelThreshold,
                  "The difference, in 1/255 of any channel, past which a pixel counts for --fail-pixels (default " +
                      std::to_string(render::kLocalPixelThreshold) + ")")
       ->type_name("T")
-      ->check(quietRange(0, 255));
+      ->check(cli::range(0, 255));
   app.add_option("--diff-output", opt.baseline.diffOutput, "With --reference, write a difference image to FILE")
       ->type_name("FILE");
   app.add_flag("-v,--verbose", opt.verbose, "Print the EGL device, GL renderer and timings on standard error");

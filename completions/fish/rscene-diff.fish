@@ -10,7 +10,7 @@ complete -c rscene-diff -l ignore-editor-state -d 'Skip snapping, editor_ux, ren
 complete -c rscene-diff -l ignore -x -d 'Skip these fields (NAME or TAG.NAME, comma-separated); id matches records by path'
 complete -c rscene-diff -l stdin-filename -r -F -d 'Name standard input in messages'
 complete -c rscene-diff -l review -x -a '(__fish_complete_directories)' -d 'Write before/after/changes images, review.md and index.html into DIR'
-complete -c rscene-diff -l camera -x -a 'auto' -d 'With --review: camera path or id, or auto'
+complete -c rscene-diff -l camera -x -a 'auto changes' -d 'With --review: camera path or id, auto, or changes'
 complete -c rscene-diff -l width -x -d 'With --review: image width in pixels'
 complete -c rscene-diff -l height -x -d 'With --review: image height in pixels'
 complete -c rscene-diff -k -x -a '(__fish_complete_suffix .rscene)'
