@@ -438,7 +438,8 @@ class Simulation:
             raise KeyError("no LiDAR or IMU named %r is read in this simulation (see sensors())" % name)
         actual = self._sim.sensor_list()[index][2]
         if actual != kind:
-            raise ValueError("sensor %r is a %s, not a %s" % (name, actual, kind))
+            shown = {"lidar": "a LiDAR", "imu": "an IMU"}
+            raise ValueError("sensor %r is %s, not %s" % (name, shown.get(actual, actual), shown[kind]))
         return index
 
     def lidar(self, name: str) -> Optional[dict]:
