@@ -471,9 +471,17 @@ class Simulation:
         return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
 
 
+_NO_VECTOR = _np.zeros(0)
+
+
 def _vector(value: Any, size: int, what: str) -> "_np.ndarray":
     """``value`` (a scalar, or anything numpy reads as a vector of ``size``)
-    as a contiguous float64 vector; ValueError with what is wrong."""
+    as a float64 vector; ValueError with what is wrong.  Whether the
+    numbers are finite the library checks (each setter says so)."""
+    if type(value) is _np.ndarray and value.dtype == _np.float64 and value.shape == (size,):
+        return value  # the RL loop's usual case, without a copy
+    if type(value) in (int, float):
+        return _np.full(size, float(value))
     try:
         a = _np.asarray(value, dtype=_np.float64)
     except (TypeError, ValueError) as e:
@@ -482,9 +490,7 @@ def _vector(value: Any, size: int, what: str) -> "_np.ndarray":
         a = _np.full(size, float(a))
     if a.shape != (size,):
         raise ValueError("%s: expected shape (%d,), got %s" % (what, size, a.shape))
-    if not _np.all(_np.isfinite(a)):
-        raise ValueError("%s: not finite (NaN or infinite)" % what)
-    return _np.ascontiguousarray(a)
+    return a
 
 
 class Robot:
@@ -567,7 +573,7 @@ class Robot:
         wrong shape, a value that is not finite, a negative gain or a zero
         quaternion."""
         target = _vector(q, self._nq, "set_pd_targets(q)")
-        velocity = _np.zeros(self._nv) if u is None else _vector(u, self._nv, "set_pd_targets(u)")
+        velocity = _NO_VECTOR if u is None else _vector(u, self._nv, "set_pd_targets(u)")
         gains = _vector(kp, self._nv, "set_pd_targets(kp)"), _vector(kd, self._nv, "set_pd_targets(kd)")
         error = self._owner._sim.robot_set_pd(self._index, target, velocity, gains[0], gains[1])
         if error:
