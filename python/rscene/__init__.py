@@ -326,7 +326,12 @@ class Simulation:
     def step(self, n: int = 1) -> None:
         """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
         Raises :class:`SimulationError` when a state stops being finite;
-        the simulation then takes no more steps."""
+        the simulation then takes no more steps.  Ctrl-C (a signal handler
+        that raises) ends a long call within about 0.1 s, or after the
+        step under way when one step takes longer, with the exception it
+        raised (``KeyboardInterrupt``): the world stops between two steps,
+        consistent, and ``step()`` goes on from there.  Robots' PD targets
+        and torques set before the call act in each of its steps."""
         if isinstance(n, bool) or not isinstance(n, int):
             raise TypeError("step(n): n must be an int, not %s" % type(n).__name__)
         if n > 2**63 - 1:
