@@ -243,3 +243,24 @@ def test_anymal_rl_loop_with_resets():
             sim.step(4)
             assert np.all(np.isfinite(r.q))
         assert 0.3 < r.q[2] < 0.7
+
+
+def test_spherical_joints_reach_quaternion_targets():
+    # RaiSim's chain (three spherical joints): q holds a quaternion per
+    # joint, u and the gains three entries; each joint turned 0.3 rad
+    # about x by its target gets there (no gravity).
+    chain = ROOT / ".." / "shared" / "corpus" / "robots" / "chain" / "robot.urdf"
+    if not chain.exists():
+        pytest.skip("../shared/corpus/robots/chain is absent")
+    sim = rscene.Simulation(robot_scene(chain))
+    r = sim.robot("robot")
+    assert r.q.shape == (12,) and r.u.shape == (9,)
+    assert r.coordinate_names[:4] == ["link1Tolink2_qw", "link1Tolink2_qx", "link1Tolink2_qy", "link1Tolink2_qz"]
+    assert r.velocity_names[:3] == ["link1Tolink2_wx", "link1Tolink2_wy", "link1Tolink2_wz"]
+    target = np.tile([np.cos(0.15), np.sin(0.15), 0, 0], 3)
+    r.set_pd_targets(target, 50, 2)
+    sim.step(6000)
+    angles = 2 * np.arcsin(r.q[[1, 5, 9]])
+    assert angles == pytest.approx([0.3, 0.3, 0.3], abs=2e-3)
+    assert np.abs(r.q[[2, 3, 6, 7, 10, 11]]).max() < 1e-6
+    assert np.abs(r.u).max() < 1e-2
