@@ -12,7 +12,8 @@
 # bench/batch/sim.sh times 500 small scenes in one rscene-sim against 500
 # processes, and
 # bench/robot/run.sh compares robots in rscene-sim with MuJoCo 2.2.2, and
-# bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest; then
+# bench/lidar/run.sh times a LiDAR scan against Bullet's rayTest,
+# bench/python/run.sh the Python module against the same loops in C++; then
 # bench/soft/*.sh, bench/xml/convert.sh and rscene-xml-hostile-bench
 # (what refusing hostile world XML costs).
 #
@@ -220,6 +221,10 @@ bash "$(dirname "${BASH_SOURCE[0]}")/robot/run.sh" "$BIN" || status=1
 # One LiDAR scan of the warehouse (issue 12); skips itself without ../shared.
 echo
 bash "$(dirname "${BASH_SOURCE[0]}")/lidar/run.sh" "$BIN" || status=1
+# The Python module against the same ANYmal loops in C++ (issue 28); skips
+# itself without ../shared or the module.
+echo
+bash "$(dirname "${BASH_SOURCE[0]}")/python/run.sh" "$BIN" || status=1
 # Deformables and granular media (issue 14): bench/soft/*.sh, each timing
 # one particle scene with rscene-sim.
 for soft in "$(dirname "${BASH_SOURCE[0]}")"/soft/*.sh; do

@@ -40,6 +40,11 @@ struct PySimulation {
   sim::Prepared prepared;
   Diagnostics diagnostics;  // warnings of the preparation
   std::optional<Diagnostic> failure;  // a run that stopped: no more steps
+  bool started = false;  // the start state was checked (and sensors sampled) by a first step() call
+  std::uint64_t chunk = 64;  // steps stepped without the GIL between checks for Ctrl-C (adapted to ~50 ms)
+  // What only module.cpp's simulation part uses (the sensors' recorder and
+  // latest readings, names of records): its own type there.
+  std::shared_ptr<void> extra;
   // step() runs without the GIL: two Python threads that share one
   // simulation take turns instead of racing in Bullet.
   mutable std::mutex mutex;

@@ -5,9 +5,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <pybind11/eigen.h>
 
 #include <memory>
 #include <mutex>
+#include <algorithm>
+#include <unordered_map>
 #include <string>
 #include <utility>
 
@@ -26,8 +29,11 @@
 #include "robot/check.hpp"
 #include "robot/load.hpp"
 #include "scene/validate.hpp"
+#include "robot/kinematics.hpp"
+#include "robot/sensors.hpp"
 #include "sim/prepare.hpp"
 #include "sim/run.hpp"
+#include "sim/sensor_recorder.hpp"
 #include "sim/world.hpp"
 
 namespace py = pybind11;
@@ -182,6 +188,8 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
   return out;
 }
 
+void prepareExtras(PySimulation& s);
+
 // Prepares `d`; (simulation or None, diagnostics, usage error).
 py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d) {
   auto s = std::make_unique<PySimulation>();
@@ -199,28 +207,331 @@ py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d) {
   py::list diags = diagnosticList(s->diagnostics);
   if (!usage.empty()) throw py::value_error(usage);
   if (!ok || !s->prepared.world) return py::make_tuple(py::none(), diags);
+  {
+    py::gil_scoped_release release;
+    prepareExtras(*s);
+  }
   return py::make_tuple(py::cast(std::move(s)), diags);
 }
 
+py::array_t<double> poseArray(const Pose& p);
+
+// The latest reading of every recorded sensor (SensorRecorder's output).
+struct LatestReadings : sim::SensorOutput {
+  struct Scan {
+    bool any = false;
+    std::uint64_t index = 0;
+    double time = 0;
+    Pose pose;
+    std::vector<Eigen::Vector3f> points;  // sensor frame
+  };
+  std::vector<Scan> scans;                          // per sensor (LiDARs)
+  std::vector<std::optional<sim::ImuReading>> imus;  // per sensor (IMUs)
+  bool lidarScan(std::size_t sensor, std::uint64_t index, double time, const Pose& pose,
+                 const std::vector<Eigen::Vector3f>& points) override {
+    Scan& sc = scans[sensor];
+    sc.any = true;
+    sc.index = index;
+    sc.time = time;
+    sc.pose = pose;
+    sc.points = points;
+    return true;
+  }
+  bool imuReading(std::size_t sensor, const sim::ImuReading& reading) override {
+    imus[sensor] = reading;
+    return true;
+  }
+};
+
+// PySimulation::extra.
+struct SimExtras {
+  std::unordered_map<int, std::string> recordPaths;  // record index -> path, of bodies contacts name
+  std::unique_ptr<sim::SensorRecorder> recorder;     // null: no LiDAR or IMU
+  std::unordered_map<std::string, std::size_t> sensorByName;  // name and id -> recorder's index
+  LatestReadings latest;
+};
+
+SimExtras& extras(const PySimulation& s) { return *static_cast<SimExtras*>(s.extra.get()); }
+
+bool sampleSensors(PySimulation& s) { return extras(s).recorder->sample(extras(s).latest); }
+
+// RS7024 (a reading or sensor pose that was not finite), as rscene-sim says it.
+Diagnostic sensorFailure(const PySimulation& s) {
+  Diagnostics ds;
+  extras(s).recorder->faultDiagnostic(s.doc, ds);
+  if (!ds.empty()) return ds.front();
+  Diagnostic d;
+  d.code = "RS7024";
+  d.message = "a sensor's reading was not finite";
+  return d;
+}
+
+// The names contacts give, and the sensors rscene-sim --sensors would
+// record, planned without its output files (two sensors naming one file
+// are both kept: Python holds readings, not files).
+void prepareExtras(PySimulation& s) {
+  auto x = std::make_shared<SimExtras>();
+  const Scene& sc = s.prepared.scene;
+  auto names = [&](const auto& list) {
+    for (const auto& n : list) x->recordPaths[n.recordIndex] = n.path;
+  };
+  names(sc.objects);
+  names(sc.compounds);
+  names(sc.terrains);
+  names(sc.articulated);
+  Diagnostics scratch;  // the preparation reported these already
+  std::vector<std::shared_ptr<const robot::Model>> models;
+  for (const robot::RobotInstance& r : s.prepared.robots) models.push_back(r.model);
+  std::vector<robot::SensorSpec> all = robot::collectSensors(s.doc, sc, models, scratch);
+  for (robot::SensorSpec& spec : all) spec.outputPath.clear();
+  std::vector<sim::RecordedSensor> planned;
+  for (robot::SensorSpec& spec : all) {
+    // One at a time, each with an output of its own: planSensors' output
+    // clashes are about files, which Python does not write.
+    Diagnostics one;
+    std::vector<sim::RecordedSensor> p = sim::planSensors(s.doc, {spec}, {}, one);
+    for (sim::RecordedSensor& r : p) planned.push_back(std::move(r));
+  }
+  if (!planned.empty()) {
+    for (std::size_t i = 0; i < planned.size(); ++i) {
+      x->sensorByName[planned[i].spec.name] = i;
+      if (!planned[i].spec.id.empty()) x->sensorByName.emplace(planned[i].spec.id, i);
+    }
+    x->latest.scans.resize(planned.size());
+    x->latest.imus.resize(planned.size());
+    x->recorder = std::make_unique<sim::SensorRecorder>(s.prepared.scene, *s.prepared.world, std::move(planned));
+  }
+  s.extra = x;
+}
+
 // Steps `n` times; a failure (a state that is not finite, the pair cap)
-// comes back as a diagnostic and ends the simulation.
+// comes back as a diagnostic and ends the simulation.  The steps run
+// without the GIL in chunks of about 50 ms; between chunks Ctrl-C (any
+// Python signal handler that raises) ends the call with KeyboardInterrupt,
+// the world stopped between two steps, consistent and steppable again.
 py::object stepSimulation(PySimulation& s, long long n) {
   if (n < 0) throw py::value_error("step(n): n must be >= 0");
   if (s.failure) throw py::value_error("the simulation stopped at an earlier failure: " + s.failure->message);
-  sim::RunResult r;
+  // Counted by this call (another thread may step the same world between
+  // two chunks).
+  std::uint64_t remaining = static_cast<std::uint64_t>(n);
+  for (;;) {
+    sim::RunResult r;
+    bool done;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(s.mutex);
+      sim::World& world = *s.prepared.world;
+      sim::RunOptions ro;
+      // runWorld steps until the world has taken ro.steps in all.
+      ro.steps = world.steps() + std::min(remaining, s.chunk);
+      ro.checkStart = !s.started;
+      if (extras(s).recorder) ro.sample = [&s] { return sampleSensors(s); };
+      std::uint64_t before = world.steps();
+      r = sim::runWorld(world, s.doc, ro);
+      s.started = true;
+      std::uint64_t took = world.steps() - before;
+      if (took == s.chunk && r.stepSeconds < 0.025 && s.chunk < (std::uint64_t{1} << 40)) s.chunk *= 2;
+      else if (took > 1 && r.stepSeconds > 0.1) s.chunk = std::max<std::uint64_t>(1, s.chunk / 2);
+      remaining -= took;
+      done = remaining == 0 || took == 0;
+    }
+    if (r.failure) {
+      s.failure = r.failure;
+      return diagnosticDict(*r.failure);
+    }
+    if (r.sampleFailed) {
+      s.failure = sensorFailure(s);
+      return diagnosticDict(*s.failure);
+    }
+    if (done) return py::none();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+}
+
+// The simulated robot named by `name` (path or id): its index, or -1 with
+// what the name is instead ("" when the scene has no such record).
+py::tuple robotLookup(const PySimulation& s, const std::string& name) {
+  int index = s.prepared.world->robotIndex(name);
+  if (index >= 0) return py::make_tuple(index, "");
+  const Scene& sc = s.prepared.scene;
+  auto is = [&](const auto& list) {
+    for (const auto& n : list)
+      if (n.path == name || (!n.id.empty() && n.id == name)) return true;
+    return false;
+  };
+  for (const Articulated& a : sc.articulated)
+    if (a.path == name || (!a.id.empty() && a.id == name))
+      return py::make_tuple(-1, a.leftOut ? "an articulated system left out (its robot file is missing)"
+                                          : "an articulated system that is not simulated");
+  const char* what = is(sc.objects) ? "an object" : is(sc.compounds) ? "a compound" : is(sc.sensors) ? "a sensor"
+                   : is(sc.cameras) ? "a camera" : is(sc.lights) ? "a light" : is(sc.terrains) ? "a terrain region"
+                   : is(sc.wires) ? "a wire" : is(sc.deformables) ? "a deformable" : is(sc.granulars) ? "a granular record"
+                   : "";
+  return py::make_tuple(-1, what);
+}
+
+void checkRobot(const PySimulation& s, int robot) {
+  if (robot < 0 || robot >= s.prepared.world->robotCount()) throw py::index_error("no robot of that index");
+}
+
+py::array_t<double> vectorArray(const Eigen::VectorXd& v) {
+  py::array_t<double> a(v.size());
+  std::copy(v.data(), v.data() + v.size(), a.mutable_data());
+  return a;
+}
+
+py::dict robotInfo(const PySimulation& s, int robot) {
+  checkRobot(s, robot);
+  const robot::RobotInstance& in = s.prepared.world->robotInstance(robot);
+  const robot::Model& m = *in.model;
+  const robot::Coordinates& c = in.coordinates;
+  py::dict o;
+  o["path"] = pystr(in.record->path);
+  o["id"] = pystr(in.record->id);
+  py::list joints;
+  for (int j : c.joints) joints.append(pystr(m.joints[static_cast<std::size_t>(j)].name));
+  o["joint_names"] = joints;
+  py::list qn, un;
+  for (const std::string& n : robot::coordinateNames(m, c, false)) qn.append(pystr(n));
+  for (const std::string& n : robot::coordinateNames(m, c, true)) un.append(pystr(n));
+  o["coordinate_names"] = qn;
+  o["velocity_names"] = un;
+  o["floating_base"] = m.floatingBase;
+  py::list links;
+  for (const robot::Link& l : m.links) links.append(pystr(l.name));
+  o["link_names"] = links;
+  return o;
+}
+
+// (q, u) now.
+py::tuple robotState(const PySimulation& s, int robot) {
+  checkRobot(s, robot);
+  Eigen::VectorXd q, u;
+  {
+    std::lock_guard<std::mutex> l(s.mutex);
+    s.prepared.world->robotState(robot, q, u);
+  }
+  return py::make_tuple(vectorArray(q), vectorArray(u));
+}
+
+// Each: "" or why nothing changed (a ValueError in Python).
+std::string robotSetPd(PySimulation& s, int robot, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                       const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) {
+  checkRobot(s, robot);
+  std::lock_guard<std::mutex> l(s.mutex);
+  return s.prepared.world->setRobotPd(robot, q, u, kp, kd);
+}
+
+std::string robotSetForce(PySimulation& s, int robot, const Eigen::VectorXd& tau) {
+  checkRobot(s, robot);
+  std::lock_guard<std::mutex> l(s.mutex);
+  return s.prepared.world->setRobotGeneralizedForce(robot, tau);
+}
+
+std::string robotSetState(PySimulation& s, int robot, const Eigen::VectorXd& q, const Eigen::VectorXd& u) {
+  checkRobot(s, robot);
+  std::lock_guard<std::mutex> l(s.mutex);
+  return s.prepared.world->setRobotState(robot, q, u);
+}
+
+// The sensors recorded: (name, id, kind) each, in the recorder's order.
+py::list sensorList(const PySimulation& s) {
+  py::list l;
+  if (!extras(s).recorder) return l;
+  for (const sim::RecordedSensor& r : extras(s).recorder->sensors())
+    l.append(py::make_tuple(pystr(r.spec.name), pystr(r.spec.id), pystr(r.spec.kindName)));
+  return l;
+}
+
+// Index of the sensor named `name` (its name or a record's id), or -1.
+long sensorIndex(const PySimulation& s, const std::string& name) {
+  auto it = extras(s).sensorByName.find(name);
+  return it == extras(s).sensorByName.end() ? -1 : static_cast<long>(it->second);
+}
+
+// The latest scan of LiDAR `i`: None before its first, else a dict with
+// time, index, pose (7) and points (N, 3) float32 in the sensor frame.
+py::object lidarScan(const PySimulation& s, long i) {
+  const LatestReadings::Scan* sc;
+  py::array_t<float> points;
+  py::dict o;
+  {
+    std::lock_guard<std::mutex> l(s.mutex);
+    if (i < 0 || static_cast<std::size_t>(i) >= extras(s).latest.scans.size()) throw py::index_error("no sensor of that index");
+    sc = &extras(s).latest.scans[static_cast<std::size_t>(i)];
+    if (!sc->any) return py::none();
+    points = py::array_t<float>({static_cast<py::ssize_t>(sc->points.size()), py::ssize_t(3)});
+    float* p = points.mutable_data();
+    for (std::size_t k = 0; k < sc->points.size(); ++k)
+      for (int c = 0; c < 3; ++c) p[3 * k + c] = sc->points[k][c];
+    o["time"] = sc->time;
+    o["index"] = sc->index;
+    o["pose"] = poseArray(sc->pose);
+  }
+  o["points"] = points;
+  return o;
+}
+
+// The latest reading of IMU `i`: None before its first, else a dict with
+// time, specific_force (3) and angular_velocity (3), sensor frame.
+py::object imuReading(const PySimulation& s, long i) {
+  std::optional<sim::ImuReading> r;
+  {
+    std::lock_guard<std::mutex> l(s.mutex);
+    if (i < 0 || static_cast<std::size_t>(i) >= extras(s).latest.imus.size()) throw py::index_error("no sensor of that index");
+    r = extras(s).latest.imus[static_cast<std::size_t>(i)];
+  }
+  if (!r) return py::none();
+  py::dict o;
+  o["time"] = r->time;
+  o["specific_force"] = vectorArray(r->specificForce);
+  o["angular_velocity"] = vectorArray(r->angularVelocity);
+  return o;
+}
+
+// The contact points after the last step, as numpy arrays: body_a, body_b
+// (record paths; "" for none), link_a, link_b (a robot's link, else ""),
+// position (N, 3), normal (N, 3: B's, toward A), depth (N), impulse (N).
+py::dict contactArrays(const PySimulation& s) {
+  std::vector<sim::World::Contact> cs;
   {
     py::gil_scoped_release release;
-    std::lock_guard<std::mutex> lock(s.mutex);
-    sim::RunOptions ro;
-    // runWorld steps until the world has taken ro.steps in all.
-    ro.steps = s.prepared.world->steps() + static_cast<std::uint64_t>(n);
-    r = sim::runWorld(*s.prepared.world, s.doc, ro);
+    std::lock_guard<std::mutex> l(s.mutex);
+    cs = s.prepared.world->contacts();
   }
-  if (r.failure) {
-    s.failure = r.failure;
-    return diagnosticDict(*r.failure);
+  const auto n = static_cast<py::ssize_t>(cs.size());
+  py::array_t<double> position({n, py::ssize_t(3)}), normal({n, py::ssize_t(3)}), depth(n), impulse(n);
+  py::list a, b, la, lb;
+  double* p = position.mutable_data();
+  double* nm = normal.mutable_data();
+  double* d = depth.mutable_data();
+  double* im = impulse.mutable_data();
+  const auto& paths = extras(s).recordPaths;
+  auto path = [&](int record) -> py::str {
+    auto it = paths.find(record);
+    return pystr(it == paths.end() ? std::string() : it->second);
+  };
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const sim::World::Contact& c = cs[i];
+    for (int k = 0; k < 3; ++k) p[3 * i + k] = c.position[k], nm[3 * i + k] = c.normal[k];
+    d[i] = c.depth;
+    im[i] = c.impulse;
+    a.append(path(c.recordA));
+    b.append(path(c.recordB));
+    la.append(pystr(c.linkA));
+    lb.append(pystr(c.linkB));
   }
-  return py::none();
+  py::dict o;
+  o["body_a"] = a;
+  o["body_b"] = b;
+  o["link_a"] = la;
+  o["link_b"] = lb;
+  o["position"] = position;
+  o["normal"] = normal;
+  o["depth"] = depth;
+  o["impulse"] = impulse;
+  return o;
 }
 
 py::array_t<double> poseArray(const Pose& p) {
@@ -336,6 +647,17 @@ PYBIND11_MODULE(_rscene, m) {
         for (int i = 0; i < 3; ++i) r(i) = v[i], r(i + 3) = w[i];
         return std::move(a);
       })
+      .def("robot_lookup", &robotLookup)
+      .def("robot_info", &robotInfo)
+      .def("robot_state", &robotState)
+      .def("robot_set_pd", &robotSetPd)
+      .def("robot_set_force", &robotSetForce)
+      .def("robot_set_state", &robotSetState)
+      .def("contacts", &contactArrays)
+      .def("sensor_list", &sensorList)
+      .def("sensor_index", &sensorIndex)
+      .def("lidar_scan", &lidarScan)
+      .def("imu_reading", &imuReading)
       .def("document_text", [](const PySimulation& s) {
         std::string text;
         {

@@ -135,8 +135,8 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
     d.u = coords.velocityIndex[static_cast<std::size_t>(d.joint)];
     if (pd.enabled) {
       auto it = pd.joints.find(j.name);
-      d.kp = it != pd.joints.end() ? it->second.first : pd.kp;
-      d.kd = it != pd.joints.end() ? it->second.second : pd.kd;
+      d.kp.setConstant(it != pd.joints.end() ? it->second.first : pd.kp);
+      d.kd.setConstant(it != pd.joints.end() ? it->second.second : pd.kd);
     }
     d.stiffness = j.stiffness;
     d.damping = j.damping;
@@ -144,7 +144,7 @@ std::unique_ptr<SimRobot> SimRobot::create(const robot::RobotInstance& instance,
     if (d.q >= 0 && d.q + n <= instance.q.size()) d.pdTarget.head(n) = instance.q.segment(d.q, n);
     if (n == 4) d.springTarget << 1, 0, 0, 0;
     if (static_cast<int>(j.springMount.size()) == n) d.springTarget.head(n) = Eigen::Map<const Eigen::VectorXd>(j.springMount.data(), n);
-    if (d.kp > 0 || d.kd > 0 || d.stiffness > 0 || d.damping > 0) r->drives_.push_back(d);
+    r->drives_.push_back(d);
     // Coulomb friction: a motor toward zero speed whose impulse is capped
     // per step; the world sets the cap once it knows the time step.
     if (oneDof(j.type) && j.friction > 0) r->friction_.push_back({i - 1, j.friction});
@@ -189,6 +189,8 @@ void SimRobot::computeJointInertia() {
   for (std::size_t i = 0; i < bodies.size(); ++i) at[i] = bodyPose(static_cast<int>(i));
   const robot::Model& model = *instance_.model;
   for (Drive& d : drives_) {
+    if (d.inertiaKnown || !d.active()) continue;
+    d.inertiaKnown = true;
     int top = d.link + 1;
     const robot::Joint& j = model.joints[static_cast<std::size_t>(d.joint)];
     std::vector<Eigen::Vector3d> axes;
@@ -221,13 +223,14 @@ void SimRobot::applyJointForces(double dt) {
   btMultiBody* mb = body_.get();
   const std::vector<RobotBody>& bodies = layout_.bodies;
   for (const Drive& d : drives_) {
-    double k = d.kp + d.stiffness, c = d.kd + d.damping;
+    if (!d.active()) continue;
     const robot::Joint& j = instance_.model->joints[static_cast<std::size_t>(d.joint)];
     if (j.type != JointType::Spherical) {
+      double k = d.kp[0] + d.stiffness, c = d.kd[0] + d.damping;
       double q = mb->getJointPos(d.link), v = mb->getJointVel(d.link);
-      double q0 = k > 0 ? (d.kp * d.pdTarget[0] + d.stiffness * d.springTarget[0]) / k : q;
+      double q0 = k > 0 ? (d.kp[0] * d.pdTarget[0] + d.stiffness * d.springTarget[0]) / k : q;
       double m = d.inertia[0], s = m / (m + dt * c + dt * dt * k);
-      mb->addJointTorque(d.link, s * (-k * (q - q0) - (c + dt * k) * v));
+      mb->addJointTorque(d.link, s * (-k * (q - q0) + d.kd[0] * d.velocityTarget[0] - (c + dt * k) * v));
       continue;
     }
     const Eigen::Quaterniond rc = bodies[static_cast<std::size_t>(d.link + 1)].com.orientation;
@@ -235,17 +238,70 @@ void SimRobot::applyJointForces(double dt) {
     const btScalar* w = mb->getJointVelMultiDof(d.link);
     Eigen::Quaterniond r = rc * Eigen::Quaterniond(x[3], x[0], x[1], x[2]).normalized() * rc.conjugate();
     Eigen::Vector3d omega = rc * Eigen::Vector3d(w[0], w[1], w[2]);
-    Eigen::Vector3d spring = d.kp * rotationVector(quat(d.pdTarget).conjugate() * r) +
+    Eigen::Vector3d spring = d.kp.cwiseProduct(rotationVector(quat(d.pdTarget).conjugate() * r)) +
                              d.stiffness * rotationVector(quat(d.springTarget).conjugate() * r);
     Eigen::Vector3d tau;
     for (int a = 0; a < 3; ++a) {
+      double k = d.kp[a] + d.stiffness, c = d.kd[a] + d.damping;
       double m = d.inertia[a], s = m / (m + dt * c + dt * dt * k);
-      tau[a] = s * (-spring[a] - (c + dt * k) * omega[a]);
+      tau[a] = s * (-spring[a] + d.kd[a] * d.velocityTarget[a] - (c + dt * k) * omega[a]);
     }
     btVector3 tb = bt(rc.conjugate() * tau);
     btScalar t[3] = {tb.x(), tb.y(), tb.z()};
     mb->addJointTorqueMultiDof(d.link, t);
   }
+  if (force_.size() == 0) return;
+  if (instance_.model->floatingBase) {
+    // A force at the base frame's origin is that force and a torque about
+    // the centre of mass, where Bullet applies the base's.
+    Pose base = bodyPose(0), com = base * bodies[0].com;
+    Eigen::Vector3d f = force_.head<3>(), t = force_.segment<3>(3);
+    mb->addBaseForce(bt(f));
+    mb->addBaseTorque(bt(Eigen::Vector3d(t + (base.position - com.position).cross(f))));
+  }
+  for (const Drive& d : drives_) {
+    const robot::Joint& j = instance_.model->joints[static_cast<std::size_t>(d.joint)];
+    if (j.type != JointType::Spherical) {
+      mb->addJointTorque(d.link, force_[d.u]);
+      continue;
+    }
+    const Eigen::Quaterniond rc = bodies[static_cast<std::size_t>(d.link + 1)].com.orientation;
+    btVector3 tb = bt(rc.conjugate() * Eigen::Vector3d(force_.segment<3>(d.u)));
+    btScalar t[3] = {tb.x(), tb.y(), tb.z()};
+    mb->addJointTorqueMultiDof(d.link, t);
+  }
+}
+
+void SimRobot::setPdGains(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) {
+  for (Drive& d : drives_) {
+    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].type == JointType::Spherical ? 3 : 1;
+    d.kp.setZero();
+    d.kd.setZero();
+    d.kp.head(n) = kp.segment(d.u, n);
+    d.kd.head(n) = kd.segment(d.u, n);
+  }
+  computeJointInertia();
+}
+
+void SimRobot::setPdTarget(const Eigen::VectorXd& q, const Eigen::VectorXd& u) {
+  for (Drive& d : drives_) {
+    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].type == JointType::Spherical ? 3 : 1;
+    d.pdTarget.setZero();
+    d.velocityTarget.setZero();
+    if (n == 3) {
+      Eigen::Quaterniond t = quat(q.segment<4>(d.q));
+      d.pdTarget << t.w(), t.x(), t.y(), t.z();
+    } else {
+      d.pdTarget[0] = q[d.q];
+    }
+    d.velocityTarget.head(n) = u.segment(d.u, n);
+  }
+}
+
+void SimRobot::setGeneralizedForce(const Eigen::VectorXd& tau) {
+  if (tau.size() == 0 || (tau.array() == 0).all()) force_.resize(0);
+  else force_ = tau;
+  body_->wakeUp();
 }
 
 void SimRobot::setState(const Eigen::VectorXd& q, const Eigen::VectorXd& u) {

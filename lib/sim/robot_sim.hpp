@@ -101,17 +101,35 @@ class SimRobot {
   // Applies a world-frame force at world point p of a body, for one step.
   void applyForce(int body, const Eigen::Vector3d& force, const Eigen::Vector3d& p);
 
+  // Control by a program that embeds lib/sim (World::setRobotPd...), in
+  // RaiSim's ArticulatedSystem conventions; sizes and values are the
+  // caller's to check.  Gains per entry of u (a floating base's six are
+  // ignored: the base has no actuator), targets in q's layout (position)
+  // and u's (velocity), acting through the implicit drive of the header
+  // from the next step on and kept until changed; they replace --pd-gains.
+  void setPdGains(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd);
+  void setPdTarget(const Eigen::VectorXd& q, const Eigen::VectorXd& u);
+  // A feedforward generalized force in u's layout (a floating base's: a
+  // world-frame force at the base frame's origin, then a world-frame
+  // torque), added every step until changed (RaiSim's setGeneralizedForce).
+  void setGeneralizedForce(const Eigen::VectorXd& tau);
+
  private:
   struct Drive {  // one movable joint's spring, damper and PD
     int link = -1;  // Bullet link index
     int joint = -1;
     int q = 0, u = 0;  // first entries in RaiSim's q and u
-    double kp = 0, kd = 0, stiffness = 0, damping = 0;
+    Eigen::Vector3d kp = Eigen::Vector3d::Zero(), kd = Eigen::Vector3d::Zero();  // per dof (1 or 3)
+    double stiffness = 0, damping = 0;
     Eigen::Vector4d pdTarget = Eigen::Vector4d::Zero();     // 1 number, or quaternion w x y z
+    Eigen::Vector3d velocityTarget = Eigen::Vector3d::Zero();  // per dof
     Eigen::Vector4d springTarget = Eigen::Vector4d::Zero();
     Eigen::Vector3d inertia = Eigen::Vector3d::Zero();  // per dof (1 or 3), m of the header's formula
+    bool inertiaKnown = false;
+    bool active() const { return (kp.array() != 0).any() || (kd.array() != 0).any() || stiffness > 0 || damping > 0; }
   };
   SimRobot() = default;
+  // The inertia of every active drive that has none yet, at the pose now.
   void computeJointInertia();
 
   robot::RobotInstance instance_;
@@ -128,7 +146,8 @@ class SimRobot {
     bool inWorld = false;
   };
   std::vector<Limit> limits_;
-  std::vector<Drive> drives_;
+  std::vector<Drive> drives_;  // every movable joint, in body order
+  Eigen::VectorXd force_;      // setGeneralizedForce; empty: none
   std::vector<std::pair<int, double>> friction_;  // Bullet link, Coulomb friction (until addFriction)
 };
 

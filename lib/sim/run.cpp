@@ -39,7 +39,7 @@ RunResult runWorld(World& world, const Document& doc, const RunOptions& options,
     if (buffer.size() >= kChunk) trajectory->write(buffer), buffer.clear();
   };
   if (traj) buffer = lines->header();
-  bool good = healthy() && sample();
+  bool good = !options.checkStart || (healthy() && sample());
   if (good && traj) frame();
   Clock::time_point lastProgress = start;
   while (good && world.steps() < options.steps && !interrupted()) {

@@ -23,6 +23,9 @@ struct RunOptions {
   std::uint64_t steps = 0;   // steps to take (the loop may stop sooner)
   std::uint64_t every = 1;   // a trajectory frame every this many steps (and the first state)
   bool untilRest = false;    // stop at the first step after which World::atRest()
+  // false: the state the loop starts from was checked and sampled already
+  // (a caller that steps one world in pieces: each piece after the first).
+  bool checkStart = true;
   std::uint64_t maxPairs = 0;  // WorldOptions::maxPairs, named in the pair-cap error
   // Set asynchronously (SIGINT) to stop the loop between steps.
   const volatile std::sig_atomic_t* interrupted = nullptr;

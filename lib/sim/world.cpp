@@ -341,6 +341,7 @@ struct World::Impl {
   std::unordered_map<int, btRigidBody*> byRecord;       // record index -> body (wire ends: Wire::recordA/B)
   std::unordered_map<std::string, int> robotByName;      // id and path -> index into robots (sensor mounts)
   std::unordered_map<int, int> robotByRecord;           // articulated record index -> index into robots
+  std::vector<char> robotStateSet;  // per robot: setRobotState was called (its state is Bullet's, even at step 0)
   std::map<std::string, int> materialIndex;
   double dt = 0.0025;
   std::uint64_t stepCount = 0;
@@ -1105,12 +1106,7 @@ std::vector<RobotState> World::robotStates() const {
     s.recordIndex = in.record->recordIndex;
     s.path = in.record->path;
     s.instance = &in;
-    if (impl_->stepCount == 0) {  // what the record says, not its round trip through Bullet's frames
-      s.q = in.q;
-      s.u = in.u;
-    } else {
-      r->state(s.q, s.u);
-    }
+    robotState(static_cast<int>(out.size()), s.q, s.u);
     s.base = r->bodyPose(0);
     if (in.model->floatingBase) {
       s.baseLinearVelocity = s.u.head<3>();
@@ -1415,6 +1411,124 @@ const btCollisionObject* World::robotCollisionObject(const std::string& pathOrId
   const std::vector<int>& bodyOf = r.layout().bodyOfLink;
   int body = link >= 0 && std::size_t(link) < bodyOf.size() ? bodyOf[std::size_t(link)] : 0;
   return r.colliders()[static_cast<std::size_t>(body)];
+}
+
+int World::robotIndex(const std::string& pathOrId) const {
+  auto it = impl_->robotByName.find(pathOrId);
+  return it == impl_->robotByName.end() ? -1 : it->second;
+}
+
+const robot::RobotInstance& World::robotInstance(int robot) const {
+  return impl_->robots[static_cast<std::size_t>(robot)]->instance();
+}
+
+void World::robotState(int robot, Eigen::VectorXd& q, Eigen::VectorXd& u) const {
+  const Impl& w = *impl_;
+  const SimRobot& r = *w.robots[static_cast<std::size_t>(robot)];
+  bool set = static_cast<std::size_t>(robot) < w.robotStateSet.size() && w.robotStateSet[static_cast<std::size_t>(robot)];
+  if (w.stepCount == 0 && !set) {  // what the record says, not its round trip through Bullet's frames
+    q = r.instance().q;
+    u = r.instance().u;
+  } else {
+    r.state(q, u);
+  }
+}
+
+namespace {
+
+std::string sizeError(const char* what, Eigen::Index got, int want, const char* layout) {
+  return std::string(what) + " has " + std::to_string(got) + " entries; the robot's " + layout + " has " +
+         std::to_string(want);
+}
+
+// "" or what is wrong with the quaternions of `q` (RaiSim's layout).
+std::string quaternionError(const robot::RobotInstance& in, const Eigen::VectorXd& q, const char* what) {
+  const robot::Model& m = *in.model;
+  const robot::Coordinates& c = in.coordinates;
+  if (m.floatingBase && !(q.segment<4>(3).norm() > 1e-12))
+    return std::string(what) + ": the base quaternion (entries 3..6) is zero";
+  for (std::size_t j = 0; j < m.joints.size(); ++j)
+    if (m.joints[j].type == robot::JointType::Spherical && c.coordinateIndex[j] >= 0 &&
+        !(q.segment<4>(c.coordinateIndex[j]).norm() > 1e-12))
+      return std::string(what) + ": the quaternion of joint '" + m.joints[j].name + "' is zero";
+  return {};
+}
+
+}  // namespace
+
+std::string World::setRobotPd(int robot, const Eigen::VectorXd& qTarget, const Eigen::VectorXd& uTarget,
+                              const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) {
+  SimRobot& r = *impl_->robots[static_cast<std::size_t>(robot)];
+  const robot::Coordinates& c = r.instance().coordinates;
+  if (qTarget.size() != c.coordinateDim) return sizeError("the position target", qTarget.size(), c.coordinateDim, "q");
+  if (uTarget.size() != 0 && uTarget.size() != c.velocityDim)
+    return sizeError("the velocity target", uTarget.size(), c.velocityDim, "u");
+  if (kp.size() != c.velocityDim) return sizeError("kp", kp.size(), c.velocityDim, "u");
+  if (kd.size() != c.velocityDim) return sizeError("kd", kd.size(), c.velocityDim, "u");
+  if (!qTarget.allFinite() || !uTarget.allFinite()) return "a target is not finite";
+  if (!kp.allFinite() || !kd.allFinite() || (kp.array() < 0).any() || (kd.array() < 0).any())
+    return "gains must be finite and >= 0";
+  if (std::string e = quaternionError(r.instance(), qTarget, "the position target"); !e.empty()) return e;
+  r.setPdGains(kp, kd);
+  r.setPdTarget(qTarget, uTarget.size() ? uTarget : Eigen::VectorXd(Eigen::VectorXd::Zero(c.velocityDim)));
+  return {};
+}
+
+std::string World::setRobotGeneralizedForce(int robot, const Eigen::VectorXd& tau) {
+  SimRobot& r = *impl_->robots[static_cast<std::size_t>(robot)];
+  const robot::Coordinates& c = r.instance().coordinates;
+  if (tau.size() != c.velocityDim) return sizeError("the generalized force", tau.size(), c.velocityDim, "u");
+  if (!tau.allFinite()) return "the generalized force is not finite";
+  r.setGeneralizedForce(tau);
+  return {};
+}
+
+std::string World::setRobotState(int robot, const Eigen::VectorXd& q, const Eigen::VectorXd& u) {
+  Impl& w = *impl_;
+  SimRobot& r = *w.robots[static_cast<std::size_t>(robot)];
+  const robot::Coordinates& c = r.instance().coordinates;
+  if (q.size() != c.coordinateDim) return sizeError("q", q.size(), c.coordinateDim, "q");
+  if (u.size() != c.velocityDim) return sizeError("u", u.size(), c.velocityDim, "u");
+  if (!q.allFinite() || !u.allFinite()) return "the state is not finite";
+  if ((q.array().abs() > 1e12).any() || (u.array().abs() > 1e12).any()) return "a state entry is beyond 1e12";
+  if (std::string e = quaternionError(r.instance(), q, "q"); !e.empty()) return e;
+  r.setState(q, u);
+  r.multiBody()->wakeUp();
+  if (w.robotStateSet.size() < w.robots.size()) w.robotStateSet.resize(w.robots.size(), 0);
+  w.robotStateSet[static_cast<std::size_t>(robot)] = 1;
+  return {};
+}
+
+std::vector<World::Contact> World::contacts() const {
+  const Impl& w = *impl_;
+  std::vector<Contact> out;
+  auto who = [&](const btCollisionObject* o, int& record, std::string& link) {
+    int index = o->getUserIndex();
+    if (index < 0 || static_cast<std::size_t>(index) >= w.info.size()) return;
+    const BodyInfo& bi = w.info[static_cast<std::size_t>(index)];
+    record = bi.recordIndex;
+    if (bi.robot < 0) return;
+    const SimRobot& r = *w.robots[static_cast<std::size_t>(bi.robot)];
+    const RobotBody& b = r.layout().bodies[static_cast<std::size_t>(bi.body)];
+    if (!b.links.empty()) link = r.instance().model->links[static_cast<std::size_t>(b.links.front())].name;
+  };
+  for (int i = 0, m = w.dispatcher.getNumManifolds(); i < m; ++i) {
+    const btPersistentManifold* manifold = w.dispatcher.getManifoldByIndexInternal(i);
+    if (manifold->getNumContacts() == 0) continue;
+    Contact base;
+    who(manifold->getBody0(), base.recordA, base.linkA);
+    who(manifold->getBody1(), base.recordB, base.linkB);
+    for (int k = 0; k < manifold->getNumContacts(); ++k) {
+      const btManifoldPoint& p = manifold->getContactPoint(k);
+      Contact c = base;
+      c.position = eig(p.getPositionWorldOnB());
+      c.normal = eig(p.m_normalWorldOnB);
+      c.depth = -double(p.getDistance());
+      c.impulse = p.getAppliedImpulse();
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
 }
 
 bool World::setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity) {

@@ -269,6 +269,42 @@ class World {
   bool setLinearVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
   bool setAngularVelocity(const std::string& pathOrId, const Eigen::Vector3d& velocity);
 
+  // Robot control for programs that embed lib/sim (the Python module's RL
+  // loop), as RaiSim's ArticulatedSystem has it.  `robot` is an index into
+  // the simulated robots (robotIndex()); q and u are in RaiSim's layout
+  // (robot::Coordinates).  Each setter returns "" or why it changed nothing
+  // (a size, a value that is not finite, a negative gain, a zero
+  // quaternion); what it sets acts from the next step on and is kept until
+  // changed.  setRobotPd: PD gains per entry of u (a floating base's six
+  // are ignored), a position target in q's layout and a velocity target in
+  // u's (empty: zero), through the joints' implicit drive (robot_sim.hpp),
+  // in place of --pd-gains.  setRobotGeneralizedForce: a feedforward force
+  // in u's layout (a floating base's: a world-frame force at the base
+  // frame's origin, then a world-frame torque).  setRobotState: q
+  // (quaternions normalised) and u now, as a record's state.
+  int robotIndex(const std::string& pathOrId) const;  // -1: no simulated robot of that name
+  const robot::RobotInstance& robotInstance(int robot) const;
+  // q and u now (before the first step: the record's, as robotStates()).
+  void robotState(int robot, Eigen::VectorXd& q, Eigen::VectorXd& u) const;
+  std::string setRobotPd(int robot, const Eigen::VectorXd& qTarget, const Eigen::VectorXd& uTarget,
+                         const Eigen::VectorXd& kp, const Eigen::VectorXd& kd);
+  std::string setRobotGeneralizedForce(int robot, const Eigen::VectorXd& tau);
+  std::string setRobotState(int robot, const Eigen::VectorXd& q, const Eigen::VectorXd& u);
+
+  // One contact point after the last step (contacts()): the two bodies
+  // (records; a robot's link by its name, else empty; record -1 for what
+  // has none), the point on B and B's normal toward A (world frame, as
+  // Bullet keeps them), the penetration depth (m, > 0 when overlapping)
+  // and the normal impulse the solver applied in the step (N s).
+  struct Contact {
+    int recordA = -1, recordB = -1;
+    std::string linkA, linkB;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+    double depth = 0, impulse = 0;
+  };
+  // Rigid contacts (Bullet's manifolds; particles are not among them).
+  std::vector<Contact> contacts() const;
+
   // For sensors (sensor_recorder.hpp).  The world-frame velocity `v` of a
   // point `p` (world coordinates) fixed in a body and the body's angular
   // velocity `w`: an object or compound by path or id (a static one does

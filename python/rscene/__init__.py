@@ -36,7 +36,7 @@ from . import _rscene
 __all__ = [
     "Diagnostic", "Document", "ParseError", "RecordChange", "FieldChange",
     "load", "loads", "format", "validate", "diff", "to_json", "from_json",
-    "Simulation", "SimulationError",
+    "Simulation", "SimulationError", "Robot", "Contacts",
 ]
 
 
@@ -362,7 +362,12 @@ class Simulation:
     def step(self, n: int = 1) -> None:
         """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
         Raises :class:`SimulationError` when a state stops being finite;
-        the simulation then takes no more steps."""
+        the simulation then takes no more steps.  Ctrl-C (a signal handler
+        that raises) ends a long call within about 0.1 s, or after the
+        step under way when one step takes longer, with the exception it
+        raised (``KeyboardInterrupt``): the world stops between two steps,
+        consistent, and ``step()`` goes on from there.  Robots' PD targets
+        and torques set before the call act in each of its steps."""
         if isinstance(n, bool) or not isinstance(n, int):
             raise TypeError("step(n): n must be an int, not %s" % type(n).__name__)
         if n > 2**63 - 1:
@@ -427,6 +432,76 @@ class Simulation:
                            % path)
         return velocity
 
+    def robot(self, path: str) -> "Robot":
+        """The simulated articulated system named by ``path`` (or id), to
+        read its state and drive it (:class:`Robot`).  Raises ``KeyError``
+        for a name no record has and ``ValueError`` for a record that is no
+        simulated robot (an object, a robot left out)."""
+        if not isinstance(path, str):
+            raise TypeError("robot(path): path must be a str, not %s" % type(path).__name__)
+        index, what = self._sim.robot_lookup(path)
+        if index < 0:
+            if what:
+                raise ValueError("%r is %s, not a simulated robot" % (path, what))
+            raise KeyError("no articulated system named %r" % path)
+        return Robot(self, index)
+
+    @property
+    def robots(self) -> List["Robot"]:
+        """Every simulated robot, in the scene's order."""
+        out = []
+        i = 0
+        while True:
+            try:
+                out.append(Robot(self, i))
+            except IndexError:
+                return out
+            i += 1
+
+    def contacts(self) -> "Contacts":
+        """The rigid contact points after the last step (empty before the
+        first), as :class:`Contacts`: numpy arrays, one row per point."""
+        return Contacts(self._sim.contacts())
+
+    def sensors(self) -> List[dict]:
+        """The LiDARs and IMUs read while stepping (sensor records and the
+        sensor sets of robots, as ``rscene-sim --sensors`` records them):
+        a dict ``{"name", "id", "kind"}`` each (``kind``: ``"lidar"`` or
+        ``"imu"``).  ``name`` is a sensor record's path or, for a robot's
+        sensor, ``"<robot path>/<set>/<sensor>"``."""
+        return [{"name": n, "id": i, "kind": k} for n, i, k in self._sim.sensor_list()]
+
+    def _sensor(self, name: str, kind: str) -> int:
+        if not isinstance(name, str):
+            raise TypeError("the sensor name must be a str, not %s" % type(name).__name__)
+        index = self._sim.sensor_index(name)
+        if index < 0:
+            raise KeyError("no LiDAR or IMU named %r is read in this simulation (see sensors())" % name)
+        actual = self._sim.sensor_list()[index][2]
+        if actual != kind:
+            shown = {"lidar": "a LiDAR", "imu": "an IMU"}
+            raise ValueError("sensor %r is %s, not %s" % (name, shown.get(actual, actual), shown[kind]))
+        return index
+
+    def lidar(self, name: str) -> Optional[dict]:
+        """The latest scan of the LiDAR ``name`` (path, id, or a robot
+        sensor's name from :meth:`sensors`), or ``None`` before
+        :meth:`step` first ran (a LiDAR scans at time 0 and then at its
+        updateRate, as ``rscene-sim --sensors``): a dict with ``points``, an
+        ``(N, 3)`` float32 array of the hits in the sensor frame (+x
+        forward, +z up), ``pose`` (the sensor's world pose
+        ``[x, y, z, qw, qx, qy, qz]``), ``time`` and ``index`` (the scan's
+        number)."""
+        return self._sim.lidar_scan(self._sensor(name, "lidar"))
+
+    def imu(self, name: str) -> Optional[dict]:
+        """The latest reading of the IMU ``name``, or ``None`` before its
+        first (after the first step, or 1/updateRate): a dict with
+        ``specific_force`` (m/s^2, the point's acceleration minus gravity,
+        sensor frame: +9.81 up at rest), ``angular_velocity`` (rad/s, sensor
+        frame), both float64 ``(3,)``, and ``time``."""
+        return self._sim.imu_reading(self._sensor(name, "imu"))
+
     def document(self) -> Document:
         """The scene with the bodies' poses now and the robots' states
         written back, as ``rscene-sim -o`` writes it."""
@@ -437,7 +512,171 @@ class Simulation:
         return "<rscene.Simulation t=%g s, %d steps>" % (self.time, self.steps)
 
 
+_NO_VECTOR = _np.zeros(0)
+
+
+def _vector(value: Any, size: int, what: str) -> "_np.ndarray":
+    """``value`` (a scalar, or anything numpy reads as a vector of ``size``)
+    as a float64 vector; ValueError with what is wrong.  Whether the
+    numbers are finite the library checks (each setter says so)."""
+    if type(value) is _np.ndarray and value.dtype == _np.float64 and value.shape == (size,):
+        return value  # the RL loop's usual case, without a copy
+    if type(value) in (int, float):
+        return _np.full(size, float(value))
+    try:
+        a = _np.asarray(value, dtype=_np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError("%s: not numbers (%s)" % (what, e)) from None
+    if a.ndim == 0:
+        a = _np.full(size, float(a))
+    if a.shape != (size,):
+        raise ValueError("%s: expected shape (%d,), got %s" % (what, size, a.shape))
+    return a
+
+
+class Robot:
+    """One simulated articulated system (:meth:`Simulation.robot`).
+
+    State in RaiSim's layout: ``q`` (generalized coordinates: a floating
+    base's position and quaternion ``w x y z`` first, then the joints in the
+    robot's order, a spherical joint's quaternion as four entries) and
+    ``u`` (generalized velocities: a floating base's linear then angular
+    velocity, world frame, then one entry per joint dof).  The names of the
+    entries are ``coordinate_names`` and ``velocity_names``.
+
+    Control as RaiSim's ArticulatedSystem has it: :meth:`set_pd_targets` and
+    :meth:`set_torques` act from the next :meth:`Simulation.step` on and
+    stay in force until changed."""
+
+    __slots__ = ("_owner", "_index", "_info", "_nq", "_nv")
+
+    def __init__(self, sim: Simulation, index: int) -> None:
+        self._owner = sim
+        self._index = index
+        self._info = sim._sim.robot_info(index)  # IndexError past the last robot
+        self._nq = len(self._info["coordinate_names"])
+        self._nv = len(self._info["velocity_names"])
+
+    @property
+    def path(self) -> str:
+        """The articulated record's path."""
+        return self._info["path"]
+
+    @property
+    def joint_names(self) -> List[str]:
+        """The movable joints, in the order of ``q`` and ``u``."""
+        return list(self._info["joint_names"])
+
+    @property
+    def coordinate_names(self) -> List[str]:
+        """The name of each entry of ``q`` (``base_x`` ... ``base_qz``, a
+        joint's name, ``NAME_qw`` ... for a spherical joint)."""
+        return list(self._info["coordinate_names"])
+
+    @property
+    def velocity_names(self) -> List[str]:
+        """The name of each entry of ``u``."""
+        return list(self._info["velocity_names"])
+
+    @property
+    def link_names(self) -> List[str]:
+        """The model's links (the names contacts give)."""
+        return list(self._info["link_names"])
+
+    @property
+    def floating_base(self) -> bool:
+        """Whether the base is free (its pose and velocity lead q and u)."""
+        return bool(self._info["floating_base"])
+
+    @property
+    def q(self) -> "_np.ndarray":
+        """The generalized coordinates now (float64, a copy)."""
+        return self._owner._sim.robot_state(self._index)[0]
+
+    @property
+    def u(self) -> "_np.ndarray":
+        """The generalized velocities now (float64, a copy)."""
+        return self._owner._sim.robot_state(self._index)[1]
+
+    def state(self) -> tuple:
+        """``(q, u)`` now, in one call."""
+        return self._owner._sim.robot_state(self._index)
+
+    def set_pd_targets(self, q: Any, kp: Any, kd: Any, u: Any = None) -> None:
+        """Drives every joint toward position target ``q`` (the shape of
+        :attr:`q`) and velocity target ``u`` (the shape of :attr:`u`;
+        ``None``: zero) with gains ``kp`` and ``kd`` (each a scalar or an
+        array shaped like :attr:`u`; >= 0; a floating base's six entries
+        are ignored: it has no actuator).  The law is RaiSim's stable PD,
+        ``kp (q* - q) + kd (u* - u)``, integrated implicitly per joint; it
+        acts from the next step on, in place of ``--pd-gains``, until set
+        again (gains of zero turn it off).  Raises ``ValueError`` for a
+        wrong shape, a value that is not finite, a negative gain or a zero
+        quaternion."""
+        target = _vector(q, self._nq, "set_pd_targets(q)")
+        velocity = _NO_VECTOR if u is None else _vector(u, self._nv, "set_pd_targets(u)")
+        gains = _vector(kp, self._nv, "set_pd_targets(kp)"), _vector(kd, self._nv, "set_pd_targets(kd)")
+        error = self._owner._sim.robot_set_pd(self._index, target, velocity, gains[0], gains[1])
+        if error:
+            raise ValueError("set_pd_targets: " + error)
+
+    def set_torques(self, tau: Any) -> None:
+        """Applies the generalized force ``tau`` (a scalar or an array
+        shaped like :attr:`u`: a joint's torque or force; a floating base's
+        six entries are a world-frame force at the base frame's origin and a
+        world-frame torque) at every step from the next one on, added to
+        the PD drive, until set again (``set_torques(0)`` ends it), as
+        RaiSim's setGeneralizedForce.  Raises ``ValueError`` for a wrong
+        shape or a value that is not finite."""
+        error = self._owner._sim.robot_set_force(self._index, _vector(tau, self._nv, "set_torques(tau)"))
+        if error:
+            raise ValueError("set_torques: " + error)
+
+    def set_state(self, q: Any, u: Any = None) -> None:
+        """Puts the robot at ``q`` with velocity ``u`` (``None``: zero) now,
+        as an articulated record's generalizedCoordinate and
+        generalizedVelocity would (quaternions are normalised): a reset.
+        Raises ``ValueError`` for a wrong shape, a value that is not finite
+        or a zero quaternion."""
+        coords = _vector(q, self._nq, "set_state(q)")
+        velocity = _np.zeros(self._nv) if u is None else _vector(u, self._nv, "set_state(u)")
+        error = self._owner._sim.robot_set_state(self._index, coords, velocity)
+        if error:
+            raise ValueError("set_state: " + error)
+
+    def __repr__(self) -> str:
+        return "<rscene.Robot %s: %d coordinates, %d joints>" % (self.path, self._nq, len(self._info["joint_names"]))
+
+
+class Contacts:
+    """The rigid contact points of one moment (:meth:`Simulation.contacts`),
+    one row per point: ``body_a`` and ``body_b`` (the records' paths, ``""``
+    for none), ``link_a`` and ``link_b`` (a robot's link, else ``""``),
+    ``position`` ``(N, 3)`` (the point on B, world frame), ``normal``
+    ``(N, 3)`` (B's surface normal, pointing toward A), ``depth`` ``(N,)``
+    (penetration, m; negative: a point kept within the contact margin) and
+    ``impulse`` ``(N,)`` (the normal impulse of the last step, N s;
+    ``impulse / time_step`` is the force).  ``len()`` is the number of
+    points."""
+
+    __slots__ = ("body_a", "body_b", "link_a", "link_b", "position", "normal", "depth", "impulse")
+
+    def __init__(self, raw: dict) -> None:
+        for k in self.__slots__:
+            setattr(self, k, raw[k])
+
+    def __len__(self) -> int:
+        return len(self.depth)
+
+    def involving(self, path: str) -> "_np.ndarray":
+        """A boolean mask of the points on the body ``path`` (either side)."""
+        return _np.array([a == path or b == path for a, b in zip(self.body_a, self.body_b)], dtype=bool)
+
+    def __repr__(self) -> str:
+        return "<rscene.Contacts %d points>" % len(self)
+
+
 from ._render import LookAt, RenderError, Renderer, render, render_available, render_depth, render_segmentation, _render_error  # noqa: E402,F401
 __all__ += ["LookAt", "RenderError", "Renderer", "render", "render_depth", "render_segmentation", "render_available"]
-from ._scene import Camera, Compound, CompoundChild, Light, Material, RecordView, Robot, Scene, SceneObject, Sensor  # noqa: E402,F401
-__all__ += ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "Robot", "Camera", "Sensor", "Light", "Material"]
+from ._scene import Camera, Compound, CompoundChild, Light, Material, RecordView, RobotRecord, Scene, SceneObject, Sensor  # noqa: E402,F401
+__all__ += ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "RobotRecord", "Camera", "Sensor", "Light", "Material"]

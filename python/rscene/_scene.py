@@ -26,7 +26,7 @@ import numpy as _np
 from . import _rscene
 from . import Document, _check_document, _diagnostics
 
-__all__ = ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "Robot", "Camera", "Sensor",
+__all__ = ["Scene", "RecordView", "SceneObject", "Compound", "CompoundChild", "RobotRecord", "Camera", "Sensor",
            "Light", "Material"]
 
 
@@ -115,7 +115,7 @@ class Compound(RecordView):
         super().__init__(fields, doc)
 
 
-class Robot(RecordView):
+class RobotRecord(RecordView):
     """An ``articulated`` record: ``path``, ``id``, ``parent_id``,
     ``resource`` (as written), ``source_path`` (the robot file, resolved),
     the poses, ``scale``, ``visible``, ``collidable``,
@@ -185,7 +185,7 @@ class Scene:
         self.gravity = _frozen(raw["gravity"])
         self.objects = [SceneObject(x, doc) for x in raw["objects"]]
         self.compounds = [Compound(x, doc) for x in raw["compounds"]]
-        self.robots = [Robot(x, doc) for x in raw["robots"]]
+        self.robots = [RobotRecord(x, doc) for x in raw["robots"]]
         self.cameras = [Camera(x, doc) for x in raw["cameras"]]
         self.sensors = [Sensor(x, doc) for x in raw["sensors"]]
         self.lights = [Light(x, doc) for x in raw["lights"]]

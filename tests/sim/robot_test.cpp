@@ -585,3 +585,90 @@ TEST(RobotSim, NonFiniteStateIsReported) {
   EXPECT_EQ(bad->path, "/World/R0");
   EXPECT_TRUE(bad->what == "generalized coordinate" || bad->what == "generalized velocity") << bad->what;
 }
+
+// Robot control for programs that embed lib/sim (World::setRobotPd and
+// friends; the Python module's RL loop).  A generalized force on a hanging
+// pendulum at rest (no gravity torque there) gives the closed-form
+// velocity tau / I dt at step one, and stays in force until changed.
+TEST(RobotControl, TorqueGivesTheClosedFormAccelerationAtStepOne) {
+  const double m = 2, d = 0.5, ic = 0.02, tau = 3;
+  auto r = make("time_step 0.001\n", {pendulum(m, d, ic)});
+  ASSERT_TRUE(r->world);
+  ASSERT_EQ(r->world->robotIndex("/World/R0"), 0);
+  EXPECT_EQ(r->world->robotIndex("/World/Nothing"), -1);
+  EXPECT_EQ(r->world->setRobotGeneralizedForce(0, Eigen::VectorXd::Constant(1, tau)), "");
+  r->world->step();
+  Eigen::VectorXd q, u;
+  r->world->robotState(0, q, u);
+  EXPECT_NEAR(u[0], tau / (ic + m * d * d) * 0.001, 1e-12);
+  r->world->step();
+  r->world->robotState(0, q, u);
+  EXPECT_NEAR(u[0], 2 * tau / (ic + m * d * d) * 0.001, 1e-6);
+}
+
+// PD targets hold the joint near them (against gravity: a sag of
+// m g d sin(q) / kp at most); wrong sizes, values that are not finite and
+// negative gains change nothing and say why.
+TEST(RobotControl, PdTargetHoldsTheJointAndMisuseIsRefused) {
+  auto r = make("time_step 0.001\n", {pendulum(2, 0.5, 0.02)});
+  ASSERT_TRUE(r->world);
+  World& w = *r->world;
+  Eigen::VectorXd one = Eigen::VectorXd::Constant(1, 0.5), none;
+  EXPECT_NE(w.setRobotPd(0, Eigen::VectorXd::Zero(2), none, one, one), "");
+  EXPECT_NE(w.setRobotPd(0, one, none, Eigen::VectorXd::Constant(1, -1), one), "");
+  EXPECT_NE(w.setRobotPd(0, Eigen::VectorXd::Constant(1, NAN), none, one, one), "");
+  EXPECT_NE(w.setRobotGeneralizedForce(0, Eigen::VectorXd::Constant(1, INFINITY)), "");
+  EXPECT_NE(w.setRobotState(0, one, Eigen::VectorXd::Zero(3)), "");
+  for (int k = 0; k < 100; ++k) w.step();
+  Eigen::VectorXd q, u;
+  w.robotState(0, q, u);
+  EXPECT_NEAR(q[0], 0, 1e-12);  // nothing of that acted
+  ASSERT_EQ(w.setRobotPd(0, one, none, Eigen::VectorXd::Constant(1, 1000), Eigen::VectorXd::Constant(1, 20)), "");
+  for (int k = 0; k < 3000; ++k) w.step();
+  w.robotState(0, q, u);
+  EXPECT_NEAR(q[0], 0.5, 2 * 9.81 * 0.5 * std::sin(0.5) / 1000 + 1e-3);
+  EXPECT_NEAR(u[0], 0, 1e-3);
+}
+
+// A state set before the first step is the one read back and written
+// back (robotStates() gives the record's only while nothing was set).
+TEST(RobotControl, SetStateIsReadBackBeforeTheFirstStep) {
+  auto r = make("time_step 0.001\n", {pendulum(2, 0.5, 0.02)});
+  ASSERT_TRUE(r->world);
+  ASSERT_EQ(r->world->setRobotState(0, Eigen::VectorXd::Constant(1, 0.25), Eigen::VectorXd::Constant(1, -1)), "");
+  RobotState s = r->world->robotStates()[0];
+  EXPECT_NEAR(s.q[0], 0.25, 1e-12);
+  EXPECT_NEAR(s.u[0], -1, 1e-12);
+}
+
+// contacts(): a 1 kg box resting on the ground touches it at its four
+// corners, the ground's normal up, the normal impulses carrying its weight.
+TEST(WorldContacts, RestingBoxCarriesItsWeight) {
+  LoadResult loaded = parse(
+      "raisim_engine_scene 1\ntime_step 0.001\ngravity 0 0 -9.81\n"
+      "object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default engine_default false true false - static "
+      "true 1 18446744073709551615\n"
+      "object /World/Box box 0 0 0.1 1 0 0 0 0.2 0.2 0.2 1 1 1 default engine_default false true false - dynamic "
+      "true 1 18446744073709551615\n");
+  ASSERT_TRUE(loaded.ok());
+  Scene scene;
+  Diagnostics ds;
+  ASSERT_TRUE(buildScene(loaded.document, {}, scene, ds));
+  auto w = World::create(scene, ds);
+  ASSERT_TRUE(w);
+  EXPECT_TRUE(w->contacts().empty());
+  for (int k = 0; k < 500; ++k) w->step();
+  std::vector<World::Contact> cs = w->contacts();
+  ASSERT_EQ(cs.size(), 4u);
+  double impulse = 0;
+  for (const World::Contact& c : cs) {
+    EXPECT_EQ(c.recordA, scene.objects[1].recordIndex);
+    EXPECT_EQ(c.recordB, scene.objects[0].recordIndex);
+    EXPECT_TRUE(c.linkA.empty() && c.linkB.empty());
+    EXPECT_NEAR(c.normal.z(), 1, 1e-9);
+    EXPECT_NEAR(c.position.z(), 0, 1e-6);
+    EXPECT_GT(c.depth, 0);
+    impulse += c.impulse;
+  }
+  EXPECT_NEAR(impulse / 0.001, 9.81, 0.02 * 9.81);
+}
