@@ -645,7 +645,7 @@ PYBIND11_MODULE(_rscene, m) {
         py::array_t<double> a(6);
         auto r = a.mutable_unchecked<1>();
         for (int i = 0; i < 3; ++i) r(i) = v[i], r(i + 3) = w[i];
-        return std::move(a);
+        return a;
       })
       .def("robot_lookup", &robotLookup)
       .def("robot_info", &robotInfo)

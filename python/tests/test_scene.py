@@ -54,6 +54,8 @@ def test_views_of_robot_cell():
 
     (robot,) = s.robots
     assert robot.path == "/World/Robot" and robot.floating_base
+    # The record's view, not the simulated robot (rscene.Robot, sim.robot()).
+    assert isinstance(robot, rscene.RobotRecord) and not isinstance(robot, rscene.Robot)
     assert robot.joint_names == ["LF_HAA", "LF_HFE", "LF_KFE", "RF_HAA", "RF_HFE", "RF_KFE",
                                  "LH_HAA", "LH_HFE", "LH_KFE", "RH_HAA", "RH_HFE", "RH_KFE"]
     assert robot.coordinate_names[:7] == ["base_x", "base_y", "base_z", "base_qw", "base_qx", "base_qy", "base_qz"]
