@@ -5,7 +5,9 @@
 #
 # usage: scripts/rscene-review-range.sh [-o DIR] [-W WIDTH -H HEIGHT] BASE [HEAD]
 #   BASE, HEAD  commits (HEAD: HEAD); the range is what HEAD has that BASE
-#               has not, file by file (git diff BASE HEAD)
+#               has not, file by file, as a pull request shows it: from
+#               their merge base to HEAD (git diff BASE...HEAD), so a
+#               change made on BASE after the branch left it is not shown
 #   -o DIR      where the folders go (default: scene-review); DIR/<scene
 #               path with / as __, less .rscene>/ per scene, DIR/index.md
 #   -W, -H      image size (rscene-diff --width/--height)
@@ -15,8 +17,12 @@
 # robots resolve in the checkout; the new side is the checked-out file
 # when HEAD is the checkout's and the file is unmodified, else a copy.
 # Exit: 0 no scene changed, 1 some changed, 2 a scene failed (its folder
-# and index line say so; the others are still written).
+# and index line say so; the others are still written) or the script
+# could not do its work (an output folder it cannot make, a git error).
 set -euo pipefail
+# Whatever fails unguarded is an error (2), never "some changed" (1),
+# which CI jobs accept.
+trap 'exit 2' ERR
 
 out=scene-review
 size=()
@@ -41,6 +47,13 @@ case $diff in */*) diff=$(cd "$(dirname "$diff")" && pwd)/$(basename "$diff") ;;
 for rev in "$base" "$head"; do
   git rev-parse --verify --quiet "$rev^{commit}" >/dev/null || { echo "$0: '$rev' is no commit" >&2; exit 2; }
 done
+since=$(git merge-base "$base" "$head") || { echo "$0: '$base' and '$head' have no common history" >&2; exit 2; }
+# The folder is written into: in the repository it could hold links a pull
+# request placed there, which every write would follow.
+if [ -n "$(git ls-files -- "$out" 2>/dev/null | head -n 1)" ]; then
+  echo "$0: '$out' holds files tracked by git; write the review elsewhere (-o)" >&2
+  exit 2
+fi
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 top=$(git rev-parse --show-toplevel)
@@ -66,7 +79,7 @@ while IFS= read -r -d '' change && IFS= read -r -d '' path; do
   if [ "$change" = A ]; then
     oldArgs=(/dev/null)
   else
-    git show "$base:$path" > "$tmp/old.rscene"
+    git show "$since:$path" > "$tmp/old.rscene"
     oldArgs=(--stdin-filename "$path" -)
   fi
   if [ "$change" = D ]; then
@@ -93,12 +106,13 @@ while IFS= read -r -d '' change && IFS= read -r -d '' path; do
     1) result=changed; [ $status -eq 0 ] && status=1 ;;
     *) result="error (see the job's log)"; status=2 ;;
   esac
-  rows+=("| [\`$path\`]($name/review.md) | $what | $result |")
+  # <...>: a link destination that may hold spaces.
+  rows+=("| [\`$path\`](<$name/review.md>) | $what | $result |")
   if [ -f "$dir/review.md" ]; then
     # The scene's review, its images and headings under this index.
-    sections+=("$(sed -e "s#](\(before\|after\|changes\)\.png)#]($name/\1.png)#g" -e 's/^###/##/' "$dir/review.md")")
+    sections+=("$(sed -e "s#](\(before\|after\|changes\)\.png)#](<$name/\1.png>)#g" -e 's/^###/##/' "$dir/review.md")")
   fi
-done < <(git diff --name-status --no-renames -z "$base" "$head" -- '*.rscene')
+done < <(git diff --name-status --no-renames -z "$since" "$head" -- '*.rscene')
 
 {
   echo "# Scene review: $base..$head"

@@ -47,11 +47,11 @@ setup() {
   done
   cat index.md
   grep -qxF '# Scene review: HEAD~2..HEAD~1' index.md
-  grep -qxF '| [`scenes/a.rscene`](scenes__a/review.md) | modified | changed |' index.md
-  grep -qxF '| [`scenes/c.rscene`](scenes__c/review.md) | added | changed |' index.md
-  grep -qxF '| [`scenes/yard/b.rscene`](scenes__yard__b/review.md) | deleted | changed |' index.md
+  grep -qxF '| [`scenes/a.rscene`](<scenes__a/review.md>) | modified | changed |' index.md
+  grep -qxF '| [`scenes/c.rscene`](<scenes__c/review.md>) | added | changed |' index.md
+  grep -qxF '| [`scenes/yard/b.rscene`](<scenes__yard__b/review.md>) | deleted | changed |' index.md
   # The scenes' sections, their images under their folders.
-  grep -qF '![changes](scenes__a/changes.png)' index.md
+  grep -qF '![changes](<scenes__a/changes.png>)' index.md
   grep -qF '| object /World/Crates/Box | changed | position | 0,0,0.5 | 1.5,0,0.5 |' index.md
   grep -qF '(/dev/null &rarr; scenes/c.rscene)' index.md
   grep -qF '(scenes/yard/b.rscene &rarr; /dev/null)' index.md
@@ -60,7 +60,7 @@ setup() {
 @test "review range: a respelled scene is no change (exit 0); a range without scenes says so" {
   run "$SCRIPT" -o ../r1 -W 64 -H 40 HEAD~1 HEAD
   [ "$status" -eq 0 ]
-  grep -qxF '| [`scenes/a.rscene`](scenes__a/review.md) | modified | no change |' ../r1/index.md
+  grep -qxF '| [`scenes/a.rscene`](<scenes__a/review.md>) | modified | no change |' ../r1/index.md
   git commit -q --allow-empty -m four
   run "$SCRIPT" -o ../r2 HEAD~1
   [ "$status" -eq 0 ]
@@ -73,12 +73,45 @@ setup() {
   git add -A && git commit -qm broken
   run "$SCRIPT" -o ../r -W 64 -H 40 HEAD~1
   [ "$status" -eq 2 ]
-  grep -qxF '| [`scenes/a.rscene`](scenes__a/review.md) | modified | error (see the job'"'"'s log) |' ../r/index.md
-  grep -qxF '| [`scenes/c.rscene`](scenes__c/review.md) | modified | changed |' ../r/index.md
+  grep -qxF '| [`scenes/a.rscene`](<scenes__a/review.md>) | modified | error (see the job'"'"'s log) |' ../r/index.md
+  grep -qxF '| [`scenes/c.rscene`](<scenes__c/review.md>) | modified | changed |' ../r/index.md
   grep -q '^```diff$' ../r/scenes__a/review.md
   run "$SCRIPT" -o ../r nosuchrev
   [ "$status" -eq 2 ]
   [[ "$output" == *"'nosuchrev' is no commit"* ]]
+}
+
+@test "review range: a pull request's range starts at its merge base: a change the base made since is not shown" {
+  git checkout -q -b pr
+  scene 4 > scenes/c.rscene
+  git commit -qam "pr: the crate of c moved"
+  git checkout -q -
+  mkdir -p scenes/yard && scene 7 > "scenes/yard/with space.rscene"
+  sed -i 's/type=directional/type=directional intensity=0.5/' scenes/a.rscene
+  git add -A && git commit -qm "base: a changed since the branch left"
+  git checkout -q pr
+  run "$SCRIPT" -o ../r -W 64 -H 40 "$(git rev-parse --abbrev-ref @{-1})" HEAD
+  [ "$status" -eq 1 ]
+  cat ../r/index.md
+  [ "$(grep -c '^| \[' ../r/index.md)" -eq 1 ]
+  grep -qxF '| [`scenes/c.rscene`](<scenes__c/review.md>) | modified | changed |' ../r/index.md
+  # A path with a space: the link's destination in <...> resolves.
+  git checkout -q -
+  run "$SCRIPT" -o ../r2 -W 64 -H 40 HEAD~1 HEAD
+  [ "$status" -eq 1 ]
+  grep -qF '| [`scenes/yard/with space.rscene`](<scenes__yard__with space/review.md>) | added | changed |' ../r2/index.md
+  grep -qF '![changes](<scenes__yard__with space/changes.png>)' ../r2/index.md
+}
+
+@test "review range: an output it cannot write, or one git tracks, is an error (2), never 'changed' (1)" {
+  echo file > ../afile
+  run "$SCRIPT" -o ../afile HEAD~2 HEAD~1
+  [ "$status" -eq 2 ]
+  mkdir review && echo x > review/after.png && git add review && git commit -qm "a committed review folder"
+  run "$SCRIPT" -o review HEAD~3 HEAD~2
+  [ "$status" -eq 2 ]
+  [[ "$output" == *"'review' holds files tracked by git; write the review elsewhere (-o)"* ]]
+  [ "$(cat review/after.png)" = x ]
 }
 
 @test "review range: the GitHub Actions and GitLab CI jobs of examples/ci are YAML and run the script" {
