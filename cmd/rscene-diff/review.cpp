@@ -314,7 +314,8 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
   printBuilt(a, before, b, after);  // what drawing found (a missing mesh), said once
   if (!drawn) return cli::kTrouble;
   auto afterPng = std::async(std::launch::async, encode, &b.images.color);
-  render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks);
+  render::Image changes = review::composeChanges(b.images.color, b.images.segmentation, a.images.segmentation, marks,
+                                                         &a.images.color);
   std::string changesPng = render::encodePng(changes);
   std::string bp = beforePng.get(), ap = afterPng.get();
   std::string note = summaryNote(how, marks);

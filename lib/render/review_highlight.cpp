@@ -146,6 +146,8 @@ Marks markChanges(const DiffResult& diff, const RenderScene& oldScene, const std
   Marks m;
   m.oldSide.assign(oldItems.size(), Mark::None);
   m.newSide.assign(newItems.size(), Mark::None);
+  for (const Item& i : oldItems) m.oldGround.push_back(i.ground);
+  for (const Item& i : newItems) m.newGround.push_back(i.ground);
   auto mark = [&](std::vector<Mark>& side, const std::vector<Item>& items, std::size_t i, Mark what) {
     // Added and removed win over changed (a record added whose material
     // also changed is added).

@@ -50,6 +50,7 @@ enum class Mark : std::uint8_t { None, Added, Removed, Changed, Ghost };
 // no part (lights, environment, cameras ...).
 struct Marks {
   std::vector<Mark> oldSide, newSide;
+  std::vector<std::uint8_t> oldGround, newGround;  // per part: a ground plane (filled lightly)
   std::size_t added = 0, removed = 0, changed = 0, undrawn = 0;  // records
   Eigen::AlignedBox3d bounds;  // world bounds of every marked part, both sides
 };
@@ -71,14 +72,18 @@ struct Palette {
 // parts filled and outlined (added green, changed orange), the old side's
 // removed parts red where they stood and changed parts' old places as a
 // dashed blue outline; below the picture a legend band saying what each
-// color means with the counts, and how many changed records draw nothing.  All images the same size.
-Image composeChanges(const Image& color, const Image& newIds, const Image& oldIds, const Marks& marks);
+// color means with the counts, and how many changed records draw nothing.
+// `oldColor` (the old scene, optional): removed parts are drawn from it
+// where the new scene shows nothing there.  All images the same size.
+Image composeChanges(const Image& color, const Image& newIds, const Image& oldIds, const Marks& marks,
+                     const Image* oldColor = nullptr);
 
 // Height of one line of the legend band composeChanges() adds below an
 // image of height `h` (more lines when its entries do not fit the width).
 int legendHeight(int width, int height);
 
-// Draws `text` (printable ASCII, a 5x7 font) at (x, y) scaled by `scale`.
+// Draws `text` (printable ASCII, a 5x7 font with descenders: 9 rows) at
+// (x, y) scaled by `scale`.
 void drawText(Image& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale);
 int textWidth(const std::string& text, int scale);
 

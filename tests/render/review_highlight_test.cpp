@@ -180,3 +180,39 @@ TEST(ReviewImage, IdImagesOfAnotherSizeMarkNothing) {
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_EQ(out.pixel(x, y)[0], out.pixel(0, 0)[0]);
 }
+
+// A deleted scene: the removed floor and a crate on it.  The floor is
+// filled lightly (it would flood the picture), the crate fully; each part
+// keeps its own outline, so the crate stands apart from the floor; where
+// the new scene shows nothing, the old scene's shading is under the red.
+TEST(ReviewImage, ARemovedFloorIsFilledLightlyAndEachRemovedPartOutlinedOnTheOldShading) {
+  const int w = 16, h = 10;
+  Image color{w, h, std::vector<std::uint8_t>(std::size_t(w) * h * 4, 200)};  // the new scene: empty grey
+  Image oldColor = color;
+  for (int x = 0; x < w; ++x) oldColor.pixel(x, 8)[0] = oldColor.pixel(x, 8)[1] = oldColor.pixel(x, 8)[2] = 40;  // a dark row
+  Image none{w, h, std::vector<std::uint8_t>(std::size_t(w) * h * 4, 0)};
+  Image oldIds = none;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) oldIds.pixel(x, y)[2] = (x >= 5 && x <= 10 && y >= 3 && y <= 6) ? 2 : 1;
+  Marks m;
+  m.oldSide = {Mark::Removed, Mark::Removed};
+  m.oldGround = {1, 0};  // part 0 (id 1): the floor
+  m.newSide = {};
+  m.removed = 2;
+  Image out = composeChanges(color, none, oldIds, m, &oldColor);
+  auto red = [&](int x, int y) {
+    const std::uint8_t* p = out.pixel(x, y);
+    return p[0] == Palette::removed[0] && p[1] == Palette::removed[1] && p[2] == Palette::removed[2];
+  };
+  // The crate's edge is red where it meets the floor, and the floor's too.
+  EXPECT_TRUE(red(5, 4));
+  EXPECT_TRUE(red(4, 4));
+  // Inside the crate: strongly red; inside the floor: lightly.
+  const std::uint8_t* crate = out.pixel(7, 4);
+  const std::uint8_t* floor = out.pixel(2, 4);
+  EXPECT_GT(int(crate[0]) - int(crate[1]), 60);
+  EXPECT_GT(int(floor[0]) - int(floor[1]), 5);
+  EXPECT_LT(int(floor[0]) - int(floor[1]), 60);
+  // The old scene's dark row shows through the floor's light fill.
+  EXPECT_LT(out.pixel(2, 8)[1] + 40, out.pixel(2, 5)[1]);
+}
