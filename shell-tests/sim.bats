@@ -759,6 +759,81 @@ SCENE
   [[ $stderr != *RS7002* ]]
 }
 
+@test "start warnings (RS7013) come before the end-of-run warning (RS7002), each group in line order" {
+  # /World/Trapped (line 6) stays inside a static cage to the end; /World/Late
+  # (line 8) starts 2 cm inside a static shelf (sim's RS7013) and is pushed out.
+  cat > order.rscene <<'SCENE'
+raisim_engine_scene 1
+time_step 0.0025
+gravity 0 0 -9.81
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Cage box 0 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615
+object /World/Trapped box 0 0 0.5 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Shelf box 3 0 0.5 1 0 0 0 1 1 1 0.5 1 1 default engine_default false true false - static true 1 18446744073709551615
+object /World/Late box 3 0 1.23 1 0 0 0 0.5 0.5 0.5 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  run -0 --separate-stderr "$SIM" --steps 20 -o out.rscene order.rscene
+  codes=$(grep -o 'order.rscene:[0-9]*:[0-9]*: warning: .*\[RS70[01][0-9]\]' <<<"$stderr" | sed 's/^order.rscene:\([0-9]*\):.*\[\(RS[0-9]*\)\]$/\1 \2/' | tr '\n' ' ')
+  [ "$codes" = "6 RS7013 8 RS7013 6 RS7002 " ]
+}
+
+@test "a body resting on a still kinematic body comes to rest: --until-rest stops" {
+  # Bullet keeps a body touching a kinematic one awake; the run never stopped.
+  cat > table.rscene <<'SCENE'
+raisim_engine_scene 1
+time_step 0.0025
+gravity 0 0 -9.81
+object /World/Table box 0 0 0.25 1 0 0 0 2 2 0.5 0.5 1 1 default engine_default false true false - kinematic true 1 18446744073709551615
+object /World/Crate box 0 0 0.75 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Top box 0 0 1.25 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  run -0 --separate-stderr "$SIM" --duration 10 --until-rest --report -o out.rscene table.rscene
+  jq -e '.atRest == true and .simulatedTime < 2' <<<"${stderr_lines[-1]}"
+  # where they started, on the table
+  awk '$2 == "/World/Crate" { d = $6 - 0.75 } $2 == "/World/Top" { e = $6 - 1.25 }
+       END { exit !(d * d < 1e-5 && e * e < 1e-5) }' out.rscene
+  # with sleeping off nothing rests: the duration is the cap
+  sed -i 's/^gravity.*/&\nsolver 80 1e-07 0.2 accurate sleepingEnabled=false/' table.rscene
+  run -0 --separate-stderr "$SIM" --duration 1 --until-rest --report -o out.rscene table.rscene
+  jq -e '.atRest == false' <<<"${stderr_lines[-1]}"
+}
+
+@test "a dynamic body starting 100 m under the ground is refused by validate and sim at its position (RS7015), not a fall" {
+  cat > under.rscene <<'SCENE'
+raisim_engine_scene 1
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Deep box 0 0 -100 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  msg="under.rscene:3:24: error: dynamic body '/World/Deep' starts at z = -100, below the world's lower bound z = -10 (10 m under the lowest ground, '/World/Ground'): rscene-sim would take it out of the world at its first step [RS7015]"
+  run -2 --separate-stderr "$SIM" --steps 10 -o out.rscene under.rscene
+  [ "${stderr_lines[0]}" = "$msg" ]
+  [[ $stderr != *RS7012* && $stderr != *RS7013* ]]
+  [ ! -e out.rscene ]
+  run -1 "$BIN/rscene-validate" under.rscene
+  [[ $output == *"$msg"* ]]
+  # Under other static geometry (no ground): sim's, before the first step, the same code.
+  sed -i 's/ ground 0 0 0 1 0 0 0 20 20 1 / box 0 0 0 1 0 0 0 20 20 1 /' under.rscene
+  run -2 --separate-stderr "$SIM" --steps 10 -o out.rscene under.rscene
+  [ "${stderr_lines[0]}" = "under.rscene:3:24: error: dynamic body '/World/Deep' starts at z = -100, below the world's lower bound z = -10.5 (10 m under the lowest static geometry): rscene-sim would take it out of the world at its first step [RS7015]" ]
+}
+
+@test "a 1000 kg crate on a 1 kg crate: validate and sim warn at the heavy one's mass (RS7014); 100:1 does not" {
+  cat > crates.rscene <<'SCENE'
+raisim_engine_scene 1
+object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 0.5 1 0 default engine_default false true false - static true 1 18446744073709551615
+object /World/Light box 0 0 0.25 1 0 0 0 0.5 0.5 0.5 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
+object /World/Heavy box 0 0 0.75 1 0 0 0 0.5 0.5 0.5 0.5 1 1000 default engine_default false true false - dynamic true 1 18446744073709551615
+SCENE
+  msg="crates.rscene:4:60: warning: dynamic body '/World/Heavy' (1000 kg) starts touching '/World/Light' (1 kg), 1e+03 times lighter (more than 100): the contact solver cannot hold such a pair, and the heavy body sinks through the light one [RS7014]"
+  run -0 --separate-stderr "$SIM" --steps 10 -o out.rscene crates.rscene
+  [ "${stderr_lines[0]}" = "$msg" ]
+  run -0 "$BIN/rscene-validate" crates.rscene
+  [[ $output == *"$msg"* ]]
+  sed -i 's/ 0.5 1 1000 default/ 0.5 1 100 default/' crates.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 -o out.rscene crates.rscene
+  [[ $stderr != *RS7014* ]]
+}
+
 @test "what rscene-sim writes, rscene-sim reads: examples and corpus settle, are written, validate clean, and settle again" {
   local scenes=("$ROOT"/examples/*.rscene)
   [ -d "$CORPUS" ] && scenes+=("$CORPUS"/*.rscene)

@@ -122,6 +122,22 @@ PY
   [ ! -e out.rscene ] && [ ! -e t.jsonl ]
 }
 
+@test "a cloth starting up to half its collisionRadius into the ground is moved out with a warning (RS7016) and rests, not diverged (RS7024)" {
+  # 4 mm and 0.5 mm into the ground (radius 1 cm), at the repro's 1 ms step.
+  for z in 0.006 0.0095; do
+    scene ""
+    sed -i "/^object \/World\/Ball/d; s|cloth.obj 0 0 1.2 |cloth.obj 0 0 $z |; s|^time_step .*|time_step 0.001|" cloth.rscene
+    run -0 --separate-stderr "$SIM" --duration 1 --until-rest --report --trajectory t.jsonl -o out.rscene cloth.rscene
+    [[ "${stderr_lines[0]}" == "cloth.rscene:5:"*": warning: deformable '/World/Cloth': 81 particles start inside the ground or another body, up to "*" m deep (its sphere of collisionRadius 0.01 m overlapping it); moved out along the contact normal before the first step [RS7016]" ]]
+    [[ $stderr != *RS7024* ]]
+    jq -e '.atRest == true' <<<"${stderr_lines[-1]}"
+  done
+  # resting on the ground from the start: nothing to say
+  sed -i "s|cloth.obj 0 0 0.0095 |cloth.obj 0 0 0.01 |" cloth.rscene
+  run -0 --separate-stderr "$SIM" --steps 10 -o out.rscene cloth.rscene
+  [[ $stderr != *RS7016* ]]
+}
+
 @test "issue 24 (07): a thickness of 1e-300 is refused by validate and sim alike (RS7081 at thickness)" {
   scene "youngsModulus=1e6 thickness=1e-300"
   run -1 "$BIN/rscene-validate" cloth.rscene

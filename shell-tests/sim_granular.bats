@@ -116,11 +116,23 @@ setup() {
   [ ! -e out.rscene ]
 }
 
-@test "grains thrown past 1e9 m stop the run with RS7084, nothing written" {
+@test "grains may not start faster than 1e4 m/s: validate and sim refuse at velocity or angularVelocity (RS7088), nothing written" {
+  # velocity=1e9 was accepted and the run failed when the grains passed 1e9 m (RS7084).
+  # the column of KEY's value on the granular line (4) of FILE
+  col() { echo $(( $(sed -n 4p "$2" | grep -bo " $1=" | head -1 | cut -d: -f1) + ${#1} + 3 )); }
   EXTRA=" velocity=1e9,0,0" bed > fast.rscene
   run -2 --separate-stderr "$SIM" --duration 2 -o out.rscene fast.rscene
-  [[ $stderr == *"fast.rscene:4:1: error: granular /World/Sand: grain "*" is past 1e9 m at step "*"[RS7084]"* ]]
+  [ "${stderr_lines[0]}" = "fast.rscene:4:$(col velocity fast.rscene): error: granular /World/Sand: velocity 1e+09 m/s is past 1e+04 m/s, the fastest grains may start [RS7088]" ]
   [ ! -e out.rscene ]
+  run -1 "$BIN/rscene-validate" fast.rscene
+  [[ $output == *"fast.rscene:4:$(col velocity fast.rscene): error: granular /World/Sand: velocity 1e+09 m/s is past 1e+04 m/s"*"[RS7088]"* ]]
+  # A spin whose surface speed (radius 0.02) passes it: at angularVelocity.
+  EXTRA=" angularVelocity=0,0,1e6" bed > spin.rscene
+  run -2 --separate-stderr "$SIM" --duration 2 -o out.rscene spin.rscene
+  [ "${stderr_lines[0]}" = "spin.rscene:4:$(col angularVelocity spin.rscene): error: granular /World/Sand: angularVelocity 1e+06 rad/s spins its largest grain (radius 0.02 m) at 2e+04 m/s at its surface, past 1e+04 m/s [RS7088]" ]
+  # At the bound: accepted.
+  EXTRA=" velocity=1e4,0,0" bed > ok.rscene
+  run -0 "$BIN/rscene-validate" ok.rscene
 }
 
 # Issue 24 (01): every pair of 19k grains was listed (std::bad_alloc).

@@ -192,8 +192,12 @@ int simulate(const Options& base, const SceneJob& job, Shared& shared, nlohmann:
     files.discard();  // a failed or interrupted run leaves no sensor files
     return gInterrupted ? cli::kInterrupted : cli::kTrouble;  // the caller ends by the signal
   }
+  // What the first step found about the start (RS7013) before what
+  // happened later: each group in line order, printed apart.
+  Diagnostics starts;
+  for (const sim::StartOverlap& o : world->startOverlaps()) starts.push_back(sim::startOverlapWarning(doc, o));
+  print(starts);
   Diagnostics departures;
-  for (const sim::StartOverlap& o : world->startOverlaps()) departures.push_back(sim::startOverlapWarning(doc, o));
   for (const sim::Departure& d : world->departures()) departures.push_back(sim::departureWarning(doc, d));
   // Bodies still deep in contact (RS7002): the run ended before the solver
   // pushed them out, whether --until-rest ran out of time or no rest was asked.

@@ -58,6 +58,12 @@ struct SceneCheckOptions {
 //   RS7013  warning (with stepWarnings): a dynamic primitive body that
 //           starts more than 1 cm below a ground or half_space, or inside
 //           another dynamic box, sphere or capsule (scene/start_pose.hpp)
+//   RS7014  warning (with stepWarnings): dynamic box, sphere or capsule
+//           objects starting in contact with masses more than 100 times
+//           apart, at the heavier one's mass (scene/start_pose.hpp)
+//   RS7015  error (with stepWarnings: a rule about stepping): a dynamic
+//           object or compound starting more than 10 m under the lowest
+//           ground or half_space (scene/start_pose.hpp)
 // Returns false when it added an error.
 bool checkScene(const Document& doc, const Scene& scene, const SceneCheckOptions& options, Diagnostics& diagnostics);
 

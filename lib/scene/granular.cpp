@@ -180,6 +180,10 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
   for (auto [key, v] : {std::pair{"velocity", g.velocity}, std::pair{"angularVelocity", g.angularVelocity}})
     if (!finiteVector(v, kMaxCoordinate))
       findings.push_back({true, kGranularValue, key, "granular " + g.path + ": " + key + " must be finite and at most 1e9"});
+  if (finiteVector(g.velocity, kMaxCoordinate) && !(g.velocity.norm() <= kMaxGranularSpeed))
+    findings.push_back({true, kGranularValue, "velocity",
+                        "granular " + g.path + ": velocity " + number(g.velocity.norm()) + " m/s is past " +
+                            number(kMaxGranularSpeed) + " m/s, the fastest grains may start"});
   if (failed()) return std::nullopt;
 
   if (g.positions.empty()) {
@@ -244,6 +248,16 @@ std::optional<GranularSetup> granularSetup(const Granular& g, double worldTimeSt
       findings.push_back({true, kGranularValue, radiusKey,
                           "granular " + g.path + ": radii from " + number(rMin) + " to " + number(rMax) +
                               " m span more than a factor of " + number(kMaxRadiusRatio)});
+      return std::nullopt;
+    }
+    // A spin whose surface speed is past the bound: the grains' velocity
+    // at their contacts.
+    if (g.angularVelocity.norm() * rMax > kMaxGranularSpeed) {
+      findings.push_back({true, kGranularValue, "angularVelocity",
+                          "granular " + g.path + ": angularVelocity " + number(g.angularVelocity.norm()) +
+                              " rad/s spins its largest grain (radius " + number(rMax) + " m) at " +
+                              number(g.angularVelocity.norm() * rMax) + " m/s at its surface, past " +
+                              number(kMaxGranularSpeed) + " m/s"});
       return std::nullopt;
     }
     // Cohesion acts at contact distances: RaiSim keeps its range "small

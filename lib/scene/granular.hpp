@@ -66,6 +66,11 @@ inline constexpr std::uint64_t kMaxGranularParticles = 2'000'000;
 // Most substeps per world step stability may ask for; past it the record
 // is refused (RS7087) naming the keys that would make it affordable.
 inline constexpr int kMaxGranularSubsteps = 1000;
+// Fastest a granular record's grains may start (m/s, RS7088): `velocity`,
+// and `angularVelocity` times the largest radius (a grain's surface
+// speed).  Ten times a rifle bullet; at 1e9 a grain would leave the
+// 1e9 m world in a second of simulated time (RS7084).
+inline constexpr double kMaxGranularSpeed = 1e4;
 // The margin below the pair's critical step for a grain's several
 // contacts at once: 0.6, which RaiSim's own example material (radius
 // 0.02, normalStiffness 5e4, tangentialStiffness 2.5e4) meets in its 2

@@ -119,6 +119,7 @@ void Builder::resolveBodyPoses() {
   resolveFrames();
   diags_.resize(before);  // a cycle, a bad number: lib/core's to report in validate
   for (Object& o : s_.objects) o.world = parentFrame(o.recordIndex) * o.local;
+  for (Compound& c : s_.compounds) c.world = parentFrame(c.recordIndex) * c.local;  // RS7015 (start_pose.hpp)
 }
 
 void Builder::resolveWorld() {

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/codes.hpp"
+#include "core/text.hpp"
 #include "scene/reader.hpp"
 
 namespace rscene {
@@ -216,8 +217,18 @@ double overlapDepth(const Object& a, const Object& b) {
   return solidDepth(solidOf(a), solidOf(b));
 }
 
-std::vector<BodyStart> bodyStarts(const Scene& scene) {
-  std::vector<BodyStart> out;
+namespace {
+
+// Calls visit(body, other, depth) once for each pair of pair-rule bodies
+// (at least one dynamic; their groups meet; no stiff wire between them)
+// whose bounding boxes come within `margin` of each other, with their
+// penetration depth (negative: apart by that much), `body` a dynamic one
+// (the later when both are).  A sweep over bounding boxes along the axis
+// the bodies spread most on finds the candidates: pairs of two
+// non-dynamic bodies are never visited, so a city of static boxes costs a
+// sort.
+template <class Visit>
+void sweepPairs(const Scene& scene, double margin, Visit visit) {
   std::vector<int> index;  // Scene::objects index per solid
   std::vector<Solid> solids;
   std::vector<char> dynamic;
@@ -235,7 +246,7 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
     dynamic.push_back(o.bodyMode == BodyMode::Dynamic);
     anyDynamic = anyDynamic || dynamic.back();
   }
-  if (!anyDynamic) return out;
+  if (!anyDynamic) return;
   // Records a stiff wire joins: Bullet does not collide them.
   std::set<std::pair<int, int>> wired;
   for (const Wire& w : scene.wires)
@@ -272,23 +283,23 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
     const Solid& a = solids[x];
     const Solid& b = solids[y];
     for (int k = 0; k < 3; ++k)
-      if (a.lo[k] > b.hi[k] || b.lo[k] > a.hi[k]) return;
+      if (a.lo[k] > b.hi[k] + margin || b.lo[k] > a.hi[k] + margin) return;
     const Object& oa = scene.objects[static_cast<std::size_t>(index[x])];
     const Object& ob = scene.objects[static_cast<std::size_t>(index[y])];
     if ((oa.collisionGroup & ob.collisionMask) == 0 || (ob.collisionGroup & oa.collisionMask) == 0) return;
     if (wired.count({std::min(oa.recordIndex, ob.recordIndex), std::max(oa.recordIndex, ob.recordIndex)})) return;
     const double depth = solidDepth(a, b);
-    if (!std::isfinite(depth) || !(depth > kStartOverlapDepth)) return;
+    if (!std::isfinite(depth) || !(depth >= -margin)) return;
     int body = index[x], other = index[y];
     if (!dynamic[x] || (dynamic[y] && other > body)) std::swap(body, other);
-    out.push_back({body, other, depth});
+    visit(body, other, depth);
   };
   // Each pair with a dynamic member once: a dynamic solid with every solid
   // that starts within its interval after it; a non-dynamic solid with
   // every dynamic one that starts within its interval after it.
   for (std::uint32_t d : dyn)
     for (std::size_t k = rank[d] + 1;
-         k < n && solids[order[k]].lo[axis] <= solids[d].hi[axis] && ++visits <= kMaxStartPairVisits; ++k)
+         k < n && solids[order[k]].lo[axis] <= solids[d].hi[axis] + margin && ++visits <= kMaxStartPairVisits; ++k)
       judge(d, order[k]);
   // (Every solid is dynamic today: a static or kinematic partner is
   // rscene-sim's, see pairRuleBody().  The pass below keeps the rule whole
@@ -297,17 +308,77 @@ std::vector<BodyStart> bodyStarts(const Scene& scene) {
     const std::uint32_t s = order[k];
     if (dynamic[s]) continue;
     auto from = std::upper_bound(dyn.begin(), dyn.end(), s, before);
-    for (auto it = from; it != dyn.end() && solids[*it].lo[axis] <= solids[s].hi[axis] &&
+    for (auto it = from; it != dyn.end() && solids[*it].lo[axis] <= solids[s].hi[axis] + margin &&
                          ++visits <= kMaxStartPairVisits;
          ++it)
       judge(s, *it);
   }
+}
+
+}  // namespace
+
+std::vector<BodyStart> bodyStarts(const Scene& scene) {
+  std::vector<BodyStart> out;
+  sweepPairs(scene, 0.0, [&](int body, int other, double depth) {
+    if (depth > kStartOverlapDepth) out.push_back({body, other, depth});
+  });
   // One per dynamic body: the deepest it starts inside (ties: the first).
   std::sort(out.begin(), out.end(), [](const BodyStart& a, const BodyStart& b) {
     return a.body != b.body ? a.body < b.body : a.depth != b.depth ? a.depth > b.depth : a.other < b.other;
   });
   out.erase(std::unique(out.begin(), out.end(), [](const BodyStart& a, const BodyStart& b) { return a.body == b.body; }),
             out.end());
+  return out;
+}
+
+std::vector<MassRatioStart> massRatioStarts(const Scene& scene) {
+  std::vector<MassRatioStart> out;
+  sweepPairs(scene, kStartOverlapDepth, [&](int body, int other, double) {
+    const Object& a = scene.objects[static_cast<std::size_t>(body)];
+    const Object& b = scene.objects[static_cast<std::size_t>(other)];
+    // Both dynamic (a static or kinematic partner holds any mass); a mass
+    // that is not positive is RS4008's, past the bounds RS7020's.
+    if (a.bodyMode != BodyMode::Dynamic || b.bodyMode != BodyMode::Dynamic) return;
+    const double ma = a.effectiveMass(), mb = b.effectiveMass();
+    if (!(ma > 0) || !(mb > 0) || !std::isfinite(ma) || !std::isfinite(mb)) return;
+    const bool aHeavier = ma > mb || (ma == mb && body < other);
+    const double ratio = aHeavier ? ma / mb : mb / ma;
+    if (!(ratio > kMaxContactMassRatio)) return;
+    out.push_back({aHeavier ? body : other, aHeavier ? other : body, ratio});
+  });
+  // One per heavier body: the largest ratio (ties: the first partner).
+  std::sort(out.begin(), out.end(), [](const MassRatioStart& a, const MassRatioStart& b) {
+    return a.heavy != b.heavy ? a.heavy < b.heavy : a.ratio != b.ratio ? a.ratio > b.ratio : a.light < b.light;
+  });
+  out.erase(std::unique(out.begin(), out.end(),
+                        [](const MassRatioStart& a, const MassRatioStart& b) { return a.heavy == b.heavy; }),
+            out.end());
+  return out;
+}
+
+std::vector<BelowWorldStart> belowWorldStarts(const Scene& scene) {
+  std::vector<BelowWorldStart> out;
+  // rscene-sim's floor counts every plane it builds, whatever its filter.
+  int lowest = -1;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& g = scene.objects[i];
+    if (!groundRulePlane(g) || !std::isfinite(g.world.position.z())) continue;
+    if (lowest < 0 || g.world.position.z() < scene.objects[static_cast<std::size_t>(lowest)].world.position.z())
+      lowest = static_cast<int>(i);
+  }
+  if (lowest < 0) return out;
+  const double bound = scene.objects[static_cast<std::size_t>(lowest)].world.position.z() - kLeaveMargin;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& o = scene.objects[i];
+    if (o.bodyMode != BodyMode::Dynamic || groundRulePlane(o) || o.primitive == "ground" || o.primitive == "half_space")
+      continue;
+    if (o.world.position.z() < bound) out.push_back({o.recordIndex, lowest, o.world.position.z(), bound});
+  }
+  for (const Compound& c : scene.compounds)
+    if (c.bodyMode == BodyMode::Dynamic && !c.children.empty() && c.world.position.z() < bound)
+      out.push_back({c.recordIndex, lowest, c.world.position.z(), bound});
+  std::sort(out.begin(), out.end(),
+            [](const BelowWorldStart& a, const BelowWorldStart& b) { return a.record < b.record; });
   return out;
 }
 
@@ -329,6 +400,23 @@ Diagnostic startOverlapDiagnostic(const Document& doc, int bodyRecord, int other
 }
 
 void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& diagnostics) {
+  auto pathOf = [&](int recordIndex) {
+    Diagnostics unused;
+    RecordReader r(doc, static_cast<std::size_t>(recordIndex), unused);
+    return "'" + r.text("path").value_or("") + "'";
+  };
+  // RS7015: below the world's lower bound (an error; no RS7013 besides).
+  std::set<int> below;
+  for (const BelowWorldStart& b : belowWorldStarts(scene)) {
+    below.insert(b.record);
+    const int ground = scene.objects[static_cast<std::size_t>(b.ground)].recordIndex;
+    reportAt(&doc, b.record, "position", rs::RS7015,
+             "dynamic body " + pathOf(b.record) + " starts at z = " + roundedNumber(b.z, 6) +
+                 ", below the world's lower bound z = " + roundedNumber(b.bound, 6) + " (" +
+                 roundedNumber(kLeaveMargin, 6) + " m under the lowest ground, " + pathOf(ground) +
+                 "): rscene-sim would take it out of the world at its first step",
+             diagnostics, Severity::Error, "place it above the ground");
+  }
   // One warning per body, naming the deepest it starts inside: the ground
   // or another body (a box sunk in the ground and into its neighbour is
   // one finding).
@@ -338,6 +426,7 @@ void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& dia
   };
   std::map<int, Deepest> deepest;  // body -> what it starts deepest inside
   auto take = [&](int body, int other, double depth) {
+    if (below.count(scene.objects[static_cast<std::size_t>(body)].recordIndex)) return;
     auto [it, added] = deepest.emplace(body, Deepest{other, depth});
     if (!added && depth > it->second.depth) it->second = {other, depth};
   };
@@ -347,6 +436,20 @@ void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& dia
     diagnostics.push_back(startOverlapDiagnostic(doc, scene.objects[static_cast<std::size_t>(body)].recordIndex,
                                                  scene.objects[static_cast<std::size_t>(d.other)].recordIndex,
                                                  d.depth));
+  // RS7014: a heavy body on a light one, at the heavier's mass.
+  for (const MassRatioStart& m : massRatioStarts(scene)) {
+    const Object& heavy = scene.objects[static_cast<std::size_t>(m.heavy)];
+    const Object& light = scene.objects[static_cast<std::size_t>(m.light)];
+    reportAt(&doc, heavy.recordIndex, "mass", rs::RS7014,
+             "dynamic body " + pathOf(heavy.recordIndex) + " (" + roundedNumber(heavy.effectiveMass(), 6) +
+                 " kg) starts touching " + pathOf(light.recordIndex) + " (" + roundedNumber(light.effectiveMass(), 6) +
+                 " kg), " + roundedNumber(m.ratio, 3) + " times lighter (more than " +
+                 roundedNumber(kMaxContactMassRatio, 6) +
+                 "): the contact solver cannot hold such a pair, and the heavy body sinks through the light one",
+             diagnostics, Severity::Warning,
+             "keep the masses of touching dynamic bodies within a factor of " + roundedNumber(kMaxContactMassRatio, 6) +
+                 ", or make the light one static or kinematic");
+  }
 }
 
 }  // namespace rscene

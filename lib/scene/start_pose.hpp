@@ -73,12 +73,51 @@ inline constexpr std::uint64_t kMaxStartPairVisits = 200'000'000;
 // are never visited, so a city of static boxes costs a sort.
 std::vector<BodyStart> bodyStarts(const Scene& scene);
 
+// Most two touching dynamic bodies' masses may differ by (RS7014): an
+// iterative contact solver (Bullet's sequential impulses) converges too
+// slowly past it to hold a heavy body on a light one.
+inline constexpr double kMaxContactMassRatio = 100;
+
+// A pair of dynamic pair-rule bodies that start touching or inside each
+// other (depth >= -kStartOverlapDepth) with masses more than
+// kMaxContactMassRatio apart.
+struct MassRatioStart {
+  int heavy = -1;  // Scene::objects index
+  int light = -1;
+  double ratio = 0;  // heavy / light
+};
+
+// One per heavier body (its largest ratio), in body order.
+std::vector<MassRatioStart> massRatioStarts(const Scene& scene);
+
+// How far below the lowest static geometry a dynamic body has left the
+// world (rscene-sim's WorldOptions::leaveMargin).
+inline constexpr double kLeaveMargin = 10;
+
+// A dynamic object or compound whose position starts more than
+// kLeaveMargin under the lowest ground or half_space (rscene-sim's floor
+// counts every plane, whatever its collision filter): rscene-sim would
+// take it out of the world at its first step.  Lower static geometry,
+// terrain and the broadphase bounds are rscene-sim's to judge, with the
+// same code, before its first step.
+struct BelowWorldStart {
+  int record = -1;  // the body's record
+  int ground = -1;  // Scene::objects index of the lowest plane
+  double z = 0;      // where it starts
+  double bound = 0;  // the lowest plane's height - kLeaveMargin
+};
+
+// Every such body, in record order.
+std::vector<BelowWorldStart> belowWorldStarts(const Scene& scene);
+
 // RS7013 for a dynamic body that starts `depth` m inside another record
 // (`otherRecord` < 0: a robot's link), at the body record's position: the
 // one wording of validate and sim.
 Diagnostic startOverlapDiagnostic(const Document& doc, int bodyRecord, int otherRecord, double depth);
 
-// Appends RS7013 for groundStarts(scene), then for bodyStarts(scene).
+// Appends RS7015 (error) for belowWorldStarts(scene), RS7013 for
+// groundStarts(scene) and bodyStarts(scene) (not for a body RS7015
+// refuses), then RS7014 for massRatioStarts(scene).
 void checkGroundStarts(const Document& doc, const Scene& scene, Diagnostics& diagnostics);
 
 }  // namespace rscene

@@ -54,6 +54,13 @@ class DeformableBody {
   // `surfaces` (m, its radius minus the centre's distance; 0 when none
   // overlaps), with that particle's index.  Before the first step.
   virtual double startOverlap(SurfaceQuery& surfaces, std::size_t& particle) const = 0;
+  // Before the first step: moves each free particle whose sphere starts
+  // inside a surface out along that surface's normal until it touches it
+  // (a micrometre clear), so that the first substep does not push it out
+  // with speed.  Returns the deepest start overlap it removed (m; 0 when
+  // none), `moved` the particles it moved.  Meant for overlaps up to half
+  // the radius (deeper ones are refused first, RS7077).
+  virtual double pushOut(SurfaceQuery& surfaces, std::size_t& moved) = 0;
   // Collision radius of the particles' proxy spheres (m).
   virtual double collisionRadius() const = 0;
   // Empty while the body's kinetic energy stays within what gravity and

@@ -81,6 +81,51 @@ double XpbdDeformable::startOverlap(SurfaceQuery& surfaces, std::size_t& particl
   return deepest;
 }
 
+double XpbdDeformable::pushOut(SurfaceQuery& surfaces, std::size_t& moved) {
+  moved = 0;
+  if (!m_.collidable || !finite_) return 0;
+  const double r = m_.collisionRadius, clear = 1e-6;
+  std::vector<Eigen::Vector3d>& x = m_.positions;
+  Eigen::AlignedBox3d region;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (m_.inverseMass[i] != 0) region.extend(x[i]);
+  if (region.isEmpty()) return 0;
+  // A particle moves by at most its overlap (at most r): the region grown
+  // by twice the radius holds every surface it meets on its way.
+  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(2 * r + clear);
+  surfaces.prepare(Eigen::AlignedBox3d(region.min() - grow, region.max() + grow), m_.collisionGroup,
+                   m_.collisionMask, m_.contactMaterial);
+  double deepest = 0;
+  std::vector<char> pushed(x.size(), 0);
+  std::vector<SurfaceContact> found;
+  // Out of the deepest surface each pass (a corner of two is two passes);
+  // a few passes, not a loop that could run on.
+  for (int pass = 0; pass < 4; ++pass) {
+    bool any = false;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (m_.inverseMass[i] == 0) continue;  // pinned: held where the user put it
+      found.clear();
+      surfaces.contacts(x[i], r, 0, found);
+      const SurfaceContact* worst = nullptr;
+      for (const SurfaceContact& c : found)
+        if (c.depth > 0 && c.normal.allFinite() && (!worst || c.depth > worst->depth)) worst = &c;
+      if (!worst) continue;
+      if (pass == 0) deepest = std::max(deepest, worst->depth);
+      x[i] += (worst->depth + clear) * worst->normal;
+      pushed[i] = 1;
+      any = true;
+    }
+    if (!any) break;
+  }
+  moved = static_cast<std::size_t>(std::count(pushed.begin(), pushed.end(), 1));
+  // Gravity's work (runaway()) counts from where the particles now start.
+  startSum_.setZero();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (m_.inverseMass[i] != 0) startSum_ += x[i];
+  finite_ = std::all_of(x.begin(), x.end(), [](const auto& p) { return p.allFinite(); });
+  return deepest;
+}
+
 // Kinetic energy past twice what gravity and the surfaces gave the free
 // particles, plus that of the body moving at 1 m/s (the margin for a body
 // at rest): no physics makes it, a stiff or degenerate constraint for the

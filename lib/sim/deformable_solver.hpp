@@ -56,6 +56,7 @@ class XpbdDeformable final : public DeformableBody {
            static_cast<double>(m_.iterations) * static_cast<double>(m_.substeps);
   }
   double startOverlap(SurfaceQuery& surfaces, std::size_t& particle) const override;
+  double pushOut(SurfaceQuery& surfaces, std::size_t& moved) override;
   double collisionRadius() const override { return m_.collisionRadius; }
   std::string runaway() const override;
   // The energy balance after the last step (J): kinetic energy of the free

@@ -115,12 +115,28 @@ std::vector<ParticleSystems::DeformableCost> ParticleSystems::deformableCosts() 
 }
 
 bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc,
-                                            Diagnostics& diagnostics) const {
+                                            Diagnostics& diagnostics) {
   bool ok = true;
-  for (const DeformableEntry& d : deformables_) {
+  for (DeformableEntry& d : deformables_) {
     std::size_t particle = 0;
     const double depth = d.body->startOverlap(surfaces, particle), r = d.body->collisionRadius();
-    if (!(depth > 0.5 * r + 1e-6)) continue;
+    if (!(depth > 0.5 * r + 1e-6)) {
+      if (!(depth > 0)) continue;
+      // Up to half the radius: out before the first step, where the first
+      // substep would push it out at depth / substep (5 mm in 1 ms is
+      // 5 m/s: a launch the divergence check stops, RS7024).
+      std::size_t moved = 0;
+      const double removed = d.body->pushOut(surfaces, moved);
+      if (removed > 1e-6)
+        reportAt(doc, d.recordIndex, "position", rs::RS7016,
+                 "deformable '" + d.path + "': " + std::to_string(moved) + (moved == 1 ? " particle starts" : " particles start") +
+                     " inside the ground or another body, up to " + roundedNumber(removed, 3) +
+                     " m deep (its sphere of collisionRadius " + roundedNumber(r, 6) +
+                     " m overlapping it); moved out along the contact normal before the first step",
+                 diagnostics, Severity::Warning,
+                 "place the deformable at least its collisionRadius above the ground and clear of other bodies");
+      continue;
+    }
     const Eigen::Vector3d& at = d.body->positions()[particle];
     reportAt(doc, d.recordIndex, "position", rs::RS7077,
              "deformable '" + d.path + "': particle " + std::to_string(particle) + " at (" + roundedNumber(at.x(), 6) +
@@ -218,12 +234,27 @@ std::vector<Eigen::Vector3d> ParticleSystems::local(const GranularEntry& g) {
   return out;
 }
 
+namespace {
+
+// The one velocity writeBack() gives a granular record: its grains' mean
+// velocity now, in the record's frame.
+Eigen::Vector3d meanVelocity(const GranularBody& body, const Pose& frame) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : body.velocities()) mean += v;
+  if (!body.velocities().empty()) mean /= static_cast<double>(body.velocities().size());
+  return frame.orientation.conjugate() * mean;
+}
+
+}  // namespace
+
 std::optional<ParticleFailure> ParticleSystems::unwritable(SurfaceQuery* surfaces) const {
   for (const GranularEntry& g : granulars_) {
     if (g.body->positions().empty() || g.record.fixed) continue;  // written as they were read
     Granular settled = g.record;
     settled.positions = local(g);
     settled.radii = g.body->radii();
+    settled.velocity = meanVelocity(*g.body, g.frame);  // past 1e4 m/s: RS7088 when reloaded
+    settled.angularVelocity.setZero();
     std::vector<ParticleFinding> findings;
     granularSetup(settled, timeStep_, findings, false);
     for (const ParticleFinding& f : findings) {
@@ -285,10 +316,7 @@ void ParticleSystems::writeBack(Document& doc) const {
     // in its frame): the grains' mean velocity now, so a bed that came to
     // rest reloads at rest instead of launched again; the grains' own
     // spins are not kept (angularVelocity becomes 0).
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& v : g.body->velocities()) mean += v;
-    if (!g.body->velocities().empty()) mean /= static_cast<double>(g.body->velocities().size());
-    mean = g.frame.orientation.conjugate() * mean;
+    const Eigen::Vector3d mean = meanVelocity(*g.body, g.frame);
     std::string velocity;
     for (int k = 0; k < 3; ++k) {
       if (k) velocity += ',';

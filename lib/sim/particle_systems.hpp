@@ -66,8 +66,10 @@ class ParticleSystems {
   std::vector<DeformableCost> deformableCosts() const;
   // Before the first step: false after an error (RS7077) at each deformable
   // whose free particle starts deeper than half its collisionRadius inside
-  // a surface (pushing it out in one substep would throw it).
-  bool checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics) const;
+  // a surface (pushing it out in one substep would throw it).  Shallower
+  // overlaps are removed here (DeformableBody::pushOut), with a warning
+  // (RS7016) at the record when one was deeper than a micrometre.
+  bool checkDeformableStarts(SurfaceQuery& surfaces, const Document* doc, Diagnostics& diagnostics);
   // Granular records: grains, substeps a step and candidate pairs, in
   // record order, for the per-run cap (checkGranularWork, limits.hpp).
   struct GranularCost {

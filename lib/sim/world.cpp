@@ -183,6 +183,10 @@ struct Simulated {
   btTransform toRecord = btTransform::getIdentity();  // body frame -> record frame (compound COM shift)
   int positionToken = 2;
   bool departed = false;
+  // Steps in a row its speeds stayed below the solver's sleeping
+  // thresholds (World::atRest(): a body Bullet keeps awake on a still
+  // kinematic one).
+  int quietSteps = 0;
 };
 
 // Bullet's contact-manifold and collision-algorithm pools are allocated
@@ -305,7 +309,7 @@ struct World::Impl {
   std::vector<std::shared_ptr<const asset::Mesh>> meshes;  // triangle shapes point into them
   std::map<std::string, btCollisionShape*> meshShapes;     // one shape per file, scale and kind
   double floorZ = std::numeric_limits<double>::infinity();  // lowest static geometry
-  double leaveMargin = 10;
+  double leaveMargin = kLeaveMargin;
   bool bounded = false;
   btVector3 boundsMin, boundsMax;
   std::vector<Departure> departures;
@@ -326,6 +330,7 @@ struct World::Impl {
   std::unique_ptr<BulletSurfaces> surfaces;  // what their particles touch (null when there are none)
   std::vector<SelfPairs> selfPairs;  // per robot
   double sleepLinear = 0, sleepAngular = 0;  // the solver's sleeping thresholds (robots' atRest)
+  int sleepQuietSteps = 1;                   // and the steps below them before a body sleeps
   std::unordered_map<std::string, btRigidBody*> byName;  // id and path -> body
   // Names a node by the scene model's rule: an id wins over another node's
   // path, whichever was added first.
@@ -393,6 +398,87 @@ struct World::Impl {
       // world with no static geometry.
       std::snprintf(why, sizeof why, "went more than %g m from the origin", kMaxLength);
     return why;
+  }
+
+  // Whether every awake dynamic body is awake only because Bullet keeps a
+  // body touching a kinematic one awake (a kinematic body never sleeps
+  // here, DISABLE_DEACTIVATION, and wakes what it touches each step): it
+  // can sleep (sleeping enabled), it has stayed below the sleeping
+  // thresholds for sleepingQuietSteps steps, and the bodies it rests on,
+  // through contacts between dynamic bodies, include a kinematic one and
+  // no kinematic one that moves.  Such a body rests relative to a still
+  // body, so --until-rest may stop.
+  bool awakeOnlyOnStillKinematics() const {
+    std::unordered_map<const btCollisionObject*, std::size_t> index;  // dynamic body -> simulated
+    for (std::size_t i = 0; i < simulated.size(); ++i)
+      if (simulated[i].dynamic && !simulated[i].departed) index[simulated[i].body] = i;
+    std::vector<std::size_t> parent(simulated.size());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto root = [&](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::vector<char> held(simulated.size(), 0), moved(simulated.size(), 0);  // per body, then per root
+    std::vector<std::pair<std::size_t, bool>> kinematicTouches;               // body, the kinematic one moves
+    for (int i = 0, m = dispatcher.getNumManifolds(); i < m; ++i) {
+      const btPersistentManifold* manifold = const_cast<btCollisionDispatcher&>(dispatcher).getManifoldByIndexInternal(i);
+      if (manifold->getNumContacts() == 0) continue;
+      const btCollisionObject* a = manifold->getBody0();
+      const btCollisionObject* b = manifold->getBody1();
+      auto ia = index.find(a), ib = index.find(b);
+      if (ia != index.end() && ib != index.end()) {
+        parent[root(ia->second)] = root(ib->second);
+        continue;
+      }
+      for (auto [dyn, other] : {std::pair{ia, b}, std::pair{ib, a}}) {
+        if (dyn == index.end() || !other->isKinematicObject()) continue;
+        const btRigidBody* k = btRigidBody::upcast(other);
+        const bool moves = !k || !k->getLinearVelocity().fuzzyZero() || !k->getAngularVelocity().fuzzyZero();
+        kinematicTouches.push_back({dyn->second, moves});
+      }
+    }
+    for (auto [body, moves] : kinematicTouches) {
+      held[root(body)] = 1;
+      if (moves) moved[root(body)] = 1;
+    }
+    for (std::size_t i = 0; i < simulated.size(); ++i) {
+      const Simulated& s = simulated[i];
+      if (!s.dynamic || s.departed || !s.body->isActive()) continue;
+      if (s.body->getActivationState() == DISABLE_DEACTIVATION) return false;  // sleeping disabled: never rests
+      if (s.quietSteps < sleepQuietSteps) return false;
+      const std::size_t r = root(i);
+      if (!held[r] || moved[r]) return false;
+    }
+    return true;
+  }
+
+  // RS7015 for each dynamic body that starts where departure() would take
+  // it out at the first step (below the floor, outside the broadphase
+  // bounds): refused before any step, not reported as having left.  Under
+  // a ground or half_space the scene model said it already (checkScene(),
+  // scene/start_pose.hpp); this is the rest: lower static geometry,
+  // terrain, the bounds.
+  bool startsInWorld(const Document* doc, Diagnostics& diagnostics) const {
+    bool ok = true;
+    for (const Simulated& s : simulated) {
+      if (!s.dynamic) continue;
+      const btVector3 p = s.body->getCenterOfMassPosition();
+      char why[200] = "";
+      if (std::isfinite(floorZ) && p.z() < floorZ - leaveMargin)
+        std::snprintf(why, sizeof why,
+                      "starts at z = %g, below the world's lower bound z = %g (%g m under the lowest static geometry)",
+                      double(p.z()), floorZ - leaveMargin, leaveMargin);
+      else if (bounded && (p.x() < boundsMin.x() || p.y() < boundsMin.y() || p.z() < boundsMin.z() ||
+                           p.x() > boundsMax.x() || p.y() > boundsMax.y() || p.z() > boundsMax.z()))
+        std::snprintf(why, sizeof why, "starts at (%g, %g, %g), outside the solver's broadphase bounds", double(p.x()),
+                      double(p.y()), double(p.z()));
+      if (!*why) continue;
+      reportAt(doc, s.recordIndex, "position", rs::RS7015,
+               "dynamic body '" + s.path + "' " + why + ": rscene-sim would take it out of the world at its first step",
+               diagnostics, Severity::Error, "place it inside the world, above the ground");
+      ok = false;
+    }
+    return ok;
   }
 
   // Takes `s` out of the world where it is now: no more steps, contacts,
@@ -740,6 +826,7 @@ struct World::Impl {
     allowMissingAssets = options.allowMissingAssets;
     sleepLinear = scene.solver.sleepingLinearVelocityThreshold;
     sleepAngular = scene.solver.sleepingAngularVelocityThreshold;
+    sleepQuietSteps = std::max(1, scene.solver.sleepingQuietSteps);
     const Solver& sv = scene.solver;
     bounded = sv.broadphaseUseWorldBounds;
     boundsMin = bt(sv.broadphaseWorldMin);
@@ -1014,6 +1101,7 @@ std::unique_ptr<World> World::create(const Scene& scene, Diagnostics& diagnostic
   if (w.surfaces && !w.particles.checkGranularStarts(*w.surfaces, options.document, diagnostics)) return nullptr;
   if (!w.deformableMassRatios(scene, options.document, diagnostics)) return nullptr;
   if (!w.robotsAboveGround(options.document, diagnostics)) return nullptr;
+  if (!w.startsInWorld(options.document, diagnostics)) return nullptr;
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 
@@ -1038,6 +1126,9 @@ void World::step() {
   ++w.stepCount;
   for (Simulated& s : w.simulated) {
     if (!s.dynamic || s.departed) continue;
+    const bool quiet = s.body->getLinearVelocity().length() < w.sleepLinear &&
+                       s.body->getAngularVelocity().length() < w.sleepAngular;
+    s.quietSteps = quiet ? std::min(s.quietSteps + 1, 1 << 30) : 0;
     // Bullet silently stops simulating a dynamic body whose bounding box
     // (swept over the step) spans more than 10^6 m: it moved too fast or
     // grew too large.  Say so instead of writing a frozen pose as if it rested.
@@ -1081,8 +1172,10 @@ int World::bodyCount() const { return static_cast<int>(impl_->simulated.size());
 int World::contactCount() const { return impl_->contacts; }
 
 bool World::atRest() const {
+  bool awake = false;
   for (const Simulated& s : impl_->simulated)
-    if (s.dynamic && !s.departed && s.body->isActive()) return false;
+    awake = awake || (s.dynamic && !s.departed && s.body->isActive());
+  if (awake && !impl_->awakeOnlyOnStillKinematics()) return false;
   if (impl_->penetrating) return false;  // still being pushed out of another body
   if (!impl_->particles.atRest(impl_->sleepLinear)) return false;
   if (impl_->robots.empty()) return true;

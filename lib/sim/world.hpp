@@ -118,7 +118,7 @@ struct WorldOptions {
   asset::AssetCache* assets = nullptr;  // null: the world reads the disk through a cache of its own
   // A dynamic body more than this far below the lowest static geometry
   // has left the world (it fell off the edge or through the floor).
-  double leaveMargin = 10;
+  double leaveMargin = kLeaveMargin;  // scene/start_pose.hpp (RS7015)
   // Cap on the overlapping body pairs the broadphase keeps (each costs a
   // contact manifold, about 8.5 KB): n dynamic bodies in one spot make n^2/2.
   // Past it no pair is added and pairOverflow() says so.  0: no cap.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "core/loader.hpp"
@@ -27,6 +28,8 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
   return s.replace(s.find(from), from.size(), to);
 }
 const std::string K = "compound /World/k 0 0 1 1 0 0 0 1 1 1 2 dynamic true true\n";
+// A static ground at z = 0.
+const std::string G = "object /World/g ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615\n";
 // A 3 x 3 x 3 box fill of grains (radius 0.05, spacing 0.1) stable at the
 // default time step in 4 substeps, with `keys` after (a later key wins).
 std::string granular(const std::string& keys, const std::string& substeps = "4", const std::string& radius = "0.05",
@@ -121,6 +124,20 @@ std::vector<Case> cases() {
            "18446744073709551615\n" + granular("").substr(H.size())},
       {"RS7092", granular("cohesionStiffness=1e9 cohesionMaxDistance=0.05"),
        granular("cohesionStiffness=10 cohesionMaxDistance=0.05")},
+      // Hostile input round two, trial: grains may not start faster than
+      // 1e4 m/s (velocity, or a spin's surface speed: radius 0.05 here).
+      {"RS7088", granular("velocity=1e9,0,0"), granular("velocity=1e4,0,0")},
+      {"RS7088", granular("angularVelocity=0,0,3e5"), granular("angularVelocity=0,0,1e5")},
+      // A 1000 kg crate on a 1 kg one sinks through it (RS7014, at the
+      // heavy one's mass); 100:1 holds.
+      {"RS7014",
+       H + G + replaced(object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/light"), " 0 0 1 ", " 0 0 0.5 ") +
+           replaced(object("box", "1 1 1", "0.5", "1000", "dynamic", "", "/World/heavy"), " 0 0 1 ", " 0 0 1.5 "),
+       H + G + replaced(object("box", "1 1 1", "0.5", "1", "dynamic", "", "/World/light"), " 0 0 1 ", " 0 0 0.5 ") +
+           replaced(object("box", "1 1 1", "0.5", "100", "dynamic", "", "/World/heavy"), " 0 0 1 ", " 0 0 1.5 ")},
+      // A dynamic body starting 100 m under the ground (RS7015), not a
+      // run-time "fell below" (RS7012).
+      {"RS7015", H + G + replaced(object("box"), " 0 0 1 ", " 0 0 -100 "), H + G + replaced(object("box"), " 0 0 1 ", " 0 0 0.5 ")},
       {"RS7081", deformable("totalMass=0"), deformable("totalMass=2")},
       {"RS7081", deformable("particleMode=filled particleSpacing=0"), deformable("particleMode=filled")},
       // One outputPath rule for validate, sim and render (issue 23): a NUL
@@ -358,7 +375,6 @@ std::string atZ(const std::string& prim, const std::string& z, const std::string
   return "object /World/b " + prim + " 0 0 " + z + " " + orientation + " " + scale + " " + radius +
          " 1 1 default engine_default false true false - dynamic true 1 " + mask + "\n";
 }
-const std::string G = "object /World/g ground 0 0 0 1 0 0 0 10 10 1 1 0 0 default engine_default false true true - static true 1 18446744073709551615\n";
 
 int count(const Diagnostics& ds, const std::string& code) {
   int n = 0;
@@ -572,6 +588,83 @@ TEST(BodyStart, ABroadPhaseOverTwentyThousandBoxesFindsTheOneOverlap) {
   // b12345 (upper layer, i 45, j 23) moved 3 cm along x: into b12346
   // and resting 5 mm on b2345 and b2346 (contact).
   EXPECT_EQ(overlaps(scene(12345)), "12349: dynamic body '/World/b12346' starts 0.03 m inside '/World/b12345'\n");
+}
+
+// RS7014: dynamic bodies touching at start whose masses are more than
+// 100 times apart, at the heavier one's mass, one warning per heavy body.
+std::string weighing(const std::string& path, const std::string& xyz, const std::string& mass,
+                     const std::string& mode = "dynamic", const std::string& prim = "box") {
+  return replaced(body(path, prim, xyz, "1 1 1", "0.5", "1 0 0 0", mode), " 1 1 default", " 1 " + mass + " default");
+}
+std::string ratios(const std::string& text) {
+  std::string out;
+  for (const Diagnostic& d : validate(text))
+    if (d.code == "RS7014") out += std::to_string(d.line) + ":" + std::to_string(d.column) + ": " + d.message + "\n";
+  return out;
+}
+
+TEST(MassRatioStart, AHeavyCrateOnALightOneWarnsAtTheHeavyOnesMass) {
+  // The trial's crates: 1000 kg resting on 1 kg.
+  Diagnostics ds = validate(H + G + weighing("/World/light", "0 0 0.5", "1") + weighing("/World/heavy", "0 0 1.5", "1000"));
+  ASSERT_EQ(count(ds, "RS7014"), 1) << describe(ds);
+  for (const Diagnostic& d : ds)
+    if (d.code == "RS7014") {
+      EXPECT_EQ(d.severity, Severity::Warning);
+      EXPECT_EQ(d.line, 4u);
+      // the mass field: the 17th token of `object`
+      const std::string line = weighing("/World/heavy", "0 0 1.5", "1000");
+      EXPECT_EQ(d.column, line.find(" 1000 ") + 2) << d.column;
+      EXPECT_EQ(d.message,
+                "dynamic body '/World/heavy' (1000 kg) starts touching '/World/light' (1 kg), 1e+03 times lighter (more "
+                "than 100): the contact solver cannot hold such a pair, and the heavy body sinks through the light one");
+    }
+  // Whichever lies on top, the warning is at the heavier body.
+  EXPECT_EQ(ratios(H + G + weighing("/World/heavy", "0 0 0.5", "1000") + weighing("/World/light", "0 0 1.5", "1"))
+                .substr(0, 2),
+            "3:");
+  // Side by side, touching, or 5 mm apart: in contact; 2 cm apart: not.
+  EXPECT_NE(ratios(H + G + weighing("/World/a", "0 0 0.5", "500") + weighing("/World/b", "1.005 0 0.5", "2")), "");
+  EXPECT_EQ(ratios(H + G + weighing("/World/a", "0 0 0.5", "500") + weighing("/World/b", "1.02 0 0.5", "2")), "");
+  // Within the bound; a static or kinematic partner holds any mass.
+  EXPECT_EQ(ratios(H + G + weighing("/World/a", "0 0 0.5", "1") + weighing("/World/b", "0 0 1.5", "100")), "");
+  EXPECT_EQ(ratios(H + G + weighing("/World/a", "0 0 0.5", "1", "static") + weighing("/World/b", "0 0 1.5", "1e4")), "");
+  EXPECT_EQ(ratios(H + G + weighing("/World/a", "0 0 0.5", "1", "kinematic") + weighing("/World/b", "0 0 1.5", "1e4")), "");
+  // Spheres too; a heavy body on three light ones is one warning, naming the largest ratio.
+  EXPECT_NE(ratios(H + G + weighing("/World/a", "0 0 0.5", "1", "dynamic", "sphere") +
+                   weighing("/World/b", "0 0 1.5", "1000", "dynamic", "sphere")),
+            "");
+  std::string three = H + G + weighing("/World/l1", "-1 0 0.5", "2") + weighing("/World/l2", "0 0 0.5", "1") +
+                      weighing("/World/l3", "1 0 0.5", "3") + replaced(weighing("/World/plank", "0 0 1.5", "1000"), " 1 1 1 ", " 3 1 1 ");
+  const std::string found = ratios(three);
+  EXPECT_EQ(std::count(found.begin(), found.end(), '\n'), 1) << found;
+  EXPECT_NE(found.find("starts touching '/World/l2' (1 kg)"), std::string::npos) << found;
+}
+
+// RS7015: a dynamic body that starts more than 10 m under the lowest
+// ground or half_space is refused at its position (rscene-sim would take
+// it out of the world at its first step), not also RS7013.
+TEST(BelowWorldStart, ABodyStartingTenMetresUnderTheGroundIsRefusedAtItsPosition) {
+  Diagnostics ds = validate(H + G + atZ("box", "-100"));
+  EXPECT_EQ(codes(ds), std::vector<std::string>{"RS7015"}) << describe(ds);
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].severity, Severity::Error);
+  EXPECT_EQ(ds[0].line, 3u);
+  EXPECT_EQ(ds[0].column, atZ("box", "-100").find(" 0 0 -100") + 2);
+  EXPECT_EQ(ds[0].message,
+            "dynamic body '/World/b' starts at z = -100, below the world's lower bound z = -10 (10 m under the lowest "
+            "ground, '/World/g'): rscene-sim would take it out of the world at its first step");
+  // 9.9 m under: inside the ground (RS7013, a warning), still in the world.
+  EXPECT_EQ(codes(validate(H + G + atZ("box", "-9.9"))), std::vector<std::string>{"RS7013"});
+  EXPECT_EQ(codes(validate(H + G + atZ("box", "-10.1"))), std::vector<std::string>{"RS7015"});
+  // The lowest plane counts, whatever its filter; no plane, no bound here
+  // (rscene-sim judges other static geometry); static bodies stay anywhere.
+  const std::string low = replaced(replaced(G, "/World/g", "/World/low"), " 0 0 0 1 0 0 0 10", " 0 0 -200 1 0 0 0 10");
+  EXPECT_EQ(count(validate(H + G + low + atZ("box", "-100")), "RS7015"), 0);
+  EXPECT_EQ(count(validate(H + atZ("box", "-100")), "RS7015"), 0);
+  EXPECT_EQ(count(validate(H + G + replaced(atZ("box", "-100"), " dynamic ", " static ")), "RS7015"), 0);
+  // Compounds and meshes by their position.
+  Diagnostics c = validate(H + G + "compound /World/k 0 0 -50 1 0 0 0 1 1 1 2 dynamic true true\n" + child("box", ""));
+  EXPECT_EQ(codes(c), std::vector<std::string>{"RS7015"}) << describe(c);
 }
 
 }  // namespace

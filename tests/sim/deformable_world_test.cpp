@@ -95,6 +95,45 @@ TEST(DeformableWorld, AClothStartingBelowTheGroundIsRefusedAtItsPosition) {
   EXPECT_TRUE(ok->world) << test::firstMessage(ok->diags);
 }
 
+// Hostile input round two, trial: a cloth whose particle spheres start up
+// to half their radius inside the ground (allowed by RS7077) failed at its
+// first step as diverged (RS7024): the first substep pushed them out at
+// up to 5 m/s.  They are moved out before the first step, with a warning
+// (RS7016) at the record's position, and the cloth rests.
+TEST(DeformableWorld, AClothStartingSlightlyInTheGroundIsMovedOutAndRests) {
+  MemoryFileSystem fs;
+  fs.addFile("/s/cloth.obj", test::gridObj(9, 1));
+  asset::AssetCache cache(fs);
+  for (const char* z : {"0.0055", "0.0095"}) {  // 4.5 mm and 0.5 mm into the ground (radius 1 cm)
+    SCOPED_TRACE(z);
+    auto r = make(kGround + "deformable /World/Cloth cloth cloth.obj 0 0 " + z +
+                      " 1 0 0 0 1 1 1 totalMass=0.3 collisionRadius=0.01 iterations=8\n",
+                  cache);
+    ASSERT_TRUE(r->world) << test::firstMessage(r->diags);
+    ASSERT_EQ(r->diags.size(), 1u) << test::firstMessage(r->diags);
+    const Diagnostic& d = r->diags[0];
+    EXPECT_EQ(d.code, "RS7016");
+    EXPECT_EQ(d.severity, Severity::Warning);
+    EXPECT_EQ(d.line, 4u);
+    EXPECT_GT(d.column, 0u);
+    EXPECT_NE(d.message.find("deformable '/World/Cloth': 81 particles start inside the ground or another body, up to "),
+              std::string::npos)
+        << d.message;
+    // Where the first step starts: every sphere on the ground, none in it.
+    for (const Eigen::Vector3d& x : *r->world->particleStates()[0].points) EXPECT_GE(x.z(), 0.01);
+    for (int i = 0; i < 500; ++i) {
+      r->world->step();
+      ASSERT_FALSE(r->world->nonFinite()) << "step " << i + 1 << ": " << r->world->nonFinite()->cause;
+    }
+    EXPECT_TRUE(r->world->atRest());
+    for (const Eigen::Vector3d& x : *r->world->particleStates()[0].points) EXPECT_NEAR(x.z(), 0.01, 2e-3);
+  }
+  // Resting on it, or clear of it: no warning.
+  auto clear = make(kGround + "deformable /World/Cloth cloth cloth.obj 0 0 0.0100001 1 0 0 0 1 1 1 collisionRadius=0.01\n", cache);
+  ASSERT_TRUE(clear->world);
+  EXPECT_TRUE(clear->diags.empty()) << test::firstMessage(clear->diags);
+}
+
 TEST(DeformableWorld, AClothStartingInsideABoxIsRefused) {
   MemoryFileSystem fs;
   fs.addFile("/s/cloth.obj", test::gridObj(9, 1));

@@ -585,16 +585,39 @@ TEST(Granular, EnergyFromNothingStopsTheRun) {
 
 // Issue 24 (12): grains written past 1e9 m were refused on reload.
 TEST(Granular, GrainsLeavingTheBoundsStopTheRun) {
-  Granular g = record({{0, 0, 1}});
-  g.velocity = {1e9, 0, 0};
+  // 55 m inside the bound at the fastest start a record may give (1e4 m/s):
+  // 10 m a step, past 1e9 m in the sixth.
+  Granular g = record({{1e9 - 55, 0, 1}});
+  g.velocity = {kMaxGranularSpeed, 0, 0};
   auto body = make(g, 0.001);
   AnalyticSurfaces none;
   for (int k = 0; k < 3000 && !body->failure(); ++k) body->step(0.001, Eigen::Vector3d::Zero(), none);
   ASSERT_TRUE(body->failure());
   EXPECT_STREQ(body->failure()->code, "RS7084");
-  EXPECT_NE(body->failure()->message.find("grain 0 is past 1e9 m at step 1001"), std::string::npos)
+  EXPECT_NE(body->failure()->message.find("grain 0 is past 1e9 m at step 6"), std::string::npos)
       << body->failure()->message;
   for (const auto& p : body->positions()) EXPECT_LE(std::abs(p.x()), 1.001e9);
+}
+
+// Hostile input round two, trial: velocity=1e9 was accepted and the run
+// failed later (RS7084); a start past 1e4 m/s is refused at its key.
+TEST(Granular, AStartFasterThanTheBoundIsRefusedAtItsKey) {
+  Granular g = record({{0, 0, 1}});
+  g.velocity = {1e9, 0, 0};
+  auto f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_STREQ(f[0].code, "RS7088");
+  EXPECT_EQ(f[0].field, "velocity");
+  g.velocity = {0, 0, -1.01e4};
+  EXPECT_EQ(refused(g).size(), 1u);
+  g.velocity = {0, 0, 0};
+  g.angularVelocity = {0, 6e5, 0};  // radius 0.02: 1.2e4 m/s at the surface
+  f = refused(g);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].field, "angularVelocity");
+  g.angularVelocity = {0, 4e5, 0};  // 8e3 m/s
+  std::vector<GranularFinding> fine;
+  EXPECT_TRUE(make(g, 0.001, &fine));
 }
 
 // Issue 24 (15): the messages point at the key that is wrong and print

@@ -213,6 +213,77 @@ TEST(SimAssets, ABodyLeavingTheBroadphaseBoundsLeavesTheWorld) {
   EXPECT_LT(r->world->departures()[0].position.y(), 5.1);
 }
 
+// Hostile input round two, trial: a body that starts where it would leave
+// the world at its first step is refused before it (RS7015), not reported
+// as having fallen (RS7012).  Under a ground it is the scene model's rule
+// (checkScene); under other static geometry and outside the broadphase
+// bounds the world's.
+TEST(SimAssets, ABodyStartingOutsideTheWorldIsRefusedAtItsPosition) {
+  auto refused = [](const std::string& text) {
+    ::Run r;
+    LoadResult loaded = parse("raisim_engine_scene 1\n" + text);
+    EXPECT_TRUE(loaded.ok());
+    r.doc = std::move(loaded.document);
+    EXPECT_TRUE(buildScene(r.doc, {}, r.scene, r.diags));
+    EXPECT_TRUE(checkPhysics(r.doc, r.scene, r.diags)) << (r.diags.empty() ? "" : r.diags[0].message);
+    WorldOptions wo;
+    wo.document = &r.doc;
+    EXPECT_FALSE(World::create(r.scene, r.diags, wo));
+    return r.diags;
+  };
+  // A static box (bottom at z = -0.5) and a box 20 m down.
+  Diagnostics ds = refused(object("/World/Floor", "box", 0, 0, 0, "1 1 1", 1, "static") +
+                           object("/World/Deep", "box", 0, 0, -20, "0.4 0.4 0.4", 1, "dynamic"));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7015");
+  EXPECT_EQ(ds[0].severity, Severity::Error);
+  EXPECT_EQ(ds[0].line, 3u);
+  EXPECT_GT(ds[0].column, 0u);
+  EXPECT_EQ(ds[0].message,
+            "dynamic body '/World/Deep' starts at z = -20, below the world's lower bound z = -10.5 (10 m under the "
+            "lowest static geometry): rscene-sim would take it out of the world at its first step");
+  ds = refused("solver 80 1e-07 0.2 accurate broadphaseUseWorldBounds=true broadphaseWorldMin=-5,-5,-5 "
+               "broadphaseWorldMax=5,5,5\n" + kGround + object("/World/Far", "sphere", 0, 8, 0.5, "1 1 1", 1, "dynamic"));
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].code, "RS7015");
+  EXPECT_EQ(ds[0].message,
+            "dynamic body '/World/Far' starts at (0, 8, 0.5), outside the solver's broadphase bounds: rscene-sim would "
+            "take it out of the world at its first step");
+  // Under a ground: the scene model's, the same code.
+  ::Run r;
+  r.doc = parse("raisim_engine_scene 1\n" + kGround + object("/World/Deep", "box", 0, 0, -100, "0.4 0.4 0.4", 1, "dynamic"))
+              .document;
+  EXPECT_TRUE(buildScene(r.doc, {}, r.scene, r.diags));
+  EXPECT_FALSE(checkPhysics(r.doc, r.scene, r.diags));
+  ASSERT_EQ(r.diags.size(), 1u);
+  EXPECT_EQ(r.diags[0].code, "RS7015");
+}
+
+// Bullet keeps a body touching a kinematic one awake (the kinematic body
+// never sleeps and wakes what it touches every step): such a body, and one
+// resting on it, rest once they have been still for sleepingQuietSteps
+// steps on a kinematic body that does not move (--until-rest stops).
+TEST(SimRest, BodiesRestingOnAStillKinematicBodyAreAtRest) {
+  const std::string table = object("/World/Table", "box", 0, 0, 0.25, "2 2 0.5", 1, "kinematic");
+  auto r = make(table + object("/World/Crate", "box", 0, 0, 0.75, "0.5 0.5 0.5", 2, "dynamic") +
+                object("/World/Top", "box", 0, 0, 1.25, "0.5 0.5 0.5", 2, "dynamic"));
+  int n = 0;
+  for (; n < 4000 && !r->world->atRest(); ++n) r->world->step();
+  EXPECT_TRUE(r->world->atRest()) << "after " << n << " steps";
+  EXPECT_LT(n, 1000);
+  EXPECT_NEAR(state(*r->world, "/World/Crate").position.z(), 0.75, 0.005);
+  EXPECT_NEAR(state(*r->world, "/World/Top").position.z(), 1.25, 0.005);
+  // A body still falling onto it is not at rest.
+  auto falling = make(table + object("/World/Crate", "box", 0, 0, 3, "0.5 0.5 0.5", 2, "dynamic"));
+  falling->world->step();
+  EXPECT_FALSE(falling->world->atRest());
+  // With sleeping off no body rests, on a kinematic body either.
+  auto awake = make("solver 80 1e-07 0.2 accurate sleepingEnabled=false\n" + table +
+                    object("/World/Crate", "box", 0, 0, 0.75, "0.5 0.5 0.5", 2, "dynamic"));
+  for (int i = 0; i < 1000; ++i) awake->world->step();
+  EXPECT_FALSE(awake->world->atRest());
+}
+
 TEST(SimAssets, BodiesRestingOnTheGroundNeverLeave) {
   auto r = make(kGround + object("/World/B", "box", 0, 0, 0.2, "0.4 0.4 0.4", 1, "dynamic"));
   steps(*r->world, 3);
