@@ -256,6 +256,26 @@ chrome() {
   [ "$(count changed "$base")" -gt $(( 2 * $(count changed "$knee") )) ]
 }
 
+@test "review: a robot file changed marks the robots that use it" {
+  robots="$DATA/robots/check"
+  sed 's|<box size="0.4 0.3 0.1"/></geometry></visual>|<box size="0.6 0.3 0.2"/></geometry></visual>|' "$robots/walker.urdf" > wide.urdf
+  walker() {  # $1: the robot file
+    printf '%s\n' "raisim_engine_scene 1" "light /World/Sun 0.3 0.2 -1 3 type=directional shadows=true" \
+      "object /World/Ground ground 0 0 0 1 0 0 0 20 20 1 1 0 0 default - false true true - static true 1 18446744073709551615" \
+      "articulated_resource walker_res Walker $1" \
+      "articulated /World/W walker_res 0 0 0.5 1 0 0 0 true true id=walker" \
+      'camera /World/Cam -1.2 -1.2 0.8 0.9188 -0.0400 0.0966 0.3806 50 0.05 50 160 96 rgb true'
+  }
+  walker "$robots/walker.urdf" > a.rscene
+  walker "$PWD/wide.urdf" > b.rscene
+  run review a.rscene b.rscene
+  [ "$status" -eq 1 ]
+  f=$(facts out/changes.png)
+  echo "$f"
+  [ "$(count changed "$f")" -gt 20 ]
+  grep -qF '| articulated\_resource walker\_res | changed | sourcePath |' out/review.md
+}
+
 @test "review: a missing mesh is drawn as a placeholder, warned once for both scenes" {
   sed 's|^object /World/Crates/Other box -2 1 0.5 1 0 0 0 1 1 1 1 1 1 default - false true false -|object /World/Crates/Other mesh -2 1 0.5 1 0 0 0 1 1 1 1 1 1 default - false true false missing.obj|' old.rscene > a.rscene
   sed 's|Box box 0 0 0.5|Box box 1.5 0 0.5|' a.rscene > b.rscene

@@ -85,6 +85,18 @@ bool build(const ReviewSide& side, Built& out, asset::AssetCache& assets) {
   return true;
 }
 
+// Each robot file's line -> the lines of the robots that use it.
+review::Referrers robotUsers(const Built& side, const Document& doc) {
+  review::Referrers out;
+  if (side.empty) return out;
+  auto lineOf = [&](int record) {
+    return record >= 0 && std::size_t(record) < doc.records.size() ? doc.records[std::size_t(record)].line : 0u;
+  };
+  for (const Articulated& a : side.model.articulated)
+    if (std::uint32_t from = lineOf(a.resourceRecord), to = lineOf(a.recordIndex); from && to) out.emplace(from, to);
+  return out;
+}
+
 bool sameCamera(const Camera& a, const Camera& b) {
   auto close = [](double x, double y) { return std::abs(x - y) <= 1e-9; };
   return a.path == b.path && (a.world.position - b.world.position).cwiseAbs().maxCoeff() <= 1e-9 &&
@@ -290,7 +302,8 @@ int writeReview(const ReviewOptions& o, const ReviewSide& before, const ReviewSi
     cli::error("--review: cannot create an OpenGL context: " + error);
     return cli::kTrouble;
   }
-  review::Marks marks = review::markChanges(result, a.scene, a.items, b.scene, b.items);
+  review::Marks marks = review::markChanges(result, a.scene, a.items, b.scene, b.items,
+                                            robotUsers(a, before.document), robotUsers(b, after.document));
   Camera camera;
   std::string how;
   if (!chooseCamera(o, a, b, marks, camera, how)) return cli::kTrouble;

@@ -82,12 +82,17 @@ PartChange compare(const RenderScene& a, const Item& ia, const RenderScene& b, c
 }
 
 // The parts a record of one side is drawn as: those of its segment (the
-// record itself), of its line (a compound child), or of its material.
-std::vector<std::size_t> partsOf(const std::vector<Item>& items, std::uint32_t line) {
+// record itself), of its line (a compound child), of its material, or of
+// the records drawn through it (`users`: a robot file's robots).
+std::vector<std::size_t> partsOf(const std::vector<Item>& items, std::uint32_t line, const Referrers& users) {
   std::vector<std::size_t> out;
   if (line == 0) return out;
+  std::set<std::uint32_t> through;
+  for (auto [it, end] = users.equal_range(line); it != end; ++it) through.insert(it->second);
   for (std::size_t i = 0; i < items.size(); ++i)
-    if (items[i].recordLine == line || items[i].partLine == line || items[i].materialLine == line) out.push_back(i);
+    if (items[i].recordLine == line || items[i].partLine == line || items[i].materialLine == line ||
+        through.count(items[i].recordLine))
+      out.push_back(i);
   return out;
 }
 
@@ -142,7 +147,8 @@ int itemAt(const Image& ids, int x, int y, std::size_t items) {
 }
 
 Marks markChanges(const DiffResult& diff, const RenderScene& oldScene, const std::vector<Item>& oldItems,
-                  const RenderScene& newScene, const std::vector<Item>& newItems) {
+                  const RenderScene& newScene, const std::vector<Item>& newItems, const Referrers& oldUsers,
+                  const Referrers& newUsers) {
   Marks m;
   m.oldSide.assign(oldItems.size(), Mark::None);
   m.newSide.assign(newItems.size(), Mark::None);
@@ -155,8 +161,8 @@ Marks markChanges(const DiffResult& diff, const RenderScene& oldScene, const std
     if (!items[i].ground && !items[i].bounds.isEmpty() && items[i].bounds.min().allFinite() && items[i].bounds.max().allFinite()) m.bounds.extend(items[i].bounds);
   };
   for (const RecordDiff& r : diff.records) {
-    std::vector<std::size_t> before = r.change == Change::Added ? std::vector<std::size_t>{} : partsOf(oldItems, r.oldLine);
-    std::vector<std::size_t> after = r.change == Change::Removed ? std::vector<std::size_t>{} : partsOf(newItems, r.newLine);
+    std::vector<std::size_t> before = r.change == Change::Added ? std::vector<std::size_t>{} : partsOf(oldItems, r.oldLine, oldUsers);
+    std::vector<std::size_t> after = r.change == Change::Removed ? std::vector<std::size_t>{} : partsOf(newItems, r.newLine, newUsers);
     if (before.empty() && after.empty()) {
       ++m.undrawn;
       continue;

@@ -7,6 +7,7 @@
 #pragma once
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,13 @@ struct Marks {
   std::size_t added = 0, removed = 0, changed = 0, undrawn = 0;  // records
   Eigen::AlignedBox3d bounds;  // world bounds of every marked part, both sides
 };
+// A record's line -> the lines of the records drawn through it: an
+// articulated_resource -> the articulated records that use it, so that a
+// changed robot file marks those robots.
+using Referrers = std::multimap<std::uint32_t, std::uint32_t>;
 Marks markChanges(const DiffResult& diff, const RenderScene& oldScene, const std::vector<Item>& oldItems,
-                  const RenderScene& newScene, const std::vector<Item>& newItems);
+                  const RenderScene& newScene, const std::vector<Item>& newItems, const Referrers& oldUsers = {},
+                  const Referrers& newUsers = {});
 
 // The automatic view (autoCamera(), a three-quarter view) framing `box`.
 Camera frameBox(const Eigen::AlignedBox3d& box, double aspect);
