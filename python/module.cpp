@@ -25,6 +25,7 @@
 #include "core/json.hpp"
 #include "core/loader.hpp"
 #include "core/output_file.hpp"
+#include "core/project.hpp"
 #include "core/writer.hpp"
 #include "robot/check.hpp"
 #include "robot/load.hpp"
@@ -191,12 +192,22 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
 void prepareExtras(PySimulation& s);
 
 // Prepares `d`; (simulation or None, diagnostics, usage error).
-py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d) {
+// `baseDir` and `allowMissing` as rscene-sim's --base-dir and
+// --allow-missing-assets.
+py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d, bool allowMissing, py::bytes baseDirBytes) {
+  std::string baseDir(baseDirBytes);
+  if (baseDir.find('\0') != std::string::npos) throw py::value_error("embedded null byte in base_dir");
   auto s = std::make_unique<PySimulation>();
   s->source = d;
   s->doc = d->doc;
   sim::PrepareOptions po;
   po.scene.sceneDir = d->path.empty() ? std::string(".") : directoryOf(d->path);
+  po.scene.baseDir = baseDir;
+  // The project as the tool finds it: from the scene's folder, or for a
+  // scene with no file from the base folder.
+  std::string projectDir = d->path.empty() ? baseDir : po.scene.sceneDir;
+  if (!projectDir.empty()) po.scene.project = projectPlaceOf(projectDir, diskFileSystem());
+  po.allowMissingAssets = allowMissing;
   po.steps = 0;
   std::string usage;
   bool ok;
@@ -305,13 +316,16 @@ void prepareExtras(PySimulation& s) {
 }
 
 // Steps `n` times; a failure (a state that is not finite, the pair cap)
-// comes back as a diagnostic and ends the simulation.  The steps run
+// comes back as (diagnostic, false) and ends the simulation: each later
+// call gives (that diagnostic, true).  The steps run
 // without the GIL in chunks of about 50 ms; between chunks Ctrl-C (any
 // Python signal handler that raises) ends the call with KeyboardInterrupt,
 // the world stopped between two steps, consistent and steppable again.
 py::object stepSimulation(PySimulation& s, long long n) {
   if (n < 0) throw py::value_error("step(n): n must be >= 0");
-  if (s.failure) throw py::value_error("the simulation stopped at an earlier failure: " + s.failure->message);
+  // (failure, earlier): Python raises SimulationError with the failure's
+  // diagnostic, saying for a later call that it is an earlier one's.
+  if (s.failure) return py::make_tuple(diagnosticDict(*s.failure), true);
   // Counted by this call (another thread may step the same world between
   // two chunks).
   std::uint64_t remaining = static_cast<std::uint64_t>(n);
@@ -338,11 +352,11 @@ py::object stepSimulation(PySimulation& s, long long n) {
     }
     if (r.failure) {
       s.failure = r.failure;
-      return diagnosticDict(*r.failure);
+      return py::make_tuple(diagnosticDict(*r.failure), false);
     }
     if (r.sampleFailed) {
       s.failure = sensorFailure(s);
-      return diagnosticDict(*s.failure);
+      return py::make_tuple(diagnosticDict(*s.failure), false);
     }
     if (done) return py::none();
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();

@@ -25,7 +25,10 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
+#include <tuple>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -123,6 +126,62 @@ struct ViewChoice {
   int width = 0, height = 0;
 };
 
+// Where makeRenderer() placed everything a simulation's poses move: a
+// plain draw after draw(sim) puts it all back, exactly (the document as
+// written, as a fresh renderer draws it).
+struct RestPlaces {
+  struct Placed {
+    Eigen::Affine3d world;
+    Eigen::AlignedBox3d bounds, localBounds;
+    std::optional<Eigen::Affine3d> placeholderWorld;
+  };
+  std::vector<Placed> drawables;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> wires;
+  std::vector<std::vector<Eigen::Vector3f>> surfaces;
+  struct Batch {
+    std::vector<Eigen::Affine3d> worlds;
+    std::vector<Eigen::AlignedBox3d> instanceBounds;
+    Eigen::AlignedBox3d bounds;
+  };
+  std::vector<Batch> instanced;
+  Eigen::AlignedBox3d bounds;
+
+  void keep(const render::RenderScene& s) {
+    for (const render::Drawable& d : s.drawables) drawables.push_back({d.world, d.bounds, d.localBounds, d.placeholderWorld});
+    for (const render::WireSpan& w : s.wires) wires.emplace_back(w.a, w.b);
+    for (const render::DeformedSurface& f : s.surfaces) surfaces.push_back(f.positions);
+    for (const render::Instanced& b : s.instanced) instanced.push_back({b.worlds, b.instanceBounds, b.bounds});
+    bounds = s.bounds;
+  }
+  void restore(render::RenderScene& s) const {
+    for (std::size_t i = 0; i < drawables.size() && i < s.drawables.size(); ++i) {
+      render::Drawable& d = s.drawables[i];
+      d.world = drawables[i].world;
+      d.bounds = drawables[i].bounds;
+      d.localBounds = drawables[i].localBounds;
+      d.placeholderWorld = drawables[i].placeholderWorld;
+    }
+    for (std::size_t i = 0; i < wires.size() && i < s.wires.size(); ++i) std::tie(s.wires[i].a, s.wires[i].b) = wires[i];
+    for (std::size_t i = 0; i < surfaces.size() && i < s.surfaces.size(); ++i)
+      if (s.surfaces[i].positions != surfaces[i]) {
+        s.surfaces[i].positions = surfaces[i];
+        ++s.surfaces[i].version;  // re-uploaded
+      }
+    for (std::size_t i = 0; i < instanced.size() && i < s.instanced.size(); ++i) {
+      render::Instanced& b = s.instanced[i];
+      if (b.worlds.size() == instanced[i].worlds.size() &&
+          std::equal(b.worlds.begin(), b.worlds.end(), instanced[i].worlds.begin(),
+                     [](const Eigen::Affine3d& x, const Eigen::Affine3d& y) { return x.matrix() == y.matrix(); }))
+        continue;
+      b.worlds = instanced[i].worlds;
+      b.instanceBounds = instanced[i].instanceBounds;
+      b.bounds = instanced[i].bounds;
+      ++b.version;  // re-uploaded
+    }
+    s.bounds = bounds;
+  }
+};
+
 struct PyRenderer {
   std::shared_ptr<PyDocument> source;
   std::string display;  // the scene's name in messages
@@ -133,6 +192,7 @@ struct PyRenderer {
   std::vector<robot::SensorSpec> sensors;
   robot::BodyPoses rest, poses;
   robot::ParticlePositions particles;
+  RestPlaces restPlaces;     // the scene as built, for a plain draw after draw(sim)
   std::vector<render::View> views;  // every view of the scene, at rest
   std::unique_ptr<robot::TrajectoryPoser> poser;
   std::unique_ptr<render::Renderer> renderer;  // freed under the GL lock
@@ -140,7 +200,7 @@ struct PyRenderer {
   std::string legend;
   std::uint64_t frame = 0;   // draws so far: a sensor's noise seed moves on per frame, as rscene-render's
   bool still = false;        // made for one view at rest (render()): tessellated for it, poses fixed
-  bool moved = false;        // poses differ from rest
+  bool moved = false;        // posed by a simulation: a plain draw puts the scene back at rest first
   std::vector<Camera> particleViews;  // the cameras particles were last tessellated for
   std::mutex mutex;          // one draw at a time
 
@@ -193,21 +253,32 @@ render::View chooseView(PyRenderer& r, const ViewChoice& choice, std::vector<std
 
 // Builds the scene of `doc` as rscene-render does; the renderer itself is
 // made by the first draw (in the GL lock).
+// `baseDir` (rscene-render --base-dir): where relative asset paths
+// resolve, in place of the document's folder; `allowMissing`
+// (--allow-missing-assets): a missing mesh drawn as a placeholder, a robot
+// whose file is missing left out, each with a warning.
 std::unique_ptr<PyRenderer> makeRenderer(const std::shared_ptr<PyDocument>& doc, int samples, bool post,
-                                         bool transparent) {
+                                         bool transparent, bool allowMissing, const std::string& baseDir) {
   auto r = std::make_unique<PyRenderer>();
   r->source = doc;
   r->display = doc->path.empty() ? std::string("<scene>") : doc->path;
   r->options.samples = samples;
   r->options.post = post;
   r->options.transparent = transparent;
+  r->options.allowMissingAssets = allowMissing;
   r->assets = std::make_unique<asset::AssetCache>(diskFileSystem(), render::assetLimits(r->options));
   r->options.assets = r->assets.get();
   SceneOptions so;
   so.sceneDir = doc->path.empty() ? std::string(".") : directoryOf(doc->path);
-  if (!doc->path.empty()) so.project = projectPlaceOf(so.sceneDir, diskFileSystem());
+  so.baseDir = baseDir;
+  // As the tool finds the project: from the scene's folder, or for a scene
+  // with no file (stdin there) from the base folder.
+  std::string projectDir = doc->path.empty() ? baseDir : so.sceneDir;
+  if (!projectDir.empty()) so.project = projectPlaceOf(projectDir, diskFileSystem());
+  render::DrawLimits limits;
+  limits.allowMissingAssets = allowMissing;
   Diagnostics diags;
-  if (!render::buildRenderScene(doc->doc, so, r->model, r->scene, diags, {}, r->assets.get()))
+  if (!render::buildRenderScene(doc->doc, so, r->model, r->scene, diags, limits, r->assets.get()))
     throw RenderFailure{"", diags};
   keepWarnings(*r, diags);
   diags.clear();
@@ -218,6 +289,7 @@ std::unique_ptr<PyRenderer> makeRenderer(const std::shared_ptr<PyDocument>& doc,
   if (hasErrors(diags)) throw RenderFailure{"", diags};
   keepWarnings(*r, diags);
   r->legend = render::segmentationLegendJson(r->scene);
+  r->restPlaces.keep(r->scene);
   return r;
 }
 
@@ -253,6 +325,22 @@ void poseFromSimulation(PyRenderer& r, PySimulation& s) {
   r.moved = true;
 }
 
+// Back to the document as written after draw(sim) (a plain draw shows
+// what a fresh renderer shows).  The next frame of a simulation moves every
+// particle record again: its versions differ from those restored.
+void poseAtRest(PyRenderer& r) {
+  r.poses = r.rest;
+  r.restPlaces.restore(r.scene);
+  for (auto* list : {&r.particles.deformables, &r.particles.granulars})
+    for (robot::ParticlePositions::Record& p : *list) {
+      p.given = false;
+      p.points.clear();
+    }
+  for (render::DeformedSurface& f : r.scene.surfaces) f.framesVersion = ~std::uint64_t{0};
+  for (render::Instanced& b : r.scene.instanced) b.framesVersion = ~std::uint64_t{0};
+  r.moved = false;
+}
+
 struct Drawn {
   render::ViewImages images;
   std::string view;
@@ -262,9 +350,13 @@ struct Drawn {
 // Draws `choice` with `passes`, after posing from `sim` when given.
 Drawn draw(PyRenderer& r, PySimulation* sim, const ViewChoice& choice, const std::vector<render::Pass>& passes) {
   std::lock_guard<std::mutex> lock(r.mutex);
+  bool reset = false;
   if (sim) {
     if (r.still) throw RenderFailure{"this renderer draws the scene at rest only", {}};
     poseFromSimulation(r, *sim);
+  } else if (r.moved) {
+    poseAtRest(r);
+    reset = true;
   }
   Drawn out;
   render::View view = chooseView(r, choice, out.warnings);
@@ -283,13 +375,13 @@ Drawn draw(PyRenderer& r, PySimulation* sim, const ViewChoice& choice, const std
     if (!r.renderer) throw RenderFailure{"", diags};
     keepWarnings(r, diags);
     diags.clear();
-  } else if (sim) {
+  } else if (sim || reset) {
     r.renderer->updatePoses();
   }
   auto samePlace = [](const Camera& a, const Camera& b) {
     return a.world.position == b.world.position && a.world.orientation.coeffs() == b.world.orientation.coeffs();
   };
-  if (!r.still && (sim || r.particleViews.size() != 1 || !samePlace(r.particleViews[0], view.camera))) {
+  if (!r.still && (sim || reset || r.particleViews.size() != 1 || !samePlace(r.particleViews[0], view.camera))) {
     r.particleViews = {view.camera};
     r.renderer->setParticleViews(r.particleViews);
   }
@@ -410,15 +502,18 @@ void bindRender(py::module_& m) {
         }
         return out;
       });
-  m.def("renderer", [](const std::shared_ptr<PyDocument>& doc, bool still, int samples, bool post, bool transparent) {
+  m.def("renderer", [](const std::shared_ptr<PyDocument>& doc, bool still, int samples, bool post, bool transparent,
+                       bool allowMissing, py::bytes baseDirBytes) {
     if (samples < 1 || samples > 64) throw py::value_error("samples must be 1 to 64");
+    std::string baseDir(baseDirBytes);
+    if (baseDir.find('\0') != std::string::npos) throw py::value_error("embedded null byte in base_dir");
     std::unique_ptr<PyRenderer> r;
     bool failed = false;
     RenderFailure failure;
     {
       py::gil_scoped_release release;
       try {
-        r = makeRenderer(doc, samples, post, transparent);
+        r = makeRenderer(doc, samples, post, transparent, allowMissing, baseDir);
         r->still = still;
       } catch (RenderFailure& f) {
         failure = std::move(f);

@@ -335,7 +335,7 @@ std::size_t findRecord(const Document& doc, const std::string& selector) {
 
 std::size_t checkIndex(const Document& doc, long long index) {
   if (index < 1 || static_cast<std::size_t>(index) >= doc.records.size())
-    throw py::index_error("record " + std::to_string(index) + " is not in the document (1 to " +
+    throw py::key_error("record " + std::to_string(index) + " is not in the document (1 to " +
                           std::to_string(doc.records.size() - 1) + ")");
   return static_cast<std::size_t>(index);
 }
@@ -519,7 +519,16 @@ void bindScene(py::module_& m) {
   });
   m.def("scene", &sceneDict, py::arg("doc"), py::arg("load_robots") = true);
   m.def("find_record", [](const PyDocument& d, py::object selector) -> std::size_t {
-    if (py::isinstance<py::int_>(selector)) return checkIndex(d.doc, selector.cast<long long>());
+    if (py::isinstance<py::int_>(selector)) {
+      // A number past long long is no record either (KeyError, not OverflowError).
+      int overflow = 0;
+      long long n = PyLong_AsLongLongAndOverflow(selector.ptr(), &overflow);
+      if (n == -1 && PyErr_Occurred()) throw py::error_already_set();
+      if (overflow)
+        throw py::key_error("record " + py::str(selector).cast<std::string>() + " is not in the document (1 to " +
+                            std::to_string(d.doc.records.size() - 1) + ")");
+      return checkIndex(d.doc, n);
+    }
     return findRecord(d.doc, selector.cast<std::string>());
   });
   m.def("record_json", [](const PyDocument& d, std::size_t index) {
@@ -528,11 +537,18 @@ void bindScene(py::module_& m) {
   m.def("record_fields", [](const PyDocument& d, std::size_t index) {
     const Record& r = d.doc.records[checkIndex(d.doc, static_cast<long long>(index))];
     py::list positional, keys;
+    py::dict types;  // name -> the schema type's name ("number", "uint64", ...)
     if (const Layout* layout = r.kind ? r.kind->layoutFor(r.positionalCount) : nullptr)
-      for (const FieldDef& f : layout->fields) positional.append(f.name);
+      for (const FieldDef& f : layout->fields) {
+        positional.append(f.name);
+        types[py::str(f.name)] = std::string(typeName(f.type));
+      }
     if (r.kind)
-      for (const FieldDef& f : r.kind->keys) keys.append(f.name);
-    return py::make_tuple(positional, keys);
+      for (const FieldDef& f : r.kind->keys) {
+        keys.append(f.name);
+        types[py::str(f.name)] = std::string(typeName(f.type));
+      }
+    return py::make_tuple(positional, keys, types);
   });
   m.def("edit", [](const PyDocument& d, std::size_t index, const std::string& json, std::vector<std::string> edited,
                    std::vector<std::string> removed) {

@@ -26,6 +26,7 @@ profile) raises ``TypeError`` or ``ValueError``; file problems raise
 from __future__ import annotations
 
 import json as _json
+import operator as _operator
 import os as _os
 from typing import Any, List, Optional, Union
 
@@ -154,6 +155,8 @@ class Document:
         as it was."""
         if not isinstance(path, (str, bytes, _os.PathLike)):
             raise TypeError("save() needs a path (str or os.PathLike), not %s" % type(path).__name__)
+        if not isinstance(as_written, (bool, _np.bool_)):
+            raise TypeError("save(): as_written must be a bool (True or False), not %s" % type(as_written).__name__)
         target = _os.fsencode(path)
         save = _rscene.save_source if as_written else _rscene.save
         error = save(self._doc, target)
@@ -334,26 +337,66 @@ class SimulationError(ValueError):
     is not finite, the broadphase's pair cap).  ``diagnostics`` lists the
     findings as rscene-sim prints them."""
 
-    def __init__(self, diagnostics: List[Diagnostic], name: str = "") -> None:
+    def __init__(self, diagnostics: List[Diagnostic], name: str = "", *, message: Optional[str] = None) -> None:
         self.diagnostics = diagnostics
-        errors = [d for d in diagnostics if d.severity == "error"] or diagnostics
-        message = str(errors[0]).split("\n")[0] if errors else "%s: cannot be simulated" % (name or "<scene>")
-        if len(errors) > 1:
-            message += " (and %d more errors)" % (len(errors) - 1)
+        if message is None:
+            errors = [d for d in diagnostics if d.severity == "error"] or diagnostics
+            message = str(errors[0]).split("\n")[0] if errors else "%s: cannot be simulated" % (name or "<scene>")
+            if len(errors) > 1:
+                message += " (and %d more errors)" % (len(errors) - 1)
         super().__init__(message)
+
+
+def _count(value: Any, what: str) -> int:
+    """An integral argument (int, numpy integer, anything with
+    ``__index__``) as an int; bool and floats are refused."""
+    if isinstance(value, (bool, _np.bool_)):
+        raise TypeError("%s must be an int, not %s" % (what, type(value).__name__))
+    try:
+        return _operator.index(value)
+    except TypeError:
+        raise TypeError("%s must be an int, not %s" % (what, type(value).__name__)) from None
+
+
+def _base_dir(base_dir: Any) -> bytes:
+    """``base_dir=`` (None, str or os.PathLike) as the C++ side takes it."""
+    if base_dir is None:
+        return b""
+    if not isinstance(base_dir, (str, bytes, _os.PathLike)):
+        raise TypeError("base_dir must be a path (str or os.PathLike) or None, not %s" % type(base_dir).__name__)
+    data = _os.fsencode(base_dir)
+    if not data:
+        raise ValueError("base_dir must name a folder, not an empty string (None: the scene's folder)")
+    return data
+
+
+def _flag(value: Any, name: str) -> bool:
+    if not isinstance(value, (bool, _np.bool_)):
+        raise TypeError("%s must be a bool, not %s" % (name, type(value).__name__))
+    return bool(value)
 
 
 class Simulation:
     """A scene in the physics engine, prepared as ``rscene-sim`` prepares it
     (the same checks, robots, time step and solver settings).  Raises
-    :class:`SimulationError` when the scene cannot be simulated."""
+    :class:`SimulationError` when the scene cannot be simulated.
+
+    ``allow_missing_assets=True`` is ``rscene-sim --allow-missing-assets``:
+    a body whose collision mesh is missing or unreadable (and a robot whose
+    file is missing) is left out with a warning (see :attr:`diagnostics`)
+    instead of an error.  ``base_dir`` is
+    ``--base-dir``: the folder relative asset paths resolve against, in
+    place of the scene file's folder (for a scene from :func:`loads`
+    without a name: the current folder)."""
 
     __slots__ = ("_sim", "_doc")
 
-    def __init__(self, doc: Document) -> None:
+    def __init__(self, doc: Document, *, allow_missing_assets: bool = False,
+                 base_dir: Union[str, "os.PathLike[str]", None] = None) -> None:
         raw = _check_document(doc)
         name = _os.fsdecode(raw.path)
-        sim, diags = _rscene.simulation(raw)
+        sim, diags = _rscene.simulation(raw, _flag(allow_missing_assets, "allow_missing_assets"),
+                                        _base_dir(base_dir))
         if sim is None:
             raise SimulationError(_diagnostics(diags, name), name)
         self._sim = sim
@@ -368,13 +411,17 @@ class Simulation:
         raised (``KeyboardInterrupt``): the world stops between two steps,
         consistent, and ``step()`` goes on from there.  Robots' PD targets
         and torques set before the call act in each of its steps."""
-        if isinstance(n, bool) or not isinstance(n, int):
-            raise TypeError("step(n): n must be an int, not %s" % type(n).__name__)
+        n = _count(n, "step(n): n")
         if n > 2**63 - 1:
             raise ValueError("step(n): n is too large")
         failure = self._sim.step(n)
         if failure is not None:
-            raise SimulationError([Diagnostic(failure, _os.fsdecode(self._doc._doc.path))])
+            found, earlier = failure
+            diagnostics = [Diagnostic(found, _os.fsdecode(self._doc._doc.path))]
+            if earlier:
+                raise SimulationError(diagnostics, message="the simulation stopped at an earlier failure and takes no "
+                                      "more steps: " + str(diagnostics[0]).split("\n")[0])
+            raise SimulationError(diagnostics)
 
     @property
     def time(self) -> float:

@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as _np
 
 from . import _rscene
-from . import Diagnostic, Document, Simulation, _check_document, _diagnostics
+from . import Diagnostic, Document, Simulation, _base_dir, _check_document, _diagnostics, _flag
 
 __all__ = ["LookAt", "RenderError", "Renderer", "render", "render_depth", "render_segmentation",
            "render_available"]
@@ -128,7 +128,12 @@ class Renderer:
     the camera's own, else 1280 x 720.  ``samples`` is the colour pass's
     MSAA, ``post`` the scene's post-processing (``rscene-render
     --no-post`` is ``post=False``), ``transparent`` gives alpha 0 where no
-    geometry covers a pixel.
+    geometry covers a pixel.  ``allow_missing_assets=True`` is
+    ``rscene-render --allow-missing-assets``: a missing mesh is drawn as a
+    magenta box and a missing texture left out, each with a warning (see
+    :attr:`diagnostics`) instead of a :class:`RenderError`.  ``base_dir``
+    is ``--base-dir``: the folder relative asset paths resolve against, in
+    place of the scene file's folder.
 
     Raises :class:`RenderError` when the scene cannot be drawn.  Drawing
     releases the GIL; renderers in several threads take turns on the one
@@ -138,7 +143,8 @@ class Renderer:
 
     def __init__(self, doc: Document, camera: Union[str, LookAt, None] = None, width: Optional[int] = None,
                  height: Optional[int] = None, *, samples: int = 4, post: bool = True,
-                 transparent: bool = False) -> None:
+                 transparent: bool = False, allow_missing_assets: bool = False,
+                 base_dir: Union[str, "_os.PathLike[str]", None] = None) -> None:
         self._r = None
         _require()
         raw = _check_document(doc)
@@ -146,8 +152,10 @@ class Renderer:
         self._width, self._height = _size(width, "width"), _size(height, "height")
         if isinstance(samples, bool) or not isinstance(samples, int):
             raise TypeError("samples must be an int")
+        allow = _flag(allow_missing_assets, "allow_missing_assets")
+        base = _base_dir(base_dir)
         self._doc = doc
-        self._r = _rscene.renderer(raw, self._still(), samples, bool(post), bool(transparent))
+        self._r = _rscene.renderer(raw, self._still(), samples, bool(post), bool(transparent), allow, base)
 
     @staticmethod
     def _still() -> bool:
@@ -164,7 +172,9 @@ class Renderer:
         :attr:`legend`) for the passes asked, and ``"view"`` (the view's
         name).  With ``sim`` the bodies, robots and particles are drawn
         where the simulation has them now (and cameras and sensors riding
-        on them move along); the poses stay for later draws without one."""
+        on them move along).  A draw without ``sim`` draws the document as
+        written (as a fresh renderer does), whatever earlier draws were
+        given."""
         if isinstance(passes, str):
             passes = [passes]
         names = list(passes)
@@ -270,7 +280,8 @@ def _once(doc: Document, camera: Any, width: Any, height: Any, passes: Sequence[
 
 def render(doc: Document, camera: Union[str, LookAt, None] = None, width: Optional[int] = None,
            height: Optional[int] = None, *, samples: int = 4, post: bool = True,
-           transparent: bool = False) -> "_np.ndarray":
+           transparent: bool = False, allow_missing_assets: bool = False,
+           base_dir: Union[str, "_os.PathLike[str]", None] = None) -> "_np.ndarray":
     """The colour image of one view of ``doc``, ``(H, W, 4)`` uint8 RGBA,
     rows top to bottom: the pixels ``rscene-render`` writes to its PNG for
     the same camera and size.  ``camera``, ``width``, ``height`` and the
@@ -278,22 +289,26 @@ def render(doc: Document, camera: Union[str, LookAt, None] = None, width: Option
     scene or view cannot be drawn (an unknown camera, a size over the
     limits), ``RuntimeError`` when no OpenGL context can be made.  Drawing
     many images of one scene?  A :class:`Renderer` uploads it once."""
-    return _once(doc, camera, width, height, ("rgb",), samples=samples, post=post, transparent=transparent)["rgb"]
+    return _once(doc, camera, width, height, ("rgb",), samples=samples, post=post, transparent=transparent,
+                 allow_missing_assets=allow_missing_assets, base_dir=base_dir)["rgb"]
 
 
 def render_depth(doc: Document, camera: Union[str, LookAt, None] = None, width: Optional[int] = None,
-                 height: Optional[int] = None) -> "_np.ndarray":
+                 height: Optional[int] = None, *, allow_missing_assets: bool = False,
+                 base_dir: Union[str, "_os.PathLike[str]", None] = None) -> "_np.ndarray":
     """The depth image of one view of ``doc``, ``(H, W)`` float32 metres
     along the view's axis, NaN where nothing is hit: rscene-render's
     ``.npy``.  Arguments as :func:`render`."""
-    return _once(doc, camera, width, height, ("depth",))["depth"]
+    return _once(doc, camera, width, height, ("depth",), allow_missing_assets=allow_missing_assets,
+                 base_dir=base_dir)["depth"]
 
 
 def render_segmentation(doc: Document, camera: Union[str, LookAt, None] = None, width: Optional[int] = None,
-                        height: Optional[int] = None) -> Tuple["_np.ndarray", Dict[str, Any]]:
+                        height: Optional[int] = None, *, allow_missing_assets: bool = False,
+                        base_dir: Union[str, "_os.PathLike[str]", None] = None) -> Tuple["_np.ndarray", Dict[str, Any]]:
     """The segmentation image of one view of ``doc`` (``(H, W, 4)`` uint8,
     one colour per record, black background) and its legend (the JSON
     rscene-render writes beside it, as a dict).  Arguments as
     :func:`render`."""
-    r = _StillRenderer(doc, camera, width, height)
+    r = _StillRenderer(doc, camera, width, height, allow_missing_assets=allow_missing_assets, base_dir=base_dir)
     return r.draw_passes(None, ("segmentation",))["segmentation"], r.legend

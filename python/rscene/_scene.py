@@ -235,6 +235,37 @@ def _jsonable(value: Any, name: str) -> Any:
                     % (name, type(value).__name__))
 
 
+def _check_numbers(value: Any, field: str, kind: str) -> None:
+    """Ints the JSON form cannot carry for ``kind`` (the schema type's
+    name), refused with the field's name: past the unsigned or signed 64-bit
+    range for integer fields, past the largest double for the others."""
+    if isinstance(value, list):
+        for v in value:
+            _check_numbers(v, field, kind)
+        return
+    if isinstance(value, bool) or not isinstance(value, int):
+        return
+    if kind == "uint64":
+        if not 0 <= value <= 2**64 - 1:
+            raise ValueError("%s: %d is out of the unsigned 64-bit range (0 to %d)" % (field, value, 2**64 - 1))
+    elif kind.startswith("integer"):
+        if not -2**63 <= value <= 2**63 - 1:
+            raise ValueError("%s: %d is out of the signed 64-bit range (%d to %d)" % (field, value, -2**63, 2**63 - 1))
+    else:
+        try:
+            float(value)
+        except OverflowError:
+            raise ValueError("%s: %s is not a finite number (the format holds numbers up to about 1.8e308)"
+                             % (field, _short(value))) from None
+
+
+def _short(value: int) -> str:
+    """A huge int in short scientific form: 10**400 -> "1e400"."""
+    digits = str(abs(value))
+    tail = digits[1:6].rstrip("0")
+    return "%s%s%se%d" % ("-" if value < 0 else "", digits[0], "." + tail if tail else "", len(digits) - 1)
+
+
 def update(doc: Document, record: Any, values: Dict[str, Any]) -> None:
     # Document.update()'s body: one edit of the text for all the fields.
     raw = _check_document(doc)
@@ -246,7 +277,7 @@ def update(doc: Document, record: Any, values: Dict[str, Any]) -> None:
     if not isinstance(values, dict) or not values:
         raise ValueError("no field to set")
     index = _rscene.find_record(raw, int(record) if isinstance(record, _np.integer) else record)
-    positional, keys = _rscene.record_fields(raw, index)
+    positional, keys, types = _rscene.record_fields(raw, index)
     known = set(positional) | set(keys)
     form = _json.loads(_rscene.record_json(raw, index))
     rec = form["records"][1]
@@ -269,6 +300,7 @@ def update(doc: Document, record: Any, values: Dict[str, Any]) -> None:
             removed.append(field)
         else:
             rec["fields"][field] = _jsonable(value, field)
+            _check_numbers(rec["fields"][field], field, types.get(field, ""))
             edited.append(field)
     try:
         text = _json.dumps(form, allow_nan=False)

@@ -13,6 +13,15 @@ EXAMPLES = sorted((ROOT / "examples").glob("*.rscene"))
 CORPUS = sorted((ROOT / ".." / "shared" / "corpus").glob("*.rscene"))
 
 
+def corpus_scene(name):
+    """A scene of the shared corpus (../shared/corpus, else
+    /work/shared/corpus); skips the test where neither is."""
+    for folder in (ROOT / ".." / "shared" / "corpus", pathlib.Path("/work/shared/corpus")):
+        if (folder / name).is_file():
+            return folder / name
+    pytest.skip("the shared corpus (%s) is not here" % name)
+
+
 def tool(name, *args, check=True, stdin=None):
     """Runs a built tool; returns (exit status, stdout bytes)."""
     exe = BIN / name

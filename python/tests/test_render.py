@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import rscene
-from conftest import ROOT, tool
+from conftest import ROOT, corpus_scene, tool
 
 pytestmark = pytest.mark.skipif(not rscene.render_available(), reason="built without lib/render")
 
@@ -128,6 +128,49 @@ def test_matches_rscene_render_example(tmp_path):
     assert np.array_equal(read_png(out), rscene.render(rscene.load(scene), width=160, height=100))
 
 
+def test_allow_missing_assets_as_rscene_render(tmp_path):
+    # From a fresh-user trial: Python had no way to say
+    # --allow-missing-assets; the corpus warehouse's meshes are not there.
+    scene = corpus_scene("rayrai_warehouse.rscene")
+    doc = rscene.load(scene)
+    with pytest.raises(rscene.RenderError, match="RS5001"):
+        rscene.render(doc, width=64, height=48)
+    img = rscene.render(doc, width=64, height=48, allow_missing_assets=True)
+    out = tmp_path / "w.png"
+    code, _ = tool("rscene-render", scene, "--allow-missing-assets", "--width", 64, "--height", 48, "-o", out)
+    assert code == 0
+    assert np.array_equal(read_png(out), img)
+    r = rscene.Renderer(doc, width=64, height=48, allow_missing_assets=True)
+    assert np.array_equal(r.draw(), img)
+    assert any(d.severity == "warning" and d.code == "RS5001" for d in r.diagnostics)
+    assert rscene.render_depth(doc, width=64, height=48, allow_missing_assets=True).shape == (48, 64)
+    seg, legend = rscene.render_segmentation(doc, width=64, height=48, allow_missing_assets=True)
+    assert seg.shape == (48, 64, 4) and legend["segments"]
+    with pytest.raises(TypeError, match="allow_missing_assets must be a bool"):
+        rscene.Renderer(doc, allow_missing_assets="yes")
+
+
+def test_base_dir_as_rscene_render(tmp_path):
+    # A scene from text has no folder: base_dir (--base-dir) says where
+    # its relative asset paths start.
+    examples = ROOT / "examples"
+    doc = rscene.loads((examples / "robot_cell.rscene").read_text())
+    with pytest.raises(rscene.RenderError, match="does not exist.*RS5001"):
+        rscene.render(doc, width=96, height=60)
+    expected = rscene.render(rscene.load(examples / "robot_cell.rscene"), width=96, height=60)
+    assert np.array_equal(rscene.render(doc, width=96, height=60, base_dir=examples), expected)
+    assert np.array_equal(rscene.render(doc, width=96, height=60, base_dir=str(examples)), expected)
+    # (A Renderer tessellates for any view, render() for its one: compare like with like.)
+    assert np.array_equal(rscene.Renderer(doc, width=96, height=60, base_dir=examples).draw(),
+                          rscene.Renderer(rscene.load(examples / "robot_cell.rscene"), width=96, height=60).draw())
+    assert rscene.render_depth(doc, width=96, height=60, base_dir=examples).shape == (60, 96)
+    assert rscene.render_segmentation(doc, width=96, height=60, base_dir=examples)[0].shape == (60, 96, 4)
+    with pytest.raises(TypeError, match="base_dir must be a path"):
+        rscene.render(doc, base_dir=3)
+    with pytest.raises(ValueError, match="base_dir must name a folder"):
+        rscene.render(doc, base_dir="")
+
+
 def test_depth_matches_rscene_render_npy(tmp_path):
     text = FRONT.replace("64 48 rgb true", "64 48 depth true")
     scene = tmp_path / "d.rscene"
@@ -151,10 +194,43 @@ def test_renderer_draws_simulation_poses():
     out = r.draw_passes(sim)
     assert set(out) == {"rgb", "depth", "segmentation", "view"}
     assert out["depth"][24, 32] == pytest.approx(10 - (z + 0.5), abs=2e-3)
-    # The poses of the last draw with a simulation stay.
-    assert r.draw_depth()[24, 32] == pytest.approx(10 - (z + 0.5), abs=2e-3)
     # The same image as the scene written back, drawn afresh.
     assert np.array_equal(out["rgb"], rscene.Renderer(sim.document()).draw())
+    # A draw without the simulation shows the document as written again.
+    assert r.draw_depth()[24, 32] == pytest.approx(10 - 5.5, abs=2e-3)
+    assert r.draw_depth(sim)[24, 32] == pytest.approx(10 - (z + 0.5), abs=2e-3)
+
+
+def test_plain_draw_after_simulation_draws_the_document():
+    # From a fresh-user trial: after draw(sim), draw() still showed the
+    # simulation's poses.  Every pass, and a robot's links, go back.
+    doc = rscene.load(ROOT / "examples" / "robot_cell.rscene")
+    r = rscene.Renderer(doc, width=160, height=100)
+    before = r.draw_passes()
+    sim = rscene.Simulation(doc)
+    sim.step(1000)
+    moved = r.draw(sim)
+    assert not np.array_equal(before["rgb"], moved)
+    after = r.draw_passes()
+    assert np.array_equal(before["rgb"], after["rgb"])
+    assert np.array_equal(before["segmentation"], after["segmentation"])
+    assert np.array_equal(before["depth"], after["depth"], equal_nan=True)
+    assert np.array_equal(after["rgb"], rscene.Renderer(doc, width=160, height=100).draw())
+    # And the simulation's poses again when given it.
+    assert np.array_equal(r.draw(sim), moved)
+
+
+def test_plain_draw_after_simulation_puts_particles_back():
+    # Deformable and granular particles too (soft_bodies has both).
+    doc = rscene.load(ROOT / "examples" / "soft_bodies.rscene")
+    r = rscene.Renderer(doc, width=96, height=64)
+    before = r.draw()
+    sim = rscene.Simulation(doc)
+    sim.step(150)
+    moved = r.draw(sim)
+    assert not np.array_equal(before, moved)
+    assert np.array_equal(r.draw(), before)
+    assert np.array_equal(r.draw(sim), moved)
 
 
 def test_renderer_robot_follows_simulation():

@@ -180,8 +180,13 @@ def test_edit_errors():
         doc.set("nope", "mass", 1)
     with pytest.raises(ValueError, match="2 records"):
         doc.set("object", "mass", 1)
-    with pytest.raises(IndexError):
+    # An unknown record number is an unknown record, as the doc string says.
+    with pytest.raises(KeyError, match="record 0 is not in the document"):
         doc.set(0, "mass", 1)
+    with pytest.raises(KeyError, match="record 999 is not in the document"):
+        doc.set(999, "mass", 1)
+    with pytest.raises(KeyError, match="record 10{30} is not"):
+        doc.set(10**30, "mass", 1)
     with pytest.raises(ValueError, match="no field 'weight'"):
         doc.set("box", "weight", 1)
     with pytest.raises(ValueError, match="expected a number.*RS2001"):
@@ -199,6 +204,38 @@ def test_edit_errors():
     with pytest.raises(TypeError):
         doc.set(1.5, "mass", 1)
     assert doc.source == before  # a refused edit changes nothing
+
+
+def test_edit_numbers_past_the_types_range():
+    # From a fresh-user trial: these leaked nlohmann's "[json.exception.
+    # out_of_range.406] number overflow" or a JSON-form message.
+    doc = rscene.loads(HAND)
+    before = doc.source
+    with pytest.raises(ValueError, match=r"^mass: 1e400 is not a finite number"):
+        doc.set("box", "mass", 10**400)
+    with pytest.raises(ValueError, match=r"^position: -1\.5e400 is not a finite number"):
+        doc.set("box", "position", [0, 0, -15 * 10**399])
+    with pytest.raises(ValueError, match=r"^collisionMask: 18446744073709551616 is out of the unsigned 64-bit range"):
+        doc.set("box", "collisionMask", 2**64)
+    with pytest.raises(ValueError, match=r"^collisionGroup: -1 is out of the unsigned 64-bit range"):
+        doc.set("box", "collision_group", -1)
+    assert doc.source == before
+    # The edges of the ranges are values.
+    doc.set("box", "collisionMask", 2**64 - 1)
+    doc.set("box", "collisionGroup", np.uint64(2**64 - 1))
+    doc.set("box", "mass", 10**30)
+    assert doc.scene().find("box").mass == 1e30
+
+
+def test_save_as_written_takes_a_bool(tmp_path):
+    doc = rscene.loads(HAND)
+    with pytest.raises(TypeError, match="as_written must be a bool"):
+        doc.save(tmp_path / "a.rscene", as_written="no")
+    with pytest.raises(TypeError, match="as_written must be a bool"):
+        doc.save(tmp_path / "a.rscene", as_written=1)
+    assert not (tmp_path / "a.rscene").exists()
+    doc.save(tmp_path / "a.rscene", as_written=np.bool_(True))
+    assert (tmp_path / "a.rscene").read_text() == HAND
 
 
 def test_other_holders_keep_their_document():

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import rscene
-from conftest import ROOT, tool
+from conftest import ROOT, corpus_scene, tool
 
 DROP = (
     "raisim_engine_scene 1\n"
@@ -72,6 +72,79 @@ def test_scene_that_cannot_be_simulated():
     errors = [d for d in e.value.diagnostics if d.severity == "error"]
     assert [d.code for d in errors] == ["RS2001"]
     assert str(e.value).startswith("<scene>:4:27: error: expected a number, found '1x' [RS2001]")
+
+
+def test_allow_missing_assets_as_rscene_sim(tmp_path):
+    # From a fresh-user trial: Python had no way to say
+    # --allow-missing-assets; the corpus warehouse's meshes are not there.
+    scene = corpus_scene("rayrai_warehouse.rscene")
+    doc = rscene.load(scene)
+    with pytest.raises(rscene.SimulationError) as e:
+        rscene.Simulation(doc)
+    assert "RS5001" in str(e.value)
+    sim = rscene.Simulation(doc, allow_missing_assets=True)
+    assert sim.diagnostics and all(d.severity == "warning" for d in sim.diagnostics)
+    sim.step(50)
+    out = tmp_path / "out.rscene"
+    code, _ = tool("rscene-sim", "--steps", 50, "--allow-missing-assets", "-o", out, scene)
+    assert code == 0
+    assert rscene.format(sim.document()) == out.read_text()
+    with pytest.raises(TypeError, match="allow_missing_assets must be a bool"):
+        rscene.Simulation(doc, allow_missing_assets=1)
+
+
+def test_base_dir_as_rscene_sim(tmp_path):
+    # A scene from text has no folder: base_dir (--base-dir) says where
+    # its relative asset paths (here a robot file) start.
+    examples = ROOT / "examples"
+    text = (examples / "robot_cell.rscene").read_text()
+    with pytest.raises(rscene.SimulationError, match="does not exist.*RS5001"):
+        rscene.Simulation(rscene.loads(text))
+    sim = rscene.Simulation(rscene.loads(text), base_dir=examples)
+    sim.step(20)
+    out = tmp_path / "out.rscene"
+    code, _ = tool("rscene-sim", "--steps", 20, "-o", out, examples / "robot_cell.rscene")
+    assert code == 0
+    assert rscene.format(sim.document()) == out.read_text()
+    # A file's own folder gives way to base_dir, as with --base-dir.
+    (tmp_path / "cell.rscene").write_text(text)
+    with pytest.raises(rscene.SimulationError, match="RS5001"):
+        rscene.Simulation(rscene.load(tmp_path / "cell.rscene"))
+    assert rscene.Simulation(rscene.load(tmp_path / "cell.rscene"), base_dir=str(examples)).robots
+    with pytest.raises(TypeError, match="base_dir must be a path"):
+        rscene.Simulation(rscene.loads(text), base_dir=1)
+
+
+def test_step_takes_any_integral():
+    # From a fresh-user trial: sim.step(np.int64(2)) raised TypeError.
+    sim = rscene.Simulation(rscene.loads(DROP.format(z=1)))
+    sim.step(np.int64(2))
+    sim.step(np.uint8(3))
+    sim.step(np.arange(5)[4])
+    assert sim.steps == 9
+    for bad in (True, np.bool_(True), 1.0, np.float64(2), "3", None):
+        with pytest.raises(TypeError, match="must be an int"):
+            sim.step(bad)
+    assert sim.steps == 9
+
+
+def test_step_after_a_failure_raises_the_failure_again():
+    # A body whose inertia underflows passes the up-front checks and is
+    # stopped at its first step (RS7024, as in shell-tests/sim.bats).
+    doc = rscene.loads(DROP.format(z=1).replace("0.2 0.2 0.2 1 1 1 default", "0.2 0.2 0.2 1 1 2.2250738585072014e-308 default"))
+    sim = rscene.Simulation(doc)
+    with pytest.raises(rscene.SimulationError) as first:
+        sim.step(10)
+    assert [d.code for d in first.value.diagnostics] == ["RS7024"]
+    # From a fresh-user trial: the next call raised a plain ValueError
+    # without the diagnostics.
+    with pytest.raises(rscene.SimulationError) as again:
+        sim.step(1)
+    assert again.value.diagnostics == first.value.diagnostics
+    assert str(again.value).startswith("the simulation stopped at an earlier failure")
+    assert str(first.value.diagnostics[0]).split("\n")[0] in str(again.value)
+    with pytest.raises(rscene.SimulationError):
+        sim.step(0)
 
 
 def test_misuse_raises():
