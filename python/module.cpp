@@ -192,6 +192,27 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
 void prepareExtras(PySimulation& s);
 
 // Prepares `d`; (simulation or None, diagnostics, usage error).
+// rscene-sim's flags in lib/sim's findings as Python says them: the flag
+// Python has as its keyword; a limit Python cannot raise as a limit.
+Diagnostic simWords(Diagnostic d) {
+  auto replace = [](std::string& s, const std::string& from, const std::string& to) {
+    for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+      s.replace(at, from.size(), to);
+  };
+  for (std::string* s : {&d.message, &d.hint}) {
+    replace(*s, "--allow-missing-assets", "allow_missing_assets=True");
+    replace(*s, "raise the limit with --max-pairs N (each pair costs about 8.5 KB), or spread the bodies out",
+            "spread the bodies out (rscene-sim --max-pairs N raises the limit; each pair costs about 8.5 KB)");
+  }
+  return d;
+}
+
+Diagnostics simWords(const Diagnostics& ds) {
+  Diagnostics out;
+  for (const Diagnostic& d : ds) out.push_back(simWords(d));
+  return out;
+}
+
 // `baseDir` and `allowMissing` as rscene-sim's --base-dir and
 // --allow-missing-assets.
 py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d, bool allowMissing, py::bytes baseDirBytes) {
@@ -215,6 +236,7 @@ py::tuple makeSimulation(const std::shared_ptr<PyDocument>& d, bool allowMissing
     py::gil_scoped_release release;
     ok = sim::prepareSimulation(s->doc, po, s->assets, s->prepared, s->diagnostics, usage);
   }
+  s->diagnostics = simWords(s->diagnostics);
   py::list diags = diagnosticList(s->diagnostics);
   if (!usage.empty()) throw py::value_error(usage);
   if (!ok || !s->prepared.world) return py::make_tuple(py::none(), diags);
@@ -351,8 +373,8 @@ py::object stepSimulation(PySimulation& s, long long n) {
       done = remaining == 0 || took == 0;
     }
     if (r.failure) {
-      s.failure = r.failure;
-      return py::make_tuple(diagnosticDict(*r.failure), false);
+      s.failure = simWords(*r.failure);
+      return py::make_tuple(diagnosticDict(*s.failure), false);
     }
     if (r.sampleFailed) {
       s.failure = sensorFailure(s);

@@ -102,12 +102,21 @@ struct RenderFailure {
   bool environment = false;  // no OpenGL here: RuntimeError, not the scene's fault
 };
 
-// The tools' flag names in lib/render's messages, as the Python arguments say them.
+// The tools' flag names in lib/render's messages and hints, as the Python
+// arguments say them; a limit Python cannot raise is named as a limit.
 std::string pythonWords(std::string s) {
   auto replace = [&](const std::string& from, const std::string& to) {
     for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
       s.replace(at, from.size(), to);
   };
+  replace("give --width and --height, or raise --max-pixels", "give a smaller width and height");
+  replace("raise --max-pixels, or give the sensor", "give the sensor");
+  replace(", or raise --max-instances", "");
+  replace("--max-instances", "the instance limit");
+  replace("--allow-missing-assets", "allow_missing_assets=True");
+  replace("rscene-render draws cameras and camera-like sensors; rscene-sim --sensors records it",
+          "cameras and camera-like sensors are drawn; Simulation.lidar() and imu() read it");
+  replace("--width and --height", "width and height");
   replace("--width/--height", "width/height");
   replace("--max-pixels", "the pixel limit");
   replace("--camera auto", "camera='auto'");
@@ -219,9 +228,16 @@ std::string failureText(const std::string& message, const Diagnostics& ds) {
   return "cannot render the scene";
 }
 
+// lib/render's findings as Python shows them (pythonWords).
+Diagnostic pythonDiagnostic(Diagnostic d) {
+  d.message = pythonWords(std::move(d.message));
+  d.hint = pythonWords(std::move(d.hint));
+  return d;
+}
+
 void keepWarnings(PyRenderer& r, const Diagnostics& ds) {
   for (const Diagnostic& d : ds)
-    if (d.severity != Severity::Error) r.warnings.push_back(d);
+    if (d.severity != Severity::Error) r.warnings.push_back(pythonDiagnostic(d));
 }
 
 // The one view `choice` names, sized and posed; throws RenderFailure.
@@ -417,7 +433,9 @@ py::array_t<float> depthArray(const std::vector<float>& depth, int width, int he
   if (f.environment) throw std::runtime_error(f.message);
   py::module_ pkg = py::module_::import("rscene");
   py::object error = pkg.attr("_render_error");
-  py::object exc = error(pystr(failureText(f.message, f.diagnostics)), diagnosticList(f.diagnostics), pystr(scene));
+  Diagnostics shown;
+  for (const Diagnostic& d : f.diagnostics) shown.push_back(pythonDiagnostic(d));
+  py::object exc = error(pystr(failureText(f.message, shown)), diagnosticList(shown), pystr(scene));
   PyErr_SetObject(exc.get_type().ptr(), exc.ptr());
   throw py::error_already_set();
 }

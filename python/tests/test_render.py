@@ -291,6 +291,24 @@ def test_misuse_raises_clear_errors():
     assert r.draw().shape == (48, 64, 4)
 
 
+def test_messages_name_no_flag_python_lacks():
+    # From a fresh-user trial: a camera record too large for the pixel
+    # limit said "more than --max-pixels 16777216", hint "give --width and
+    # --height, or raise --max-pixels": flags Python does not have.
+    doc = rscene.loads(FRONT.replace("64 48 rgb true", "5000 5000 rgb true"))
+    with pytest.raises(rscene.RenderError) as e:
+        rscene.render(doc)
+    text = str(e.value) + "".join(str(d) for d in e.value.diagnostics)
+    assert "more than the pixel limit 16777216" in str(e.value)
+    assert "--" not in text
+    assert e.value.diagnostics[0].hint == "give a smaller width and height"
+    # A missing mesh drawn as a placeholder: the warning names the keyword.
+    doc = rscene.loads(FRONT.replace("box 3 0 1", "mesh 3 0 1").replace("false - static", "false gone.obj static"))
+    r = rscene.Renderer(doc, allow_missing_assets=True)
+    r.draw()
+    assert r.diagnostics and not any("--" in str(d) for d in r.diagnostics)
+
+
 def test_scene_with_errors_raises():
     # A mesh object without a mesh file (RS7004): an error at its record.
     doc = rscene.loads(FRONT.replace("box 3 0 1", "mesh 3 0 1"))

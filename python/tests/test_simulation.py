@@ -113,6 +113,12 @@ def test_base_dir_as_rscene_sim(tmp_path):
     assert rscene.Simulation(rscene.load(tmp_path / "cell.rscene"), base_dir=str(examples)).robots
     with pytest.raises(TypeError, match="base_dir must be a path"):
         rscene.Simulation(rscene.loads(text), base_dir=1)
+    # Without the robot file, allowed: left out, the warning naming the
+    # keyword (not rscene-sim's flag).
+    sim = rscene.Simulation(rscene.loads(text), allow_missing_assets=True)
+    assert sim.robots == []
+    assert "left out (allow_missing_assets=True)" in sim.diagnostics[0].message
+    assert not any("--" in str(d) for d in sim.diagnostics)
 
 
 def test_step_takes_any_integral():
