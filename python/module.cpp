@@ -690,6 +690,12 @@ PYBIND11_MODULE(_rscene, m) {
       .def("robot_set_force", &robotSetForce)
       .def("robot_set_state", &robotSetState)
       .def("contacts", &contactArrays)
+      .def("body_paths", [](const PySimulation& s) {
+        // Every body contacts may name (objects, compounds, terrains, robots).
+        py::list l;
+        for (const auto& [record, path] : extras(s).recordPaths) l.append(pystr(path));
+        return l;
+      })
       .def("sensor_list", &sensorList)
       .def("sensor_index", &sensorIndex)
       .def("lidar_scan", &lidarScan)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import json as _json
 import operator as _operator
 import os as _os
-from typing import Any, List, Optional, Union
+from typing import Any as _Any, Iterator as _Iterator, List as _List, NamedTuple as _NamedTuple, Optional as _Optional, Union as _Union
 
 import numpy as _np
 
@@ -37,7 +37,7 @@ from . import _rscene
 __all__ = [
     "Diagnostic", "Document", "ParseError", "RecordChange", "FieldChange",
     "load", "loads", "format", "validate", "diff", "to_json", "from_json",
-    "Simulation", "SimulationError", "Robot", "Contacts",
+    "Simulation", "SimulationError", "Robot", "Contacts", "Contact",
 ]
 
 
@@ -45,7 +45,9 @@ class Diagnostic:
     """One finding: ``code`` (``"RS2001"``), ``severity`` (``"error"`` or
     ``"warning"``), 1-based ``line`` and ``column`` (0 when unknown),
     ``message``, ``hint`` (may be empty), ``tag`` and ``field`` of the record,
-    and ``file`` when the finding is in another file (a robot's URDF)."""
+    and ``file``: the file the finding is in (the scene's name as loaded, or
+    another file such as a robot's URDF; empty for a scene from text
+    without a name)."""
 
     __slots__ = ("code", "severity", "line", "column", "message", "hint", "tag", "field", "file", "_scene")
 
@@ -53,6 +55,8 @@ class Diagnostic:
         for k in ("code", "severity", "line", "column", "message", "hint", "tag", "field", "file"):
             setattr(self, k, fields[k])
         self._scene = scene
+        if not self.file and scene and not scene.startswith("<"):
+            self.file = scene  # the scene's own name, as str() shows it
 
     def __str__(self) -> str:
         """The tools' form: ``file:line:col: severity: message [code]``."""
@@ -84,7 +88,7 @@ class ParseError(ValueError):
     the findings (errors and any warnings before them); ``str()`` shows the
     first error as the tools print it."""
 
-    def __init__(self, diagnostics: List[Diagnostic], name: str = "") -> None:
+    def __init__(self, diagnostics: _List[Diagnostic], name: str = "") -> None:
         self.diagnostics = diagnostics
         self.name = name
         errors = [d for d in diagnostics if d.severity == "error"]
@@ -95,7 +99,7 @@ class ParseError(ValueError):
         super().__init__(message)
 
 
-def _diagnostics(raw: list, name: str) -> List[Diagnostic]:
+def _diagnostics(raw: list, name: str) -> _List[Diagnostic]:
     return [Diagnostic(d, name) for d in raw]
 
 
@@ -105,7 +109,7 @@ class Document:
 
     __slots__ = ("_doc",)
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
+    def __init__(self, *args: _Any, **kwargs: _Any) -> None:
         raise TypeError("use rscene.load(path), rscene.loads(text) or rscene.from_json(obj) to make a Document")
 
     @classmethod
@@ -115,7 +119,7 @@ class Document:
         return self
 
     @property
-    def path(self) -> Optional[str]:
+    def path(self) -> _Optional[str]:
         """The file it was loaded from, or None."""
         return _os.fsdecode(self._doc.path) or None
 
@@ -130,11 +134,11 @@ class Document:
         return self._doc.source.decode("utf-8", "surrogateescape")
 
     @property
-    def diagnostics(self) -> List[Diagnostic]:
+    def diagnostics(self) -> _List[Diagnostic]:
         """The loader's warnings (a loaded document has no errors)."""
         return _diagnostics(self._doc.diagnostics, _os.fsdecode(self._doc.path))
 
-    def tags(self) -> List[str]:
+    def tags(self) -> _List[str]:
         """The tag of every record in file order, the header first."""
         return self._doc.tags()
 
@@ -142,7 +146,7 @@ class Document:
         """The number of records, the header included."""
         return self._doc.record_count
 
-    def save(self, path: Union[str, "os.PathLike[str]"], as_written: bool = False) -> None:
+    def save(self, path: _Union[str, "_os.PathLike[str]"], as_written: bool = False) -> None:
         """Writes the canonical text to ``path`` through the tools' output
         routine: a regular file is replaced atomically (temporary file and
         rename, mode kept); a symbolic link keeps pointing where it did and
@@ -172,7 +176,7 @@ class Document:
         from . import _scene
         return _scene.scene(self, load_robots)
 
-    def set(self, record: Any, field: str, value: Any) -> None:
+    def set(self, record: _Any, field: str, value: _Any) -> None:
         """Sets one field of one record: ``record`` is a scene view, a
         node's path or id, the tag of a record the scene has once
         (``"time_step"``, ``"gravity"``), or a record number; ``field`` is
@@ -190,7 +194,7 @@ class Document:
             raise TypeError("field must be a str, not %s" % type(field).__name__)
         _scene.update(self, record, {field: value})
 
-    def update(self, record: Any, values: dict) -> None:
+    def update(self, record: _Any, values: dict) -> None:
         """Sets several fields of one record at once (``{field: value}``),
         as :meth:`set` does each."""
         from . import _scene
@@ -203,13 +207,13 @@ class Document:
         return "<rscene.Document %s, %d records>" % (repr(self.path) if self.path else "from text", len(self))
 
 
-def _check_document(doc: Any, name: str = "doc") -> "_rscene._Document":
+def _check_document(doc: _Any, name: str = "doc") -> "_rscene._Document":
     if not isinstance(doc, Document):
         raise TypeError("%s must be an rscene.Document, not %s" % (name, type(doc).__name__))
     return doc._doc
 
 
-def loads(text: Union[str, bytes], name: Optional[str] = None) -> Document:
+def loads(text: _Union[str, bytes], name: _Optional[str] = None) -> Document:
     """Parses scene text (str, or bytes as read from a file) into a
     :class:`Document`.  ``name`` is the file name diagnostics show; it is
     also the directory relative asset paths start from in :func:`validate`.
@@ -228,7 +232,7 @@ def loads(text: Union[str, bytes], name: Optional[str] = None) -> Document:
     return Document._wrap(raw)
 
 
-def load(path: Union[str, "os.PathLike[str]"]) -> Document:
+def load(path: _Union[str, "_os.PathLike[str]"]) -> Document:
     """Reads and parses the scene file at ``path``.  Raises ``OSError`` when
     it cannot be read and :class:`ParseError` when it does not parse."""
     target = _os.fsdecode(_os.fspath(path))
@@ -244,7 +248,7 @@ def format(doc: Document) -> str:
 
 
 def validate(doc: Document, profile: str = "engine2", check_files: bool = False,
-             base_dir: Optional[str] = None) -> List[Diagnostic]:
+             base_dir: _Optional[str] = None) -> _List[Diagnostic]:
     """Everything ``rscene-validate`` reports for ``doc`` (syntax, types,
     references, sizes, the scene model's checks and the robots'), in its
     order.  ``profile`` is ``"engine2"`` or ``"raisim"``; ``check_files``
@@ -295,7 +299,7 @@ class RecordChange:
 
 
 def diff(a: Document, b: Document, tolerance: float = 0.0, rel_tolerance: float = 0.0,
-         ignore_editor_state: bool = False, ignore: Optional[List[str]] = None) -> List[RecordChange]:
+         ignore_editor_state: bool = False, ignore: _Optional[_List[str]] = None) -> _List[RecordChange]:
     """The semantic difference from ``a`` to ``b`` as ``rscene-diff``
     computes it: records matched by identity, values compared by type (with
     absolute and relative ``tolerance``), reordering is no change.
@@ -337,7 +341,7 @@ class SimulationError(ValueError):
     is not finite, the broadphase's pair cap).  ``diagnostics`` lists the
     findings as rscene-sim prints them."""
 
-    def __init__(self, diagnostics: List[Diagnostic], name: str = "", *, message: Optional[str] = None) -> None:
+    def __init__(self, diagnostics: _List[Diagnostic], name: str = "", *, message: _Optional[str] = None) -> None:
         self.diagnostics = diagnostics
         if message is None:
             errors = [d for d in diagnostics if d.severity == "error"] or diagnostics
@@ -347,7 +351,7 @@ class SimulationError(ValueError):
         super().__init__(message)
 
 
-def _count(value: Any, what: str) -> int:
+def _count(value: _Any, what: str) -> int:
     """An integral argument (int, numpy integer, anything with
     ``__index__``) as an int; bool and floats are refused."""
     if isinstance(value, (bool, _np.bool_)):
@@ -358,7 +362,7 @@ def _count(value: Any, what: str) -> int:
         raise TypeError("%s must be an int, not %s" % (what, type(value).__name__)) from None
 
 
-def _base_dir(base_dir: Any) -> bytes:
+def _base_dir(base_dir: _Any) -> bytes:
     """``base_dir=`` (None, str or os.PathLike) as the C++ side takes it."""
     if base_dir is None:
         return b""
@@ -370,7 +374,7 @@ def _base_dir(base_dir: Any) -> bytes:
     return data
 
 
-def _flag(value: Any, name: str) -> bool:
+def _flag(value: _Any, name: str) -> bool:
     if not isinstance(value, (bool, _np.bool_)):
         raise TypeError("%s must be a bool, not %s" % (name, type(value).__name__))
     return bool(value)
@@ -389,10 +393,10 @@ class Simulation:
     place of the scene file's folder (for a scene from :func:`loads`
     without a name: the current folder)."""
 
-    __slots__ = ("_sim", "_doc")
+    __slots__ = ("_sim", "_doc", "_bodies")
 
     def __init__(self, doc: Document, *, allow_missing_assets: bool = False,
-                 base_dir: Union[str, "os.PathLike[str]", None] = None) -> None:
+                 base_dir: _Union[str, "_os.PathLike[str]", None] = None) -> None:
         raw = _check_document(doc)
         name = _os.fsdecode(raw.path)
         sim, diags = _rscene.simulation(raw, _flag(allow_missing_assets, "allow_missing_assets"),
@@ -401,6 +405,7 @@ class Simulation:
             raise SimulationError(_diagnostics(diags, name), name)
         self._sim = sim
         self._doc = doc
+        self._bodies: _Optional[frozenset] = None  # the paths contacts name, read once
 
     def step(self, n: int = 1) -> None:
         """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
@@ -449,7 +454,7 @@ class Simulation:
         return self._sim.at_rest
 
     @property
-    def diagnostics(self) -> List[Diagnostic]:
+    def diagnostics(self) -> _List[Diagnostic]:
         """The warnings of preparing the scene (as rscene-sim prints them)."""
         return _diagnostics(self._sim.diagnostics, _os.fsdecode(self._doc._doc.path))
 
@@ -494,7 +499,7 @@ class Simulation:
         return Robot(self, index)
 
     @property
-    def robots(self) -> List["Robot"]:
+    def robots(self) -> _List["Robot"]:
         """Every simulated robot, in the scene's order."""
         out = []
         i = 0
@@ -508,9 +513,11 @@ class Simulation:
     def contacts(self) -> "Contacts":
         """The rigid contact points after the last step (empty before the
         first), as :class:`Contacts`: numpy arrays, one row per point."""
-        return Contacts(self._sim.contacts())
+        if self._bodies is None:
+            self._bodies = frozenset(self._sim.body_paths())
+        return Contacts(self._sim.contacts(), self._bodies)
 
-    def sensors(self) -> List[dict]:
+    def sensors(self) -> _List[dict]:
         """The LiDARs and IMUs read while stepping (sensor records and the
         sensor sets of robots, as ``rscene-sim --sensors`` records them):
         a dict ``{"name", "id", "kind"}`` each (``kind``: ``"lidar"`` or
@@ -530,7 +537,7 @@ class Simulation:
             raise ValueError("sensor %r is %s, not %s" % (name, shown.get(actual, actual), shown[kind]))
         return index
 
-    def lidar(self, name: str) -> Optional[dict]:
+    def lidar(self, name: str) -> _Optional[dict]:
         """The latest scan of the LiDAR ``name`` (path, id, or a robot
         sensor's name from :meth:`sensors`), or ``None`` before
         :meth:`step` first ran (a LiDAR scans at time 0 and then at its
@@ -541,7 +548,7 @@ class Simulation:
         number)."""
         return self._sim.lidar_scan(self._sensor(name, "lidar"))
 
-    def imu(self, name: str) -> Optional[dict]:
+    def imu(self, name: str) -> _Optional[dict]:
         """The latest reading of the IMU ``name``, or ``None`` before its
         first (after the first step, or 1/updateRate): a dict with
         ``specific_force`` (m/s^2, the point's acceleration minus gravity,
@@ -562,7 +569,7 @@ class Simulation:
 _NO_VECTOR = _np.zeros(0)
 
 
-def _vector(value: Any, size: int, what: str) -> "_np.ndarray":
+def _vector(value: _Any, size: int, what: str) -> "_np.ndarray":
     """``value`` (a scalar, or anything numpy reads as a vector of ``size``)
     as a float64 vector; ValueError with what is wrong.  Whether the
     numbers are finite the library checks (each setter says so)."""
@@ -610,23 +617,23 @@ class Robot:
         return self._info["path"]
 
     @property
-    def joint_names(self) -> List[str]:
+    def joint_names(self) -> _List[str]:
         """The movable joints, in the order of ``q`` and ``u``."""
         return list(self._info["joint_names"])
 
     @property
-    def coordinate_names(self) -> List[str]:
+    def coordinate_names(self) -> _List[str]:
         """The name of each entry of ``q`` (``base_x`` ... ``base_qz``, a
         joint's name, ``NAME_qw`` ... for a spherical joint)."""
         return list(self._info["coordinate_names"])
 
     @property
-    def velocity_names(self) -> List[str]:
+    def velocity_names(self) -> _List[str]:
         """The name of each entry of ``u``."""
         return list(self._info["velocity_names"])
 
     @property
-    def link_names(self) -> List[str]:
+    def link_names(self) -> _List[str]:
         """The model's links (the names contacts give)."""
         return list(self._info["link_names"])
 
@@ -649,7 +656,7 @@ class Robot:
         """``(q, u)`` now, in one call."""
         return self._owner._sim.robot_state(self._index)
 
-    def set_pd_targets(self, q: Any, kp: Any, kd: Any, u: Any = None) -> None:
+    def set_pd_targets(self, q: _Any, kp: _Any, kd: _Any, u: _Any = None) -> None:
         """Drives every joint toward position target ``q`` (the shape of
         :attr:`q`) and velocity target ``u`` (the shape of :attr:`u`;
         ``None``: zero) with gains ``kp`` and ``kd`` (each a scalar or an
@@ -667,7 +674,7 @@ class Robot:
         if error:
             raise ValueError("set_pd_targets: " + error)
 
-    def set_torques(self, tau: Any) -> None:
+    def set_torques(self, tau: _Any) -> None:
         """Applies the generalized force ``tau`` (a scalar or an array
         shaped like :attr:`u`: a joint's torque or force; a floating base's
         six entries are a world-frame force at the base frame's origin and a
@@ -679,7 +686,7 @@ class Robot:
         if error:
             raise ValueError("set_torques: " + error)
 
-    def set_state(self, q: Any, u: Any = None) -> None:
+    def set_state(self, q: _Any, u: _Any = None) -> None:
         """Puts the robot at ``q`` with velocity ``u`` (``None``: zero) now,
         as an articulated record's generalizedCoordinate and
         generalizedVelocity would (quaternions are normalised): a reset.
@@ -695,6 +702,19 @@ class Robot:
         return "<rscene.Robot %s: %d coordinates, %d joints>" % (self.path, self._nq, len(self._info["joint_names"]))
 
 
+class Contact(_NamedTuple):
+    """One contact point of :class:`Contacts` (``contacts[i]``, or
+    iterating): the fields of its row."""
+    body_a: str
+    body_b: str
+    link_a: str
+    link_b: str
+    position: "_np.ndarray"
+    normal: "_np.ndarray"
+    depth: float
+    impulse: float
+
+
 class Contacts:
     """The rigid contact points of one moment (:meth:`Simulation.contacts`),
     one row per point: ``body_a`` and ``body_b`` (the records' paths, ``""``
@@ -706,17 +726,41 @@ class Contacts:
     ``impulse / time_step`` is the force).  ``len()`` is the number of
     points."""
 
-    __slots__ = ("body_a", "body_b", "link_a", "link_b", "position", "normal", "depth", "impulse")
+    __slots__ = ("body_a", "body_b", "link_a", "link_b", "position", "normal", "depth", "impulse", "_bodies")
 
-    def __init__(self, raw: dict) -> None:
-        for k in self.__slots__:
+    def __init__(self, raw: dict, bodies: _Optional[_Any] = None) -> None:
+        for k in self.__slots__[:-1]:
             setattr(self, k, raw[k])
+        self._bodies = bodies
 
     def __len__(self) -> int:
         return len(self.depth)
 
+    def __getitem__(self, i: _Any) -> "Contact":
+        """Point ``i`` (negative from the end) as a :class:`Contact`."""
+        index = _operator.index(i) if not isinstance(i, (bool, _np.bool_)) else None
+        if index is None:
+            raise TypeError("contacts are indexed by an int, not %s" % type(i).__name__)
+        n = len(self)
+        if not -n <= index < n:
+            raise IndexError("contact %d of %d" % (index, n))
+        index %= n
+        return Contact(self.body_a[index], self.body_b[index], self.link_a[index], self.link_b[index],
+                       self.position[index], self.normal[index], float(self.depth[index]),
+                       float(self.impulse[index]))
+
+    def __iter__(self) -> "_Iterator[Contact]":
+        for i in range(len(self)):
+            yield self[i]
+
     def involving(self, path: str) -> "_np.ndarray":
-        """A boolean mask of the points on the body ``path`` (either side)."""
+        """A boolean mask of the points on the body ``path`` (either side).
+        Raises ``KeyError`` for a name that is no body of the simulation
+        (an object, compound, terrain or robot record's path)."""
+        if not isinstance(path, str):
+            raise TypeError("involving(path): path must be a str, not %s" % type(path).__name__)
+        if self._bodies is not None and path not in self._bodies:
+            raise KeyError("no body named %r in this simulation (contacts name bodies by their record's path)" % path)
         return _np.array([a == path or b == path for a, b in zip(self.body_a, self.body_b)], dtype=bool)
 
     def __repr__(self) -> str:

@@ -1,6 +1,6 @@
 # Type stubs of the rscene package (python/rscene/__init__.py).
 import os
-from typing import Any, Dict, List, Optional, Sequence, SupportsIndex, Tuple, Union
+from typing import Any, Dict, Iterator, List, NamedTuple, Optional, Sequence, SupportsIndex, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -142,7 +142,19 @@ class Contacts:
     depth: npt.NDArray[np.float64]
     impulse: npt.NDArray[np.float64]
     def __len__(self) -> int: ...
+    def __getitem__(self, i: SupportsIndex) -> Contact: ...
+    def __iter__(self) -> Iterator[Contact]: ...
     def involving(self, path: str) -> npt.NDArray[np.bool_]: ...
+
+class Contact(NamedTuple):
+    body_a: str
+    body_b: str
+    link_a: str
+    link_b: str
+    position: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    depth: float
+    impulse: float
 
 # Rendering (python/rscene/_render.py).
 from typing import Iterator, Sequence

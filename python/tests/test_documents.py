@@ -261,3 +261,23 @@ def test_every_public_name_has_a_doc_string_and_a_stub():
             for attr, value in vars(obj).items():
                 if not attr.startswith("_") and (callable(value) or isinstance(value, property)):
                     assert inspect.getdoc(value), "%s.%s" % (name, attr)
+
+
+def test_diagnostic_file_is_the_scene_name():
+    # From a fresh-user trial: str(d) showed the name given to loads(), but
+    # d.file was empty.
+    doc = rscene.loads("raisim_engine_scene 1\ntime_step x\n", name="n.rscene")
+    (d,) = rscene.validate(doc)
+    assert d.file == "n.rscene" and str(d).startswith("n.rscene:2:11: error:")
+    with pytest.raises(rscene.ParseError) as e:
+        rscene.loads("not a scene\n", name="m.rscene")
+    assert e.value.diagnostics[0].file == "m.rscene"
+    # A scene from text without a name: no file, "<scene>" in str().
+    (d,) = rscene.validate(rscene.loads("raisim_engine_scene 1\ntime_step x\n"))
+    assert d.file == "" and str(d).startswith("<scene>:2:11")
+
+
+def test_typing_names_do_not_leak():
+    for name in ("Any", "List", "Optional", "Union", "Iterator", "NamedTuple"):
+        assert not hasattr(rscene, name), name
+    assert set(rscene.__all__) <= set(dir(rscene))

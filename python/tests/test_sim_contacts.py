@@ -34,7 +34,30 @@ def test_a_resting_box_carries_its_weight():
     assert np.allclose(c.normal, [0, 0, 1])
     assert np.all(c.depth > 0) and np.all(c.depth < 0.005)
     assert c.impulse.sum() / sim.time_step == pytest.approx(9.81, rel=0.02)
-    assert c.involving("/World/Box").all() and not c.involving("/World/Nothing").any()
+    assert c.involving("/World/Box").all() and c.involving("/World/Ground").all()
+
+
+def test_contacts_index_and_iterate():
+    # From a fresh-user trial: Contacts had len() but no [i] or iteration,
+    # and involving() of a name that is no body gave an empty mask.
+    sim = rscene.Simulation(rscene.loads(DROP.format(z=1)))
+    sim.step(1500)
+    c = sim.contacts()
+    points = list(c)
+    assert len(points) == len(c) == 4
+    first = c[0]
+    assert isinstance(first, rscene.Contact)
+    assert (first.body_a, first.body_b, first.link_a) == ("/World/Box", "/World/Ground", "")
+    assert np.array_equal(first.position, c.position[0]) and first.depth == c.depth[0]
+    assert c[-1].depth == points[3].depth == c.depth[3] and c[np.int64(2)].impulse == c.impulse[2]
+    with pytest.raises(IndexError):
+        c[4]
+    with pytest.raises(TypeError):
+        c[0.5]
+    with pytest.raises(KeyError, match="no body named '/nope'"):
+        c.involving("/nope")
+    with pytest.raises(TypeError):
+        c.involving(3)
 
 
 def test_a_falling_box_has_none():
