@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as _np
 
 from . import _rscene
-from . import Diagnostic, Document, Simulation, _base_dir, _check_document, _diagnostics, _flag
+from . import Diagnostic, Document, Simulation, _base_dir, _check_document, _count, _diagnostics, _flag
 
 __all__ = ["LookAt", "RenderError", "Renderer", "render", "render_depth", "render_segmentation",
            "render_available"]
@@ -150,8 +150,9 @@ class Renderer:
         raw = _check_document(doc)
         self._camera, self._look = _camera(camera)
         self._width, self._height = _size(width, "width"), _size(height, "height")
-        if isinstance(samples, bool) or not isinstance(samples, int):
-            raise TypeError("samples must be an int")
+        samples = _count(samples, "samples")
+        if not 1 <= samples <= 64:
+            raise ValueError("samples must be 1 to 64, not %d" % samples)
         allow = _flag(allow_missing_assets, "allow_missing_assets")
         base = _base_dir(base_dir)
         self._doc = doc

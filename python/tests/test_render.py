@@ -270,6 +270,11 @@ def test_misuse_raises_clear_errors():
         rscene.render(doc, camera=5)
     with pytest.raises(TypeError):
         rscene.render(doc, width=1.5)
+    with pytest.raises(TypeError, match="samples must be an int"):
+        rscene.render(doc, samples=True)
+    with pytest.raises(ValueError, match="samples must be 1 to 64"):
+        rscene.render(doc, samples=np.int64(65))
+    assert rscene.render(doc, samples=np.int64(1), width=np.int32(8), height=np.uint16(6)).shape == (6, 8, 4)
     with pytest.raises(TypeError):
         rscene.render("scene.rscene")
     with pytest.raises(rscene.RenderError, match="same point"):
