@@ -201,6 +201,8 @@ Diagnostic simWords(Diagnostic d) {
   };
   for (std::string* s : {&d.message, &d.hint}) {
     replace(*s, "--allow-missing-assets", "allow_missing_assets=True");
+    replace(*s, "; the simulation stopped and nothing was written", "; the simulation stopped");
+    replace(*s, "springs or --pd-gains too stiff", "springs or PD gains too stiff");
     replace(*s, "raise the limit with --max-pairs N (each pair costs about 8.5 KB), or spread the bodies out",
             "spread the bodies out (rscene-sim --max-pairs N raises the limit; each pair costs about 8.5 KB)");
   }

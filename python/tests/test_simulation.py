@@ -142,6 +142,8 @@ def test_step_after_a_failure_raises_the_failure_again():
     with pytest.raises(rscene.SimulationError) as first:
         sim.step(10)
     assert [d.code for d in first.value.diagnostics] == ["RS7024"]
+    # Python writes nothing: the message does not say rscene-sim's words.
+    assert first.value.diagnostics[0].message.endswith("the simulation stopped")
     # From a fresh-user trial: the next call raised a plain ValueError
     # without the diagnostics.
     with pytest.raises(rscene.SimulationError) as again:
