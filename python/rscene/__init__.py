@@ -410,7 +410,9 @@ class Simulation:
     def step(self, n: int = 1) -> None:
         """Takes ``n`` fixed time steps (``n >= 0``) with the GIL released.
         Raises :class:`SimulationError` when a state stops being finite;
-        the simulation then takes no more steps.  Ctrl-C (a signal handler
+        the simulation then takes no more steps (each later call raises
+        :class:`SimulationError` with that failure's diagnostics).  ``n`` is
+        any integer (a numpy one too; not a bool or a float).  Ctrl-C (a signal handler
         that raises) ends a long call within about 0.1 s, or after the
         step under way when one step takes longer, with the exception it
         raised (``KeyboardInterrupt``): the world stops between two steps,
