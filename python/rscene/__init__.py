@@ -418,7 +418,8 @@ class Simulation:
         raised (``KeyboardInterrupt``): the world stops between two steps,
         consistent, and ``step()`` goes on from there.  Robots' PD targets
         and torques set before the call act in each of its steps."""
-        n = _count(n, "step(n): n")
+        if type(n) is not int:  # the usual case without a call
+            n = _count(n, "step(n): n")
         if n > 2**63 - 1:
             raise ValueError("step(n): n is too large")
         failure = self._sim.step(n)
