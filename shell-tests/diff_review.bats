@@ -273,7 +273,7 @@ chrome() {
   f=$(facts out/changes.png)
   echo "$f"
   [ "$(count changed "$f")" -gt 20 ]
-  grep -qF '| articulated\_resource walker\_res | changed | sourcePath |' out/review.md
+  grep -qF '| articulated\_resource walker\_res | changed | path |' out/review.md
 }
 
 @test "review: a missing mesh is drawn as a placeholder, warned once for both scenes" {

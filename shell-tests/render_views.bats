@@ -485,8 +485,15 @@ object /World/Box box 0 0 2 1 0 0 0 0.5 0.5 0.5 0.5 1 2 default engine_default f
 camera /World/Seg -4 0 1 1 0 0 0 60 0.05 100 32 24 segmentation true id=seg
 SCENE
   "$BIN/rscene-sim" --duration 20 --trajectory t.jsonl -o /dev/null drop.rscene
-  run timeout --preserve-status -s TERM 2 "$RENDER" --all-cameras --trajectory t.jsonl -o 'f/{name}.{kind}.{frame}.png' drop.rscene
-  [ "$status" -eq 143 ]
+  # The signal comes once some frames are written (a loaded machine may
+  # take seconds to start drawing), long before the 8001 frames are done.
+  "$RENDER" --all-cameras --trajectory t.jsonl -o 'f/{name}.{kind}.{frame}.png' drop.rscene &
+  pid=$!
+  for _ in $(seq 600); do compgen -G 'f/*.png' > /dev/null && break; sleep 0.1; done
+  kill -TERM "$pid"
+  rc=0
+  wait "$pid" || rc=$?
+  [ "$rc" -eq 143 ]
   ls f/*.png > /dev/null  # some frames were written before the signal
   for png in f/*.png; do [ -s "${png%.png}.json" ] || { echo "no legend for $png"; false; }; done
   [ -z "$(find f -name '.*tmp*')" ]
