@@ -58,8 +58,8 @@ class DeformableBody {
   // inside a surface out along that surface's normal until it touches it
   // (a micrometre clear), so that the first substep does not push it out
   // with speed.  Returns the deepest start overlap it removed (m; 0 when
-  // none), `moved` the particles it moved.  Meant for overlaps up to half
-  // the radius (deeper ones are refused first, RS7077).
+  // none), `moved` the particles that were in it.  Meant for centres up to
+  // half the radius inside (deeper ones are refused first, RS7077).
   virtual double pushOut(SurfaceQuery& surfaces, std::size_t& moved) = 0;
   // Collision radius of the particles' proxy spheres (m).
   virtual double collisionRadius() const = 0;

@@ -98,6 +98,39 @@ double XpbdDeformable::pushOut(SurfaceQuery& surfaces, std::size_t& moved) {
   double deepest = 0;
   std::vector<char> pushed(x.size(), 0);
   std::vector<SurfaceContact> found;
+  // Where every overlapping particle meets one flat side (a cloth lying on
+  // the ground), the whole body is lifted by the deepest overlap: moving
+  // only the particles in it would stretch the constraints to those that
+  // are not, and the first substep would throw the body (a coarse cube 3
+  // mm in the ground left at 3 m/s).  Pinned particles are held where the
+  // user put them, so a body with any is moved particle by particle.
+  bool lifted = false;  // `pushed`: the particles that were in it
+  const bool pinned = std::any_of(m_.inverseMass.begin(), m_.inverseMass.end(), [](double w) { return w == 0; });
+  if (!pinned) {
+    const SurfaceContact* first = nullptr;
+    SurfaceContact side;
+    double lift = 0;
+    bool flat = true;
+    for (std::size_t i = 0; i < x.size() && flat; ++i) {
+      found.clear();
+      surfaces.contacts(x[i], r, 0, found);
+      for (const SurfaceContact& c : found) {
+        if (!(c.depth > 0) || !c.normal.allFinite()) continue;
+        if (!first) side = c, first = &side;
+        flat = c.normal.dot(side.normal) > 0.9999;
+        if (!flat) break;
+        lift = std::max(lift, c.depth);
+        pushed[i] = 1;
+      }
+    }
+    if (first && flat) {
+      for (Eigen::Vector3d& p : x) p += (lift + clear) * side.normal;
+      deepest = lift;
+      lifted = true;
+    } else {
+      std::fill(pushed.begin(), pushed.end(), 0);  // particle by particle after all
+    }
+  }
   // Out of the deepest surface each pass (a corner of two is two passes);
   // a few passes, not a loop that could run on.
   for (int pass = 0; pass < 4; ++pass) {
@@ -110,7 +143,7 @@ double XpbdDeformable::pushOut(SurfaceQuery& surfaces, std::size_t& moved) {
       for (const SurfaceContact& c : found)
         if (c.depth > 0 && c.normal.allFinite() && (!worst || c.depth > worst->depth)) worst = &c;
       if (!worst) continue;
-      if (pass == 0) deepest = std::max(deepest, worst->depth);
+      if (pass == 0 && !lifted) deepest = std::max(deepest, worst->depth);
       x[i] += (worst->depth + clear) * worst->normal;
       pushed[i] = 1;
       any = true;

@@ -120,11 +120,12 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
   for (DeformableEntry& d : deformables_) {
     std::size_t particle = 0;
     const double depth = d.body->startOverlap(surfaces, particle), r = d.body->collisionRadius();
-    if (!(depth > 0.5 * r + 1e-6)) {
+    if (!(depth > 1.5 * r + 1e-6)) {
       if (!(depth > 0)) continue;
-      // Up to half the radius: out before the first step, where the first
-      // substep would push it out at depth / substep (5 mm in 1 ms is
-      // 5 m/s: a launch the divergence check stops, RS7024).
+      // Centres up to half the radius inside (a cloth laid on the ground
+      // included): out before the first step, where the first substep
+      // would push it out at depth / substep (5 mm in 1 ms is 5 m/s: a
+      // launch the divergence check stops, RS7024).
       std::size_t moved = 0;
       const double removed = d.body->pushOut(surfaces, moved);
       if (removed > 1e-6)
@@ -143,8 +144,8 @@ bool ParticleSystems::checkDeformableStarts(SurfaceQuery& surfaces, const Docume
                  ", " + roundedNumber(at.y(), 6) + ", " + roundedNumber(at.z(), 6) + ") starts " +
                  (depth > r ? roundedNumber(depth - r, 6) + " m inside" : roundedNumber(r - depth, 6) + " m above the surface of") +
                  " the ground or another body, its sphere of collisionRadius " + roundedNumber(r, 6) + " m overlapping by " +
-                 roundedNumber(depth, 6) + " m (more than half the radius); pushing it out in one substep would throw "
-                 "the body and what it touches",
+                 roundedNumber(depth, 6) + " m (its centre more than half the radius inside); pushing it out would "
+                 "throw the body and what it touches",
              diagnostics, Severity::Error,
              "place the deformable clear of the other bodies (at least its collisionRadius above the ground)");
     ok = false;
