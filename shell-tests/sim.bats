@@ -250,7 +250,7 @@ object /World/On box 0 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default 
 object /World/Off box 3 0 0.7 1 0 0 0 0.4 0.4 0.4 0.5 1 1 default engine_default false true false - dynamic true 1 18446744073709551615
 SCENE
   run -0 --separate-stderr "$SIM" --duration 30 --until-rest --report edge.rscene
-  [[ ${stderr_lines[0]} == "edge.rscene:4: warning: dynamic body '/World/Off' left the world at step "*" s): fell below z = -10.5 (10 m under the lowest static geometry); no longer simulated, written at its last pose [RS7012]" ]]
+  [[ ${stderr_lines[0]} == "edge.rscene:4:1: warning: dynamic body '/World/Off' left the world at step "*" s): fell below z = -10.5 (10 m under the lowest static geometry); no longer simulated, written at its last pose [RS7012]" ]]
   jq -e '.leftWorld == 1 and .atRest == true and .simulatedTime < 5' <<<"${stderr_lines[-1]}"
   # written at the pose it had when it left: about 10 m under the platform
   off=$(zof /World/Off <<<"$output")
@@ -369,7 +369,7 @@ GROUND='object /World/Ground ground 0 0 0 1 0 0 0 10 10 1 0.5 1 0 default engine
   # Bullet silently freezes a dynamic body whose swept bounds pass 10^6 m.
   { echo 'gravity 0 0 -1e12'; obj /World/Box "0 0 1" "1 0 0 0" "0.4 0.4 0.4" 1 dynamic; } | scene 1 > away.rscene
   run -0 --separate-stderr bounded 500000 10 "$SIM" --steps 5 -o out.rscene away.rscene
-  [[ ${stderr_lines[0]} == "away.rscene:4: warning: dynamic body '/World/Box' left the world at step "*": moved more than 1e+06 m in one step (Bullet drops such a body); "*"[RS7012]" ]]
+  [[ ${stderr_lines[0]} == "away.rscene:4:1: warning: dynamic body '/World/Box' left the world at step "*": moved more than 1e+06 m in one step (Bullet drops such a body); "*"[RS7012]" ]]
   grep -q '^object /World/Box box 0 0 -' out.rscene
   ! grep -qi 'nan\|inf' out.rscene
 }

@@ -1391,6 +1391,7 @@ Diagnostic departureWarning(const Document& doc, const Departure& d) {
   if (d.recordIndex >= 0 && static_cast<std::size_t>(d.recordIndex) < doc.records.size()) {
     const Record& r = doc.records[static_cast<std::size_t>(d.recordIndex)];
     w.line = r.line;
+    w.column = 1;  // the record: no one field made it leave
     w.tag = std::string(doc.tag(r));
   }
   char at[96];
