@@ -6,6 +6,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "asset/cache.hpp"
 #include "core/diagnostic.hpp"
 #include "core/document.hpp"
+#include "core/writer.hpp"
 #include "sim/prepare.hpp"
 
 namespace rscene::python {
@@ -55,6 +57,11 @@ struct PySimulation {
 py::str pystr(const std::string& s);
 py::dict diagnosticDict(const Diagnostic& d);
 py::list diagnosticList(const Diagnostics& ds);
+// Writes what `write` gives to `path` through the tools' output routine
+// (atomic; a symlink's target rewritten, a device or FIFO written through),
+// without the GIL; the message of a refusal, or "" on success.  An empty
+// path or one with a NUL byte raises ValueError.
+std::string saveText(const std::string& path, const std::function<void(Sink&)>& write);
 
 // The further parts, each in its own file, registered from module.cpp.
 void bindRender(py::module_& m);  // render.cpp

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/eigen.h>
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <algorithm>
@@ -92,24 +93,6 @@ Parsed parseJson(const std::string& json) {
 std::string formatDoc(const PyDocument& d) {
   py::gil_scoped_release release;
   return canonicalText(d.doc);
-}
-
-// Writes the canonical text through the tools' output routine; the message
-// of a refusal, or "" on success.
-std::string saveDoc(const PyDocument& d, const std::string& path) {
-  if (path.empty()) throw py::value_error("save() needs a path, not an empty string");
-  if (path.find('\0') != std::string::npos) throw py::value_error("embedded null byte in path");
-  std::string error;
-  bool ok;
-  {
-    py::gil_scoped_release release;
-    ok = writeOutputFile(path, [&](Sink& sink) {
-      writeCanonical(d.doc, sink);
-      return true;
-    }, &error);
-  }
-  if (ok) return {};
-  return error.empty() ? std::string("cannot write") : error;
 }
 
 Diagnostics validateDoc(const PyDocument& d, const std::string& profile, bool checkFiles,
@@ -587,6 +570,22 @@ py::array_t<double> poseArray(const Pose& p) {
 
 namespace rscene::python {
 
+std::string saveText(const std::string& path, const std::function<void(Sink&)>& write) {
+  if (path.empty()) throw py::value_error("save() needs a path, not an empty string");
+  if (path.find('\0') != std::string::npos) throw py::value_error("embedded null byte in path");
+  std::string error;
+  bool ok;
+  {
+    py::gil_scoped_release release;
+    ok = writeOutputFile(path, [&](Sink& sink) {
+      write(sink);
+      return true;
+    }, &error);
+  }
+  if (ok) return {};
+  return error.empty() ? std::string("cannot write") : error;
+}
+
 // Scene values are percent-decoded and may hold any bytes.
 py::str pystr(const std::string& s) {
   PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace");
@@ -649,7 +648,10 @@ PYBIND11_MODULE(_rscene, m) {
     }
     return pystr(json);
   });
-  m.def("save", [](const PyDocument& d, py::bytes path) { return saveDoc(d, std::string(path)); });
+  // The canonical text; the message of a refusal, or "" on success.
+  m.def("save", [](const PyDocument& d, py::bytes path) {
+    return saveText(std::string(path), [&](Sink& sink) { writeCanonical(d.doc, sink); });
+  });
   m.def("validate", [](const PyDocument& d, const std::string& profile, bool checkFiles, py::bytes baseDir) {
     return diagnosticList(validateDoc(d, profile, checkFiles, std::string(baseDir)));
   });

@@ -501,21 +501,8 @@ std::shared_ptr<PyDocument> applyEdit(const PyDocument& d, std::size_t index, co
 void bindScene(py::module_& m) {
   // Document.save(as_written=True): the text as read, edits patched in,
   // through the tools' output routine; the refusal's message or "".
-  m.def("save_source", [](const PyDocument& d, py::bytes path) -> std::string {
-    std::string target(path);
-    if (target.empty()) throw py::value_error("save() needs a path, not an empty string");
-    if (target.find('\0') != std::string::npos) throw py::value_error("embedded null byte in path");
-    std::string error;
-    bool ok;
-    {
-      py::gil_scoped_release release;
-      ok = writeOutputFile(target, [&](Sink& sink) {
-        sink.write(d.source);
-        return true;
-      }, &error);
-    }
-    if (ok) return {};
-    return error.empty() ? std::string("cannot write") : error;
+  m.def("save_source", [](const PyDocument& d, py::bytes path) {
+    return saveText(std::string(path), [&](Sink& sink) { sink.write(d.source); });
   });
   m.def("scene", &sceneDict, py::arg("doc"), py::arg("load_robots") = true);
   m.def("find_record", [](const PyDocument& d, py::object selector) -> std::size_t {
