@@ -29,6 +29,7 @@
 #include "core/project.hpp"
 #include "core/writer.hpp"
 #include "robot/check.hpp"
+#include "robot/entry_names.hpp"
 #include "robot/load.hpp"
 #include "scene/validate.hpp"
 #include "robot/kinematics.hpp"
@@ -149,6 +150,12 @@ py::list diffDocs(const PyDocument& a, const PyDocument& b, double tolerance, do
   for (const std::string& name : ignore)
     if (auto bad = checkIgnoreName(name, a.doc, b.doc)) throw py::value_error("ignore: " + *bad);
   o.ignore = std::move(ignore);
+  // generalizedCoordinate[LF_KFE]: entries named by joint, as rscene-diff
+  // names them, where the robot model is readable.
+  robot::EntryNames joints;
+  joints.addSide(a.doc, a.path.empty() ? std::string(".") : directoryOf(a.path));
+  joints.addSide(b.doc, b.path.empty() ? std::string(".") : directoryOf(b.path));
+  o.entryNames = std::ref(joints);
   DiffResult r;
   {
     py::gil_scoped_release release;

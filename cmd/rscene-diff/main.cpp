@@ -13,7 +13,7 @@
 #include "core/report.hpp"
 #include "rscene-diff/render.hpp"
 #include "rscene-diff/review.hpp"
-#include "rscene-diff/robot_names.hpp"
+#include "robot/entry_names.hpp"
 
 namespace {
 
@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
     // generalizedCoordinate[LF_KFE]: entries named by joint where the robot
     // model is readable.  git's old side is a temporary file: its robot
     // files resolve from the repository path (git runs this at the top).
-    diffout::RobotNames joints;
+    robot::EntryNames joints;
     joints.addSide(a.loaded.document, directoryOf(git ? files[0] : a.in.path));
     joints.addSide(b.loaded.document, directoryOf(git ? files[files.size() == 9 ? 7 : 0] : b.in.path));
     opt.entryNames = std::ref(joints);

@@ -110,6 +110,20 @@ def test_diff_moved_box():
         rscene.diff(a, b, ignore=["positon"])
 
 
+def test_diff_names_a_robots_coordinates_by_joint_as_rscene_diff_does():
+    path = ROOT / "examples" / "robot_cell.rscene"
+    a = rscene.load(path)
+    text = path.read_text().replace("0,0,0.3882,1,0,0,0,0,0.6,-1.2,", "0,0,0.3882,1,0,0,0,0,0.7,-1.2,", 1)
+    b = rscene.loads(text, name=str(path))
+    (change,) = [c for c in rscene.diff(a, b) if c.path == "/World/Robot"]
+    names = [f.name for f in change.fields if f.entry]
+    assert names == ["generalizedCoordinate[LF_HFE]"], names
+    status, out = tool("rscene-diff", "--format", "json", "--stdin-filename", path, path, "-", check=False,
+                       stdin=text.encode())
+    assert status == 1
+    assert "generalizedCoordinate[LF_HFE]" in out.decode()
+
+
 def test_parse_error_carries_diagnostics():
     with pytest.raises(rscene.ParseError) as e:
         rscene.loads("not a scene\n", name="bad.rscene")

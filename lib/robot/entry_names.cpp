@@ -1,13 +1,13 @@
-#include "rscene-diff/robot_names.hpp"
+#include "robot/entry_names.hpp"
 
 #include "robot/instance.hpp"
 #include "robot/kinematics.hpp"
 
-namespace rscene::diffout {
+namespace rscene::robot {
 
-void RobotNames::addSide(const Document& doc, std::string sceneDir) { sides_[&doc].sceneDir = std::move(sceneDir); }
+void EntryNames::addSide(const Document& doc, std::string sceneDir) { sides_[&doc].sceneDir = std::move(sceneDir); }
 
-std::vector<std::string> RobotNames::operator()(const Document& doc, std::size_t record, std::string_view field) {
+std::vector<std::string> EntryNames::operator()(const Document& doc, std::size_t record, std::string_view field) {
   const bool velocity = field == "generalizedVelocity";
   if (!velocity && field != "generalizedCoordinate") return {};
   auto side = sides_.find(&doc);
@@ -26,11 +26,11 @@ std::vector<std::string> RobotNames::operator()(const Document& doc, std::size_t
   if (it == s.byRecord.end() || it->second->sourcePath.empty()) return {};
   const Articulated& a = *it->second;
   Diagnostics ignored;
-  std::shared_ptr<const robot::Model> model = models_.get(a.sourcePath, robot::loadOptionsOf(a), ignored);
+  std::shared_ptr<const Model> model = models_.get(a.sourcePath, loadOptionsOf(a), ignored);
   if (!model) return {};
   robot::Coordinates c;
   if (!robot::makeCoordinates(*model, a.jointOrder, c).empty()) return {};  // names would mislead
   return robot::coordinateNames(*model, c, velocity);
 }
 
-}  // namespace rscene::diffout
+}  // namespace rscene::robot

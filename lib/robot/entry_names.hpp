@@ -1,4 +1,4 @@
-// Joint names for rscene-diff: the entries of an articulated record's
+// Joint names for a diff (rscene-diff, rscene.diff in Python): the entries of an articulated record's
 // generalizedCoordinate and generalizedVelocity named from its robot model
 // (lib/robot), filled into DiffOptions::entryNames so lib/core's diff stays
 // free of robots.
@@ -13,9 +13,9 @@
 #include "robot/load.hpp"
 #include "scene/scene.hpp"
 
-namespace rscene::diffout {
+namespace rscene::robot {
 
-class RobotNames {
+class EntryNames {
  public:
   // `sceneDir`: where each side's robot files resolve from (its scene's
   // directory; in git's mode the repository path's, the old side being a
@@ -35,7 +35,7 @@ class RobotNames {
     std::map<std::size_t, const Articulated*> byRecord;
   };
   std::map<const Document*, Side> sides_;
-  robot::ModelCache models_;
+  ModelCache models_;
 };
 
-}  // namespace rscene::diffout
+}  // namespace rscene::robot
