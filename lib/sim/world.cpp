@@ -8,7 +8,6 @@
 #include <LinearMath/btConvexHullComputer.h>
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
 #include <algorithm>
@@ -30,6 +29,7 @@
 #include "sim/convex_plane.hpp"
 #include "sim/particle_systems.hpp"
 #include "sim/robot_sim.hpp"
+#include "sim/row_space_solver.hpp"
 #include "sim/wire.hpp"
 
 namespace rscene::sim {
@@ -297,7 +297,7 @@ struct World::Impl {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   std::unique_ptr<btBroadphaseInterface> broadphase;
-  btMultiBodyConstraintSolver solver;
+  RowSpaceSolver solver;  // Bullet's multibody solver, iterating on its rows' velocities (row_space_solver.hpp)
   std::unique_ptr<btMultiBodyDynamicsWorld> world;
   Filter filter;
   PairTable pairs;

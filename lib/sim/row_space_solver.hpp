@@ -1,0 +1,101 @@
+// Bullet's multibody constraint solver with its iterations done in the
+// space of its constraint rows (issue 26).
+//
+// Bullet solves a robot's contacts, joint limits and motors by projected
+// Gauss-Seidel: for each row it takes the row's Jacobian (J, ndof + 6
+// numbers) dotted with the robot's accumulated velocity change, computes
+// the impulse change, clamps it, and adds the row's unit response
+// (u = M^-1 J^T, ndof + 6 numbers) times that change back into the
+// velocity change, twice (its own copy and the multibody's).  Three
+// vectors of the robot's size per row, at 80 iterations by default: most
+// of a standing robot's step.
+//
+// The velocity change is only ever read through rows' Jacobians, so the
+// same iteration can run on the rows' velocities w = G lambda, where
+// G_ij = J_i . u_j (the Delassus matrix of the rows, built once per solve
+// from Bullet's own J and u).  A row then costs one column of G (the rows
+// sharing a robot with it) instead of three robot-sized vectors.  Every
+// other part is Bullet's, unchanged: the rows and their right-hand sides
+// (setup), the order of rows (non-contact rows alternating direction by
+// iteration parity, then normals, then the friction pairs), the impulse
+// update and clamps, the implicit friction cone (Bullet's angle form is
+// the radial projection written here without trigonometry), the residual
+// and the stopping rule (iterations, tolerance), and the write-back
+// (finish).  The solution is Bullet's up to rounding: the same physics,
+// the same number of iterations.
+//
+// The row-space path is taken only where it is exactly that: rows whose
+// other side is a multibody or a body that cannot move (a dynamic rigid
+// body moves through Bullet's solver bodies, coupled to rigid contacts),
+// no torsional or spinning friction rows, Bullet's two-direction cone
+// friction, and no group of coupled rows above kMaxGroupRows (G is dense
+// per group: bounded memory).  Anything else runs Bullet's own iteration.
+// Bullet-facing: included only by lib/sim sources.
+#pragma once
+#include <btBulletDynamicsCommon.h>
+
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace rscene::sim {
+
+class RowSpaceSolver : public btMultiBodyConstraintSolver {
+ public:
+  // Rows coupled through robots beyond this (a pile of robots in contact)
+  // leave the solve to Bullet: G would take rows^2 numbers.
+  static constexpr std::size_t kMaxGroupRows = 512;
+
+  // Off: every solve runs Bullet's own iteration (tests compare the two).
+  void setEnabled(bool on) { enabled_ = on; }
+
+  // Solves done, and how many of them in row space (for tests and --report-like checks).
+  long solves() const { return solves_; }
+  long rowSpaceSolves() const { return rowSpaceSolves_; }
+
+ protected:
+  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+                                        int numManifolds, btTypedConstraint** constraints, int numConstraints,
+                                        const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+  btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                btPersistentManifold** manifolds, int numManifolds, btTypedConstraint** constraints,
+                                int numConstraints, const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+  btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                         const btContactSolverInfo& info) override;
+
+ private:
+  // One multibody row: where its velocity and its column of G live.
+  struct Row {
+    btMultiBodySolverConstraint* c = nullptr;
+    std::size_t group = 0, local = 0;
+    btScalar start = 0;  // its impulse when the iterations began (the finish applies the change)
+  };
+  // Rows coupled through shared multibodies: G (column-major, rows x rows)
+  // and the rows' velocities w = G lambda.
+  struct Group {
+    std::vector<std::size_t> rows;  // indices into rows_
+    std::size_t offset = 0;         // of its G in gram_
+    std::vector<btScalar> w;
+  };
+
+  bool eligible(const btContactSolverInfo& info) const;
+  bool sideIsFixed(btMultiBody* mb, int solverBody) const;
+  bool build();
+  // Bullet's generic row update on row r; returns its velocity residual.
+  btScalar solveRow(std::size_t r);
+  // Bullet's two friction rows of one contact, clamped to the cone.
+  btScalar solveFrictionPair(std::size_t a, std::size_t b);
+  void apply(std::size_t r, btScalar delta);
+
+  bool enabled_ = true, active_ = false;
+  long solves_ = 0, rowSpaceSolves_ = 0;
+  std::size_t nonContact_ = 0, normal_ = 0, friction_ = 0;  // row counts, in that order in rows_
+  std::vector<Row> rows_;
+  std::vector<Group> groups_;  // the first groupCount_ are this solve's (the rest keep their buffers)
+  std::size_t groupCount_ = 0;
+  std::vector<btScalar> gram_;
+  std::vector<std::size_t> parent_, owner_, groupOf_;  // build()'s work space, kept between solves
+};
+
+}  // namespace rscene::sim
