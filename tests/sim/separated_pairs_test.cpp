@@ -1,0 +1,137 @@
+// skipSeparatedPairs (lib/sim/separated_pairs.hpp), the near callback that
+// leaves a pair's narrowphase uncalled when its shapes are too far apart
+// for a point, finds exactly Bullet's contacts: the same bodies in two
+// worlds, one with Bullet's own near callback, stay bit for bit the same.
+// Compound bodies (a robot link's shape) over a plane and a height field,
+// pairs of compounds near each other, and bodies that leave a contact
+// (points in the manifold: Bullet must remove them) and come back.
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "sim/convex_plane.hpp"
+#include "sim/separated_pairs.hpp"
+
+namespace {
+
+struct Bodies {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  rscene::sim::ConvexPlaneAlgorithm::CreateFunc convexPlane, planeConvex;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<btScalar> heights;
+
+  explicit Bodies(bool ours) {
+    config.setPlaneConvexMultipointIterations(3, 3);  // as World sets both
+    rscene::sim::useConvexPlaneAlgorithm(dispatcher, convexPlane, planeConvex, 3, 3);
+    if (ours) rscene::sim::skipSeparatedPairs(dispatcher);
+    world.setGravity(btVector3(0, 0, -9.81));
+    btTransform t = btTransform::getIdentity();
+    add(new btStaticPlaneShape(btVector3(0, 0, 1), 0), 0, t);
+    // A 2 x 2 m height field (bumps up to 0.2 m) at x = 6.
+    for (int j = 0; j < 21; ++j)
+      for (int i = 0; i < 21; ++i) heights.push_back(0.1 + 0.1 * std::sin(i * 0.7) * std::cos(j * 0.5));
+    auto* field = new btHeightfieldTerrainShape(21, 21, heights.data(), 1, 0, 0.2, 2, PHY_DOUBLE, false);
+    field->setLocalScaling(btVector3(0.1, 0.1, 1));
+    t.setOrigin(btVector3(6, 0, 0.1));
+    add(field, 0, t);
+    // Compounds: one sliding and tumbling onto the plane, one dropped on the
+    // field, one dropped onto the first (compound against compound).
+    t.setIdentity();
+    t.setRotation(btQuaternion(btVector3(1, 1, 0).normalized(), 0.6));
+    t.setOrigin(btVector3(0, 0, 0.8));
+    add(link(), 2, t)->setLinearVelocity(btVector3(1, 0.2, 0));
+    t.setOrigin(btVector3(6, 0, 0.9));
+    add(link(), 2, t);
+    t.setOrigin(btVector3(0.3, 0.05, 2.0));
+    add(link(), 1, t);
+    // A sphere thrown up from the plane (points in its manifold as it
+    // leaves; it lands again) and one that lands on the field.
+    t.setIdentity();
+    t.setOrigin(btVector3(-2, 0, 0.1));
+    add(new btSphereShape(0.1), 1, t)->setLinearVelocity(btVector3(0, 0, 3));
+    t.setOrigin(btVector3(6.4, 0.3, 1.2));
+    add(new btSphereShape(0.05), 1, t);
+    // A compound resting on the plane thrown up at 30 m/s: 7.5 cm a step,
+    // past the reach in one step with points in its manifold.
+    t.setOrigin(btVector3(-2, 2, 0.1));
+    add(link(), 1, t)->setLinearVelocity(btVector3(0, 0, 30));
+  }
+  // A robot link's shape: a box and a cylinder, both off its origin.
+  btCollisionShape* link() {
+    auto* compound = new btCompoundShape();
+    btTransform c = btTransform::getIdentity();
+    c.setOrigin(btVector3(0.1, 0, 0));
+    shapes.emplace_back(new btBoxShape(btVector3(0.1, 0.05, 0.05)));
+    compound->addChildShape(c, shapes.back().get());
+    c.setOrigin(btVector3(-0.1, 0, -0.05));
+    shapes.emplace_back(new btCylinderShapeZ(btVector3(0.04, 0.04, 0.1)));
+    compound->addChildShape(c, shapes.back().get());
+    return compound;
+  }
+  btRigidBody* add(btCollisionShape* shape, double mass, const btTransform& at) {
+    shapes.emplace_back(shape);
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+    info.m_startWorldTransform = at;
+    bodies.emplace_back(new btRigidBody(info));
+    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+    world.addRigidBody(bodies.back().get());
+    return bodies.back().get();
+  }
+  ~Bodies() {
+    for (auto& b : bodies) world.removeRigidBody(b.get());
+  }
+  // Contact points, all or those of one body.
+  int contacts(const btCollisionObject* with = nullptr) {
+    int n = 0;
+    for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
+      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
+      if (!with || m->getBody0() == with || m->getBody1() == with) n += m->getNumContacts();
+    }
+    return n;
+  }
+};
+
+
+bool same(const btVector3& a, const btVector3& b) { return std::memcmp(a.m_floats, b.m_floats, 3 * sizeof(btScalar)) == 0; }
+
+TEST(SeparatedPairs, SameContactsAsBulletsNearCallbackBitForBit) {
+  auto bullet = std::make_unique<Bodies>(false), ours = std::make_unique<Bodies>(true);
+  int touching = 0;
+  for (int step = 0; step < 800; ++step) {
+    bullet->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
+    ours->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
+    ASSERT_EQ(bullet->contacts(), ours->contacts()) << "step " << step;
+    touching = std::max(touching, ours->contacts());
+    for (std::size_t i = 2; i < ours->bodies.size(); ++i) {
+      const btRigidBody& a = *bullet->bodies[i];
+      const btRigidBody& b = *ours->bodies[i];
+      ASSERT_TRUE(same(a.getWorldTransform().getOrigin(), b.getWorldTransform().getOrigin())) << "body " << i << " step " << step;
+      for (int r = 0; r < 3; ++r)
+        ASSERT_TRUE(same(a.getWorldTransform().getBasis()[r], b.getWorldTransform().getBasis()[r])) << "body " << i;
+      ASSERT_TRUE(same(a.getLinearVelocity(), b.getLinearVelocity())) << "body " << i << " step " << step;
+      ASSERT_TRUE(same(a.getAngularVelocity(), b.getAngularVelocity())) << "body " << i << " step " << step;
+    }
+  }
+  // Not free falls: the bodies reached the plane, the field and each other.
+  EXPECT_GE(touching, 8);
+  EXPECT_GE(ours->contacts(ours->bodies[1].get()), 2);  // the compound and the sphere rest on the field
+  EXPECT_LT(ours->bodies[3]->getWorldTransform().getOrigin().z(), 0.5);
+  EXPECT_LT(ours->bodies[4]->getWorldTransform().getOrigin().z(), 0.6);  // came down onto the first compound or the plane
+  EXPECT_LT(ours->bodies[5]->getWorldTransform().getOrigin().z(), 0.2);  // the thrown sphere landed again
+}
+
+}  // namespace
