@@ -159,52 +159,60 @@ bool RowSpaceSolver::build() {
       for (std::size_t a = 0; a < n; ++a) g.w[a] += column[a] * impulse;
     }
   }
+  // Each row's numbers beside its place in G and w, for the iterations.
+  for (Row& r : rows_) {
+    const btMultiBodySolverConstraint& c = *r.c;
+    Group& g = groups_[r.group];
+    r.rhs = c.m_rhs;
+    r.cfm = c.m_cfm;
+    r.invDiag = c.m_jacDiagABInv;
+    r.lower = c.m_lowerLimit;
+    r.upper = c.m_upperLimit;
+    r.friction = c.m_friction;
+    r.impulse = c.m_appliedImpulse;
+    r.n = g.rows.size();
+    r.w = g.w.data();
+    r.self = r.w + r.local;
+    r.column = &gram_[g.offset + r.local * r.n];
+  }
+  for (std::size_t j = 0; j < friction_; ++j) {
+    Row& r = rows_[nonContact_ + normal_ + j];
+    r.normal = nonContact_ + static_cast<std::size_t>(r.c->m_frictionIndex);
+  }
   return true;
 }
 
-void RowSpaceSolver::apply(std::size_t r, btScalar delta) {
-  Group& g = groups_[rows_[r].group];
-  std::size_t n = g.rows.size();
-  const btScalar* column = &gram_[g.offset + rows_[r].local * n];
-  btScalar* w = g.w.data();
-  for (std::size_t a = 0; a < n; ++a) w[a] += column[a] * delta;
-}
-
-btScalar RowSpaceSolver::solveRow(std::size_t r) {
-  btMultiBodySolverConstraint& c = *rows_[r].c;
-  btScalar w = groups_[rows_[r].group].w[rows_[r].local];
-  btScalar delta = c.m_rhs - c.m_appliedImpulse * c.m_cfm - w * c.m_jacDiagABInv;
-  btScalar sum = c.m_appliedImpulse + delta;
-  if (sum < c.m_lowerLimit) {
-    delta = c.m_lowerLimit - c.m_appliedImpulse;
-    c.m_appliedImpulse = c.m_lowerLimit;
-  } else if (sum > c.m_upperLimit) {
-    delta = c.m_upperLimit - c.m_appliedImpulse;
-    c.m_appliedImpulse = c.m_upperLimit;
+// Bullet's generic row update (resolveSingleConstraintRowGeneric) on the
+// row's copy of its numbers.
+btScalar RowSpaceSolver::solveRow(Row& r) {
+  btScalar delta = r.rhs - r.impulse * r.cfm - *r.self * r.invDiag;
+  btScalar sum = r.impulse + delta;
+  if (sum < r.lower) {
+    delta = r.lower - r.impulse;
+    r.impulse = r.lower;
+  } else if (sum > r.upper) {
+    delta = r.upper - r.impulse;
+    r.impulse = r.upper;
   } else {
-    c.m_appliedImpulse = sum;
+    r.impulse = sum;
   }
-  apply(r, delta);
-  return delta / c.m_jacDiagABInv;
+  btScalar* w = r.w;
+  const btScalar* column = r.column;
+  for (std::size_t k = 0, n = r.n; k < n; ++k) w[k] += column[k] * delta;
+  return delta / r.invDiag;
 }
 
 // Both rows' unclamped impulses first; when their vector leaves the cone
 // of radius |lower| it is scaled back onto it (Bullet's clamp by the sine
 // and cosine of its angle, which is the same point).
-btScalar RowSpaceSolver::solveFrictionPair(std::size_t ra, std::size_t rb) {
-  btMultiBodySolverConstraint& a = *rows_[ra].c;
-  btMultiBodySolverConstraint& b = *rows_[rb].c;
-  auto unclamped = [this](std::size_t r, const btMultiBodySolverConstraint& c) {
-    btScalar w = groups_[rows_[r].group].w[rows_[r].local];
-    return c.m_appliedImpulse + (c.m_rhs - c.m_appliedImpulse * c.m_cfm - w * c.m_jacDiagABInv);
-  };
-  btScalar sumB = unclamped(rb, b);
-  btScalar sumA = unclamped(ra, a);
+btScalar RowSpaceSolver::solveFrictionPair(Row& a, Row& b) {
+  btScalar sumB = b.impulse + (b.rhs - b.impulse * b.cfm - *b.self * b.invDiag);
+  btScalar sumA = a.impulse + (a.rhs - a.impulse * a.cfm - *a.self * a.invDiag);
   btScalar newA = sumA, newB = sumB;
   btScalar radius2 = sumA * sumA + sumB * sumB;
-  if (radius2 >= a.m_lowerLimit * b.m_lowerLimit) {
+  if (radius2 >= a.lower * b.lower) {
     btScalar radius = std::sqrt(radius2);
-    btScalar limitA = std::fabs(a.m_lowerLimit), limitB = std::fabs(b.m_lowerLimit);
+    btScalar limitA = std::fabs(a.lower), limitB = std::fabs(b.lower);
     if (radius == 0) {
       newA = newB = 0;
     } else {
@@ -212,12 +220,15 @@ btScalar RowSpaceSolver::solveFrictionPair(std::size_t ra, std::size_t rb) {
       if (limitB < radius) newB = sumB * (limitB / radius);
     }
   }
-  btScalar deltaA = newA - a.m_appliedImpulse, deltaB = newB - b.m_appliedImpulse;
-  a.m_appliedImpulse = newA;
-  b.m_appliedImpulse = newB;
-  apply(ra, deltaA);
-  apply(rb, deltaB);
-  return deltaA / a.m_jacDiagABInv + deltaB / b.m_jacDiagABInv;
+  btScalar deltaA = newA - a.impulse, deltaB = newB - b.impulse;
+  a.impulse = newA;
+  b.impulse = newB;
+  // Both columns in one pass (the two rows of a contact share its group).
+  btScalar* w = a.w;
+  const btScalar* columnA = a.column;
+  const btScalar* columnB = b.column;
+  for (std::size_t k = 0, n = a.n; k < n; ++k) w[k] += columnA[k] * deltaA + columnB[k] * deltaB;
+  return deltaA / a.invDiag + deltaB / b.invDiag;
 }
 
 btScalar RowSpaceSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
@@ -235,26 +246,26 @@ btScalar RowSpaceSolver::solveSingleIteration(int iteration, btCollisionObject**
     nonContactResidual = 0;
     for (std::size_t j = 0; j < nonContact_; ++j) {
       std::size_t r = (iteration & 1) ? j : nonContact_ - 1 - j;
-      btScalar v = solveRow(r);
+      btScalar v = solveRow(rows_[r]);
       nonContactResidual = std::max(nonContactResidual, v * v);
     }
   }
   residual = std::max(residual, nonContactResidual);
   if (iteration >= info.m_numIterations) return residual;
   for (std::size_t j = 0; j < normal_; ++j) {
-    btScalar v = solveRow(nonContact_ + j);
+    btScalar v = solveRow(rows_[nonContact_ + j]);
     residual = std::max(residual, v * v);
   }
   std::size_t first = nonContact_ + normal_;
   for (std::size_t j = 0; j + 1 < friction_; j += 2) {
-    btMultiBodySolverConstraint& a = *rows_[first + j].c;
-    btMultiBodySolverConstraint& b = *rows_[first + j + 1].c;
-    btScalar normalImpulse = m_multiBodyNormalContactConstraints[a.m_frictionIndex].m_appliedImpulse;
-    a.m_lowerLimit = -(a.m_friction * normalImpulse);
-    a.m_upperLimit = a.m_friction * normalImpulse;
-    b.m_lowerLimit = -(b.m_friction * normalImpulse);
-    b.m_upperLimit = b.m_friction * normalImpulse;
-    btScalar v = solveFrictionPair(first + j, first + j + 1);
+    Row& a = rows_[first + j];
+    Row& b = rows_[first + j + 1];
+    btScalar normalImpulse = rows_[a.normal].impulse;
+    a.lower = -(a.friction * normalImpulse);
+    a.upper = a.friction * normalImpulse;
+    b.lower = -(b.friction * normalImpulse);
+    b.upper = b.friction * normalImpulse;
+    btScalar v = solveFrictionPair(a, b);
     residual = std::max(residual, v * v);
   }
   return residual;
@@ -268,6 +279,9 @@ btScalar RowSpaceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodie
   if (active_) {
     for (Row& row : rows_) {
       btMultiBodySolverConstraint& c = *row.c;
+      c.m_appliedImpulse = row.impulse;
+      c.m_lowerLimit = row.lower;
+      c.m_upperLimit = row.upper;
       btScalar change = c.m_appliedImpulse - row.start;
       Side sides[2];
       int n = sidesOf(c, sides);

@@ -65,11 +65,19 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
-  // One multibody row: where its velocity and its column of G live.
+  // One multibody row: where its velocity and its column of G live, and
+  // a copy of Bullet's numbers for it (the iterations read nothing else;
+  // the finish writes impulse and limits back).
   struct Row {
     btMultiBodySolverConstraint* c = nullptr;
     std::size_t group = 0, local = 0;
     btScalar start = 0;  // its impulse when the iterations began (the finish applies the change)
+    btScalar rhs = 0, cfm = 0, invDiag = 0, lower = 0, upper = 0, friction = 0, impulse = 0;
+    btScalar* w = nullptr;            // its group's row velocities
+    btScalar* self = nullptr;         // its own entry there
+    const btScalar* column = nullptr;  // its column of G
+    std::size_t n = 0;                // rows in its group
+    std::size_t normal = 0;           // a friction row's normal row (index into rows_)
   };
   // Rows coupled through shared multibodies: G (column-major, rows x rows)
   // and the rows' velocities w = G lambda.
@@ -82,11 +90,10 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   bool eligible(const btContactSolverInfo& info) const;
   bool sideIsFixed(btMultiBody* mb, int solverBody) const;
   bool build();
-  // Bullet's generic row update on row r; returns its velocity residual.
-  btScalar solveRow(std::size_t r);
+  // Bullet's generic row update; returns the row's velocity residual.
+  static btScalar solveRow(Row& r);
   // Bullet's two friction rows of one contact, clamped to the cone.
-  btScalar solveFrictionPair(std::size_t a, std::size_t b);
-  void apply(std::size_t r, btScalar delta);
+  static btScalar solveFrictionPair(Row& a, Row& b);
 
   bool enabled_ = true, active_ = false;
   long solves_ = 0, rowSpaceSolves_ = 0;

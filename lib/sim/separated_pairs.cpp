@@ -1,8 +1,11 @@
 #include "sim/separated_pairs.hpp"
 
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+#include <LinearMath/btAabbUtil2.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace rscene::sim {
 
@@ -20,6 +23,41 @@ btScalar planeGap(const btCollisionObject& planeObject, const btVector3& boxMin,
   return normal.dot(centre) - (reach.x() + reach.y() + reach.z()) - constant;
 }
 
+// How far `box` is above a height field (z up): the box's bottom against
+// the highest vertex of the cells under its footprint widened by `reach`
+// (a cell's two triangles lie below its highest corner).  A footprint off
+// the field has no triangle under it.  -inf (no verdict) for another up
+// axis, mirrored scaling, or a footprint of more than kMaxCells cells,
+// where reading them would cost more than Bullet's own walk.
+btScalar terrainGap(const btCollisionObject& terrainObject, const btVector3& boxMin, const btVector3& boxMax,
+                    btScalar reach) {
+  constexpr double kMaxCells = 256;
+  const auto& field = static_cast<const btHeightfieldTerrainShape&>(*terrainObject.getCollisionShape());
+  const btVector3 scale = field.getLocalScaling();
+  if (field.getUpAxis() != 2 || scale.x() <= 0 || scale.y() <= 0) return -BT_LARGE_FLOAT;
+  btVector3 lo, hi;
+  btTransformAabb(boxMin, boxMax, 0, terrainObject.getWorldTransform().inverse(), lo, hi);
+  // getVertex(x, y) is ((x - width / 2) sx, (y - length / 2) sy, h): its
+  // first vertex gives the grid's size.
+  btVector3 first;
+  field.getVertex(0, 0, first);
+  const btScalar width = std::round(-2 * first.x() / scale.x()), length = std::round(-2 * first.y() / scale.y());
+  const btScalar x0 = std::floor((lo.x() - reach) / scale.x() + width / 2), x1 = std::ceil((hi.x() + reach) / scale.x() + width / 2);
+  const btScalar y0 = std::floor((lo.y() - reach) / scale.y() + length / 2), y1 = std::ceil((hi.y() + reach) / scale.y() + length / 2);
+  if (x1 < 0 || y1 < 0 || x0 > width || y0 > length) return BT_LARGE_FLOAT;
+  const int ix0 = static_cast<int>(std::max<btScalar>(x0, 0)), ix1 = static_cast<int>(std::min(x1, width));
+  const int iy0 = static_cast<int>(std::max<btScalar>(y0, 0)), iy1 = static_cast<int>(std::min(y1, length));
+  if (double(ix1 - ix0 + 1) * double(iy1 - iy0 + 1) > kMaxCells) return -BT_LARGE_FLOAT;
+  btScalar top = -BT_LARGE_FLOAT;
+  btVector3 v;
+  for (int y = iy0; y <= iy1; ++y)
+    for (int x = ix0; x <= ix1; ++x) {
+      field.getVertex(x, y, v);
+      top = std::max(top, v.z());
+    }
+  return lo.z() - top - field.getMargin();
+}
+
 // The largest gap between two boxes along an axis (negative: they overlap).
 btScalar boxGap(const btVector3& aMin, const btVector3& aMax, const btVector3& bMin, const btVector3& bMax) {
   btScalar gap = -BT_LARGE_FLOAT;
@@ -27,22 +65,42 @@ btScalar boxGap(const btVector3& aMin, const btVector3& aMax, const btVector3& b
   return gap;
 }
 
-bool isPlane(const btCollisionObject& o) { return o.getCollisionShape()->getShapeType() == STATIC_PLANE_PROXYTYPE; }
+// An object's box: the one Bullet gave the broadphase this step (its
+// shape's, widened by gContactBreakingThreshold: larger, so never a wrong
+// skip) for an active object; a sleeping one's box is taken anew.
+void boxOf(const btCollisionObject& o, btVector3& lo, btVector3& hi) {
+  const btBroadphaseProxy* proxy = o.getBroadphaseHandle();
+  if (proxy && o.isActive()) {
+    lo = proxy->m_aabbMin;
+    hi = proxy->m_aabbMax;
+  } else {
+    o.getCollisionShape()->getAabb(o.getWorldTransform(), lo, hi);
+  }
+}
+
+int shapeType(const btCollisionObject& o) { return o.getCollisionShape()->getShapeType(); }
+bool isGround(const btCollisionObject& o) {
+  return shapeType(o) == STATIC_PLANE_PROXYTYPE || shapeType(o) == TERRAIN_SHAPE_PROXYTYPE;
+}
 
 // Whether the two shapes are farther apart than `reach`.
 bool separated(const btCollisionObject& a, const btCollisionObject& b, btScalar reach) {
-  if (isPlane(a) && isPlane(b)) return false;
-  const btCollisionShape& sa = *a.getCollisionShape();
-  const btCollisionShape& sb = *b.getCollisionShape();
-  btVector3 aMin, aMax, bMin, bMax;
-  if (isPlane(a)) {
-    sb.getAabb(b.getWorldTransform(), bMin, bMax);
-    return planeGap(a, bMin, bMax) > reach;
+  if (isGround(a) && isGround(b)) return false;
+  const btCollisionObject& ground = isGround(a) ? a : b;
+  const btCollisionObject& other = isGround(a) ? b : a;
+  btVector3 lo, hi;
+  boxOf(other, lo, hi);
+  switch (shapeType(ground)) {
+    case STATIC_PLANE_PROXYTYPE:
+      return planeGap(ground, lo, hi) > reach + ground.getCollisionShape()->getMargin();
+    case TERRAIN_SHAPE_PROXYTYPE:
+      return terrainGap(ground, lo, hi, reach) > reach;
+    default: {
+      btVector3 groundLo, groundHi;
+      boxOf(ground, groundLo, groundHi);
+      return boxGap(lo, hi, groundLo, groundHi) > reach;
+    }
   }
-  sa.getAabb(a.getWorldTransform(), aMin, aMax);
-  if (isPlane(b)) return planeGap(b, aMin, aMax) > reach;
-  sb.getAabb(b.getWorldTransform(), bMin, bMax);
-  return boxGap(aMin, aMax, bMin, bMax) > reach;
 }
 
 // How near two shapes must come for Bullet to add a point to this pair:
