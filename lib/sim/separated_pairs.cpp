@@ -83,8 +83,9 @@ bool isGround(const btCollisionObject& o) {
   return shapeType(o) == STATIC_PLANE_PROXYTYPE || shapeType(o) == TERRAIN_SHAPE_PROXYTYPE;
 }
 
-// Whether the two shapes are farther apart than `reach`.
-bool separated(const btCollisionObject& a, const btCollisionObject& b, btScalar reach) {
+}  // namespace
+
+bool fartherApartThan(const btCollisionObject& a, const btCollisionObject& b, btScalar reach) {
   if (isGround(a) && isGround(b)) return false;
   const btCollisionObject& ground = isGround(a) ? a : b;
   const btCollisionObject& other = isGround(a) ? b : a;
@@ -102,6 +103,8 @@ bool separated(const btCollisionObject& a, const btCollisionObject& b, btScalar 
     }
   }
 }
+
+namespace {
 
 // How near two shapes must come for Bullet to add a point to this pair:
 // its manifolds' contact-breaking threshold (a compound pair has one per
@@ -128,7 +131,7 @@ void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, con
   const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
   if (pair.m_algorithm && info.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE) {
     btScalar reach = reachOf(*pair.m_algorithm, *a, *b);
-    if (reach >= 0 && separated(*a, *b, reach)) return;
+    if (reach >= 0 && fartherApartThan(*a, *b, reach)) return;
   }
   btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
 }

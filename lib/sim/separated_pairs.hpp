@@ -28,4 +28,10 @@ namespace rscene::sim {
 
 void skipSeparatedPairs(btCollisionDispatcher& dispatcher);
 
+// The callback's geometric test: whether the two objects' shapes are
+// certainly farther apart than `reach` (their boxes, or a box's distance
+// to a static plane or to the highest vertex of a height field under it).
+// False when it cannot tell.  Exposed for its tests.
+bool fartherApartThan(const btCollisionObject& a, const btCollisionObject& b, btScalar reach);
+
 }  // namespace rscene::sim

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "sim/convex_plane.hpp"
@@ -132,6 +133,53 @@ TEST(SeparatedPairs, SameContactsAsBulletsNearCallbackBitForBit) {
   EXPECT_LT(ours->bodies[3]->getWorldTransform().getOrigin().z(), 0.5);
   EXPECT_LT(ours->bodies[4]->getWorldTransform().getOrigin().z(), 0.6);  // came down onto the first compound or the plane
   EXPECT_LT(ours->bodies[5]->getWorldTransform().getOrigin().z(), 0.2);  // the thrown sphere landed again
+}
+
+// The geometric test itself, against Bullet's closest points: wherever it
+// says a link's shape is farther from the plane or the height field than
+// the pair's threshold plus the turned queries' reach, Bullet finds no
+// point within the threshold.  Random poses from high above to deep in.
+TEST(SeparatedPairs, FartherApartOnlyWhereBulletFindsNoPoint) {
+  Bodies w(true);
+  btRigidBody* link = w.add(w.link(), 1, btTransform::getIdentity());
+  btRigidBody* ball = w.add(new btSphereShape(0.06), 1, btTransform::getIdentity());  // a box that fits
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int skipped = 0, nearKept = 0;
+  for (int i = 0; i < 4000; ++i) {
+    bool overField = i % 2 == 0;
+    btRigidBody* probe = i % 4 < 2 ? link : ball;
+    btTransform at;
+    at.setRotation(btQuaternion(btVector3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5).normalized(),
+                                unit(random) * 6.28));
+    at.setOrigin(btVector3(overField ? 5.1 + 1.8 * unit(random) : -1 + 2 * unit(random), -0.9 + 1.8 * unit(random),
+                           -0.05 + 0.85 * unit(random)));
+    probe->setWorldTransform(at);
+    probe->setInterpolationWorldTransform(at);  // else its box spans the previous pose too
+    w.world.updateSingleAabb(probe);
+    btCollisionObject* ground = w.bodies[overField ? 1 : 0].get();
+    btScalar threshold = std::min(probe->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold),
+                                  ground->getCollisionShape()->getContactBreakingThreshold(gContactBreakingThreshold));
+    struct Nearest : btCollisionWorld::ContactResultCallback {
+      btScalar distance = BT_LARGE_FLOAT;
+      btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
+                               const btCollisionObjectWrapper*, int, int) override {
+        distance = std::min(distance, cp.getDistance());
+        return 0;
+      }
+    } nearest;
+    nearest.m_closestDistanceThreshold = threshold + gContactBreakingThreshold;
+    w.world.contactPairTest(probe, ground, nearest);
+    bool far = rscene::sim::fartherApartThan(*probe, *ground, threshold + gContactBreakingThreshold);
+    if (far) {
+      ++skipped;
+      ASSERT_GT(nearest.distance, threshold) << "pose " << i << (overField ? " over the field" : " over the plane");
+    } else if (nearest.distance > threshold + gContactBreakingThreshold) {
+      ++nearKept;  // far enough, but the boxes could not tell
+    }
+  }
+  EXPECT_GT(skipped, 1000);
+  EXPECT_GT(nearKept, 0);
 }
 
 }  // namespace
