@@ -894,7 +894,7 @@ struct World::Impl {
     if (pairRuleBody(o)) pairRuleBodies.insert(o.recordIndex);
     if (o.primitive == "ground" || o.primitive == "half_space") {
       btCollisionShape* plane = keep(new btStaticPlaneShape(btVector3(0, 0, 1), o.world.position.z()));
-      body = addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, {}, false, fi, o.contactMaterial, sv);
+      body = addBody(plane, btTransform::getIdentity(), BodyMode::Static, 0, btVector3(0, 0, 0), false, fi, o.contactMaterial, sv);
       floorZ = std::min(floorZ, o.world.position.z());  // a plane's AABB is unbounded: its height is the floor
     } else {
       std::string error;
@@ -974,7 +974,7 @@ struct World::Impl {
     // Bullet centres a height field on its bounding box.
     btTransform at(btQuaternion::getIdentity(), btVector3(t.center.x(), t.center.y(), t.center.z() + (minH + maxH) / 2));
     BodyInfo fi{kTerrainGroup, kAll, -1, t.recordIndex};
-    btRigidBody* body = addBody(shape, at, BodyMode::Static, 0, {}, false, fi, t.contactMaterial, sv);
+    btRigidBody* body = addBody(shape, at, BodyMode::Static, 0, btVector3(0, 0, 0), false, fi, t.contactMaterial, sv);
     lowerFloorTo(body);
     name(byName, t.id, t.path, body);
     byRecord[t.recordIndex] = body;
