@@ -12,11 +12,11 @@
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "bit_for_bit.hpp"
 #include "sim/convex_plane.hpp"
 #include "sim/separated_pairs.hpp"
 
@@ -107,8 +107,6 @@ struct Bodies {
 };
 
 
-bool same(const btVector3& a, const btVector3& b) { return std::memcmp(a.m_floats, b.m_floats, 3 * sizeof(btScalar)) == 0; }
-
 TEST(SeparatedPairs, SameContactsAsBulletsNearCallbackBitForBit) {
   auto bullet = std::make_unique<Bodies>(false), ours = std::make_unique<Bodies>(true);
   int touching = 0;
@@ -117,15 +115,8 @@ TEST(SeparatedPairs, SameContactsAsBulletsNearCallbackBitForBit) {
     ours->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
     ASSERT_EQ(bullet->contacts(), ours->contacts()) << "step " << step;
     touching = std::max(touching, ours->contacts());
-    for (std::size_t i = 2; i < ours->bodies.size(); ++i) {
-      const btRigidBody& a = *bullet->bodies[i];
-      const btRigidBody& b = *ours->bodies[i];
-      ASSERT_TRUE(same(a.getWorldTransform().getOrigin(), b.getWorldTransform().getOrigin())) << "body " << i << " step " << step;
-      for (int r = 0; r < 3; ++r)
-        ASSERT_TRUE(same(a.getWorldTransform().getBasis()[r], b.getWorldTransform().getBasis()[r])) << "body " << i;
-      ASSERT_TRUE(same(a.getLinearVelocity(), b.getLinearVelocity())) << "body " << i << " step " << step;
-      ASSERT_TRUE(same(a.getAngularVelocity(), b.getAngularVelocity())) << "body " << i << " step " << step;
-    }
+    for (std::size_t i = 2; i < ours->bodies.size(); ++i)
+      ASSERT_TRUE(rscene::sim::test::sameState(*bullet->bodies[i], *ours->bodies[i])) << "body " << i << " step " << step;
   }
   // Not free falls: the bodies reached the plane, the field and each other.
   EXPECT_GE(touching, 8);
