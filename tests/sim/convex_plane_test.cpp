@@ -14,19 +14,11 @@
 
 namespace {
 
-struct Bodies {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+struct Bodies : rscene::sim::test::RigidWorld {
   rscene::sim::ConvexPlaneAlgorithm::CreateFunc convexPlane, planeConvex;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
 
   explicit Bodies(bool ours) {
     config.setPlaneConvexMultipointIterations(3, 3);  // as World sets it
-    world.setGravity(btVector3(0, 0, -9.81));
     if (ours) rscene::sim::useConvexPlaneAlgorithm(dispatcher, convexPlane, planeConvex, 3, 3);
     add(new btStaticPlaneShape(btVector3(0, 0, 1), 0), 0, btTransform::getIdentity());
     // A box that tips over and slides, a resting box (the turned queries at
@@ -56,38 +48,11 @@ struct Bodies {
     t.setOrigin(btVector3(-2, 2, 0.1));
     add(new btBoxShape(btVector3(0.15, 0.1, 0.1)), 1, t)->setLinearVelocity(btVector3(0, 0, 12));
   }
-  btRigidBody* add(btCollisionShape* shape, double mass, const btTransform& at) {
-    shapes.emplace_back(shape);
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-    info.m_startWorldTransform = at;
-    bodies.emplace_back(new btRigidBody(info));
-    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-    world.addRigidBody(bodies.back().get());
-    return bodies.back().get();
-  }
-  ~Bodies() {
-    for (auto& b : bodies) world.removeRigidBody(b.get());
-  }
-  int contacts() {
-    int n = 0;
-    for (int i = 0; i < dispatcher.getNumManifolds(); ++i) n += dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
-    return n;
-  }
 };
 
 TEST(ConvexPlane, SameContactsAsBulletsAlgorithmBitForBit) {
   auto bullet = std::make_unique<Bodies>(false), ours = std::make_unique<Bodies>(true);
-  int touching = 0;
-  for (int step = 0; step < 600; ++step) {
-    bullet->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
-    ours->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
-    ASSERT_EQ(bullet->contacts(), ours->contacts()) << "step " << step;
-    touching = std::max(touching, ours->contacts());
-    for (std::size_t i = 1; i < ours->bodies.size(); ++i)
-      ASSERT_TRUE(rscene::sim::test::sameState(*bullet->bodies[i], *ours->bodies[i])) << "body " << i << " step " << step;
-  }
+  int touching = rscene::sim::test::stepExpectingSameBits(*bullet, *ours, 600, 1);
   // The bodies did reach the plane (the comparison is not of free falls):
   // four resting shapes, several points each.
   EXPECT_GE(touching, 8);

@@ -22,22 +22,14 @@
 
 namespace {
 
-struct Bodies {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+struct Bodies : rscene::sim::test::RigidWorld {
   rscene::sim::ConvexPlaneAlgorithm::CreateFunc convexPlane, planeConvex;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<btScalar> heights;
 
   explicit Bodies(bool ours) {
     config.setPlaneConvexMultipointIterations(3, 3);  // as World sets both
     rscene::sim::useConvexPlaneAlgorithm(dispatcher, convexPlane, planeConvex, 3, 3);
     if (ours) rscene::sim::skipSeparatedPairs(dispatcher);
-    world.setGravity(btVector3(0, 0, -9.81));
     btTransform t = btTransform::getIdentity();
     add(new btStaticPlaneShape(btVector3(0, 0, 1), 0), 0, t);
     // A 2 x 2 m height field (bumps up to 0.2 m) at x = 6.
@@ -81,43 +73,12 @@ struct Bodies {
     compound->addChildShape(c, shapes.back().get());
     return compound;
   }
-  btRigidBody* add(btCollisionShape* shape, double mass, const btTransform& at) {
-    shapes.emplace_back(shape);
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-    info.m_startWorldTransform = at;
-    bodies.emplace_back(new btRigidBody(info));
-    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-    world.addRigidBody(bodies.back().get());
-    return bodies.back().get();
-  }
-  ~Bodies() {
-    for (auto& b : bodies) world.removeRigidBody(b.get());
-  }
-  // Contact points, all or those of one body.
-  int contacts(const btCollisionObject* with = nullptr) {
-    int n = 0;
-    for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
-      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
-      if (!with || m->getBody0() == with || m->getBody1() == with) n += m->getNumContacts();
-    }
-    return n;
-  }
 };
 
 
 TEST(SeparatedPairs, SameContactsAsBulletsNearCallbackBitForBit) {
   auto bullet = std::make_unique<Bodies>(false), ours = std::make_unique<Bodies>(true);
-  int touching = 0;
-  for (int step = 0; step < 800; ++step) {
-    bullet->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
-    ours->world.stepSimulation(1.0 / 400, 0, 1.0 / 400);
-    ASSERT_EQ(bullet->contacts(), ours->contacts()) << "step " << step;
-    touching = std::max(touching, ours->contacts());
-    for (std::size_t i = 2; i < ours->bodies.size(); ++i)
-      ASSERT_TRUE(rscene::sim::test::sameState(*bullet->bodies[i], *ours->bodies[i])) << "body " << i << " step " << step;
-  }
+  int touching = rscene::sim::test::stepExpectingSameBits(*bullet, *ours, 800, 2);
   // Not free falls: the bodies reached the plane, the field and each other.
   EXPECT_GE(touching, 8);
   EXPECT_GE(ours->contacts(ours->bodies[1].get()), 2);  // the compound and the sphere rest on the field
