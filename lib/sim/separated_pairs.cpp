@@ -1,5 +1,6 @@
 #include "sim/separated_pairs.hpp"
 
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 #include <LinearMath/btAabbUtil2.h>
@@ -108,13 +109,16 @@ namespace {
 
 // How near two shapes must come for Bullet to add a point to this pair:
 // its manifolds' contact-breaking threshold (a compound pair has one per
-// child pair, all alike; the dispatcher's rule when it has none yet),
+// child pair, all alike; the dispatcher's rule when it has none yet;
+// `count` says how many),
 // plus the reach of the turned plane queries.  Negative when a manifold
 // holds a point: Bullet must refresh it.
-btScalar reachOf(btCollisionAlgorithm& algorithm, const btCollisionObject& a, const btCollisionObject& b) {
+btScalar reachOf(btCollisionAlgorithm& algorithm, const btCollisionObject& a, const btCollisionObject& b,
+                 int& count) {
   thread_local btManifoldArray manifolds;
   manifolds.resize(0);
   algorithm.getAllContactManifolds(manifolds);
+  count = manifolds.size();
   btScalar threshold = 0;
   for (int i = 0; i < manifolds.size(); ++i) {
     if (manifolds[i]->getNumContacts() > 0) return -1;
@@ -126,12 +130,45 @@ btScalar reachOf(btCollisionAlgorithm& algorithm, const btCollisionObject& a, co
   return threshold + gContactBreakingThreshold;
 }
 
+// Whether Bullet's compound algorithm would keep its child algorithms as
+// they are.  Each step it makes one (with its manifold) for a child whose
+// box meets the other shape's box and removes one whose box no longer
+// does; a removal reorders the dispatcher's manifolds, and with them the
+// solver's rows.  Without knowing which children hold one, two states are
+// certainly left alone: no child algorithm and no child meeting the other
+// box (a link above a height field's box), and every child holding one
+// and meeting it (any link over a plane, whose box is unbounded).  Pairs
+// of compounds (a child-pair cache Bullet also prunes) are never skipped.
+bool childrenStay(const btCollisionObject& a, const btCollisionObject& b, int manifolds) {
+  const btCollisionShape& sa = *a.getCollisionShape();
+  const btCollisionShape& sb = *b.getCollisionShape();
+  if (!sa.isCompound() && !sb.isCompound()) return true;
+  if (sa.isCompound() && sb.isCompound()) return false;
+  const btCollisionObject& owner = sa.isCompound() ? a : b;
+  const btCollisionObject& other = sa.isCompound() ? b : a;
+  const auto& compound = static_cast<const btCompoundShape&>(*owner.getCollisionShape());
+  const int children = compound.getNumChildShapes();
+  if (manifolds != 0 && manifolds != children) return false;
+  int meeting = children;
+  if (shapeType(other) != STATIC_PLANE_PROXYTYPE) {
+    btVector3 otherLo, otherHi, lo, hi;
+    other.getCollisionShape()->getAabb(other.getWorldTransform(), otherLo, otherHi);
+    meeting = 0;
+    for (int i = 0; i < children; ++i) {
+      compound.getChildShape(i)->getAabb(owner.getWorldTransform() * compound.getChildTransform(i), lo, hi);
+      if (TestAabbAgainstAabb2(lo, hi, otherLo, otherHi)) ++meeting;
+    }
+  }
+  return manifolds == 0 ? meeting == 0 : meeting == children;
+}
+
 void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
   const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
   const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
   if (pair.m_algorithm && info.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE) {
-    btScalar reach = reachOf(*pair.m_algorithm, *a, *b);
-    if (reach >= 0 && fartherApartThan(*a, *b, reach)) return;
+    int manifolds = 0;
+    btScalar reach = reachOf(*pair.m_algorithm, *a, *b, manifolds);
+    if (reach >= 0 && childrenStay(*a, *b, manifolds) && fartherApartThan(*a, *b, reach)) return;
   }
   btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
 }
