@@ -77,6 +77,8 @@ void pose(py::dict& d, const Pose& local, const Pose& world) {
 }
 
 py::object optionalText(const std::string& s) { return s.empty() ? py::object(py::none()) : py::object(pystr(s)); }
+// A camera's or sensor's outputPath: none when unset or "-" (the record's "no file").
+py::object optionalOutput(const std::string& s) { return s == "-" ? py::object(py::none()) : optionalText(s); }
 
 py::dict objectDict(const Document& doc, const Object& o) {
   py::dict d = base(doc, o.recordIndex);
@@ -194,7 +196,7 @@ py::dict cameraDict(const Document& doc, const Camera& c) {
   d["projection"] = pystr(c.projection);
   d["ortho_scale"] = c.orthoScale;
   d["enabled"] = c.enabled;
-  d["output_path"] = c.outputPath.empty() || c.outputPath == "-" ? py::object(py::none()) : py::object(pystr(c.outputPath));
+  d["output_path"] = optionalOutput(c.outputPath);
   return d;
 }
 
@@ -225,7 +227,7 @@ py::dict sensorDict(const Document& doc, const Sensor& s) {
   d["noise_stddev"] = p.noiseStddev;
   d["noise_seed"] = p.noiseSeed;
   d["enabled"] = s.enabled;
-  d["output_path"] = s.outputPath.empty() || s.outputPath == "-" ? py::object(py::none()) : py::object(pystr(s.outputPath));
+  d["output_path"] = optionalOutput(s.outputPath);
   return d;
 }
 

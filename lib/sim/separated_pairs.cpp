@@ -107,18 +107,41 @@ bool fartherApartThan(const btCollisionObject& a, const btCollisionObject& b, bt
 
 namespace {
 
+// How many manifolds a pair must hold to be skipped: any (kAny) for a
+// pair without a compound shape; one per child for a compound over a
+// plane; none can do (kNever) for any other compound pair.  Bullet's
+// compound algorithm makes a child algorithm (with its manifold) for a
+// child whose box meets the other shape's box and removes one whose box
+// no longer does, every step; a removal reorders the dispatcher's
+// manifolds, and with them the solver's rows.  Over a plane (an unbounded
+// box) every child meets it, so once every child holds its algorithm
+// nothing changes.  Against anything else, finding out would cost a box
+// per child every step, more than a skip saves (measured on 16 ANYmals on
+// a height field), and pairs of compounds keep a child-pair cache Bullet
+// also prunes: those go to Bullet.
+constexpr int kAny = -1, kNever = -2;
+int manifoldsNeeded(const btCollisionObject& a, const btCollisionObject& b) {
+  const btCollisionShape& sa = *a.getCollisionShape();
+  const btCollisionShape& sb = *b.getCollisionShape();
+  if (!sa.isCompound() && !sb.isCompound()) return kAny;
+  if (sa.isCompound() && sb.isCompound()) return kNever;
+  const btCollisionObject& other = sa.isCompound() ? b : a;
+  if (shapeType(other) != STATIC_PLANE_PROXYTYPE) return kNever;
+  return static_cast<const btCompoundShape&>(sa.isCompound() ? sa : sb).getNumChildShapes();
+}
+
 // How near two shapes must come for Bullet to add a point to this pair:
 // its manifolds' contact-breaking threshold (a compound pair has one per
-// child pair, all alike; the dispatcher's rule when it has none yet;
-// `count` says how many),
-// plus the reach of the turned plane queries.  Negative when a manifold
-// holds a point: Bullet must refresh it.
+// child pair, all alike; the dispatcher's rule when it has none yet),
+// plus the reach of the turned plane queries.  Negative when the pair
+// must go to Bullet: a manifold holds a point (Bullet must refresh it) or
+// the pair holds other than `needed` manifolds.
 btScalar reachOf(btCollisionAlgorithm& algorithm, const btCollisionObject& a, const btCollisionObject& b,
-                 int& count) {
+                 int needed) {
   thread_local btManifoldArray manifolds;
   manifolds.resize(0);
   algorithm.getAllContactManifolds(manifolds);
-  count = manifolds.size();
+  if (needed != kAny && manifolds.size() != needed) return -1;
   btScalar threshold = 0;
   for (int i = 0; i < manifolds.size(); ++i) {
     if (manifolds[i]->getNumContacts() > 0) return -1;
@@ -130,37 +153,15 @@ btScalar reachOf(btCollisionAlgorithm& algorithm, const btCollisionObject& a, co
   return threshold + gContactBreakingThreshold;
 }
 
-// The compound shape of a pair that may be skipped (null: none), or
-// false when the pair may not.  Bullet's compound algorithm makes a child
-// algorithm (with its manifold) for a child whose box meets the other
-// shape's box and removes one whose box no longer does, every step; a
-// removal reorders the dispatcher's manifolds, and with them the solver's
-// rows.  Over a plane (an unbounded box) every child meets it, so once
-// every child holds its algorithm (one manifold each) nothing changes.
-// Against anything else, finding out would cost a box per child every
-// step, more than a skip saves (measured on 16 ANYmals on a height
-// field), and pairs of compounds keep a child-pair cache Bullet also
-// prunes: those go to Bullet.
-bool mayBeSkipped(const btCollisionObject& a, const btCollisionObject& b, const btCompoundShape*& compound) {
-  const btCollisionShape& sa = *a.getCollisionShape();
-  const btCollisionShape& sb = *b.getCollisionShape();
-  compound = nullptr;
-  if (!sa.isCompound() && !sb.isCompound()) return true;
-  if (sa.isCompound() && sb.isCompound()) return false;
-  const btCollisionObject& other = sa.isCompound() ? b : a;
-  compound = static_cast<const btCompoundShape*>(sa.isCompound() ? &sa : &sb);
-  return shapeType(other) == STATIC_PLANE_PROXYTYPE;
-}
-
 void nearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
   const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
   const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
-  const btCompoundShape* compound = nullptr;
-  if (pair.m_algorithm && info.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE && mayBeSkipped(*a, *b, compound)) {
-    int manifolds = 0;
-    btScalar reach = reachOf(*pair.m_algorithm, *a, *b, manifolds);
-    bool childrenStay = !compound || manifolds == compound->getNumChildShapes();
-    if (reach >= 0 && childrenStay && fartherApartThan(*a, *b, reach)) return;
+  if (pair.m_algorithm && info.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE) {
+    int needed = manifoldsNeeded(*a, *b);
+    if (needed != kNever) {
+      btScalar reach = reachOf(*pair.m_algorithm, *a, *b, needed);
+      if (reach >= 0 && fartherApartThan(*a, *b, reach)) return;
+    }
   }
   btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
 }
