@@ -274,7 +274,7 @@ void SimRobot::applyJointForces(double dt) {
 
 void SimRobot::setPdGains(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) {
   for (Drive& d : drives_) {
-    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].type == JointType::Spherical ? 3 : 1;
+    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].velocityDim();  // 1, or 3 for a spherical joint
     d.kp.setZero();
     d.kd.setZero();
     d.kp.head(n) = kp.segment(d.u, n);
@@ -285,7 +285,7 @@ void SimRobot::setPdGains(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) 
 
 void SimRobot::setPdTarget(const Eigen::VectorXd& q, const Eigen::VectorXd& u) {
   for (Drive& d : drives_) {
-    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].type == JointType::Spherical ? 3 : 1;
+    int n = instance_.model->joints[static_cast<std::size_t>(d.joint)].velocityDim();  // 1, or 3 for a spherical joint
     d.pdTarget.setZero();
     d.velocityTarget.setZero();
     if (n == 3) {
