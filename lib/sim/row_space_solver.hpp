@@ -50,7 +50,7 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   // Off: every solve runs Bullet's own iteration (tests compare the two).
   void setEnabled(bool on) { enabled_ = on; }
 
-  // Solves done, and how many of them in row space (for tests and --report-like checks).
+  // Solves done, and how many of them in row space (for the tests).
   long solves() const { return solves_; }
   long rowSpaceSolves() const { return rowSpaceSolves_; }
 
