@@ -39,6 +39,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "sim/joint_space_inertia.hpp"
+
 namespace rscene::sim {
 
 class RowSpaceSolver : public btMultiBodyConstraintSolver {
@@ -63,6 +65,10 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
                                 int numConstraints, const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
   btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                          const btContactSolverInfo& info) override;
+  // Contact rows of robots against robots or fixed bodies are set up here
+  // (row_space_setup.cpp), each row's unit response from the robot's
+  // factored joint-space inertia; every other row by Bullet.
+  void convertContacts(btPersistentManifold** manifolds, int numManifolds, const btContactSolverInfo& info) override;
 
  private:
   // One multibody row: where its velocity and its column of G live, and
@@ -87,6 +93,21 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
     std::vector<btScalar> w;
   };
 
+  // Setup (row_space_setup.cpp): Bullet's convertMultiBodyContact and
+  // setupMultiBodyContactConstraint for the manifolds setupEligible()
+  // accepts, with the unit responses from JointSpaceInertia.
+  bool setupEligible(const btPersistentManifold& manifold, int solverBodyA, int solverBodyB,
+                     const btContactSolverInfo& info) const;
+  void convertRobotContact(btPersistentManifold* manifold, int solverBodyA, int solverBodyB,
+                           const btContactSolverInfo& info);
+  btMultiBodySolverConstraint& addRow(btMultiBodyConstraintArray& rows, btPersistentManifold* manifold,
+                                      btManifoldPoint& cp, int solverBodyA, int solverBodyB);
+  void setupContactRow(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
+                       const btContactSolverInfo& info, bool isFriction);
+  // A multibody side of a row: its velocity slot, Jacobian and unit response.
+  void setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
+  const JointSpaceInertia* inertiaAt(btMultiBody* mb, int slot);
+
   bool eligible(const btContactSolverInfo& info) const;
   bool sideIsFixed(btMultiBody* mb, int solverBody) const;
   bool build();
@@ -103,6 +124,11 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   std::size_t groupCount_ = 0;
   std::vector<btScalar> gram_;
   std::vector<std::size_t> parent_, owner_, groupOf_;  // build()'s work space, kept between solves
+  // This solve's factored robots, found by velocity slot (-1: not yet,
+  // -2: Bullet's pass); the vector keeps its buffers between solves.
+  std::vector<JointSpaceInertia> inertias_;
+  std::size_t inertiaCount_ = 0;
+  std::vector<int> inertiaOfSlot_;
 };
 
 }  // namespace rscene::sim

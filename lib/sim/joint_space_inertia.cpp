@@ -1,0 +1,205 @@
+#include "sim/joint_space_inertia.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rscene::sim {
+
+namespace {
+
+// Rotational inertia about a point at offset c from the centre of mass:
+// the parallel-axis term m (|c|^2 1 - c c^T).
+btMatrix3x3 parallelAxis(btScalar m, const btVector3& c) {
+  btScalar cc = c.length2();
+  return btMatrix3x3(m * (cc - c.x() * c.x()), -m * c.x() * c.y(), -m * c.x() * c.z(),  //
+                     -m * c.y() * c.x(), m * (cc - c.y() * c.y()), -m * c.y() * c.z(),  //
+                     -m * c.z() * c.x(), -m * c.z() * c.y(), m * (cc - c.z() * c.z()));
+}
+
+btScalar dot6(const btScalar* a, const btVector3& top, const btVector3& bottom) {
+  return a[0] * top[0] + a[1] * top[1] + a[2] * top[2] + a[3] * bottom[0] + a[4] * bottom[1] + a[5] * bottom[2];
+}
+
+}  // namespace
+
+bool JointSpaceInertia::sameTopology(const btMultiBody& mb) const {
+  if (topology_.size() != 2 * static_cast<std::size_t>(mb.getNumLinks()) || n_ != mb.getNumDofs() + 6) return false;
+  for (int i = 0; i < mb.getNumLinks(); ++i) {
+    const btMultibodyLink& link = mb.getLink(i);
+    if (topology_[2 * static_cast<std::size_t>(i)] != link.m_parent ||
+        topology_[2 * static_cast<std::size_t>(i) + 1] != link.m_dofCount)
+      return false;
+  }
+  return true;
+}
+
+void JointSpaceInertia::buildTopology(const btMultiBody& mb) {
+  const int links = mb.getNumLinks();
+  n_ = mb.getNumDofs() + 6;
+  const auto n = static_cast<std::size_t>(n_);
+  topology_.clear();
+  std::vector<int> parent(n, -1);
+  bodyOf_.assign(n, 0);
+  lastOf_.assign(static_cast<std::size_t>(links) + 1, 5);
+  for (int k = 1; k < 6; ++k) parent[static_cast<std::size_t>(k)] = k - 1;
+  for (int i = 0; i < links; ++i) {
+    const btMultibodyLink& link = mb.getLink(i);
+    topology_.push_back(link.m_parent);
+    topology_.push_back(link.m_dofCount);
+    int last = lastOf_[static_cast<std::size_t>(link.m_parent + 1)];
+    for (int d = 0; d < link.m_dofCount; ++d) {
+      const auto k = static_cast<std::size_t>(6 + link.m_dofOffset + d);
+      bodyOf_[k] = i + 1;
+      parent[k] = last;
+      last = static_cast<int>(k);
+    }
+    lastOf_[static_cast<std::size_t>(i) + 1] = last;
+  }
+  start_.assign(n + 1, 0);
+  ancestors_.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int i = parent[k]; i >= 0; i = parent[static_cast<std::size_t>(i)]) ancestors_.push_back(i);
+    start_[k + 1] = static_cast<int>(ancestors_.size());
+  }
+  value_.resize(ancestors_.size());
+  diagonal_.resize(n);
+  twists_.resize(6 * n);
+}
+
+bool JointSpaceInertia::factor(const btMultiBody& mb) {
+  const int links = mb.getNumLinks();
+  if (mb.getNumDofs() + 6 > kMaxSize) return false;
+  for (int i = 0; i < links; ++i)
+    if (mb.isLinkKinematic(i)) return false;
+  if (!sameTopology(mb)) buildTopology(mb);
+  fixedBase_ = mb.isBaseStaticOrKinematic();
+  origin_ = mb.getBasePos();
+  bodies_.resize(static_cast<std::size_t>(links) + 1);
+
+  // Poses, the way Bullet's Jacobians walk them: each link's axes from its
+  // parent's and the cached rotation, its centre of mass from its parent's
+  // and the cached offset (given in the link's axes); then each body's
+  // inertia about the origin.
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    Body& body = bodies_[b];
+    const btVector3* local = &mb.getBaseInertia();
+    if (b == 0) {
+      body.fromWorld = btMatrix3x3(mb.getWorldToBaseRot());
+      body.com.setZero();
+      body.mass = mb.getBaseMass();
+    } else {
+      const btMultibodyLink& link = mb.getLink(static_cast<int>(b) - 1);
+      const Body& p = bodies_[static_cast<std::size_t>(link.m_parent + 1)];
+      body.fromWorld = btMatrix3x3(link.m_cachedRotParentToThis) * p.fromWorld;
+      body.com = p.com + link.m_cachedRVector * body.fromWorld;
+      body.mass = link.m_mass;
+      local = &link.m_inertiaLocal;
+    }
+    body.inertia = body.fromWorld.transpose().scaled(*local) * body.fromWorld + parallelAxis(body.mass, body.com);
+    body.moment = body.mass * body.com;
+  }
+  // Each subtree's inertia: a child (a higher index) is complete before it
+  // is added to its parent.
+  for (int i = links - 1; i >= 0; --i) {
+    const Body& b = bodies_[static_cast<std::size_t>(i) + 1];
+    Body& p = bodies_[static_cast<std::size_t>(mb.getLink(i).m_parent + 1)];
+    p.mass += b.mass;
+    p.moment += b.moment;
+    p.inertia = p.inertia + b.inertia;
+  }
+
+  // Unit twists: the base's six axes, then each joint axis moved to the origin.
+  std::fill(twists_.begin(), twists_.end(), btScalar(0));
+  for (std::size_t k = 0; k < 6; ++k) twists_[6 * k + k] = 1;
+  for (int i = 0; i < links; ++i) {
+    const btMultibodyLink& link = mb.getLink(i);
+    const Body& b = bodies_[static_cast<std::size_t>(i) + 1];
+    for (int d = 0; d < link.m_dofCount; ++d) {
+      btVector3 w = link.getAxisTop(d) * b.fromWorld;
+      btVector3 v = link.getAxisBottom(d) * b.fromWorld + b.com.cross(w);
+      btScalar* s = &twists_[6 * static_cast<std::size_t>(6 + link.m_dofOffset + d)];
+      for (int a = 0; a < 3; ++a) s[a] = w[a], s[3 + a] = v[a];
+    }
+  }
+
+  // M_kj = s_j . (I_b s_k) for j = k and its ancestors, with I_b the
+  // composite inertia of k's body: the composite-rigid-body algorithm.  A
+  // fixed base gets an identity block, uncoupled (its six are zeroed in
+  // solve()).
+  for (int k = 0; k < n_; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const int begin = start_[kk], end = start_[kk + 1];
+    if (fixedBase_ && k < 6) {
+      diagonal_[kk] = 1;
+      std::fill(value_.begin() + begin, value_.begin() + end, btScalar(0));
+      continue;
+    }
+    const Body& body = bodies_[static_cast<std::size_t>(bodyOf_[kk])];
+    const btScalar* s = &twists_[6 * kk];
+    btVector3 w(s[0], s[1], s[2]), v(s[3], s[4], s[5]);
+    btVector3 fw = body.inertia * w + body.moment.cross(v);
+    btVector3 fv = body.mass * v - body.moment.cross(w);
+    diagonal_[kk] = dot6(s, fw, fv);
+    for (int e = begin; e < end; ++e) {
+      const int j = ancestors_[static_cast<std::size_t>(e)];
+      value_[static_cast<std::size_t>(e)] =
+          fixedBase_ && j < 6 ? btScalar(0) : dot6(&twists_[6 * static_cast<std::size_t>(j)], fw, fv);
+    }
+  }
+
+  // M = L^T L in place, leaves first (Featherstone's LTL): only a
+  // velocity's ancestors fill in, and an ancestor's row is the tail of the
+  // velocity's own list.
+  btScalar* value = value_.data();
+  for (int k = n_ - 1; k >= 0; --k) {
+    const auto kk = static_cast<std::size_t>(k);
+    btScalar d = diagonal_[kk];
+    if (!(d > 0) || !std::isfinite(d)) return false;
+    d = std::sqrt(d);
+    diagonal_[kk] = d;
+    const int begin = start_[kk], end = start_[kk + 1];
+    for (int e = begin; e < end; ++e) value[e] /= d;
+    for (int e = begin; e < end; ++e) {
+      const int i = ancestors_[static_cast<std::size_t>(e)];
+      const btScalar a = value[e];
+      diagonal_[static_cast<std::size_t>(i)] -= a * a;
+      btScalar* row = value + start_[static_cast<std::size_t>(i)];
+      for (int t = e + 1; t < end; ++t) row[t - e - 1] -= a * value[t];
+    }
+  }
+  return true;
+}
+
+void JointSpaceInertia::solve(const btScalar* in, btScalar* out) const {
+  const int* start = start_.data();
+  const int* ancestor = ancestors_.data();
+  const btScalar* value = value_.data();
+  const btScalar* diagonal = diagonal_.data();
+  std::copy(in, in + n_, out);
+  // L^T y = in, leaves first; a zero (a velocity off the row's path) passes nothing on.
+  for (int k = n_ - 1; k >= 0; --k) {
+    btScalar y = out[k] /= diagonal[k];
+    if (y == 0) continue;
+    for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
+  }
+  // L out = y, root first.
+  for (int k = 0; k < n_; ++k) {
+    btScalar x = out[k];
+    for (int e = start[k]; e < start[k + 1]; ++e) x -= value[e] * out[ancestor[e]];
+    out[k] = x / diagonal[k];
+  }
+  if (fixedBase_) std::fill(out, out + 6, btScalar(0));
+}
+
+void JointSpaceInertia::contactJacobian(int link, const btVector3& point, const btVector3& normal,
+                                        btScalar* out) const {
+  std::fill(out, out + n_, btScalar(0));
+  const btVector3 arm = (point - origin_).cross(normal);
+  const int last = lastOf_[static_cast<std::size_t>(link + 1)];
+  auto entry = [&](int k) { out[k] = dot6(&twists_[6 * static_cast<std::size_t>(k)], arm, normal); };
+  entry(last);
+  for (int e = start_[static_cast<std::size_t>(last)]; e < start_[static_cast<std::size_t>(last) + 1]; ++e)
+    entry(ancestors_[static_cast<std::size_t>(e)]);
+}
+
+}  // namespace rscene::sim
