@@ -16,6 +16,16 @@ btMatrix3x3 parallelAxis(btScalar m, const btVector3& c) {
                      -m * c.z() * c.x(), -m * c.z() * c.y(), m * (cc - c.z() * c.z()));
 }
 
+// R^T diag(d) R, symmetric: the inertia of a body with principal moments d
+// in its axes, R taking world vectors into them.
+btMatrix3x3 rotatedDiagonal(const btMatrix3x3& r, const btVector3& d) {
+  btScalar m[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      m[i][j] = r[0][i] * d[0] * r[0][j] + r[1][i] * d[1] * r[1][j] + r[2][i] * d[2] * r[2][j];
+  return btMatrix3x3(m[0][0], m[0][1], m[0][2], m[0][1], m[1][1], m[1][2], m[0][2], m[1][2], m[2][2]);
+}
+
 btScalar dot6(const btScalar* a, const btVector3& top, const btVector3& bottom) {
   return a[0] * top[0] + a[1] * top[1] + a[2] * top[2] + a[3] * bottom[0] + a[4] * bottom[1] + a[5] * bottom[2];
 }
@@ -95,7 +105,7 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
       body.mass = link.m_mass;
       local = &link.m_inertiaLocal;
     }
-    body.inertia = body.fromWorld.transpose().scaled(*local) * body.fromWorld + parallelAxis(body.mass, body.com);
+    body.inertia = rotatedDiagonal(body.fromWorld, *local) + parallelAxis(body.mass, body.com);
     body.moment = body.mass * body.com;
   }
   // Each subtree's inertia: a child (a higher index) is complete before it
@@ -140,10 +150,13 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     btVector3 fw = body.inertia * w + body.moment.cross(v);
     btVector3 fv = body.mass * v - body.moment.cross(w);
     diagonal_[kk] = dot6(s, fw, fv);
+    // The base's six twists are unit axes: their entries are components.
+    const btScalar force[6] = {fw[0], fw[1], fw[2], fv[0], fv[1], fv[2]};
     for (int e = begin; e < end; ++e) {
       const int j = ancestors_[static_cast<std::size_t>(e)];
-      value_[static_cast<std::size_t>(e)] =
-          fixedBase_ && j < 6 ? btScalar(0) : dot6(&twists_[6 * static_cast<std::size_t>(j)], fw, fv);
+      value_[static_cast<std::size_t>(e)] = j >= 6    ? dot6(&twists_[6 * static_cast<std::size_t>(j)], fw, fv)
+                                            : fixedBase_ ? btScalar(0)
+                                                         : force[j];
     }
   }
 
@@ -158,19 +171,27 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     d = std::sqrt(d);
     diagonal_[kk] = d;
     const int begin = start_[kk], end = start_[kk + 1];
-    for (int e = begin; e < end; ++e) value[e] /= d;
+    const btScalar inverse = btScalar(1) / d;
+    for (int e = begin; e < end; ++e) value[e] *= inverse;
     for (int e = begin; e < end; ++e) {
       const int i = ancestors_[static_cast<std::size_t>(e)];
       const btScalar a = value[e];
       diagonal_[static_cast<std::size_t>(i)] -= a * a;
-      btScalar* row = value + start_[static_cast<std::size_t>(i)];
-      for (int t = e + 1; t < end; ++t) row[t - e - 1] -= a * value[t];
+      // Row i is the tail of row k after i: a separate run of value_.
+      btScalar* __restrict row = value + start_[static_cast<std::size_t>(i)];
+      const btScalar* __restrict tail = value + e + 1;
+      for (int t = 0, length = end - e - 1; t < length; ++t) row[t] -= a * tail[t];
     }
   }
   return true;
 }
 
 void JointSpaceInertia::solve(const btScalar* in, btScalar* out) const {
+  solveFirstHalf(in, out);
+  solveSecondHalf(out);
+}
+
+void JointSpaceInertia::solveFirstHalf(const btScalar* in, btScalar* out) const {
   const int* start = start_.data();
   const int* ancestor = ancestors_.data();
   const btScalar* value = value_.data();
@@ -182,13 +203,22 @@ void JointSpaceInertia::solve(const btScalar* in, btScalar* out) const {
     if (y == 0) continue;
     for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
   }
-  // L out = y, root first.
-  for (int k = 0; k < n_; ++k) {
-    btScalar x = out[k];
-    for (int e = start[k]; e < start[k + 1]; ++e) x -= value[e] * out[ancestor[e]];
-    out[k] = x / diagonal[k];
-  }
+  // A fixed base's identity block is uncoupled: its six stay out of the product.
   if (fixedBase_) std::fill(out, out + 6, btScalar(0));
+}
+
+void JointSpaceInertia::solveSecondHalf(btScalar* x) const {
+  const int* start = start_.data();
+  const int* ancestor = ancestors_.data();
+  const btScalar* value = value_.data();
+  const btScalar* diagonal = diagonal_.data();
+  // L x = y, root first.
+  for (int k = 0; k < n_; ++k) {
+    btScalar sum = x[k];
+    for (int e = start[k]; e < start[k + 1]; ++e) sum -= value[e] * x[ancestor[e]];
+    x[k] = sum / diagonal[k];
+  }
+  if (fixedBase_) std::fill(x, x + 6, btScalar(0));
 }
 
 void JointSpaceInertia::contactJacobian(int link, const btVector3& point, const btVector3& normal,

@@ -38,6 +38,11 @@ class JointSpaceInertia {
   // out = M^-1 in, both of the robot's velocity size (getNumDofs() + 6,
   // Bullet's layout); a fixed or kinematic base gets zero in its six.
   void solve(const btScalar* in, btScalar* out) const;
+  // The two halves of solve(): out = L^-T in, then x = L^-1 x in place.
+  // For rows i and j, (L^-T J_i^T) . (L^-T J_j^T) = J_i M^-1 J_j^T, and
+  // the first half touches only the velocities on a row's path.
+  void solveFirstHalf(const btScalar* in, btScalar* out) const;
+  void solveSecondHalf(btScalar* x) const;
 
   // The Jacobian row of a contact at `point` (world) on `link` (-1 the
   // base) along `normal`, as Bullet's fillContactJacobianMultiDof writes it

@@ -44,6 +44,8 @@ void RowSpaceSolver::convertContacts(btPersistentManifold** manifolds, int numMa
   }
   inertiaCount_ = 0;
   inertiaOfSlot_.clear();
+  halfRows_.clear();
+  holdsHalf_.clear();
   for (int i = 0; i < numManifolds; ++i) {
     btPersistentManifold* manifold = manifolds[i];
     int linkA = -1, linkB = -1;
@@ -158,10 +160,11 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   const btVector3& pos2 = cp.getPositionWorldOnB();
   btMultiBody* mbA = c.m_multiBodyA;
   btMultiBody* mbB = c.m_multiBodyB;
+  bool halfA = false, halfB = false;
   if (mbA) {
     btVector3 origin =
         c.m_linkA < 0 ? mbA->getBasePos() : mbA->getLink(c.m_linkA).m_cachedWorldTransform.getOrigin();
-    setupSide(mbA, c.m_linkA, pos1, normal, c.m_deltaVelAindex, c.m_jacAindex);
+    halfA = setupSide(mbA, c.m_linkA, pos1, normal, c.m_deltaVelAindex, c.m_jacAindex);
     c.m_relpos1CrossNormal = (pos1 - origin).cross(normal);
   } else {
     btVector3 relPos = pos1 - m_tmpSolverBodyPool[c.m_solverBodyIdA].getWorldTransform().getOrigin();
@@ -172,7 +175,7 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   if (mbB) {
     btVector3 origin =
         c.m_linkB < 0 ? mbB->getBasePos() : mbB->getLink(c.m_linkB).m_cachedWorldTransform.getOrigin();
-    setupSide(mbB, c.m_linkB, pos2, -normal, c.m_deltaVelBindex, c.m_jacBindex);
+    halfB = setupSide(mbB, c.m_linkB, pos2, -normal, c.m_deltaVelBindex, c.m_jacBindex);
     c.m_relpos2CrossNormal = -(pos2 - origin).cross(normal);
   } else {
     btVector3 relPos = pos2 - m_tmpSolverBodyPool[c.m_solverBodyIdB].getWorldTransform().getOrigin();
@@ -181,15 +184,22 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   }
   c.m_contactNormal2 = -normal;
 
-  // J M^-1 J^T and J v of each robot side, summed as Bullet sums them.
-  auto jacobianDot = [this](const btMultiBody* mb, int jac, const btScalar* x, btScalar sum) {
-    const btScalar* j = &m_data.m_jacobians[jac];
-    for (int k = 0, n = mb->getNumDofs() + 6; k < n; ++k) sum += x[k] * j[k];
+  // J M^-1 J^T (z . z for a half-solved side) and J v of each robot side,
+  // summed as Bullet sums them.
+  auto dot = [](const btMultiBody* mb, const btScalar* x, const btScalar* y, btScalar sum) {
+    for (int k = 0, n = mb->getNumDofs() + 6; k < n; ++k) sum += x[k] * y[k];
     return sum;
   };
+  auto denominator = [&](const btMultiBody* mb, int jac, bool half) {
+    const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[jac];
+    return dot(mb, unit, half ? unit : &m_data.m_jacobians[jac], btScalar(0));
+  };
+  auto jacobianDot = [&](const btMultiBody* mb, int jac, const btScalar* x, btScalar sum) {
+    return dot(mb, x, &m_data.m_jacobians[jac], sum);
+  };
   btScalar denom[2] = {0, 0}, relVel = 0;
-  if (mbA) denom[0] = jacobianDot(mbA, c.m_jacAindex, &m_data.m_deltaVelocitiesUnitImpulse[c.m_jacAindex], 0);
-  if (mbB) denom[1] = jacobianDot(mbB, c.m_jacBindex, &m_data.m_deltaVelocitiesUnitImpulse[c.m_jacBindex], 0);
+  if (mbA) denom[0] = denominator(mbA, c.m_jacAindex, halfA);
+  if (mbB) denom[1] = denominator(mbB, c.m_jacBindex, halfB);
   if (mbA) relVel = jacobianDot(mbA, c.m_jacAindex, mbA->getVelocityVector(), relVel);
   if (mbB) relVel = jacobianDot(mbB, c.m_jacBindex, mbB->getVelocityVector(), relVel);
   btScalar d = denom[0] + denom[1] + cfm;
@@ -221,7 +231,7 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   c.m_appliedPushImpulse = 0;
 }
 
-void RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot,
+bool RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot,
                                int& jac) {
   const int ndof = mb->getNumDofs() + 6;
   slot = mb->getCompanionId();
@@ -237,11 +247,24 @@ void RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point
   btScalar* u = &m_data.m_deltaVelocitiesUnitImpulse[jac];
   if (const JointSpaceInertia* inertia = inertiaAt(mb, slot)) {
     inertia->contactJacobian(link, point, normal, j);
-    inertia->solve(j, u);
-  } else {
-    mb->fillContactJacobianMultiDof(link, point, normal, j, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
-    mb->calcAccelerationDeltasMultiDof(j, u, m_data.scratch_r, m_data.scratch_v);
+    inertia->solveFirstHalf(j, u);
+    halfRows_.push_back({jac, slot});
+    holdsHalf_.resize(static_cast<std::size_t>(jac) + 1, 0);
+    holdsHalf_[static_cast<std::size_t>(jac)] = 1;
+    return true;
   }
+  mb->fillContactJacobianMultiDof(link, point, normal, j, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
+  mb->calcAccelerationDeltasMultiDof(j, u, m_data.scratch_r, m_data.scratch_v);
+  return false;
+}
+
+void RowSpaceSolver::completeUnitResponses() {
+  for (const HalfRow& row : halfRows_) {
+    const JointSpaceInertia& inertia = inertias_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(row.slot)])];
+    inertia.solveSecondHalf(&m_data.m_deltaVelocitiesUnitImpulse[row.jac]);
+  }
+  halfRows_.clear();
+  holdsHalf_.clear();
 }
 
 const JointSpaceInertia* RowSpaceSolver::inertiaAt(btMultiBody* mb, int slot) {

@@ -40,7 +40,10 @@ btScalar RowSpaceSolver::solveGroupCacheFriendlySetup(btCollisionObject** bodies
                                                                          constraints, numConstraints, info, debugDrawer);
   ++solves_;
   active_ = enabled_ && eligible(info) && build();
-  if (active_) ++rowSpaceSolves_;
+  if (active_)
+    ++rowSpaceSolves_;
+  else
+    completeUnitResponses();
   return r;
 }
 
@@ -143,8 +146,10 @@ bool RowSpaceSolver::build() {
         for (int i = 0; i < na; ++i)
           for (int j = 0; j < nb; ++j) {
             if (sa[i].slot != sb[j].slot) continue;
-            const btScalar* x = jac + sa[i].jac;
-            const btScalar* y = unit + sb[j].jac;
+            // z_a . z_b when both are half-solved, else J . u with u a full response.
+            bool halfA = holdsHalf(sa[i].jac), halfB = holdsHalf(sb[j].jac);
+            const btScalar* x = (halfA && halfB ? unit : jac) + (halfB && !halfA ? sb[j].jac : sa[i].jac);
+            const btScalar* y = unit + (halfB && !halfA ? sa[i].jac : sb[j].jac);
             for (int k = 0, nd = ndofOf(sa[i].mb); k < nd; ++k) v += x[k] * y[k];
           }
         column[a] = v;
@@ -196,8 +201,9 @@ btScalar RowSpaceSolver::solveRow(Row& r) {
   } else {
     r.impulse = sum;
   }
-  btScalar* w = r.w;
-  const btScalar* column = r.column;
+  // w and G never overlap (separate buffers): restrict lets the loop vectorise.
+  btScalar* __restrict w = r.w;
+  const btScalar* __restrict column = r.column;
   for (std::size_t k = 0, n = r.n; k < n; ++k) w[k] += column[k] * delta;
   return delta / r.invDiag;
 }
@@ -224,9 +230,9 @@ btScalar RowSpaceSolver::solveFrictionPair(Row& a, Row& b) {
   a.impulse = newA;
   b.impulse = newB;
   // Both columns in one pass (the two rows of a contact share its group).
-  btScalar* w = a.w;
-  const btScalar* columnA = a.column;
-  const btScalar* columnB = b.column;
+  btScalar* __restrict w = a.w;
+  const btScalar* __restrict columnA = a.column;
+  const btScalar* __restrict columnB = b.column;
   for (std::size_t k = 0, n = a.n; k < n; ++k) w[k] += columnA[k] * deltaA + columnB[k] * deltaB;
   return deltaA / a.invDiag + deltaB / b.invDiag;
 }
@@ -277,6 +283,10 @@ btScalar RowSpaceSolver::solveSingleIteration(int iteration, btCollisionObject**
 btScalar RowSpaceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                                        const btContactSolverInfo& info) {
   if (active_) {
+    // Half-solved rows add z * change into their robot's sum; each sum
+    // then takes its second half once (L^-1 sum z_i dlambda_i = sum u_i dlambda_i).
+    finishSum_.assign(static_cast<std::size_t>(m_data.m_deltaVelocities.size()), btScalar(0));
+    finishSlots_.clear();
     for (Row& row : rows_) {
       btMultiBodySolverConstraint& c = *row.c;
       c.m_appliedImpulse = row.impulse;
@@ -286,13 +296,26 @@ btScalar RowSpaceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodie
       Side sides[2];
       int n = sidesOf(c, sides);
       for (int s = 0; s < n; ++s) {
-        if (change != 0) {
-          btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[sides[s].jac];
+        const int ndof = ndofOf(sides[s].mb);
+        btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[sides[s].jac];
+        if (change != 0 && holdsHalf(sides[s].jac)) {
+          btScalar* sum = &finishSum_[static_cast<std::size_t>(sides[s].slot)];
+          bool listed = std::any_of(finishSlots_.begin(), finishSlots_.end(),
+                                    [&](const auto& listedSlot) { return listedSlot.second == sides[s].slot; });
+          if (!listed) finishSlots_.emplace_back(sides[s].mb, sides[s].slot);
+          for (int k = 0; k < ndof; ++k) sum[k] += unit[k] * change;
+        } else if (change != 0) {
           sides[s].mb->applyDeltaVeeMultiDof2(unit, change);
-          applyDeltaVee(unit, change, sides[s].slot, ndofOf(sides[s].mb));
+          applyDeltaVee(unit, change, sides[s].slot, ndof);
         }
         sides[s].mb->setPosUpdated(false);
       }
+    }
+    for (auto [mb, slot] : finishSlots_) {
+      btScalar* sum = &finishSum_[static_cast<std::size_t>(slot)];
+      inertias_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(slot)])].solveSecondHalf(sum);
+      mb->applyDeltaVeeMultiDof2(sum, 1);
+      applyDeltaVee(sum, 1, slot, ndofOf(mb));
     }
     active_ = false;
   }

@@ -104,9 +104,16 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
                                       btManifoldPoint& cp, int solverBodyA, int solverBodyB);
   void setupContactRow(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
                        const btContactSolverInfo& info, bool isFriction);
-  // A multibody side of a row: its velocity slot, Jacobian and unit response.
-  void setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
+  // A multibody side of a row: its velocity slot, Jacobian and unit
+  // response; true when the response slot holds only the first half,
+  // z = L^-T J^T (see halfRows_).
+  bool setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
   const JointSpaceInertia* inertiaAt(btMultiBody* mb, int slot);
+  bool holdsHalf(int jac) const {
+    return static_cast<std::size_t>(jac) < holdsHalf_.size() && holdsHalf_[static_cast<std::size_t>(jac)];
+  }
+  // Completes every half-solved response (u = L^-1 z) for Bullet's iteration.
+  void completeUnitResponses();
 
   bool eligible(const btContactSolverInfo& info) const;
   bool sideIsFixed(btMultiBody* mb, int solverBody) const;
@@ -129,6 +136,17 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   std::vector<JointSpaceInertia> inertias_;
   std::size_t inertiaCount_ = 0;
   std::vector<int> inertiaOfSlot_;
+  // Rows set up here keep z = L^-T J^T where Bullet keeps u = M^-1 J^T:
+  // G_ij = z_i . z_j, and the velocity change L^-1 (sum z_i dlambda_i) is
+  // one second half per robot at the finish instead of one per row.  Where
+  // Bullet's own iteration runs instead, completeUnitResponses() makes them u.
+  struct HalfRow {
+    int jac, slot;
+  };
+  std::vector<HalfRow> halfRows_;
+  std::vector<char> holdsHalf_;              // by Jacobian index
+  std::vector<btScalar> finishSum_;          // by velocity slot: sum of z dlambda
+  std::vector<std::pair<btMultiBody*, int>> finishSlots_;  // slots with a sum
 };
 
 }  // namespace rscene::sim
