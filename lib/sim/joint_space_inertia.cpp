@@ -73,6 +73,7 @@ void JointSpaceInertia::buildTopology(const btMultiBody& mb) {
   }
   value_.resize(ancestors_.size());
   diagonal_.resize(n);
+  inverseDiagonal_.resize(n);
   twists_.resize(6 * n);
 }
 
@@ -171,7 +172,7 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     d = std::sqrt(d);
     diagonal_[kk] = d;
     const int begin = start_[kk], end = start_[kk + 1];
-    const btScalar inverse = btScalar(1) / d;
+    const btScalar inverse = inverseDiagonal_[kk] = btScalar(1) / d;
     for (int e = begin; e < end; ++e) value[e] *= inverse;
     for (int e = begin; e < end; ++e) {
       const int i = ancestors_[static_cast<std::size_t>(e)];
@@ -195,11 +196,11 @@ void JointSpaceInertia::solveFirstHalf(const btScalar* in, btScalar* out) const 
   const int* start = start_.data();
   const int* ancestor = ancestors_.data();
   const btScalar* value = value_.data();
-  const btScalar* diagonal = diagonal_.data();
+  const btScalar* inverse = inverseDiagonal_.data();
   std::copy(in, in + n_, out);
   // L^T y = in, leaves first; a zero (a velocity off the row's path) passes nothing on.
   for (int k = n_ - 1; k >= 0; --k) {
-    btScalar y = out[k] /= diagonal[k];
+    btScalar y = out[k] *= inverse[k];
     if (y == 0) continue;
     for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
   }
@@ -207,25 +208,55 @@ void JointSpaceInertia::solveFirstHalf(const btScalar* in, btScalar* out) const 
   if (fixedBase_) std::fill(out, out + 6, btScalar(0));
 }
 
+void JointSpaceInertia::solvePathFirstHalf(int end, const btScalar* in, btScalar* out) const {
+  const int* start = start_.data();
+  const int* ancestor = ancestors_.data();
+  const btScalar* value = value_.data();
+  const btScalar* inverse = inverseDiagonal_.data();
+  std::fill(out, out + n_, btScalar(0));
+  const int first = start[end], last = start[end + 1];
+  out[end] = in[end];
+  for (int e = first; e < last; ++e) out[ancestor[e]] = in[ancestor[e]];
+  // The path, leaves first: `end`, then its ancestors (nearest first, so in
+  // descending order); each one's own ancestors are the rest of the path.
+  auto eliminate = [&](int k) {
+    btScalar y = out[k] *= inverse[k];
+    if (y == 0) return;
+    for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
+  };
+  eliminate(end);
+  for (int e = first; e < last; ++e) eliminate(ancestor[e]);
+  if (fixedBase_) std::fill(out, out + 6, btScalar(0));
+}
+
 void JointSpaceInertia::solveSecondHalf(btScalar* x) const {
   const int* start = start_.data();
   const int* ancestor = ancestors_.data();
   const btScalar* value = value_.data();
-  const btScalar* diagonal = diagonal_.data();
+  const btScalar* inverse = inverseDiagonal_.data();
   // L x = y, root first.
   for (int k = 0; k < n_; ++k) {
     btScalar sum = x[k];
     for (int e = start[k]; e < start[k + 1]; ++e) sum -= value[e] * x[ancestor[e]];
-    x[k] = sum / diagonal[k];
+    x[k] = sum * inverse[k];
   }
   if (fixedBase_) std::fill(x, x + 6, btScalar(0));
+}
+
+btScalar JointSpaceInertia::pathDot(int end, const btScalar* a, const btScalar* b) const {
+  btScalar sum = a[end] * b[end];
+  for (int e = start_[static_cast<std::size_t>(end)]; e < start_[static_cast<std::size_t>(end) + 1]; ++e) {
+    const int k = ancestors_[static_cast<std::size_t>(e)];
+    sum += a[k] * b[k];
+  }
+  return sum;
 }
 
 void JointSpaceInertia::contactJacobian(int link, const btVector3& point, const btVector3& normal,
                                         btScalar* out) const {
   std::fill(out, out + n_, btScalar(0));
   const btVector3 arm = (point - origin_).cross(normal);
-  const int last = lastOf_[static_cast<std::size_t>(link + 1)];
+  const int last = pathEnd(link);
   auto entry = [&](int k) { out[k] = dot6(&twists_[6 * static_cast<std::size_t>(k)], arm, normal); };
   entry(last);
   for (int e = start_[static_cast<std::size_t>(last)]; e < start_[static_cast<std::size_t>(last) + 1]; ++e)

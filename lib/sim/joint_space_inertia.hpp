@@ -43,11 +43,21 @@ class JointSpaceInertia {
   // the first half touches only the velocities on a row's path.
   void solveFirstHalf(const btScalar* in, btScalar* out) const;
   void solveSecondHalf(btScalar* x) const;
+  // solveFirstHalf for an `in` that is zero off the path ending at `end`
+  // (a contact Jacobian, see pathEnd()): only the path is visited.
+  void solvePathFirstHalf(int end, const btScalar* in, btScalar* out) const;
 
   // The Jacobian row of a contact at `point` (world) on `link` (-1 the
   // base) along `normal`, as Bullet's fillContactJacobianMultiDof writes it
   // (zero off the link's path to the root), from the twists of factor().
   void contactJacobian(int link, const btVector3& point, const btVector3& normal, btScalar* out) const;
+
+  // The last velocity on `link`'s path to the root (-1 the base): a
+  // contact row's Jacobian, and its first half, are zero off that velocity
+  // and its ancestors.
+  int pathEnd(int link) const { return lastOf_[static_cast<std::size_t>(link + 1)]; }
+  // a . b over the path ending at `end` (exact when either is zero off it).
+  btScalar pathDot(int end, const btScalar* a, const btScalar* b) const;
 
   int size() const { return n_; }
 
@@ -82,7 +92,7 @@ class JointSpaceInertia {
   // the base's centre of mass), then M and, in place, L = its factor
   // (M = L^T L): diagonal_, and value_ beside ancestors_.
   std::vector<Body> bodies_;
-  std::vector<btScalar> twists_, diagonal_, value_;
+  std::vector<btScalar> twists_, diagonal_, inverseDiagonal_, value_;
   btVector3 origin_;  // the base's centre of mass, world
 };
 

@@ -45,7 +45,7 @@ void RowSpaceSolver::convertContacts(btPersistentManifold** manifolds, int numMa
   inertiaCount_ = 0;
   inertiaOfSlot_.clear();
   halfRows_.clear();
-  holdsHalf_.clear();
+  halfPathEnd_.clear();
   for (int i = 0; i < numManifolds; ++i) {
     btPersistentManifold* manifold = manifolds[i];
     int linkA = -1, linkB = -1;
@@ -247,10 +247,10 @@ bool RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point
   btScalar* u = &m_data.m_deltaVelocitiesUnitImpulse[jac];
   if (const JointSpaceInertia* inertia = inertiaAt(mb, slot)) {
     inertia->contactJacobian(link, point, normal, j);
-    inertia->solveFirstHalf(j, u);
+    inertia->solvePathFirstHalf(inertia->pathEnd(link), j, u);
     halfRows_.push_back({jac, slot});
-    holdsHalf_.resize(static_cast<std::size_t>(jac) + 1, 0);
-    holdsHalf_[static_cast<std::size_t>(jac)] = 1;
+    halfPathEnd_.resize(static_cast<std::size_t>(jac) + 1, -1);
+    halfPathEnd_[static_cast<std::size_t>(jac)] = inertia->pathEnd(link);
     return true;
   }
   mb->fillContactJacobianMultiDof(link, point, normal, j, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
@@ -259,12 +259,10 @@ bool RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point
 }
 
 void RowSpaceSolver::completeUnitResponses() {
-  for (const HalfRow& row : halfRows_) {
-    const JointSpaceInertia& inertia = inertias_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(row.slot)])];
-    inertia.solveSecondHalf(&m_data.m_deltaVelocitiesUnitImpulse[row.jac]);
-  }
+  for (const HalfRow& row : halfRows_)
+    inertiaOfSlot(row.slot).solveSecondHalf(&m_data.m_deltaVelocitiesUnitImpulse[row.jac]);
   halfRows_.clear();
-  holdsHalf_.clear();
+  halfPathEnd_.clear();
 }
 
 const JointSpaceInertia* RowSpaceSolver::inertiaAt(btMultiBody* mb, int slot) {

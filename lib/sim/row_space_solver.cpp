@@ -132,25 +132,43 @@ bool RowSpaceSolver::build() {
   gram_.assign(total, btScalar(0));
   const btScalar* jac = &m_data.m_jacobians[0];
   const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
+  rowSides_.resize(2 * rows_.size());
+  rowSideCount_.resize(rows_.size());
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    Side sides[2];
+    int n = rowSideCount_[r] = sidesOf(*rows_[r].c, sides);
+    for (int i = 0; i < n; ++i) {
+      int end = halfPathEnd(sides[i].jac);
+      rowSides_[2 * r + static_cast<std::size_t>(i)] = {sides[i].slot, ndofOf(sides[i].mb), end, jac + sides[i].jac,
+                                                         unit + sides[i].jac,
+                                                         end >= 0 ? &inertiaOfSlot(sides[i].slot) : nullptr};
+    }
+  }
+  // One pair of sides on the same robot: z_a . z_b over a's path when both
+  // are half-solved (exact: z_b is zero off b's path), else J . u with u
+  // the full response.
+  auto entry = [](const RowSide& a, const RowSide& b) {
+    if (a.halfPathEnd >= 0 && b.halfPathEnd >= 0) return a.inertia->pathDot(a.halfPathEnd, a.response, b.response);
+    const btScalar* x = (b.halfPathEnd >= 0 ? b : a).jacobian;
+    const btScalar* u = (b.halfPathEnd >= 0 ? a : b).response;
+    btScalar v = 0;
+    for (int k = 0; k < a.ndof; ++k) v += x[k] * u[k];
+    return v;
+  };
   for (std::size_t k = 0; k < groupCount_; ++k) {
     Group& g = groups_[k];
     std::size_t n = g.rows.size();
     for (std::size_t b = 0; b < n; ++b) {
-      Side sb[2];
-      int nb = sidesOf(*rows_[g.rows[b]].c, sb);
+      const std::size_t rb = g.rows[b];
       btScalar* column = &gram_[g.offset + b * n];
       for (std::size_t a = 0; a <= b; ++a) {
-        Side sa[2];
-        int na = sidesOf(*rows_[g.rows[a]].c, sa);
+        const std::size_t ra = g.rows[a];
         btScalar v = 0;
-        for (int i = 0; i < na; ++i)
-          for (int j = 0; j < nb; ++j) {
-            if (sa[i].slot != sb[j].slot) continue;
-            // z_a . z_b when both are half-solved, else J . u with u a full response.
-            bool halfA = holdsHalf(sa[i].jac), halfB = holdsHalf(sb[j].jac);
-            const btScalar* x = (halfA && halfB ? unit : jac) + (halfB && !halfA ? sb[j].jac : sa[i].jac);
-            const btScalar* y = unit + (halfB && !halfA ? sa[i].jac : sb[j].jac);
-            for (int k = 0, nd = ndofOf(sa[i].mb); k < nd; ++k) v += x[k] * y[k];
+        for (int i = 0; i < rowSideCount_[ra]; ++i)
+          for (int j = 0; j < rowSideCount_[rb]; ++j) {
+            const RowSide& sa = rowSides_[2 * ra + static_cast<std::size_t>(i)];
+            const RowSide& sb = rowSides_[2 * rb + static_cast<std::size_t>(j)];
+            if (sa.slot == sb.slot) v += entry(sa, sb);
           }
         column[a] = v;
         gram_[g.offset + a * n + b] = v;

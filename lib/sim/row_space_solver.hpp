@@ -109,8 +109,13 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   // z = L^-T J^T (see halfRows_).
   bool setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
   const JointSpaceInertia* inertiaAt(btMultiBody* mb, int slot);
-  bool holdsHalf(int jac) const {
-    return static_cast<std::size_t>(jac) < holdsHalf_.size() && holdsHalf_[static_cast<std::size_t>(jac)];
+  // The last velocity of a half-solved row side's path (see halfRows_), -1 for a full response.
+  int halfPathEnd(int jac) const {
+    return static_cast<std::size_t>(jac) < halfPathEnd_.size() ? halfPathEnd_[static_cast<std::size_t>(jac)] : -1;
+  }
+  bool holdsHalf(int jac) const { return halfPathEnd(jac) >= 0; }
+  const JointSpaceInertia& inertiaOfSlot(int slot) const {
+    return inertias_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(slot)])];
   }
   // Completes every half-solved response (u = L^-1 z) for Bullet's iteration.
   void completeUnitResponses();
@@ -131,6 +136,13 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   std::size_t groupCount_ = 0;
   std::vector<btScalar> gram_;
   std::vector<std::size_t> parent_, owner_, groupOf_;  // build()'s work space, kept between solves
+  struct RowSide {  // a row's multibody side, for G
+    int slot, ndof, halfPathEnd;
+    const btScalar *jacobian, *response;
+    const JointSpaceInertia* inertia;  // for a half-solved side
+  };
+  std::vector<RowSide> rowSides_;      // two per row of rows_ (count in rowSideCount_)
+  std::vector<int> rowSideCount_;
   // This solve's factored robots, found by velocity slot (-1: not yet,
   // -2: Bullet's pass); the vector keeps its buffers between solves.
   std::vector<JointSpaceInertia> inertias_;
@@ -144,7 +156,7 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
     int jac, slot;
   };
   std::vector<HalfRow> halfRows_;
-  std::vector<char> holdsHalf_;              // by Jacobian index
+  std::vector<int> halfPathEnd_;             // by Jacobian index, -1: not half-solved
   std::vector<btScalar> finishSum_;          // by velocity slot: sum of z dlambda
   std::vector<std::pair<btMultiBody*, int>> finishSlots_;  // slots with a sum
 };
