@@ -7,23 +7,24 @@ namespace rscene::sim {
 
 namespace {
 
-// Rotational inertia about a point at offset c from the centre of mass:
-// the parallel-axis term m (|c|^2 1 - c c^T).
-btMatrix3x3 parallelAxis(btScalar m, const btVector3& c) {
-  btScalar cc = c.length2();
-  return btMatrix3x3(m * (cc - c.x() * c.x()), -m * c.x() * c.y(), -m * c.x() * c.z(),  //
-                     -m * c.y() * c.x(), m * (cc - c.y() * c.y()), -m * c.y() * c.z(),  //
-                     -m * c.z() * c.x(), -m * c.z() * c.y(), m * (cc - c.z() * c.z()));
+// A body's rotational inertia about the origin, symmetric (xx yy zz xy xz
+// yz): R^T diag(d) R for principal moments d in its axes (R taking world
+// vectors into them), plus the parallel-axis term m (|c|^2 1 - c c^T) for
+// its centre of mass c.
+void inertiaAboutOrigin(const btMatrix3x3& r, const btVector3& d, btScalar m, const btVector3& c, btScalar out[6]) {
+  auto rotated = [&](int i, int j) { return r[0][i] * d[0] * r[0][j] + r[1][i] * d[1] * r[1][j] + r[2][i] * d[2] * r[2][j]; };
+  const btScalar cc = c.length2();
+  out[0] = rotated(0, 0) + m * (cc - c.x() * c.x());
+  out[1] = rotated(1, 1) + m * (cc - c.y() * c.y());
+  out[2] = rotated(2, 2) + m * (cc - c.z() * c.z());
+  out[3] = rotated(0, 1) - m * c.x() * c.y();
+  out[4] = rotated(0, 2) - m * c.x() * c.z();
+  out[5] = rotated(1, 2) - m * c.y() * c.z();
 }
 
-// R^T diag(d) R, symmetric: the inertia of a body with principal moments d
-// in its axes, R taking world vectors into them.
-btMatrix3x3 rotatedDiagonal(const btMatrix3x3& r, const btVector3& d) {
-  btScalar m[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j)
-      m[i][j] = r[0][i] * d[0] * r[0][j] + r[1][i] * d[1] * r[1][j] + r[2][i] * d[2] * r[2][j];
-  return btMatrix3x3(m[0][0], m[0][1], m[0][2], m[0][1], m[1][1], m[1][2], m[0][2], m[1][2], m[2][2]);
+btVector3 times(const btScalar in[6], const btVector3& w) {
+  return btVector3(in[0] * w.x() + in[3] * w.y() + in[4] * w.z(), in[3] * w.x() + in[1] * w.y() + in[5] * w.z(),
+                   in[4] * w.x() + in[5] * w.y() + in[2] * w.z());
 }
 
 btScalar dot6(const btScalar* a, const btVector3& top, const btVector3& bottom) {
@@ -95,18 +96,22 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     Body& body = bodies_[b];
     const btVector3* local = &mb.getBaseInertia();
     if (b == 0) {
-      body.fromWorld = btMatrix3x3(mb.getWorldToBaseRot());
+      body.rotation = mb.getWorldToBaseRot();
       body.com.setZero();
       body.mass = mb.getBaseMass();
     } else {
       const btMultibodyLink& link = mb.getLink(static_cast<int>(b) - 1);
       const Body& p = bodies_[static_cast<std::size_t>(link.m_parent + 1)];
-      body.fromWorld = btMatrix3x3(link.m_cachedRotParentToThis) * p.fromWorld;
-      body.com = p.com + link.m_cachedRVector * body.fromWorld;
+      body.rotation = link.m_cachedRotParentToThis * p.rotation;
       body.mass = link.m_mass;
       local = &link.m_inertiaLocal;
     }
-    body.inertia = rotatedDiagonal(body.fromWorld, *local) + parallelAxis(body.mass, body.com);
+    body.fromWorld.setRotation(body.rotation);
+    if (b > 0) {
+      const btMultibodyLink& link = mb.getLink(static_cast<int>(b) - 1);
+      body.com = bodies_[static_cast<std::size_t>(link.m_parent + 1)].com + link.m_cachedRVector * body.fromWorld;
+    }
+    inertiaAboutOrigin(body.fromWorld, *local, body.mass, body.com, body.inertia);
     body.moment = body.mass * body.com;
   }
   // Each subtree's inertia: a child (a higher index) is complete before it
@@ -116,7 +121,7 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     Body& p = bodies_[static_cast<std::size_t>(mb.getLink(i).m_parent + 1)];
     p.mass += b.mass;
     p.moment += b.moment;
-    p.inertia = p.inertia + b.inertia;
+    for (int e = 0; e < 6; ++e) p.inertia[e] += b.inertia[e];
   }
 
   // Unit twists: the base's six axes, then each joint axis moved to the origin.
@@ -148,7 +153,7 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
     const Body& body = bodies_[static_cast<std::size_t>(bodyOf_[kk])];
     const btScalar* s = &twists_[6 * kk];
     btVector3 w(s[0], s[1], s[2]), v(s[3], s[4], s[5]);
-    btVector3 fw = body.inertia * w + body.moment.cross(v);
+    btVector3 fw = times(body.inertia, w) + body.moment.cross(v);
     btVector3 fv = body.mass * v - body.moment.cross(w);
     diagonal_[kk] = dot6(s, fw, fv);
     // The base's six twists are unit axes: their entries are components.

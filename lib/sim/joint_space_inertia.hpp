@@ -69,11 +69,12 @@ class JointSpaceInertia {
   // of the subtree it heads, all about the base's centre of mass in world
   // axes (positions near the robot, not near the world's origin).
   struct Body {
-    btMatrix3x3 fromWorld;  // world vectors into its axes
+    btQuaternion rotation;  // world vectors into its axes, as Bullet composes them
+    btMatrix3x3 fromWorld;  // the same as a matrix
     btVector3 com;
     btScalar mass = 0;
-    btVector3 moment;     // mass times centre of mass
-    btMatrix3x3 inertia;  // rotational inertia about the base's centre of mass
+    btVector3 moment;      // mass times centre of mass
+    btScalar inertia[6];   // rotational inertia about the base's centre of mass: xx yy zz xy xz yz
   };
   // The tree of velocities, rebuilt only when the robot's shape changes:
   // velocity k's ancestors, nearest first, are ancestors_[start_[k]] to
