@@ -68,9 +68,12 @@ void JointSpaceInertia::buildTopology(const btMultiBody& mb) {
   }
   start_.assign(n + 1, 0);
   ancestors_.clear();
+  work_ = 0;
   for (std::size_t k = 0; k < n; ++k) {
     for (int i = parent[k]; i >= 0; i = parent[static_cast<std::size_t>(i)]) ancestors_.push_back(i);
     start_[k + 1] = static_cast<int>(ancestors_.size());
+    long row = start_[k + 1] - start_[k] + 1;
+    work_ += row * row;
   }
   value_.resize(ancestors_.size());
   diagonal_.resize(n);
@@ -84,6 +87,7 @@ bool JointSpaceInertia::factor(const btMultiBody& mb) {
   for (int i = 0; i < links; ++i)
     if (mb.isLinkKinematic(i)) return false;
   if (!sameTopology(mb)) buildTopology(mb);
+  if (work_ > kMaxWorkPerBody * (links + 1)) return false;
   fixedBase_ = mb.isBaseStaticOrKinematic();
   origin_ = mb.getBasePos();
   bodies_.resize(static_cast<std::size_t>(links) + 1);

@@ -31,8 +31,9 @@ namespace rscene::sim {
 class JointSpaceInertia {
  public:
   // Builds and factors M for mb's current state.  False when mb has a
-  // kinematic link, more than kMaxSize velocities, or M is not positive
-  // definite; the caller then uses Bullet's pass.
+  // kinematic link, more than kMaxSize velocities, a tree so deep that
+  // factoring costs more than a few of Bullet's passes (kMaxWorkPerBody),
+  // or M is not positive definite; the caller then uses Bullet's pass.
   bool factor(const btMultiBody& mb);
 
   // out = M^-1 in, both of the robot's velocity size (getNumDofs() + 6,
@@ -61,8 +62,13 @@ class JointSpaceInertia {
 
   int size() const { return n_; }
 
-  // Robots larger than this keep Bullet's pass (bounded work per row).
+  // Robots larger than this keep Bullet's pass (bounded memory).
   static constexpr int kMaxSize = 256;
+  // Factoring costs about sum over velocities of (ancestors + 1)^2 products;
+  // one of Bullet's passes about a few hundred per body.  A long chain
+  // (sum ~ n^3 / 3) would cost more than the passes it saves: above this
+  // many products per body, Bullet's pass it is.
+  static constexpr long kMaxWorkPerBody = 256;
 
  private:
   // One link (or the base): its axes and centre of mass, then the inertia
@@ -89,6 +95,7 @@ class JointSpaceInertia {
   bool fixedBase_ = false;
   std::vector<int> topology_;  // (parent, dofs) of each link, to notice a different robot
   std::vector<int> start_, ancestors_, bodyOf_, lastOf_;  // lastOf_: each body's last velocity
+  long work_ = 0;  // sum of (ancestors + 1)^2 over velocities
   // Per factor(): poses, twists (6 numbers each: angular, then linear at
   // the base's centre of mass), then M and, in place, L = its factor
   // (M = L^T L): diagonal_, and value_ beside ancestors_.
