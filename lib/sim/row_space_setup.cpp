@@ -48,9 +48,8 @@ void RowSpaceSolver::convertContacts(btPersistentManifold** manifolds, int numMa
   halfPathEnd_.clear();
   for (int i = 0; i < numManifolds; ++i) {
     btPersistentManifold* manifold = manifolds[i];
-    int linkA = -1, linkB = -1;
-    btMultiBody* mbA = multiBodyOf(manifold->getBody0(), linkA);
-    btMultiBody* mbB = multiBodyOf(manifold->getBody1(), linkB);
+    const bool mbA = btMultiBodyLinkCollider::upcast(manifold->getBody0()) != nullptr;
+    const bool mbB = btMultiBodyLinkCollider::upcast(manifold->getBody1()) != nullptr;
     if (!mbA && !mbB) {
       convertContact(manifold, info);
       continue;
@@ -59,7 +58,7 @@ void RowSpaceSolver::convertContacts(btPersistentManifold** manifolds, int numMa
     // body when Bullet's conversion asks again).
     int bodyA = mbA ? -1 : getOrInitSolverBody(*const_cast<btCollisionObject*>(manifold->getBody0()), info.m_timeStep);
     int bodyB = mbB ? -1 : getOrInitSolverBody(*const_cast<btCollisionObject*>(manifold->getBody1()), info.m_timeStep);
-    if (setupEligible(*manifold, bodyA, bodyB, info))
+    if (setupEligible(*manifold, bodyA, bodyB))
       convertRobotContact(manifold, bodyA, bodyB, info);
     else
       convertMultiBodyContact(manifold, info);
@@ -68,8 +67,7 @@ void RowSpaceSolver::convertContacts(btPersistentManifold** manifolds, int numMa
   btMultiBodyConstraintSolver::convertContacts(manifolds, 0, info);
 }
 
-bool RowSpaceSolver::setupEligible(const btPersistentManifold& manifold, int solverBodyA, int solverBodyB,
-                                   const btContactSolverInfo&) const {
+bool RowSpaceSolver::setupEligible(const btPersistentManifold& manifold, int solverBodyA, int solverBodyB) const {
   for (int solverBody : {solverBodyA, solverBodyB})
     if (solverBody >= 0 && m_tmpSolverBodyPool[solverBody].m_originalBody) return false;
   if (hasAnyAnisotropicFriction(manifold.getBody0()) || hasAnyAnisotropicFriction(manifold.getBody1())) return false;

@@ -96,8 +96,7 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   // Setup (row_space_setup.cpp): Bullet's convertMultiBodyContact and
   // setupMultiBodyContactConstraint for the manifolds setupEligible()
   // accepts, with the unit responses from JointSpaceInertia.
-  bool setupEligible(const btPersistentManifold& manifold, int solverBodyA, int solverBodyB,
-                     const btContactSolverInfo& info) const;
+  bool setupEligible(const btPersistentManifold& manifold, int solverBodyA, int solverBodyB) const;
   void convertRobotContact(btPersistentManifold* manifold, int solverBodyA, int solverBodyB,
                            const btContactSolverInfo& info);
   btMultiBodySolverConstraint& addRow(btMultiBodyConstraintArray& rows, btPersistentManifold* manifold,
