@@ -182,24 +182,27 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   }
   c.m_contactNormal2 = -normal;
 
-  // J M^-1 J^T (z . z for a half-solved side) and J v of each robot side,
-  // summed as Bullet sums them.
-  auto dot = [](const btMultiBody* mb, const btScalar* x, const btScalar* y, btScalar sum) {
+  // J M^-1 J^T and J v of each robot side, summed as Bullet sums them; a
+  // half-solved side's J and z are zero off its path, so z . z and J . v
+  // run along the path.
+  auto dot = [this](const btMultiBody* mb, int slot, int jac, const btScalar* x, const btScalar* y, btScalar sum) {
+    if (int end = halfPathEnd(jac); end >= 0) return sum + inertiaOfSlot(slot).pathDot(end, x, y);
     for (int k = 0, n = mb->getNumDofs() + 6; k < n; ++k) sum += x[k] * y[k];
     return sum;
   };
-  auto denominator = [&](const btMultiBody* mb, int jac, bool half) {
-    const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[jac];
-    return dot(mb, unit, half ? unit : &m_data.m_jacobians[jac], btScalar(0));
-  };
-  auto jacobianDot = [&](const btMultiBody* mb, int jac, const btScalar* x, btScalar sum) {
-    return dot(mb, x, &m_data.m_jacobians[jac], sum);
-  };
+  const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
+  const btScalar* jacobian = &m_data.m_jacobians[0];
   btScalar denom[2] = {0, 0}, relVel = 0;
-  if (mbA) denom[0] = denominator(mbA, c.m_jacAindex, halfA);
-  if (mbB) denom[1] = denominator(mbB, c.m_jacBindex, halfB);
-  if (mbA) relVel = jacobianDot(mbA, c.m_jacAindex, mbA->getVelocityVector(), relVel);
-  if (mbB) relVel = jacobianDot(mbB, c.m_jacBindex, mbB->getVelocityVector(), relVel);
+  if (mbA) {
+    const btScalar* y = halfA ? unit + c.m_jacAindex : jacobian + c.m_jacAindex;
+    denom[0] = dot(mbA, c.m_deltaVelAindex, c.m_jacAindex, unit + c.m_jacAindex, y, 0);
+  }
+  if (mbB) {
+    const btScalar* y = halfB ? unit + c.m_jacBindex : jacobian + c.m_jacBindex;
+    denom[1] = dot(mbB, c.m_deltaVelBindex, c.m_jacBindex, unit + c.m_jacBindex, y, 0);
+  }
+  if (mbA) relVel = dot(mbA, c.m_deltaVelAindex, c.m_jacAindex, mbA->getVelocityVector(), jacobian + c.m_jacAindex, relVel);
+  if (mbB) relVel = dot(mbB, c.m_deltaVelBindex, c.m_jacBindex, mbB->getVelocityVector(), jacobian + c.m_jacBindex, relVel);
   btScalar d = denom[0] + denom[1] + cfm;
   c.m_jacDiagABInv = d > SIMD_EPSILON ? relaxation / d : btScalar(0);
 
