@@ -61,6 +61,8 @@ class JointSpaceInertia {
   btScalar pathDot(int end, const btScalar* a, const btScalar* b) const;
 
   int size() const { return n_; }
+  // Whether mb has the tree this one last factored (its work space fits).
+  bool sameTopology(const btMultiBody& mb) const;
 
   // Robots larger than this keep Bullet's pass (bounded memory).
   static constexpr int kMaxSize = 256;
@@ -88,7 +90,6 @@ class JointSpaceInertia {
   // first; a velocity's parent is the previous one of its joint, else the
   // last of the nearest ancestor link that moves).  An ancestor's own list
   // is the rest of the list after it, which the factorization relies on.
-  bool sameTopology(const btMultiBody& mb) const;
   void buildTopology(const btMultiBody& mb);
 
   int n_ = 0;

@@ -271,6 +271,13 @@ const JointSpaceInertia* RowSpaceSolver::inertiaAt(btMultiBody* mb, int slot) {
   if (s >= inertiaOfSlot_.size()) inertiaOfSlot_.resize(s + 1, kNotFactored);
   int& index = inertiaOfSlot_[s];
   if (index == kNotFactored) {
+    // A spare factor of the same tree keeps its work space (robots of
+    // several kinds need not rebuild theirs every step).
+    for (std::size_t spare = inertiaCount_; spare < inertias_.size(); ++spare)
+      if (inertias_[spare].sameTopology(*mb)) {
+        std::swap(inertias_[spare], inertias_[inertiaCount_]);
+        break;
+      }
     if (inertiaCount_ == inertias_.size()) inertias_.emplace_back();
     index = inertias_[inertiaCount_].factor(*mb) ? static_cast<int>(inertiaCount_++) : kBulletsPass;
   }
