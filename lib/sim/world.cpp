@@ -27,6 +27,7 @@
 #include "sim/bt_eigen.hpp"
 #include "sim/bullet_surfaces.hpp"
 #include "sim/convex_plane.hpp"
+#include "sim/multibody_world.hpp"
 #include "sim/particle_systems.hpp"
 #include "sim/robot_sim.hpp"
 #include "sim/row_space_solver.hpp"
@@ -299,7 +300,7 @@ struct World::Impl {
   btCollisionDispatcher dispatcher{&config};
   std::unique_ptr<btBroadphaseInterface> broadphase;
   RowSpaceSolver solver;  // Bullet's multibody solver, iterating on its rows' velocities (row_space_solver.hpp)
-  std::unique_ptr<btMultiBodyDynamicsWorld> world;
+  std::unique_ptr<MultiBodyWorld> world;
   Filter filter;
   PairTable pairs;
   std::vector<BodyInfo> info;
@@ -844,7 +845,7 @@ struct World::Impl {
       broadphase = std::make_unique<btAxisSweep3>(bt(sv.broadphaseWorldMin), bt(sv.broadphaseWorldMax));
     else
       broadphase = std::make_unique<btDbvtBroadphase>();
-    world = std::make_unique<btMultiBodyDynamicsWorld>(&dispatcher, broadphase.get(), &solver, &config);
+    world = std::make_unique<MultiBodyWorld>(&dispatcher, broadphase.get(), &solver, &config);  // multibody_world.hpp
     world->setGravity(bt(scene.gravity));
     // Static bodies do not move: Bullet's default re-sets every AABB each
     // step, which keeps statics in the broadphase's dynamic tree and
