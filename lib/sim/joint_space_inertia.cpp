@@ -201,40 +201,32 @@ void JointSpaceInertia::solve(const btScalar* in, btScalar* out) const {
   solveSecondHalf(out);
 }
 
+// One column of L^T y = b, leaves first: y_k, then its share taken from
+// its ancestors' entries.  A zero (a velocity off a row's path) passes
+// nothing on.
+void JointSpaceInertia::eliminate(int k, btScalar* out) const {
+  const btScalar y = out[k] *= inverseDiagonal_[static_cast<std::size_t>(k)];
+  if (y == 0) return;
+  for (int e = start_[static_cast<std::size_t>(k)]; e < start_[static_cast<std::size_t>(k) + 1]; ++e)
+    out[ancestors_[static_cast<std::size_t>(e)]] -= value_[static_cast<std::size_t>(e)] * y;
+}
+
 void JointSpaceInertia::solveFirstHalf(const btScalar* in, btScalar* out) const {
-  const int* start = start_.data();
-  const int* ancestor = ancestors_.data();
-  const btScalar* value = value_.data();
-  const btScalar* inverse = inverseDiagonal_.data();
   std::copy(in, in + n_, out);
-  // L^T y = in, leaves first; a zero (a velocity off the row's path) passes nothing on.
-  for (int k = n_ - 1; k >= 0; --k) {
-    btScalar y = out[k] *= inverse[k];
-    if (y == 0) continue;
-    for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
-  }
+  for (int k = n_ - 1; k >= 0; --k) eliminate(k, out);
   // A fixed base's identity block is uncoupled: its six stay out of the product.
   if (fixedBase_) std::fill(out, out + 6, btScalar(0));
 }
 
 void JointSpaceInertia::solvePathFirstHalf(int end, const btScalar* in, btScalar* out) const {
-  const int* start = start_.data();
-  const int* ancestor = ancestors_.data();
-  const btScalar* value = value_.data();
-  const btScalar* inverse = inverseDiagonal_.data();
   std::fill(out, out + n_, btScalar(0));
-  const int first = start[end], last = start[end + 1];
+  const int first = start_[static_cast<std::size_t>(end)], last = start_[static_cast<std::size_t>(end) + 1];
   out[end] = in[end];
-  for (int e = first; e < last; ++e) out[ancestor[e]] = in[ancestor[e]];
+  for (int e = first; e < last; ++e) out[ancestors_[static_cast<std::size_t>(e)]] = in[ancestors_[static_cast<std::size_t>(e)]];
   // The path, leaves first: `end`, then its ancestors (nearest first, so in
   // descending order); each one's own ancestors are the rest of the path.
-  auto eliminate = [&](int k) {
-    btScalar y = out[k] *= inverse[k];
-    if (y == 0) return;
-    for (int e = start[k]; e < start[k + 1]; ++e) out[ancestor[e]] -= value[e] * y;
-  };
-  eliminate(end);
-  for (int e = first; e < last; ++e) eliminate(ancestor[e]);
+  eliminate(end, out);
+  for (int e = first; e < last; ++e) eliminate(ancestors_[static_cast<std::size_t>(e)], out);
   if (fixedBase_) std::fill(out, out + 6, btScalar(0));
 }
 

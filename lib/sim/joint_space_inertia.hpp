@@ -91,6 +91,7 @@ class JointSpaceInertia {
   // last of the nearest ancestor link that moves).  An ancestor's own list
   // is the rest of the list after it, which the factorization relies on.
   void buildTopology(const btMultiBody& mb);
+  void eliminate(int k, btScalar* out) const;  // one step of the first half
 
   int n_ = 0;
   bool fixedBase_ = false;

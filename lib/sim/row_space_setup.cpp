@@ -152,57 +152,40 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   }
   cfm *= invTimeStep;
 
-  // Each side: its lever arm's cross product with the normal, and for a
-  // robot its Jacobian and unit response.
+  // Each side: its lever arm's cross product with the normal (negated for
+  // B, as Bullet writes it), and for a robot (B's along -normal) its Jacobian and unit response, J M^-1 J^T
+  // (z . z when half-solved) and J v, summed as Bullet sums them.  A
+  // half-solved side's J and z are zero off its path, so those run along it.
   const btVector3& pos1 = cp.getPositionWorldOnA();
   const btVector3& pos2 = cp.getPositionWorldOnB();
-  btMultiBody* mbA = c.m_multiBodyA;
-  btMultiBody* mbB = c.m_multiBodyB;
-  bool halfA = false, halfB = false;
-  if (mbA) {
-    btVector3 origin =
-        c.m_linkA < 0 ? mbA->getBasePos() : mbA->getLink(c.m_linkA).m_cachedWorldTransform.getOrigin();
-    halfA = setupSide(mbA, c.m_linkA, pos1, normal, c.m_deltaVelAindex, c.m_jacAindex);
-    c.m_relpos1CrossNormal = (pos1 - origin).cross(normal);
-  } else {
-    btVector3 relPos = pos1 - m_tmpSolverBodyPool[c.m_solverBodyIdA].getWorldTransform().getOrigin();
-    c.m_relpos1CrossNormal = relPos.cross(normal);
-    c.m_angularComponentA.setZero();
-  }
-  c.m_contactNormal1 = normal;
-  if (mbB) {
-    btVector3 origin =
-        c.m_linkB < 0 ? mbB->getBasePos() : mbB->getLink(c.m_linkB).m_cachedWorldTransform.getOrigin();
-    halfB = setupSide(mbB, c.m_linkB, pos2, -normal, c.m_deltaVelBindex, c.m_jacBindex);
-    c.m_relpos2CrossNormal = -(pos2 - origin).cross(normal);
-  } else {
-    btVector3 relPos = pos2 - m_tmpSolverBodyPool[c.m_solverBodyIdB].getWorldTransform().getOrigin();
-    c.m_relpos2CrossNormal = -relPos.cross(normal);
-    c.m_angularComponentB.setZero();
-  }
-  c.m_contactNormal2 = -normal;
-
-  // J M^-1 J^T and J v of each robot side, summed as Bullet sums them; a
-  // half-solved side's J and z are zero off its path, so z . z and J . v
-  // run along the path.
   auto dot = [this](const btMultiBody* mb, int slot, int jac, const btScalar* x, const btScalar* y, btScalar sum) {
     if (int end = halfPathEnd(jac); end >= 0) return sum + inertiaOfSlot(slot).pathDot(end, x, y);
     for (int k = 0, n = mb->getNumDofs() + 6; k < n; ++k) sum += x[k] * y[k];
     return sum;
   };
-  const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
-  const btScalar* jacobian = &m_data.m_jacobians[0];
   btScalar denom[2] = {0, 0}, relVel = 0;
-  if (mbA) {
-    const btScalar* y = halfA ? unit + c.m_jacAindex : jacobian + c.m_jacAindex;
-    denom[0] = dot(mbA, c.m_deltaVelAindex, c.m_jacAindex, unit + c.m_jacAindex, y, 0);
-  }
-  if (mbB) {
-    const btScalar* y = halfB ? unit + c.m_jacBindex : jacobian + c.m_jacBindex;
-    denom[1] = dot(mbB, c.m_deltaVelBindex, c.m_jacBindex, unit + c.m_jacBindex, y, 0);
-  }
-  if (mbA) relVel = dot(mbA, c.m_deltaVelAindex, c.m_jacAindex, mbA->getVelocityVector(), jacobian + c.m_jacAindex, relVel);
-  if (mbB) relVel = dot(mbB, c.m_deltaVelBindex, c.m_jacBindex, mbB->getVelocityVector(), jacobian + c.m_jacBindex, relVel);
+  auto side = [&](btMultiBody* mb, int link, int solverBody, const btVector3& pos, const btVector3& sideNormal,
+                  int& slot, int& jac, btVector3& relPosCrossNormal, btVector3& angularComponent, btScalar& denominator) {
+    if (!mb) {
+      relPosCrossNormal = (pos - m_tmpSolverBodyPool[solverBody].getWorldTransform().getOrigin()).cross(normal);
+      angularComponent.setZero();
+      return;
+    }
+    btVector3 origin = link < 0 ? mb->getBasePos() : mb->getLink(link).m_cachedWorldTransform.getOrigin();
+    setupSide(mb, link, pos, sideNormal, slot, jac);
+    relPosCrossNormal = (pos - origin).cross(normal);
+    const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[jac];
+    const btScalar* jacobian = &m_data.m_jacobians[jac];
+    denominator = dot(mb, slot, jac, unit, holdsHalf(jac) ? unit : jacobian, 0);
+    relVel = dot(mb, slot, jac, mb->getVelocityVector(), jacobian, relVel);
+  };
+  side(c.m_multiBodyA, c.m_linkA, c.m_solverBodyIdA, pos1, normal, c.m_deltaVelAindex, c.m_jacAindex,
+       c.m_relpos1CrossNormal, c.m_angularComponentA, denom[0]);
+  side(c.m_multiBodyB, c.m_linkB, c.m_solverBodyIdB, pos2, -normal, c.m_deltaVelBindex, c.m_jacBindex,
+       c.m_relpos2CrossNormal, c.m_angularComponentB, denom[1]);
+  c.m_relpos2CrossNormal = -c.m_relpos2CrossNormal;
+  c.m_contactNormal1 = normal;
+  c.m_contactNormal2 = -normal;
   btScalar d = denom[0] + denom[1] + cfm;
   c.m_jacDiagABInv = d > SIMD_EPSILON ? relaxation / d : btScalar(0);
 
@@ -232,7 +215,7 @@ void RowSpaceSolver::setupContactRow(btMultiBodySolverConstraint& c, const btVec
   c.m_appliedPushImpulse = 0;
 }
 
-bool RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot,
+void RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot,
                                int& jac) {
   const int ndof = mb->getNumDofs() + 6;
   slot = mb->getCompanionId();
@@ -247,16 +230,16 @@ bool RowSpaceSolver::setupSide(btMultiBody* mb, int link, const btVector3& point
   btScalar* j = &m_data.m_jacobians[jac];
   btScalar* u = &m_data.m_deltaVelocitiesUnitImpulse[jac];
   if (const JointSpaceInertia* inertia = inertiaAt(mb, slot)) {
+    const int end = inertia->pathEnd(link);
     inertia->contactJacobian(link, point, normal, j);
-    inertia->solvePathFirstHalf(inertia->pathEnd(link), j, u);
+    inertia->solvePathFirstHalf(end, j, u);
     halfRows_.push_back({jac, slot});
     halfPathEnd_.resize(static_cast<std::size_t>(jac) + 1, -1);
-    halfPathEnd_[static_cast<std::size_t>(jac)] = inertia->pathEnd(link);
-    return true;
+    halfPathEnd_[static_cast<std::size_t>(jac)] = end;
+    return;
   }
   mb->fillContactJacobianMultiDof(link, point, normal, j, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
   mb->calcAccelerationDeltasMultiDof(j, u, m_data.scratch_r, m_data.scratch_v);
-  return false;
 }
 
 void RowSpaceSolver::completeUnitResponses() {

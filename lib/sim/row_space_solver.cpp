@@ -5,23 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace rscene::sim {
 
 namespace {
-
-// The multibody sides of a row: (multibody, Jacobian index, velocity slot).
-struct Side {
-  btMultiBody* mb;
-  int jac, slot;
-};
-
-int sidesOf(const btMultiBodySolverConstraint& c, Side out[2]) {
-  int n = 0;
-  if (c.m_multiBodyA) out[n++] = {c.m_multiBodyA, c.m_jacAindex, c.m_deltaVelAindex};
-  if (c.m_multiBodyB) out[n++] = {c.m_multiBodyB, c.m_jacBindex, c.m_deltaVelBindex};
-  return n;
-}
 
 int ndofOf(const btMultiBody* mb) { return mb->getNumDofs() + 6; }
 
@@ -88,16 +76,35 @@ bool RowSpaceSolver::build() {
     for (int i = 0; i < rows->size(); ++i) rows_.push_back({&(*rows)[i], 0, 0, (*rows)[i].m_appliedImpulse});
   if (rows_.empty()) return true;
 
+  // Each row's multibody sides (the finish reads them too).
+  const btScalar* jac = &m_data.m_jacobians[0];
+  btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
+  rowSides_.resize(2 * rows_.size());
+  rowSideCount_.assign(rows_.size(), 0);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const btMultiBodySolverConstraint& c = *rows_[r].c;
+    for (auto [mb, jacIndex, slot] : {std::tuple{c.m_multiBodyA, c.m_jacAindex, c.m_deltaVelAindex},
+                                      std::tuple{c.m_multiBodyB, c.m_jacBindex, c.m_deltaVelBindex}}) {
+      if (!mb) continue;
+      int end = halfPathEnd(jacIndex);
+      rowSides_[2 * r + static_cast<std::size_t>(rowSideCount_[r]++)] = {
+          mb, slot, ndofOf(mb), end, jac + jacIndex, unit + jacIndex, end >= 0 ? &inertiaOfSlot(slot) : nullptr};
+    }
+  }
+  auto sidesOf = [this](std::size_t r) {
+    const RowSide* first = &rowSides_[2 * r];
+    return std::pair{first, first + rowSideCount_[r]};
+  };
+
   // Groups: rows joined by a multibody they share (its velocity slot).
   std::size_t none = rows_.size();
   parent_.resize(rows_.size());
   std::iota(parent_.begin(), parent_.end(), std::size_t{0});
   owner_.assign(static_cast<std::size_t>(m_data.m_deltaVelocities.size()), none);
-  Side sides[2];
   for (std::size_t r = 0; r < rows_.size(); ++r) {
-    int n = sidesOf(*rows_[r].c, sides);
-    for (int s = 0; s < n; ++s) {
-      auto slot = static_cast<std::size_t>(sides[s].slot);
+    auto [begin, end] = sidesOf(r);
+    for (const RowSide* side = begin; side != end; ++side) {
+      auto slot = static_cast<std::size_t>(side->slot);
       if (slot >= owner_.size()) return false;
       if (owner_[slot] == none)
         owner_[slot] = r;
@@ -130,20 +137,6 @@ bool RowSpaceSolver::build() {
     total += g.rows.size() * g.rows.size();
   }
   gram_.assign(total, btScalar(0));
-  const btScalar* jac = &m_data.m_jacobians[0];
-  const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
-  rowSides_.resize(2 * rows_.size());
-  rowSideCount_.resize(rows_.size());
-  for (std::size_t r = 0; r < rows_.size(); ++r) {
-    Side sides[2];
-    int n = rowSideCount_[r] = sidesOf(*rows_[r].c, sides);
-    for (int i = 0; i < n; ++i) {
-      int end = halfPathEnd(sides[i].jac);
-      rowSides_[2 * r + static_cast<std::size_t>(i)] = {sides[i].slot, ndofOf(sides[i].mb), end, jac + sides[i].jac,
-                                                         unit + sides[i].jac,
-                                                         end >= 0 ? &inertiaOfSlot(sides[i].slot) : nullptr};
-    }
-  }
   // One pair of sides on the same robot: z_a . z_b over a's path when both
   // are half-solved (exact: z_b is zero off b's path), else J . u with u
   // the full response.
@@ -164,12 +157,11 @@ bool RowSpaceSolver::build() {
       for (std::size_t a = 0; a <= b; ++a) {
         const std::size_t ra = g.rows[a];
         btScalar v = 0;
-        for (int i = 0; i < rowSideCount_[ra]; ++i)
-          for (int j = 0; j < rowSideCount_[rb]; ++j) {
-            const RowSide& sa = rowSides_[2 * ra + static_cast<std::size_t>(i)];
-            const RowSide& sb = rowSides_[2 * rb + static_cast<std::size_t>(j)];
-            if (sa.slot == sb.slot) v += entry(sa, sb);
-          }
+        auto [beginA, endA] = sidesOf(ra);
+        auto [beginB, endB] = sidesOf(rb);
+        for (const RowSide* sa = beginA; sa != endA; ++sa)
+          for (const RowSide* sb = beginB; sb != endB; ++sb)
+            if (sa->slot == sb->slot) v += entry(*sa, *sb);
         column[a] = v;
         gram_[g.offset + a * n + b] = v;
       }
@@ -304,36 +296,33 @@ btScalar RowSpaceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodie
     // Half-solved rows add z * change into their robot's sum; each sum
     // then takes its second half once (L^-1 sum z_i dlambda_i = sum u_i dlambda_i).
     finishSum_.assign(static_cast<std::size_t>(m_data.m_deltaVelocities.size()), btScalar(0));
-    finishSlots_.clear();
-    for (Row& row : rows_) {
+    summed_.assign(inertiaCount_, nullptr);
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      Row& row = rows_[r];
       btMultiBodySolverConstraint& c = *row.c;
       c.m_appliedImpulse = row.impulse;
       c.m_lowerLimit = row.lower;
       c.m_upperLimit = row.upper;
       btScalar change = c.m_appliedImpulse - row.start;
-      Side sides[2];
-      int n = sidesOf(c, sides);
-      for (int s = 0; s < n; ++s) {
-        const int ndof = ndofOf(sides[s].mb);
-        btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[sides[s].jac];
-        if (change != 0 && holdsHalf(sides[s].jac)) {
-          btScalar* sum = &finishSum_[static_cast<std::size_t>(sides[s].slot)];
-          bool listed = std::any_of(finishSlots_.begin(), finishSlots_.end(),
-                                    [&](const auto& listedSlot) { return listedSlot.second == sides[s].slot; });
-          if (!listed) finishSlots_.emplace_back(sides[s].mb, sides[s].slot);
-          for (int k = 0; k < ndof; ++k) sum[k] += unit[k] * change;
+      for (std::size_t s = 0; s < static_cast<std::size_t>(rowSideCount_[r]); ++s) {
+        const RowSide& side = rowSides_[2 * r + s];
+        if (change != 0 && side.halfPathEnd >= 0) {
+          btScalar* sum = &finishSum_[static_cast<std::size_t>(side.slot)];
+          summed_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(side.slot)])] = &side;
+          for (int k = 0; k < side.ndof; ++k) sum[k] += side.response[k] * change;
         } else if (change != 0) {
-          sides[s].mb->applyDeltaVeeMultiDof2(unit, change);
-          applyDeltaVee(unit, change, sides[s].slot, ndof);
+          side.mb->applyDeltaVeeMultiDof2(side.response, change);
+          applyDeltaVee(side.response, change, side.slot, side.ndof);
         }
-        sides[s].mb->setPosUpdated(false);
+        side.mb->setPosUpdated(false);
       }
     }
-    for (auto [mb, slot] : finishSlots_) {
-      btScalar* sum = &finishSum_[static_cast<std::size_t>(slot)];
-      inertias_[static_cast<std::size_t>(inertiaOfSlot_[static_cast<std::size_t>(slot)])].solveSecondHalf(sum);
-      mb->applyDeltaVeeMultiDof2(sum, 1);
-      applyDeltaVee(sum, 1, slot, ndofOf(mb));
+    for (const RowSide* side : summed_) {
+      if (!side) continue;
+      btScalar* sum = &finishSum_[static_cast<std::size_t>(side->slot)];
+      side->inertia->solveSecondHalf(sum);
+      side->mb->applyDeltaVeeMultiDof2(sum, 1);
+      applyDeltaVee(sum, 1, side->slot, side->ndof);
     }
     active_ = false;
   }

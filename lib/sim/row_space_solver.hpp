@@ -104,9 +104,8 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   void setupContactRow(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
                        const btContactSolverInfo& info, bool isFriction);
   // A multibody side of a row: its velocity slot, Jacobian and unit
-  // response; true when the response slot holds only the first half,
-  // z = L^-T J^T (see halfRows_).
-  bool setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
+  // response, or only its first half z = L^-T J^T (see halfRows_).
+  void setupSide(btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, int& slot, int& jac);
   const JointSpaceInertia* inertiaAt(btMultiBody* mb, int slot);
   // The last velocity of a half-solved row side's path (see halfRows_), -1 for a full response.
   int halfPathEnd(int jac) const {
@@ -135,9 +134,11 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   std::size_t groupCount_ = 0;
   std::vector<btScalar> gram_;
   std::vector<std::size_t> parent_, owner_, groupOf_;  // build()'s work space, kept between solves
-  struct RowSide {  // a row's multibody side, for G
-    int slot, ndof, halfPathEnd;
-    const btScalar *jacobian, *response;
+  struct RowSide {  // a row's multibody side: where its numbers live
+    btMultiBody* mb;
+    int slot, ndof, halfPathEnd;        // halfPathEnd: see halfPathEnd()
+    const btScalar* jacobian;
+    btScalar* response;                 // u, or z for a half-solved side
     const JointSpaceInertia* inertia;  // for a half-solved side
   };
   std::vector<RowSide> rowSides_;      // two per row of rows_ (count in rowSideCount_)
@@ -157,7 +158,7 @@ class RowSpaceSolver : public btMultiBodyConstraintSolver {
   std::vector<HalfRow> halfRows_;
   std::vector<int> halfPathEnd_;             // by Jacobian index, -1: not half-solved
   std::vector<btScalar> finishSum_;          // by velocity slot: sum of z dlambda
-  std::vector<std::pair<btMultiBody*, int>> finishSlots_;  // slots with a sum
+  std::vector<const RowSide*> summed_;       // by factor: a side of a robot with a sum, else null
 };
 
 }  // namespace rscene::sim
